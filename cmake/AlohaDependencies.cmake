@@ -1,0 +1,20 @@
+# Finds the Debian packages ALOHA builds on. Included by the build and by alohaConfig.cmake.
+include(CMakeFindDependencyMacro)
+find_package(glm CONFIG REQUIRED)
+find_package(nlohmann_json 3 CONFIG REQUIRED)
+find_package(TBB CONFIG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
+find_package(Vulkan REQUIRED)
+find_package(Threads REQUIRED)
+find_package(PNG REQUIRED)
+
+# OpenSubdiv 3.5 on Debian: its CMake config names a static libosdCPU.a the package lacks,
+# so wrap the shared library in a target of our own.
+if(NOT TARGET aloha_opensubdiv)
+  find_library(ALOHA_OSD_CPU_LIBRARY osdCPU REQUIRED)
+  find_path(ALOHA_OSD_INCLUDE_DIR opensubdiv/far/topologyRefiner.h REQUIRED)
+  add_library(aloha_opensubdiv SHARED IMPORTED GLOBAL)
+  set_target_properties(aloha_opensubdiv PROPERTIES
+    IMPORTED_LOCATION ${ALOHA_OSD_CPU_LIBRARY}
+    INTERFACE_INCLUDE_DIRECTORIES ${ALOHA_OSD_INCLUDE_DIR})
+endif()

@@ -1,0 +1,61 @@
+# Helpers that give every ALOHA layer the same settings: aloha:: alias, include paths for the
+# build and install trees, warnings as errors for our own code, install into the export set.
+set(ALOHA_LAYER_TARGETS "" CACHE INTERNAL "")
+
+function(aloha_warnings target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Werror)
+  endif()
+endfunction()
+
+# aloha_library_defaults(<target> <short-name>): alias aloha::<short-name>, includes, warnings, install.
+function(aloha_library_defaults target short)
+  add_library(aloha::${short} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${short} OUTPUT_NAME aloha_${short})
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/aloha>)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  aloha_warnings(${target})
+  install(TARGETS ${target} EXPORT alohaTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  set(ALOHA_LAYER_TARGETS ${ALOHA_LAYER_TARGETS} ${target} CACHE INTERNAL "")
+endfunction()
+
+# aloha_interface_defaults(<target> <short-name>): the same for header-only layers.
+function(aloha_interface_defaults target short)
+  add_library(aloha::${short} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${short})
+  target_include_directories(${target} INTERFACE
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/aloha>)
+  target_compile_features(${target} INTERFACE cxx_std_20)
+  install(TARGETS ${target} EXPORT alohaTargets)
+  set(ALOHA_LAYER_TARGETS ${ALOHA_LAYER_TARGETS} ${target} CACHE INTERNAL "")
+endfunction()
+
+# aloha_test(<name> SOURCES ... LIBS ...): a GoogleTest executable registered with CTest.
+function(aloha_test name)
+  cmake_parse_arguments(T "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${name} ${T_SOURCES})
+  target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  aloha_warnings(${name})
+  target_compile_definitions(${name} PRIVATE
+    ALOHA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/../shared/assets")
+  include(GoogleTest)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${T_LABELS}")
+endfunction()
+
+# aloha_bench(<name> SOURCES ... LIBS ...): a Google Benchmark program (built, not run by CI).
+function(aloha_bench name)
+  cmake_parse_arguments(B "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${B_SOURCES})
+  target_link_libraries(${name} PRIVATE ${B_LIBS} benchmark::benchmark)
+  aloha_warnings(${name})
+  target_compile_definitions(${name} PRIVATE
+    ALOHA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/../shared/assets")
+endfunction()

@@ -1,0 +1,28 @@
+// A pose: local joint transforms (structure of arrays) and model-space matrices for one character.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <span>
+
+namespace aloha {
+
+/// Non-owning view of one character's local pose (SoA) and its model-space matrices.
+/// All spans have the skeleton's joint count.
+struct PoseView {
+    std::span<glm::vec3> translations;
+    std::span<glm::quat> rotations;
+    std::span<glm::vec3> scales;
+    std::span<glm::mat4> model;  ///< model-space (character space) matrix of each joint
+};
+
+/// Read-only counterpart of PoseView.
+struct ConstPoseView {
+    std::span<const glm::vec3> translations;
+    std::span<const glm::quat> rotations;
+    std::span<const glm::vec3> scales;
+    std::span<const glm::mat4> model;
+};
+
+}  // namespace aloha

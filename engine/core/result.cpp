@@ -1,0 +1,40 @@
+#include "engine/core/result.hpp"
+
+namespace aloha {
+
+std::string Error::to_string() const {
+    std::string out;
+    if (!file.empty()) {
+        out += file;
+        if (line > 0) {
+            out += ':' + std::to_string(line);
+            if (column > 0) out += ':' + std::to_string(column);
+        }
+        out += ": ";
+    }
+    if (!path.empty()) out += path + ": ";
+    out += message;
+    if (code != 0) out += " (code " + std::to_string(code) + ")";
+    return out;
+}
+
+Error make_error(std::string file, std::string message, int line, int column, std::string path) {
+    Error e;
+    e.file = std::move(file);
+    e.message = std::move(message);
+    e.line = line;
+    e.column = column;
+    e.path = std::move(path);
+    return e;
+}
+
+std::string join_errors(const std::vector<Error>& errors) {
+    std::string out;
+    for (const Error& e : errors) {
+        if (!out.empty()) out += '\n';
+        out += e.to_string();
+    }
+    return out;
+}
+
+}  // namespace aloha
