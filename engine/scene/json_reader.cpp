@@ -1,0 +1,175 @@
+#include "engine/scene/json_reader.hpp"
+
+#include <cmath>
+
+namespace aloha {
+
+namespace {
+const char* type_name(const nlohmann::json& v) { return v.type_name(); }
+}  // namespace
+
+JsonObjectReader::JsonObjectReader(const nlohmann::json& value, std::string path, const std::string& file,
+                                   std::vector<Error>& errors)
+    : path_(std::move(path)), file_(file), errors_(errors) {
+    if (value.is_object()) object_ = &value;
+    else errors_.push_back(make_error(file_, std::string("expected an object, found ") + type_name(value), 0, 0,
+                                      path_.empty() ? "/" : path_));
+}
+
+void JsonObjectReader::error(const std::string& sub_path, const std::string& message) {
+    std::string p = path_;
+    if (!sub_path.empty()) p += "/" + sub_path;
+    errors_.push_back(make_error(file_, message, 0, 0, p.empty() ? "/" : p));
+}
+
+bool JsonObjectReader::has(const char* key) {
+    known_.insert(key);
+    return object_ && object_->contains(key);
+}
+
+const nlohmann::json* JsonObjectReader::child(const char* key) {
+    known_.insert(key);
+    if (!object_) return nullptr;
+    auto it = object_->find(key);
+    return it == object_->end() ? nullptr : &*it;
+}
+
+double JsonObjectReader::number(const char* key, double fallback, double lo, double hi, bool required) {
+    const nlohmann::json* v = child(key);
+    if (!v) {
+        if (required && object_) error(key, "required number is missing");
+        return fallback;
+    }
+    if (!v->is_number()) {
+        error(key, std::string("expected a number, found ") + type_name(*v));
+        return fallback;
+    }
+    const double d = v->get<double>();
+    if (!std::isfinite(d)) {
+        error(key, "number is not finite");
+        return fallback;
+    }
+    if (d < lo || d > hi) {
+        error(key, "value " + std::to_string(d) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return fallback;
+    }
+    return d;
+}
+
+int64_t JsonObjectReader::integer(const char* key, int64_t fallback, int64_t lo, int64_t hi, bool required) {
+    const nlohmann::json* v = child(key);
+    if (!v) {
+        if (required && object_) error(key, "required integer is missing");
+        return fallback;
+    }
+    if (v->is_number_float()) {
+        const double d = v->get<double>();
+        if (!std::isfinite(d) || d != std::floor(d)) {
+            error(key, "expected an integer, found " + v->dump());
+            return fallback;
+        }
+        if (d < static_cast<double>(lo) || d > static_cast<double>(hi)) {
+            error(key, "value " + v->dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+            return fallback;
+        }
+        return static_cast<int64_t>(d);
+    }
+    if (!v->is_number_integer()) {
+        error(key, std::string("expected an integer, found ") + type_name(*v));
+        return fallback;
+    }
+    // Unsigned values beyond int64 range are rejected as out of range.
+    if (v->is_number_unsigned() && v->get<uint64_t>() > static_cast<uint64_t>(hi)) {
+        error(key, "value " + v->dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return fallback;
+    }
+    const int64_t i = v->get<int64_t>();
+    if (i < lo || i > hi) {
+        error(key, "value " + std::to_string(i) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return fallback;
+    }
+    return i;
+}
+
+bool JsonObjectReader::boolean(const char* key, bool fallback) {
+    const nlohmann::json* v = child(key);
+    if (!v) return fallback;
+    if (!v->is_boolean()) {
+        error(key, std::string("expected true or false, found ") + type_name(*v));
+        return fallback;
+    }
+    return v->get<bool>();
+}
+
+std::string JsonObjectReader::string(const char* key, const std::string& fallback, bool required) {
+    const nlohmann::json* v = child(key);
+    if (!v) {
+        if (required && object_) error(key, "required string is missing");
+        return fallback;
+    }
+    if (!v->is_string()) {
+        error(key, std::string("expected a string, found ") + type_name(*v));
+        return fallback;
+    }
+    std::string s = v->get<std::string>();
+    if (required && s.empty()) error(key, "string must not be empty");
+    return s;
+}
+
+glm::vec3 read_vec3(const nlohmann::json& value, const std::string& path, const std::string& file,
+                    std::vector<Error>& errors, const glm::vec3& fallback) {
+    if (!value.is_array() || value.size() != 3) {
+        errors.push_back(make_error(file, "expected [x, y, z], found " + value.dump().substr(0, 40), 0, 0, path));
+        return fallback;
+    }
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) {
+        const auto& c = value[static_cast<size_t>(i)];
+        if (!c.is_number() || !std::isfinite(c.get<double>()) || std::abs(c.get<double>()) > 1e7) {
+            errors.push_back(make_error(file, "component is not a finite number within +-1e7", 0, 0,
+                                        path + "/" + std::to_string(i)));
+            return fallback;
+        }
+        out[i] = c.get<float>();
+    }
+    return out;
+}
+
+glm::vec3 JsonObjectReader::vec3(const char* key, const glm::vec3& fallback, bool required) {
+    const nlohmann::json* v = child(key);
+    if (!v) {
+        if (required && object_) error(key, "required [x, y, z] is missing");
+        return fallback;
+    }
+    return read_vec3(*v, child_path(key), file_, errors_, fallback);
+}
+
+void JsonObjectReader::reject_unknown_keys() {
+    if (!object_) return;
+    for (auto it = object_->begin(); it != object_->end(); ++it)
+        if (!known_.count(it.key())) error(it.key(), "unknown key '" + it.key() + "'");
+}
+
+Result<nlohmann::json> parse_json_text(const std::string& text, const std::string& file) {
+    nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false, /*ignore_comments=*/false);
+    if (!j.is_discarded()) return j;
+    // Re-parse with exceptions to get the byte position of the syntax error.
+    try {
+        const nlohmann::json again = nlohmann::json::parse(text);
+        (void)again;
+    } catch (const nlohmann::json::parse_error& e) {
+        const size_t byte = e.byte == 0 ? 0 : e.byte - 1;
+        int line = 1, column = 1;
+        for (size_t i = 0; i < byte && i < text.size(); ++i) {
+            if (text[i] == '\n') { ++line; column = 1; } else { ++column; }
+        }
+        std::string what = e.what();
+        const auto pos = what.find("syntax error");
+        return make_error(file, "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)), line, column);
+    } catch (const std::exception& e) {
+        return make_error(file, std::string("invalid JSON: ") + e.what());
+    }
+    return make_error(file, "invalid JSON");
+}
+
+}  // namespace aloha

@@ -1,0 +1,111 @@
+// Plain description of a scene as read from a scene file: camera, character types, paths, placed
+// characters, crowd generators, the rule file and the run length. Produced by load_scene().
+#pragma once
+
+#include "components/motion.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+/// One camera keyframe: where the camera is and what it looks at, at `time` seconds.
+struct CameraKey {
+    float time = 0.0f;
+    glm::vec3 position{0.0f, 1.7f, 10.0f};
+    glm::vec3 target{0.0f, 1.0f, 0.0f};
+};
+
+/// A static camera (one key) or a keyframed path (linear interpolation, clamped at the ends).
+struct CameraDesc {
+    std::vector<CameraKey> keys;
+    float fov_y_deg = 50.0f;
+    float near_plane = 0.1f;
+    float far_plane = 1000.0f;
+};
+
+/// A character type: the built-in humanoid (skeleton from BVH, muscles from data) or a glTF file.
+struct CharacterTypeDesc {
+    std::string name;
+    std::string bvh;       ///< absolute path of a BVH skeleton (+ its motion as clip "<name>.mocap")
+    std::string gltf;      ///< absolute path of a glTF character
+    std::string muscles;   ///< absolute path of a muscle layout ("" = fit per bone)
+    std::string limits;    ///< absolute path of joint limits ("" = free joints)
+};
+
+/// A named walk path: waypoints on the ground (y ignored), optionally looping.
+struct PathDesc {
+    std::string name;
+    std::vector<glm::vec3> points;
+    bool loop = true;
+};
+
+/// A request as written in the scene, resolved to ids at world build time.
+struct RequestDesc {
+    MotionRequest request;     ///< kind, timing, speed, target ...
+    std::string clip;          ///< PlayClip: clip name
+    std::string path;          ///< Walk: path name ("" = straight along request.target as a direction)
+    std::string effector;      ///< Reach/LookAt: joint name
+};
+
+/// One placed character.
+struct CharacterDesc {
+    int type = 0;              ///< index into SceneDesc::types
+    glm::vec3 position{0.0f};
+    float heading_deg = 0.0f;  ///< rotation about +Y
+    float importance = 0.5f;
+    std::vector<RequestDesc> requests;
+};
+
+/// Mix of behaviours in a generated crowd (fractions, normalised at load).
+struct CrowdMix {
+    float walk = 0.6f;
+    float idle = 0.3f;
+    float reach = 0.1f;
+};
+
+/// A crowd generator: N characters on a grid or disc, deterministic from `seed`.
+struct CrowdDesc {
+    int type = 0;
+    uint32_t count = 0;
+    enum class Layout : uint8_t { Grid, Disc } layout = Layout::Grid;
+    glm::vec3 center{0.0f};
+    float spacing = 2.0f;          ///< grid spacing (m)
+    float radius = 50.0f;          ///< disc radius (m)
+    uint64_t seed = 1;
+    CrowdMix mix;
+    float importance_min = 0.1f, importance_max = 0.6f;
+    float speed_min = 0.8f, speed_max = 1.6f;  ///< walking speed range (m/s)
+    std::string clip;              ///< clip idle characters play ("" = the type's mocap clip)
+};
+
+/// A whole scene.
+struct SceneDesc {
+    std::string file;              ///< absolute path of the scene file
+    std::string name;
+    std::string rules;             ///< absolute path of the rule file
+    uint32_t frames = 300;
+    float dt = 1.0f / 60.0f;
+    uint32_t width = 1280, height = 720;
+    CameraDesc camera;
+    std::vector<CharacterTypeDesc> types;
+    std::vector<PathDesc> paths;
+    std::vector<CharacterDesc> characters;
+    std::vector<CrowdDesc> crowds;
+    uint64_t seed = 1;
+};
+
+/// Camera placement at time `t` (linear between keys, clamped at the ends). Requires keys non-empty.
+CameraKey sample_camera(const CameraDesc& camera, float t);
+
+/// Expands every crowd generator of `scene` into placed characters (deterministic for a seed) and
+/// appends the explicitly placed ones first. `seed_override` != 0 replaces each crowd's seed.
+std::vector<CharacterDesc> expand_characters(const SceneDesc& scene, uint64_t seed_override = 0);
+
+/// Total number of characters the scene will spawn.
+uint64_t character_count(const SceneDesc& scene);
+
+}  // namespace aloha

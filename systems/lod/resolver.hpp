@@ -1,0 +1,51 @@
+// The resolver system: turns rule requests into the levels characters actually use, with time
+// hysteresis (a minimum number of frames at a level), budget demotion, marshalled transitions
+// (geomorph, pose cross-fade) and a list of who changed so the host re-sorts only those.
+#pragma once
+
+#include "components/lod.hpp"
+#include "systems/lod/rule_table.hpp"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+/// Geometric level for request `requested` after removing `demotion` levels: never demotes a Hidden
+/// level, never demotes into a Hidden level, clamps to the last level. Requires a non-empty table.
+[[nodiscard]] uint8_t demoted_geom_level(const RuleTable& table, uint8_t requested, uint8_t demotion);
+/// Animation level for request `requested` after removing `demotion` levels (clamped to the last).
+[[nodiscard]] uint8_t demoted_anim_level(const RuleTable& table, uint8_t requested, uint8_t demotion);
+
+/// LodRequest + LodState -> LodState, GeomLod, AnimLod for a contiguous range of characters.
+///
+/// Per character and frame: timers advance (frames_at_* +1 saturating, geomorph_left and
+/// crossfade_left -1 down to 0); the target is the request demoted by state.budget_demotion; a level
+/// switches to its target only when it has been held for hysteresis.min_frames frames (or the current
+/// geometric level is Hidden, so a character coming into view is never held invisible). A geometric
+/// switch keeps the old level in prev_geom_level and sets geomorph_left to the entered level's
+/// geomorph_frames (morph progress = 1 - geomorph_left / geomorph_frames); an animation switch sets
+/// prev_anim_level and crossfade_left likewise. state.rule_id takes the request's rule once both
+/// levels equal the target. Levels out of range (after loading a smaller table) are clamped first.
+struct LodResolveJob {
+    const RuleTable* table = nullptr;           ///< required, outlives Run()
+    std::span<const LodRequest> requests;       ///< n entries
+    std::span<LodState> states;                 ///< n entries, read and written
+    std::span<GeomLod> geom;                    ///< n entries, written
+    std::span<AnimLod> anim;                    ///< n entries, written
+    std::span<uint8_t> changed_flags;           ///< n entries (1 = level changed this frame) or empty
+    std::span<uint32_t> changed_indices;        ///< n entries of room (first Run() filled) or empty
+    uint32_t index_base = 0;                    ///< added to indices written to changed_indices
+    bool snap = false;                          ///< first frame / teleport: take targets at once, no transitions
+
+    /// Checks table and sizes; appends one message per failure to `errors` when given.
+    bool Validate(std::vector<std::string>* errors = nullptr) const;
+    /// Resolves every character; returns how many changed a level. Requires Validate().
+    size_t Run() const;
+};
+
+/// Clamps levels, previous levels and rule ids of `states` into `table`'s ranges (after a reload).
+void clamp_lod_states(const RuleTable& table, std::span<LodState> states);
+
+}  // namespace aloha

@@ -1,0 +1,85 @@
+#include "systems/lod/rule_table.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace aloha {
+
+std::string_view attribute_name(LodAttribute a) {
+    switch (a) {
+        case LodAttribute::Distance: return "distance";
+        case LodAttribute::ProjectedHeightPx: return "projected_height_px";
+        case LodAttribute::Eccentricity: return "eccentricity";
+        case LodAttribute::Speed: return "speed";
+        case LodAttribute::Visible: return "visible";
+        case LodAttribute::Importance: return "importance";
+        case LodAttribute::Tier: return "tier";
+    }
+    return "?";
+}
+
+namespace {
+template <class T>
+int find_named(const std::vector<T>& items, std::string_view name) {
+    for (size_t i = 0; i < items.size(); ++i) {
+        if (items[i].name == name) return static_cast<int>(i);
+    }
+    return -1;
+}
+}  // namespace
+
+int RuleTable::find_geom_level(std::string_view name) const { return find_named(geom_levels, name); }
+
+int RuleTable::find_anim_level(std::string_view name) const { return find_named(anim_levels, name); }
+
+int RuleTable::find_rule(std::string_view name) const { return find_named(rules, name); }
+
+int RuleTable::find_tier(std::string_view name) const {
+    for (size_t i = 0; i < tiers.size(); ++i) {
+        if (tiers[i] == name) return static_cast<int>(i);
+    }
+    return -1;
+}
+
+GeomLod RuleTable::geom_lod(uint8_t level) const {
+    const size_t i = std::min<size_t>(level, geom_levels.size() - 1);
+    const GeomLevelDef& d = geom_levels[i];
+    GeomLod g;
+    g.level = static_cast<uint8_t>(i);
+    g.method = d.method;
+    g.layers = d.layers;
+    g.subdiv_level = d.subdiv_level;
+    g.theta_steps = d.theta_steps;
+    g.phi_steps = d.phi_steps;
+    g.geomorph_frames = d.geomorph_frames;
+    return g;
+}
+
+AnimLod RuleTable::anim_lod(uint8_t level) const {
+    const size_t i = std::min<size_t>(level, anim_levels.size() - 1);
+    const AnimLevelDef& d = anim_levels[i];
+    AnimLod a;
+    a.level = static_cast<uint8_t>(i);
+    a.walk = d.walk;
+    a.ik = d.ik;
+    a.ik_iterations = d.ik_iterations;
+    a.update_interval = d.update_interval;
+    a.crossfade_frames = d.crossfade_frames;
+    a.ik_tolerance = d.ik_tolerance;
+    return a;
+}
+
+Result<RuleTable> load_rules(const std::string& path, std::vector<Error>* all_errors) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        Error e = make_error(path, "cannot open rule file for reading");
+        if (all_errors) all_errors->push_back(e);
+        return e;
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_rules(text.str(), path, all_errors);
+}
+
+}  // namespace aloha

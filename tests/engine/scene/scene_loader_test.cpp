@@ -1,0 +1,104 @@
+#include "engine/scene/scene_loader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace aloha {
+namespace {
+
+const std::string kScenes = std::string(ALOHA_SOURCE_DIR) + "/data/scenes/";
+
+// A scene placed in the repository's scene folder so builtin and relative paths resolve.
+Result<SceneDesc> parse(const std::string& text) { return parse_scene(text, kScenes + "test_inline.json"); }
+
+std::string message_of(const Result<SceneDesc>& r) { return r.ok() ? std::string() : r.error().to_string(); }
+
+TEST(SceneLoader, ShippedScenesLoad) {
+    for (const char* name : {"closeup.json", "crowd_1k.json", "crowd_10k.json"}) {
+        auto scene = load_scene(kScenes + name);
+        ASSERT_TRUE(scene.ok()) << scene.error().to_string();
+        EXPECT_FALSE(scene.value().camera.keys.empty());
+        EXPECT_FALSE(scene.value().types.empty());
+    }
+    auto crowd = load_scene(kScenes + "crowd_10k.json");
+    ASSERT_TRUE(crowd.ok());
+    EXPECT_EQ(character_count(crowd.value()), 10000u);
+    EXPECT_EQ(crowd.value().camera.keys.size(), 4u);
+}
+
+TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {
+    auto r = parse("{\n  \"camera\": {\n    \"position\": [0, 1, 2,]\n  }\n}");
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().line, 3);
+    EXPECT_GT(r.error().column, 0);
+    EXPECT_NE(r.error().file.find("test_inline.json"), std::string::npos);
+}
+
+TEST(SceneLoader, SemanticErrorsNameTheJsonPath) {
+    const std::string base = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, )";
+    struct Case { std::string body; std::string path; std::string words; };
+    const std::vector<Case> cases = {
+        {R"("crowds": [{"count": 1000000000}]})", "/crowds/0/count", "at most"},
+        {R"("crowds": [{"count": -5}]})", "/crowds/0/count", "outside"},
+        {R"("crowds": [{"count": 10, "spacing": -1}]})", "/crowds/0/spacing", "outside"},
+        {R"("crowds": [{"count": 10, "layout": "spiral"}]})", "/crowds/0/layout", "unknown layout"},
+        {R"("characters": [{"position": [0, "a", 0]}]})", "/characters/0/position/1", "finite"},
+        {R"("characters": [{"position": [0, 1e999, 0]}]})", "/characters/0/position/1", "finite"},
+        {R"("characters": [{"type": "robot"}]})", "/characters/0/type", "unknown character type"},
+        {R"("characters": [{"requests": [{"type": "fly"}]}]})", "/characters/0/requests/0/type", "unknown request"},
+        {R"("characters": [{"requests": [{"type": "walk", "path": "nowhere"}]}]})", "/characters/0/requests/0/path", "unknown path"},
+        {R"("characters": [{}], "rules": "../../../etc/passwd"})", "/rules", "escapes"},
+        {R"("characters": [{}], "rules": "/etc/passwd"})", "/rules", "absolute"},
+        {R"("characters": [{}], "rules": "missing_rules.json"})", "/rules", "does not exist"},
+        {R"("characters": [{}], "colour": "red"})", "/colour", "unknown key"},
+        {R"("characters": [{}], "frames": 0})", "/frames", "outside"},
+        {R"("characters": [{}], "frames": 1.5})", "/frames", "integer"},
+        {R"("characters": [{}], "dt": "fast"})", "/dt", "expected a number"},
+        {R"("characters": [{}], "character_types": [{"name": "x"}]})", "/character_types/0", "exactly one"},
+        {R"("crowds": []})", "/", "no characters"},
+    };
+    for (const Case& c : cases) {
+        auto r = parse(base + c.body);
+        ASSERT_FALSE(r.ok()) << c.body;
+        const std::string msg = message_of(r);
+        EXPECT_NE(msg.find(c.path), std::string::npos) << c.body << " -> " << msg;
+        EXPECT_NE(msg.find(c.words), std::string::npos) << c.body << " -> " << msg;
+        EXPECT_NE(msg.find("test_inline.json"), std::string::npos) << msg;
+    }
+}
+
+TEST(SceneLoader, ReportsEveryProblemNotOnlyTheFirst) {
+    auto r = parse(R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "frames": -1, "dt": 0, "characters": [{}]})");
+    ASSERT_FALSE(r.ok());
+    const std::string msg = message_of(r);
+    EXPECT_NE(msg.find("/frames"), std::string::npos);
+    EXPECT_NE(msg.find("/dt"), std::string::npos);
+}
+
+TEST(SceneLoader, MissingCameraAndCoincidentCamera) {
+    EXPECT_NE(message_of(parse(R"({"characters": [{}]})")).find("/camera"), std::string::npos);
+    EXPECT_NE(message_of(parse(R"({"camera": {"position": [1, 1, 1], "target": [1, 1, 1]}, "characters": [{}]})")).find("coincide"),
+              std::string::npos);
+}
+
+TEST(SceneLoader, MissingFileAndTruncatedFile) {
+    auto missing = load_scene(kScenes + "no_such_scene.json");
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().to_string().find("does not exist"), std::string::npos);
+    auto truncated = parse(R"({"camera": {"position": [0, 2, 10], "tar)");
+    ASSERT_FALSE(truncated.ok());
+    EXPECT_EQ(truncated.error().line, 1);
+}
+
+TEST(SceneLoader, CameraPathInterpolates) {
+    CameraDesc cam;
+    cam.keys = {{0.0f, {0, 0, 0}, {0, 0, -1}}, {2.0f, {2, 0, 0}, {2, 0, -1}}};
+    EXPECT_FLOAT_EQ(sample_camera(cam, 1.0f).position.x, 1.0f);
+    EXPECT_FLOAT_EQ(sample_camera(cam, -1.0f).position.x, 0.0f);
+    EXPECT_FLOAT_EQ(sample_camera(cam, 5.0f).position.x, 2.0f);
+}
+
+}  // namespace
+}  // namespace aloha
