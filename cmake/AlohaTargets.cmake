@@ -44,9 +44,10 @@ function(aloha_test name)
   aloha_warnings(${name})
   target_compile_definitions(${name} PRIVATE
     ALOHA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/../shared/assets")
+    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/data/characters")
   include(GoogleTest)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${T_LABELS}")
+  string(REPLACE ";" "\\;" labels "${T_LABELS}")
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${labels}")
 endfunction()
 
 # aloha_bench(<name> SOURCES ... LIBS ...): a Google Benchmark program (built, not run by CI).
@@ -57,5 +58,5 @@ function(aloha_bench name)
   aloha_warnings(${name})
   target_compile_definitions(${name} PRIVATE
     ALOHA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/../shared/assets")
+    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/data/characters")
 endfunction()

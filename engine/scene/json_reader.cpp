@@ -166,6 +166,22 @@ Result<nlohmann::json> parse_json_text(const std::string& text, const std::strin
         std::string what = e.what();
         const auto pos = what.find("syntax error");
         return make_error(file, "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)), line, column);
+    } catch (const nlohmann::json::out_of_range& e) {
+        // e.g. "number overflow parsing '1e999'": place it at the first occurrence of the literal.
+        std::string what = e.what();
+        int line = 0, column = 0;
+        const auto open = what.find('\''), close = what.rfind('\'');
+        if (open != std::string::npos && close > open + 1) {
+            const size_t at = text.find(what.substr(open + 1, close - open - 1));
+            if (at != std::string::npos) {
+                line = 1, column = 1;
+                for (size_t i = 0; i < at; ++i) {
+                    if (text[i] == '\n') { ++line; column = 1; } else { ++column; }
+                }
+            }
+        }
+        const auto pos = what.find("number overflow");
+        return make_error(file, "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)), line, column);
     } catch (const std::exception& e) {
         return make_error(file, std::string("invalid JSON: ") + e.what());
     }

@@ -1,0 +1,104 @@
+// What a system declares to the scheduler (phase, reads, writes, body) and what it gets when run.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "engine/ecs/command_buffer.hpp"
+#include "engine/ecs/type_id.hpp"
+#include "engine/scheduler/phase.hpp"
+
+namespace aloha {
+
+class SystemContext;
+
+/// A system as the scheduler sees it. `reads`/`writes` name component types or resources
+/// (component_type_id<T>(), resource_type_id<Tag>(), named_type_id("camera")); writing implies
+/// reading. `run` must be callable.
+struct SystemDesc {
+    std::string name;                      ///< unique, used in messages, timings and traces
+    Phase phase = Phase::Attributes;       ///< phase the system runs in
+    std::vector<ComponentTypeId> reads;    ///< types only read
+    std::vector<ComponentTypeId> writes;   ///< types written (and possibly read)
+    std::function<void(SystemContext&)> run;  ///< the system body
+};
+
+/// The ids of Ts, for SystemDesc::reads.
+template <class... Ts>
+std::vector<ComponentTypeId> reads() {
+    return {component_type_id<Ts>()...};
+}
+
+/// The ids of Ts, for SystemDesc::writes.
+template <class... Ts>
+std::vector<ComponentTypeId> writes() {
+    return {component_type_id<Ts>()...};
+}
+
+/// What a running system gets: frame data, its deferred command buffer and a deterministic
+/// parallel_for inside the scheduler's thread arena.
+class SystemContext {
+public:
+    /// Built by the scheduler for each run.
+    SystemContext(uint64_t frame, float dt, unsigned threads, uint32_t system, std::string_view name,
+                  CommandBuffer* commands)
+        : frame_(frame), dt_(dt), threads_(threads), system_(system), name_(name), commands_(commands) {}
+
+    /// Index of the current frame (0 for the first run_frame()).
+    [[nodiscard]] uint64_t frame() const { return frame_; }
+    /// Seconds this frame advances.
+    [[nodiscard]] float dt() const { return dt_; }
+    /// Threads of the scheduler's arena.
+    [[nodiscard]] unsigned threads() const { return threads_; }
+    /// Index of the running system (add() order).
+    [[nodiscard]] uint32_t system_index() const { return system_; }
+    /// Name of the running system.
+    [[nodiscard]] std::string_view system_name() const { return name_; }
+    /// This system's own command buffer (thread-safe because it is per system); the scheduler's
+    /// apply_commands() applies all of them in system order.
+    [[nodiscard]] CommandBuffer& commands() const { return *commands_; }
+
+    /// Number of chunks parallel_for(count, grain, ...) makes: ceil(count / max(grain, 1)).
+    [[nodiscard]] static size_t chunk_count(size_t count, size_t grain) {
+        grain = std::max<size_t>(grain, 1);
+        return (count + grain - 1) / grain;
+    }
+    /// Calls fn(begin, end) for the chunks [k*grain, min((k+1)*grain, count)), possibly in
+    /// parallel. Chunk boundaries depend only on count and grain (never on the thread count), so
+    /// per-chunk results combined in chunk order are identical with 1 or N threads.
+    template <class Fn>
+    void parallel_for(size_t count, size_t grain, Fn&& fn) const {
+        grain = std::max<size_t>(grain, 1);
+        const size_t chunks = chunk_count(count, grain);
+        auto run_chunks = [&](size_t first, size_t last) {
+            for (size_t k = first; k < last; ++k) fn(k * grain, std::min(count, (k + 1) * grain));
+        };
+        if (threads_ <= 1 || chunks <= 1) {
+            run_chunks(0, chunks);
+            return;
+        }
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, chunks, 1),
+            [&](const tbb::blocked_range<size_t>& r) { run_chunks(r.begin(), r.end()); },
+            tbb::simple_partitioner());
+    }
+
+private:
+    uint64_t frame_;
+    float dt_;
+    unsigned threads_;
+    uint32_t system_;
+    std::string_view name_;
+    CommandBuffer* commands_;
+};
+
+}  // namespace aloha

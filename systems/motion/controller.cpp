@@ -1,0 +1,360 @@
+#include "systems/motion/controller.hpp"
+
+#include "systems/motion/blend.hpp"
+#include "systems/motion/local_to_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace aloha {
+
+namespace {
+constexpr float kTurnRate = 6.0f;  // rad/s: how fast a walker turns to face its direction of travel
+
+bool is_live(RequestKind k) { return k == RequestKind::PlayClip || k == RequestKind::Walk; }
+
+glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
+
+// Turns `rotation` about Y towards facing `dir` (unit, horizontal) by at most `max_angle` radians.
+glm::quat turn_towards(const glm::quat& rotation, const glm::vec3& dir, float max_angle) {
+    const glm::vec3 f = horizontal(rotation * glm::vec3(0, 0, 1));
+    const float cur = std::atan2(f.x, f.z);
+    const float want = std::atan2(dir.x, dir.z);
+    float d = want - cur;
+    while (d > 3.14159265f) d -= 6.2831853f;
+    while (d < -3.14159265f) d += 6.2831853f;
+    d = std::clamp(d, -max_angle, max_angle);
+    return glm::angleAxis(cur + d, glm::vec3(0, 1, 0));
+}
+}  // namespace
+
+MotionController::MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity)
+    : skeleton_(&skeleton), clips_(&clips), chars_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
+      snapshot_(skeleton.joint_count(), capacity + 1, nullptr) {
+    active_.reserve(capacity);
+}
+
+void MotionController::set_walk_rig(WalkRig rig, GaitParams gait) {
+    rig_ = std::move(rig);
+    gait_ = gait;
+}
+
+void MotionController::set_walk_clip(ClipId clip) { walk_clip_ = clips_->find(clip) ? clip : -1; }
+
+void MotionController::set_method_hook(MethodSlot slot, MethodHook hook, void* user) {
+    hooks_[static_cast<size_t>(slot)] = hook;
+    hook_users_[static_cast<size_t>(slot)] = user;
+}
+
+uint16_t MotionController::add_path(std::vector<glm::vec3> waypoints) {
+    paths_.push_back(std::move(waypoints));
+    return static_cast<uint16_t>(paths_.size() - 1);
+}
+
+void MotionController::activate(uint32_t c) {
+    Character& ch = chars_[c];
+    if (ch.active_index >= 0) return;
+    ch.active_index = static_cast<int32_t>(active_.size());
+    active_.push_back(c);
+}
+
+bool MotionController::push_request(uint32_t character, const MotionRequest& request) {
+    if (character >= chars_.size()) return false;
+    Character& ch = chars_[character];
+    if (ch.count >= kQueueCapacity) return false;
+    ch.queue[(ch.head + ch.count) % kQueueCapacity] = request;
+    ++ch.count;
+    activate(character);
+    return true;
+}
+
+bool MotionController::interrupt(uint32_t character, const MotionRequest& request) {
+    if (character >= chars_.size()) return false;
+    Character& ch = chars_[character];
+    ch.count = 0;
+    ch.head = 0;
+    ch.cur.done = 1;  // the current request ends at the next update
+    return push_request(character, request);
+}
+
+void MotionController::begin_fade(uint32_t c, Character& ch, float seconds, bool live_prev) {
+    if (!(seconds > 0.0f)) {
+        ch.fade_left = 0.0f;
+        return;
+    }
+    ch.fade_total = seconds;
+    ch.fade_left = seconds;
+    ch.fade_snapshot = live_prev ? 0 : 1;
+    if (!live_prev) {
+        // Freeze the pose shown now as the fade source.
+        const ConstPoseView from = std::as_const(pool_).view(c);
+        const PoseView to = snapshot_.view(c);
+        std::copy(from.translations.begin(), from.translations.end(), to.translations.begin());
+        std::copy(from.rotations.begin(), from.rotations.end(), to.rotations.begin());
+        std::copy(from.scales.begin(), from.scales.end(), to.scales.begin());
+    }
+}
+
+void MotionController::start_next(uint32_t c, Character& ch) {
+    MotionRequest next;  // Rest (forever) when the queue is empty
+    next.crossfade_s = 0.0f;
+    if (ch.count > 0) {
+        next = ch.queue[ch.head];
+        ch.head = static_cast<uint8_t>((ch.head + 1) % kQueueCapacity);
+        --ch.count;
+    }
+    const bool fade = next.kind != RequestKind::Rest && next.crossfade_s > 0.0f;
+    // Fade from the live previous request when it can be re-evaluated; from a frozen snapshot of the
+    // pose shown now otherwise (rest, IK holds, or a fade already in progress).
+    const bool live = fade && is_live(ch.cur.req.kind) && ch.fade_left <= 0.0f;
+    if (fade) {
+        if (live) ch.prev = ch.cur;
+        begin_fade(c, ch, next.crossfade_s, live);
+    } else {
+        ch.fade_left = 0.0f;
+    }
+    Channel started;
+    started.req = next;
+    if (next.kind == RequestKind::PlayClip) started.time = next.start_time;
+    if (next.kind == RequestKind::Walk && ch.cur.req.kind == RequestKind::Walk) started.walk = ch.cur.walk;  // keep feet planted
+    ch.cur = started;
+}
+
+WalkMethod MotionController::walk_method(const AnimLod& lod) const {
+    const bool clip = walk_clip_ >= 0;
+    const bool kin = rig_.has_value();
+    switch (lod.walk) {
+        case WalkMethod::Dynamic:
+            if (hooks_[static_cast<size_t>(MethodSlot::DynamicWalk)]) return WalkMethod::Dynamic;
+            return kin ? WalkMethod::Kinematic : WalkMethod::ClipPlayback;
+        case WalkMethod::Kinematic: return kin || !clip ? WalkMethod::Kinematic : WalkMethod::ClipPlayback;
+        case WalkMethod::ClipPlayback: return clip || !kin ? WalkMethod::ClipPlayback : WalkMethod::Kinematic;
+    }
+    return WalkMethod::ClipPlayback;
+}
+
+void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transform* placement, Velocity* velocity) {
+    ch.request_time += dt;
+    const MotionRequest& r = ch.req;
+    if (r.kind == RequestKind::PlayClip) {
+        ch.time += dt * r.speed;
+        const AnimationClip* clip = clips_->find(r.clip);
+        if (!r.loop && (!clip || (r.speed >= 0.0f ? ch.time >= clip->duration() : ch.time <= 0.0f))) ch.done = 1;
+    } else if (r.kind == RequestKind::Walk) {
+        const float speed = std::max(r.speed, 0.0f);
+        const WalkMethod m = walk_method(lod);
+        if (m == WalkMethod::ClipPlayback && walk_clip_ >= 0) {
+            const AnimationClip* clip = clips_->find(static_cast<ClipId>(walk_clip_));
+            const float natural = clip->root_speed();
+            ch.time += dt * (natural > 1e-4f ? speed / natural : 1.0f);
+        } else if (rig_) {
+            advance_walk_phase(ch.walk, *rig_, speed, dt, gait_);
+        }
+        if (placement && !ch.done) {
+            glm::vec3 dir(0.0f);
+            if (r.path != 0xFFFF && r.path < paths_.size()) {
+                const auto& wps = paths_[r.path];
+                while (ch.path_cursor < wps.size()) {
+                    const glm::vec3 to = horizontal(wps[ch.path_cursor] - placement->position);
+                    const float len = glm::length(to);
+                    if (len > std::max(1e-3f, speed * dt)) {
+                        dir = to / len;
+                        break;
+                    }
+                    ++ch.path_cursor;  // reached (or reachable this frame): head for the next one
+                }
+                if (ch.path_cursor >= wps.size()) ch.done = 1;
+            } else {
+                const glm::vec3 h = horizontal(r.target);
+                const float len = glm::length(h);
+                dir = len > 1e-6f ? h / len : horizontal(placement->rotation * glm::vec3(0, 0, 1));
+                if (glm::length(dir) > 0.0f) dir = glm::normalize(dir);
+            }
+            if (!ch.done) {
+                placement->position += dir * speed * dt;
+                placement->rotation = turn_towards(placement->rotation, dir, kTurnRate * dt);
+                if (velocity) velocity->linear = dir * speed;
+            } else if (velocity) {
+                velocity->linear = glm::vec3(0.0f);
+            }
+        }
+    }
+    if (r.duration >= 0.0f && ch.request_time >= r.duration) ch.done = 1;
+}
+
+void MotionController::sample_walk_clip(Channel& ch, const PoseView& out) const {
+    const AnimationClip& clip = *clips_->find(static_cast<ClipId>(walk_clip_));
+    const float t = wrap_clip_time(ch.time, clip.duration(), true);
+    int k = 0;
+    float alpha = 0.0f;
+    find_key(clip, t, &ch.cache, &k, &alpha);
+    sample_blocks(clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
+    // Root motion: remove the clip's average horizontal travel (the Transform moves instead) and
+    // turn the clip so it travels along +Z.
+    const glm::vec3 d = horizontal(clip.root_end() - clip.root_start());
+    const float frac = clip.duration() > 0.0f ? t / clip.duration() : 0.0f;
+    glm::vec3& rt = out.translations[0];
+    rt.x -= clip.root_start().x + d.x * frac;
+    rt.z -= clip.root_start().z + d.z * frac;
+    if (glm::length(d) > 1e-6f) {
+        const glm::quat q = glm::angleAxis(-std::atan2(d.x, d.z), glm::vec3(0, 1, 0));
+        rt = q * rt;
+        out.rotations[0] = glm::normalize(q * out.rotations[0]);
+    }
+}
+
+void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
+                                Velocity& velocity, float posed_dt) {
+    const int16_t* parents = skeleton_->parents().data();
+    const size_t n = static_cast<size_t>(skeleton_->joint_count());
+    auto l2m = [&] { local_to_model(parents, out.translations.data(), out.rotations.data(), out.scales.data(), nullptr, out.model.data(), n); };
+    auto hook = [&](MethodSlot slot) {
+        MethodContext ctx{c, &ch.req, skeleton_, &lod, out, &placement, &velocity, posed_dt, ch.request_time};
+        hooks_[static_cast<size_t>(slot)](hook_users_[static_cast<size_t>(slot)], ctx);
+    };
+    switch (ch.req.kind) {
+        case RequestKind::PlayClip: {
+            const AnimationClip* clip = clips_->find(ch.req.clip);
+            if (!clip) return;  // unknown clip: hold the pose
+            const float t = wrap_clip_time(ch.time, clip->duration(), ch.req.loop != 0);
+            int k = 0;
+            float alpha = 0.0f;
+            find_key(*clip, t, &ch.cache, &k, &alpha);
+            sample_blocks(*clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
+            l2m();
+            return;
+        }
+        case RequestKind::Walk: {
+            const WalkMethod m = walk_method(lod);
+            const float speed = std::max(ch.req.speed, 0.0f);
+            if (m == WalkMethod::ClipPlayback && walk_clip_ >= 0) {
+                sample_walk_clip(ch, out);
+                l2m();
+            } else if (rig_) {
+                kinematic_walk_pose(*rig_, *skeleton_, ch.walk, speed, placement, out, gait_);
+                if (m == WalkMethod::Dynamic) {
+                    hook(MethodSlot::DynamicWalk);
+                    l2m();
+                }
+            }
+            return;
+        }
+        case RequestKind::Reach:
+        case RequestKind::LookAt: {
+            const MethodSlot slot = ch.req.kind == RequestKind::Reach ? MethodSlot::Reach : MethodSlot::LookAt;
+            if (!hooks_[static_cast<size_t>(slot)]) return;  // no IK registered: hold the pose
+            l2m();
+            hook(slot);
+            l2m();
+            return;
+        }
+        case RequestKind::Rest: return;
+    }
+}
+
+size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                                std::span<Transform> transforms, std::span<Velocity> velocities) {
+    size_t posed = 0;
+    const int16_t* parents = skeleton_->parents().data();
+    const size_t n = static_cast<size_t>(skeleton_->joint_count());
+    for (size_t k = active_.size(); k-- > 0;) {  // backwards: swap-removal only moves visited entries
+        const uint32_t c = active_[k];
+        Character& ch = chars_[c];
+        const AnimLod& lod = lods[c];
+        MotionState& st = states[c];
+        Transform& x = transforms[c];
+        Velocity& v = velocities[c];
+
+        // Switch first: requests that ended last frame, or a queued request pre-empting one that would
+        // run forever; the request started is then advanced by this frame's dt like any other.
+        bool switched = false;
+        for (size_t guard = 0; guard <= kQueueCapacity; ++guard) {
+            const MotionRequest& r = ch.cur.req;
+            const bool ends_by_itself = (r.kind == RequestKind::PlayClip && !r.loop) ||
+                                        (r.kind == RequestKind::Walk && r.path != 0xFFFF);
+            const bool preempted = ch.count > 0 && r.duration < 0.0f && !ends_by_itself;
+            if (!ch.cur.done && !preempted) break;
+            if (ch.count == 0 && r.kind == RequestKind::Rest && r.duration < 0.0f) break;
+            start_next(c, ch);
+            switched = true;
+        }
+        // Requests that end during this frame hand over at the start of the next one.
+        advance(ch.cur, lod, dt, &x, &v);
+        if (ch.fade_left > 0.0f) {
+            if (!ch.fade_snapshot) advance(ch.prev, lod, dt, nullptr, nullptr);
+            ch.fade_left = std::max(0.0f, ch.fade_left - dt);
+        }
+        if (ch.cur.req.kind == RequestKind::Walk) {
+            const WalkMethod m = walk_method(lod);
+            if (ch.has_walk_method && m != ch.walk_method && lod.crossfade_frames > 0 && ch.fade_left <= 0.0f)
+                begin_fade(c, ch, static_cast<float>(lod.crossfade_frames) * dt, false);
+            ch.walk_method = m;
+            ch.has_walk_method = 1;
+        } else {
+            ch.has_walk_method = 0;
+            if (ch.cur.req.kind != RequestKind::Walk && switched) v.linear = glm::vec3(0.0f);
+        }
+
+        ch.since_posed += dt;
+        ++st.frames_since_update;
+        const int interval = std::max<int>(1, lod.update_interval);
+        if (ch.cur.req.kind != RequestKind::Rest && (switched || st.frames_since_update >= interval)) {
+            const PoseView out = pool_.view(c);
+            evaluate(c, ch.cur, lod, out, x, v, ch.since_posed);
+            if (ch.fade_left > 0.0f) {
+                const float w = ch.fade_left / ch.fade_total;  // weight of the pose faded from
+                if (ch.fade_snapshot) {
+                    blend_into(out, std::as_const(snapshot_).view(c), w);
+                } else {
+                    const PoseView scratch = snapshot_.view(chars_.size());
+                    evaluate(c, ch.prev, lod, scratch, x, v, ch.since_posed);
+                    blend_into(out, std::as_const(snapshot_).view(chars_.size()), w);
+                }
+                local_to_model(parents, out.translations.data(), out.rotations.data(), out.scales.data(), nullptr,
+                               out.model.data(), n);
+            }
+            st.frames_since_update = 0;
+            ch.since_posed = 0.0f;
+            ++posed;
+        }
+
+        st.active = ch.cur.req.kind;
+        st.time = ch.cur.time;
+        st.phase = ch.cur.walk.phase;
+        st.request_time = ch.cur.request_time;
+        st.pose_slot = c;
+        st.path_cursor = ch.cur.path_cursor;
+        const bool resting = ch.cur.req.kind == RequestKind::Rest && ch.cur.req.duration < 0.0f && ch.count == 0;
+        st.at_rest = resting ? 1 : 0;
+        if (resting) {
+            v.linear = glm::vec3(0.0f);
+            const uint32_t moved = active_.back();
+            active_[k] = moved;
+            chars_[moved].active_index = static_cast<int32_t>(k);
+            active_.pop_back();
+            ch.active_index = -1;
+        }
+    }
+    return posed;
+}
+
+bool MotionUpdateJob::Validate(std::vector<std::string>* errors) const {
+    bool ok = true;
+    auto fail = [&](const std::string& m) { ok = false; if (errors) errors->push_back("MotionUpdateJob: " + m); };
+    if (!controller) {
+        fail("controller is null");
+        return false;
+    }
+    const size_t n = controller->capacity();
+    if (!(std::isfinite(dt) && dt >= 0.0f)) fail("dt must be finite and >= 0");
+    if (lods.size() < n) fail("lods span is shorter than the controller capacity (" + std::to_string(n) + ")");
+    if (states.size() < n) fail("states span is shorter than the controller capacity (" + std::to_string(n) + ")");
+    if (transforms.size() < n) fail("transforms span is shorter than the controller capacity (" + std::to_string(n) + ")");
+    if (velocities.size() < n) fail("velocities span is shorter than the controller capacity (" + std::to_string(n) + ")");
+    return ok;
+}
+
+size_t MotionUpdateJob::Run() const { return controller->update(dt, lods, states, transforms, velocities); }
+
+}  // namespace aloha

@@ -1,0 +1,152 @@
+// The motion controller: per-character request queues, state vectors, cross-fades, root motion,
+// the pose pool, and a packed list of active characters so characters at rest cost nothing.
+// Clip playback and walking (clip playback / kinematic) are built in; reach, look-at and dynamic
+// walking are dispatched to hooks that the IK and dynamics modules register (set_method_hook).
+#pragma once
+
+#include "components/lod.hpp"
+#include "components/motion.hpp"
+#include "components/transform.hpp"
+#include "systems/motion/clip.hpp"
+#include "systems/motion/kinematic_walk.hpp"
+#include "systems/motion/pose_pool.hpp"
+#include "systems/motion/sampling.hpp"
+
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+/// Methods that other modules implement and the controller dispatches to.
+enum class MethodSlot : uint8_t { Reach = 0, LookAt = 1, DynamicWalk = 2, Count = 3 };
+
+/// What a method hook sees for one character. `pose` holds the base local pose and its model
+/// matrices (up to date); the hook edits the local pose (and may edit transform/velocity). The
+/// controller runs local-to-model again after the hook.
+struct MethodContext {
+    uint32_t character = 0;
+    const MotionRequest* request = nullptr;  ///< the request being executed
+    const Skeleton* skeleton = nullptr;
+    const AnimLod* lod = nullptr;            ///< IK solver / iterations / tolerance chosen by the resolver
+    PoseView pose;
+    Transform* transform = nullptr;
+    Velocity* velocity = nullptr;
+    float dt = 0.0f;                         ///< seconds since this character was last posed
+    float request_time = 0.0f;               ///< seconds since the request started
+};
+
+/// A method implementation: `user` is the pointer given at registration. Must not allocate per call.
+using MethodHook = void (*)(void* user, MethodContext& ctx);
+
+/// Owns the motion state of up to `capacity` characters of one skeleton (character i uses pose
+/// slot i). Not thread-safe: one update at a time; characters are independent, so callers may
+/// split work across controllers.
+class MotionController {
+public:
+    /// Requests each character can have queued behind the active one.
+    static constexpr size_t kQueueCapacity = 8;
+
+    /// Sets up `capacity` characters, all at rest in the skeleton's rest pose. `skeleton` and
+    /// `clips` must outlive the controller; clips must be built for `skeleton`.
+    MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity);
+
+    /// Enables WalkMethod::Kinematic (and the fallback for Dynamic) with this leg rig.
+    void set_walk_rig(WalkRig rig, GaitParams gait = {});
+    /// Enables WalkMethod::ClipPlayback with this looping walk clip (its root motion sets the natural speed).
+    void set_walk_clip(ClipId clip);
+    /// Registers the implementation of a method (nullptr removes it).
+    void set_method_hook(MethodSlot slot, MethodHook hook, void* user);
+    /// Adds a walk path (world waypoints, at least one) and returns its id for MotionRequest::path.
+    uint16_t add_path(std::vector<glm::vec3> waypoints);
+
+    /// Queues `request` for `character` (starts after the current one; a current request that would
+    /// run forever is cross-faded out at the next update). Wakes a resting character.
+    /// Returns false when the queue is full or the character is out of range.
+    bool push_request(uint32_t character, const MotionRequest& request);
+    /// Drops the queue and makes `request` the next one (cross-faded in at the next update).
+    bool interrupt(uint32_t character, const MotionRequest& request);
+
+    /// Advances every active character by `dt` seconds and poses those due this frame (per
+    /// AnimLod::update_interval). Spans are indexed by character and need capacity() elements.
+    /// Returns the number of characters posed. Requires dt >= 0.
+    size_t update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                  std::span<Transform> transforms, std::span<Velocity> velocities);
+
+    /// Characters in motion, packed (characters at rest are not in it).
+    [[nodiscard]] std::span<const uint32_t> active() const { return active_; }
+    /// Number of characters.
+    [[nodiscard]] size_t capacity() const { return chars_.size(); }
+    /// Requests waiting behind the current one for `character`.
+    [[nodiscard]] size_t queued(uint32_t character) const { return chars_[character].count; }
+    /// The request `character` is executing (kind Rest when idle).
+    [[nodiscard]] const MotionRequest& current(uint32_t character) const { return chars_[character].cur.req; }
+    /// True while `character` is cross-fading into its current request.
+    [[nodiscard]] bool fading(uint32_t character) const { return chars_[character].fade_left > 0.0f; }
+    /// The pose pool (slot i = character i).
+    [[nodiscard]] const PosePool& poses() const { return pool_; }
+    /// The skeleton animated.
+    [[nodiscard]] const Skeleton& skeleton() const { return *skeleton_; }
+
+private:
+    struct Channel {
+        MotionRequest req;
+        float time = 0.0f;          // clip time (PlayClip / ClipPlayback walk)
+        float request_time = 0.0f;  // seconds since start
+        uint32_t path_cursor = 0;
+        uint8_t done = 0;
+        SamplingCache cache;
+        KinematicWalkState walk;
+    };
+    struct Character {
+        Channel cur, prev;
+        float fade_left = 0.0f, fade_total = 0.0f;
+        float since_posed = 0.0f;
+        uint8_t fade_snapshot = 0;   // fade from the snapshot pose (else from the live prev channel)
+        uint8_t has_walk_method = 0;
+        WalkMethod walk_method = WalkMethod::ClipPlayback;
+        std::array<MotionRequest, kQueueCapacity> queue{};
+        uint8_t head = 0, count = 0;
+        int32_t active_index = -1;
+    };
+    void activate(uint32_t c);
+    void start_next(uint32_t c, Character& ch);
+    void begin_fade(uint32_t c, Character& ch, float seconds, bool live_prev);
+    void advance(Channel& ch, const AnimLod& lod, float dt, Transform* placement, Velocity* velocity);
+    WalkMethod walk_method(const AnimLod& lod) const;
+    void evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
+                  Velocity& velocity, float posed_dt);
+    void sample_walk_clip(Channel& ch, const PoseView& out) const;
+
+    const Skeleton* skeleton_;
+    const ClipLibrary* clips_;
+    std::optional<WalkRig> rig_;
+    GaitParams gait_;
+    int walk_clip_ = -1;
+    std::array<MethodHook, 3> hooks_{};
+    std::array<void*, 3> hook_users_{};
+    std::vector<std::vector<glm::vec3>> paths_;
+    std::vector<Character> chars_;
+    std::vector<uint32_t> active_;
+    PosePool pool_;      // slot i = character i
+    PosePool snapshot_;  // slot i = pose character i fades from; slot capacity() = scratch
+};
+
+/// Job form of MotionController::update over spans of characters (index = character id).
+struct MotionUpdateJob {
+    MotionController* controller = nullptr;  ///< required
+    float dt = 0.0f;                         ///< seconds since the last frame (>= 0, finite)
+    std::span<const AnimLod> lods;           ///< per character, controller->capacity() elements
+    std::span<MotionState> states;           ///< per character, written for active characters only
+    std::span<Transform> transforms;         ///< per character; walking moves them (root motion)
+    std::span<Velocity> velocities;          ///< per character; walking sets them
+
+    /// True when the job can run; appends one message per failure to `errors` when given.
+    bool Validate(std::vector<std::string>* errors = nullptr) const;
+    /// Runs the update; returns the number of characters posed. Requires Validate().
+    size_t Run() const;
+};
+
+}  // namespace aloha

@@ -1,0 +1,103 @@
+// Dynamic walk (top animation LOD): rigid links held together by point constraints whose forces
+// are solved each step in the manner of Barzel & Barr, so the constraint error C obeys
+// C'' + 2wC' + w^2 C = 0 (critical damping). Joints are driven toward the kinematic gait's local
+// rotations by PD motors; feet touch the ground y = 0 with Coulomb friction; a balance aid holds
+// the pelvis. Everything stiff (constraints, motors, contacts, balance aid) is solved implicitly
+// in one linear system per substep, so 1/60 s frames are stable.
+#pragma once
+
+#include "engine/anim/pose.hpp"
+#include "engine/anim/skeleton.hpp"
+#include "engine/core/result.hpp"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+/// Tunables of the dynamic walk (defaults are for a ~1.7 m human in metres, kg, seconds).
+struct DynamicWalkSettings {
+    int substeps = 2;                        ///< solver substeps per step (h = dt / substeps)
+    float constraint_frequency = 50.0f;      ///< w of C'' + 2wC' + w^2C = 0 (rad/s); keep w*h <= 0.5
+    float motor_frequency = 40.0f;           ///< PD motor natural frequency (rad/s), gains scale with subtree inertia
+    float motor_damping_ratio = 1.0f;        ///< PD motor damping ratio
+    float balance_frequency = 8.0f;          ///< balance aid natural frequency (rad/s) on pelvis position/orientation
+    float balance_damping_ratio = 1.0f;      ///< balance aid damping ratio
+    float friction = 0.9f;                   ///< Coulomb friction coefficient of feet on the ground
+    float min_bone_length = 0.02f;           ///< joints closer than this to their parent are merged (welded)
+    float density = 1000.0f;                 ///< kg/m^3 of the capsule links
+    float contact_height = 0.12f;            ///< joints this close to the lowest start joint become contact points
+};
+
+/// One rigid link (a joint that owns a body plus the zero-length/leaf joints welded to it).
+struct DynamicBody {
+    int joint = 0;                    ///< owning skeleton joint; the body frame is that joint's frame
+    int parent = -1;                  ///< parent body index, -1 for the root (pelvis)
+    float mass = 1.0f;                ///< kg
+    glm::mat3 inv_inertia{1.0f};      ///< inverse inertia about the COM in the body frame
+    glm::vec3 com{0.0f};              ///< COM in the body frame (relative to the joint)
+    glm::vec3 anchor{0.0f};           ///< this body's joint position in the parent body frame
+    float motor_k = 0.0f;             ///< motor stiffness (N m / rad)
+    float motor_c = 0.0f;             ///< motor damping (N m s / rad)
+    glm::vec3 x{0.0f};                ///< COM position (world)
+    glm::vec3 v{0.0f};                ///< COM velocity (world)
+    glm::quat q{1.0f, 0.0f, 0.0f, 0.0f}; ///< orientation of the joint frame (world)
+    glm::vec3 w{0.0f};                ///< angular velocity (world)
+};
+
+/// A body-fixed point that may touch the ground.
+struct DynamicContact {
+    int body = 0;                     ///< body index
+    glm::vec3 local{0.0f};            ///< point in the body frame (relative to the joint)
+};
+
+/// Per-character simulation state; lives across frames (keep it in a component pool/context).
+/// init_dynamic_walk sizes every buffer, so step_dynamic_walk allocates nothing.
+struct DynamicWalkState {
+    DynamicWalkSettings settings;
+    std::vector<DynamicBody> bodies;
+    std::vector<DynamicContact> contacts;
+    std::vector<int> owner;                  ///< per joint: index of the body it belongs to
+    std::vector<glm::quat> welded_local;     ///< per joint: local rotation used when welded (start pose)
+    std::vector<glm::vec3> translations;     ///< per joint: local translations for the output pose
+    std::vector<glm::vec3> scales;           ///< per joint: local scales for the output pose
+    glm::mat4 root_world{1.0f};              ///< character frame (world); targets are in this frame
+    glm::vec3 prev_target_root{0.0f};        ///< last step's root target (for its velocity)
+    bool has_prev_target = false;
+    float total_mass = 0.0f;                 ///< kg
+    float balance_inertia = 0.0f;            ///< composite inertia about the pelvis (kg m^2)
+    // Solver scratch, sized at init.
+    std::vector<glm::quat> target_world;     ///< per joint
+    std::vector<glm::mat3> world_inv_inertia;///< per body
+    std::vector<float> row_data;             ///< per row: 14 floats (two body Jacobian halves, rhs, gamma)
+    std::vector<float> row_mj;               ///< per row: 12 floats, M^-1 J^T for both bodies
+    std::vector<int> row_info;               ///< per row: body0, body1, kind, friction normal row
+    std::vector<double> matrix;              ///< dense system
+    std::vector<double> work;                ///< Schur complement / right-hand sides
+    std::vector<double> lambda;              ///< impulses
+};
+
+/// Builds the bodies from `start_pose` (valid local pose and model matrices) placed in the world
+/// by `root_world` (rigid). Errors name the problem (pose size, non-finite values, no links).
+Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView start_pose, const glm::mat4& root_world,
+                         DynamicWalkState& state, const DynamicWalkSettings& settings = {});
+
+/// Advances the simulation by dt toward the kinematic target (local rotations per joint and the
+/// root joint's translation, both in the character frame) and writes the simulated pose
+/// (translations, rotations, scales, model matrices in the character frame). `out_root_world`
+/// (optional) receives the character frame, which stays where init placed it.
+/// Requires init_dynamic_walk on the same skeleton, spans of the joint count, dt > 0.
+void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> target_local_rotations,
+                       const glm::vec3& target_root_position, float dt, DynamicWalkState& state, PoseView out_pose,
+                       glm::mat4* out_root_world);
+
+/// Largest separation (metres) between the two sides of any point constraint (the drift).
+[[nodiscard]] float max_constraint_error(const DynamicWalkState& state);
+
+/// World position of a body's joint.
+[[nodiscard]] glm::vec3 body_joint_position(const DynamicBody& body);
+
+}  // namespace aloha

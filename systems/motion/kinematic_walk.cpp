@@ -1,0 +1,89 @@
+#include "systems/motion/kinematic_walk.hpp"
+
+#include "systems/motion/local_to_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+
+glm::vec3 to_world(const Transform& x, const glm::vec3& model) { return x.position + x.rotation * (model * x.scale); }
+glm::vec3 to_model(const Transform& x, const glm::vec3& world) {
+    return (glm::inverse(x.rotation) * (world - x.position)) / x.scale;
+}
+}  // namespace
+
+float walk_stride(const WalkRig& rig, float speed, const GaitParams& gait) {
+    const float s = std::max(speed, 0.0f);
+    return rig.leg_length * std::min(gait.min_stride + gait.stride_gain * s, gait.max_stride);
+}
+
+void advance_walk_phase(KinematicWalkState& state, const WalkRig& rig, float speed, float dt, const GaitParams& gait) {
+    const float stride = walk_stride(rig, speed, gait);
+    if (stride <= 0.0f) return;
+    state.phase += dt * std::max(speed, 0.0f) / stride;
+    state.phase -= std::floor(state.phase);
+}
+
+glm::vec3 joint_world_position(std::span<const glm::mat4> model, int joint, const Transform& placement) {
+    return to_world(placement, glm::vec3(model[static_cast<size_t>(joint)][3]));
+}
+
+void kinematic_walk_pose(const WalkRig& rig, const Skeleton& skeleton, KinematicWalkState& state, float speed,
+                         const Transform& placement, const PoseView& pose, const GaitParams& gait) {
+    const size_t n = static_cast<size_t>(skeleton.joint_count());
+    const auto rt = skeleton.rest_translations();
+    const auto rr = skeleton.rest_rotations();
+    const auto rs = skeleton.rest_scales();
+    for (size_t j = 0; j < n; ++j) {
+        pose.translations[j] = rt[j];
+        pose.rotations[j] = rr[j];
+        pose.scales[j] = rs[j];
+    }
+    const float stride = walk_stride(rig, speed, gait) / placement.scale;  // model units
+    const float half_stance = 0.5f * gait.duty * stride;
+    // Lower the hips until the farthest stance foot (half a stance ahead/behind) is within reach.
+    const float reach = gait.reach * rig.leg_length;
+    const float rest_leg_vertical = std::min(rig.thigh[0] + rig.shin[0], rig.thigh[1] + rig.shin[1]);
+    const float vertical = std::min(rest_leg_vertical, std::sqrt(std::max(reach * reach - half_stance * half_stance, 0.0f)));
+    const float hip_height = rig.ankle_height + vertical;
+    pose.translations[static_cast<size_t>(rig.root)] = glm::vec3(0.0f, hip_height + rig.hip_drop, 0.0f);
+    local_to_model(skeleton.parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),
+                   nullptr, pose.model.data(), n);
+
+    const glm::vec3 fwd_world = placement.rotation * glm::vec3(0, 0, 1) * placement.scale;
+    const glm::vec3 up_world(0, 1, 0);
+    for (int side = 0; side < 2; ++side) {
+        float phi = state.phase + (side == 0 ? 0.0f : 0.5f);
+        phi -= std::floor(phi);
+        // The foot's neutral spot: under the hip, ankle height above the ground.
+        const glm::vec3 base = to_world(placement, glm::vec3(rig.hip_offset[side].x, rig.ankle_height, rig.hip_offset[side].z));
+        glm::vec3 target_world;
+        if (phi < gait.duty) {
+            // Stance: the foot moves from half a stance ahead of the hip to half behind while the
+            // root advances; plant it (once) where that puts it and then hold it still.
+            if (!state.initialised || !state.stance[side])
+                state.planted[side] = base + fwd_world * (half_stance - phi * stride);
+            state.stance[side] = 1;
+            target_world = state.planted[side];
+        } else {
+            const float s = (phi - gait.duty) / (1.0f - gait.duty);
+            if (!state.initialised) state.planted[side] = base + fwd_world * (half_stance - gait.duty * stride);
+            const glm::vec3 liftoff = state.planted[side];
+            const glm::vec3 landing = base + fwd_world * ((1.0f - phi) * stride + half_stance);
+            const float e = s * s * (3.0f - 2.0f * s);
+            target_world = liftoff + (landing - liftoff) * e +
+                           up_world * (gait.clearance * rig.leg_length * placement.scale * std::sin(kPi * s));
+            state.stance[side] = 0;
+        }
+        solve_leg_ik(rig, skeleton, side, to_model(placement, target_world), glm::vec3(0, 0, 1), pose);
+    }
+    state.initialised = 1;
+    local_to_model(skeleton.parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),
+                   nullptr, pose.model.data(), n);
+}
+
+}  // namespace aloha

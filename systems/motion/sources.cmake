@@ -1,0 +1,11 @@
+# Motion controller core: clips, sampling, local-to-model, blending, pose pool, walk, controller.
+list(APPEND ALOHA_MOTION_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/clip.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sampling.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/local_to_model.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/blend.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/pose_pool.cpp)
+list(APPEND ALOHA_MOTION_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/walk_rig.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/kinematic_walk.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/controller.cpp)

@@ -1,0 +1,122 @@
+#include "systems/motion/walk_rig.hpp"
+
+#include "systems/motion/local_to_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+
+const LegNameTable& default_leg_names() {
+    static const LegNameTable table = [] {
+        LegNameTable t;
+        const char* sides[2][2] = {{"Left", "L"}, {"Right", "R"}};
+        for (int s = 0; s < 2; ++s) {
+            const std::string L = sides[s][0], l = sides[s][1], lc = s == 0 ? "l" : "r";
+            t.names[s][0] = {L + "Hip", L + "UpLeg", "mixamorig:" + L + "UpLeg", "leg_joint_" + l + "_1", "thigh_" + lc, l + "_Thigh"};
+            t.names[s][1] = {L + "Knee", L + "Leg", "mixamorig:" + L + "Leg", "leg_joint_" + l + "_2", "calf_" + lc, l + "_Calf"};
+            t.names[s][2] = {L + "Ankle", L + "Foot", "mixamorig:" + L + "Foot", "leg_joint_" + l + "_3", "foot_" + lc, l + "_Foot"};
+            t.names[s][3] = {L + "Toe", L + "ToeBase", "mixamorig:" + L + "ToeBase", "leg_joint_" + l + "_5", "ball_" + lc, l + "_Toe"};
+        }
+        return t;
+    }();
+    return table;
+}
+
+glm::quat rotation_between(const glm::vec3& from, const glm::vec3& to) {
+    const float d = glm::dot(from, to);
+    if (d < -0.999999f) {
+        glm::vec3 axis = glm::cross(glm::vec3(1, 0, 0), from);
+        if (glm::dot(axis, axis) < 1e-8f) axis = glm::cross(glm::vec3(0, 1, 0), from);
+        return glm::angleAxis(3.14159265f, glm::normalize(axis));
+    }
+    const glm::vec3 c = glm::cross(from, to);
+    return glm::normalize(glm::quat(1.0f + d, c.x, c.y, c.z));
+}
+
+glm::quat matrix_rotation(const glm::mat4& m) {
+    const glm::mat3 r(glm::normalize(glm::vec3(m[0])), glm::normalize(glm::vec3(m[1])), glm::normalize(glm::vec3(m[2])));
+    return glm::normalize(glm::quat_cast(r));
+}
+
+Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& source, const LegNameTable& table) {
+    WalkRig rig;
+    const char* side_names[2] = {"left", "right"};
+    const char* role_names[4] = {"hip", "knee", "ankle", "toe"};
+    for (int s = 0; s < 2; ++s)
+        for (int r = 0; r < 4; ++r) {
+            int found = -1;
+            for (const std::string& n : table.names[s][r])
+                if ((found = skeleton.find(n)) >= 0) break;
+            if (found < 0 && r < 3) {
+                std::string tried;
+                for (const std::string& n : table.names[s][r]) tried += (tried.empty() ? "" : ", ") + n;
+                return make_error(source, std::string("walk rig: no ") + side_names[s] + " " + role_names[r] +
+                                              " joint (tried " + tried + ")");
+            }
+            int* slot[4] = {&rig.hip[s], &rig.knee[s], &rig.ankle[s], &rig.toe[s]};
+            *slot[r] = found;
+        }
+    const auto parents = skeleton.parents();
+    for (int s = 0; s < 2; ++s) {
+        if (parents[static_cast<size_t>(rig.knee[s])] != rig.hip[s])
+            return make_error(source, std::string("walk rig: ") + side_names[s] + " knee '" + skeleton.names()[static_cast<size_t>(rig.knee[s])] + "' is not a child of the hip");
+        if (parents[static_cast<size_t>(rig.ankle[s])] != rig.knee[s])
+            return make_error(source, std::string("walk rig: ") + side_names[s] + " ankle '" + skeleton.names()[static_cast<size_t>(rig.ankle[s])] + "' is not a child of the knee");
+    }
+    const size_t n = static_cast<size_t>(skeleton.joint_count());
+    std::vector<glm::mat4> model(n);
+    local_to_model(parents.data(), skeleton.rest_translations().data(), skeleton.rest_rotations().data(),
+                   skeleton.rest_scales().data(), nullptr, model.data(), n);
+    rig.rest_model_rotations.resize(n);
+    for (size_t j = 0; j < n; ++j) rig.rest_model_rotations[j] = matrix_rotation(model[j]);
+    auto pos = [&](int j) { return glm::vec3(model[static_cast<size_t>(j)][3]); };
+    float lowest = pos(rig.ankle[0]).y;
+    for (int s = 0; s < 2; ++s) {
+        lowest = std::min(lowest, pos(rig.ankle[s]).y);
+        if (rig.toe[s] >= 0) lowest = std::min(lowest, pos(rig.toe[s]).y);
+        rig.thigh[s] = glm::length(pos(rig.knee[s]) - pos(rig.hip[s]));
+        rig.shin[s] = glm::length(pos(rig.ankle[s]) - pos(rig.knee[s]));
+        rig.hip_offset[s] = pos(rig.hip[s]) - pos(rig.root);
+        if (rig.thigh[s] < 1e-4f || rig.shin[s] < 1e-4f)
+            return make_error(source, std::string("walk rig: ") + side_names[s] + " leg has a zero-length bone");
+    }
+    rig.ankle_height = 0.5f * (pos(rig.ankle[0]).y + pos(rig.ankle[1]).y) - lowest;
+    rig.hip_drop = pos(rig.root).y - 0.5f * (pos(rig.hip[0]).y + pos(rig.hip[1]).y);
+    rig.leg_length = 0.5f * (rig.thigh[0] + rig.shin[0] + rig.thigh[1] + rig.shin[1]);
+    return rig;
+}
+
+float solve_leg_ik(const WalkRig& rig, const Skeleton& skeleton, int side, const glm::vec3& target,
+                   const glm::vec3& pole, const PoseView& pose) {
+    const size_t h = static_cast<size_t>(rig.hip[side]);
+    const size_t k = static_cast<size_t>(rig.knee[side]);
+    const size_t a = static_cast<size_t>(rig.ankle[side]);
+    const glm::vec3 H(pose.model[h][3]), K(pose.model[k][3]), A(pose.model[a][3]);
+    const float la = glm::length(K - H), lb = glm::length(A - K);
+    glm::vec3 to = target - H;
+    const float dist = glm::length(to);
+    const glm::vec3 u = dist > 1e-6f ? to / dist : glm::vec3(0, -1, 0);
+    // Keep a 1e-4 m margin from full extension/folding so the knee angle stays well defined.
+    const float d = std::clamp(dist, std::abs(la - lb) + 1e-4f, la + lb - 1e-4f);
+    const float cos_h = std::clamp((la * la + d * d - lb * lb) / (2.0f * la * d), -1.0f, 1.0f);
+    const float sin_h = std::sqrt(std::max(0.0f, 1.0f - cos_h * cos_h));
+    glm::vec3 p = pole - glm::dot(pole, u) * u;
+    if (glm::dot(p, p) < 1e-10f) p = glm::vec3(0, 0, 1) - u.z * u;
+    p = glm::normalize(p);
+    const glm::vec3 Kd = H + la * (cos_h * u + sin_h * p);
+    const glm::vec3 Td = H + u * d;
+    const glm::quat q1 = rotation_between(glm::normalize(K - H), glm::normalize(Kd - H));
+    const glm::vec3 A1 = H + q1 * (A - H);
+    const glm::quat q2 = rotation_between(glm::normalize(A1 - Kd), glm::normalize(Td - Kd));
+    const int hp = skeleton.parents()[h];
+    const glm::quat parent_w = hp >= 0 ? matrix_rotation(pose.model[static_cast<size_t>(hp)]) : glm::quat(1, 0, 0, 0);
+    const glm::quat hip_w = glm::normalize(q1 * matrix_rotation(pose.model[h]));
+    const glm::quat knee_w = glm::normalize(q2 * q1 * matrix_rotation(pose.model[k]));
+    pose.rotations[h] = glm::normalize(glm::inverse(parent_w) * hip_w);
+    pose.rotations[k] = glm::normalize(glm::inverse(hip_w) * knee_w);
+    pose.rotations[a] = glm::normalize(glm::inverse(knee_w) * rig.rest_model_rotations[a]);
+    return std::max(0.0f, dist - d);
+}
+
+}  // namespace aloha

@@ -1,0 +1,165 @@
+// ECS iteration over two packed components (Position += Velocity * dt) via View, via Group spans,
+// and via a plain struct-of-arrays loop, the lower bound. Reported per entity.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "engine/ecs/command_buffer.hpp"
+#include "engine/ecs/registry.hpp"
+
+namespace {
+
+struct Position {
+    float x = 0, y = 0, z = 0;
+};
+struct Velocity {
+    float x = 0, y = 0, z = 0;
+};
+constexpr float kDt = 1.0f / 60.0f;
+
+void Populate(aloha::Registry& r, int64_t n) {
+    r.reserve(size_t(n));
+    r.storage<Position>().reserve(size_t(n));
+    r.storage<Velocity>().reserve(size_t(n));
+    for (int64_t i = 0; i < n; ++i) {
+        const aloha::Entity e = r.create();
+        r.emplace<Position>(e, float(i), 0.0f, 0.0f);
+        r.emplace<Velocity>(e, 1.0f, 2.0f, 3.0f);
+    }
+}
+
+void SetPerEntity(benchmark::State& state) {
+    state.SetItemsProcessed(int64_t(state.iterations()) * state.range(0));
+    state.counters["ns_per_entity"] = benchmark::Counter(
+        double(state.range(0)), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_View(benchmark::State& state) {
+    aloha::Registry r;
+    Populate(r, state.range(0));
+    auto view = r.view<Position, const Velocity>();
+    for (auto _ : state) {
+        view.each([](Position& p, const Velocity& v) {
+            p.x += v.x * kDt;
+            p.y += v.y * kDt;
+            p.z += v.z * kDt;
+        });
+        benchmark::ClobberMemory();
+    }
+    SetPerEntity(state);
+}
+
+// Same as BM_View but half the entities lack Velocity, in shuffled order (sparse lookups).
+void BM_ViewShuffled(benchmark::State& state) {
+    aloha::Registry r;
+    std::vector<aloha::Entity> es;
+    for (int64_t i = 0; i < state.range(0); ++i) es.push_back(r.create());
+    std::mt19937 rng(1);
+    std::shuffle(es.begin(), es.end(), rng);
+    for (const aloha::Entity e : es) r.emplace<Position>(e);
+    std::shuffle(es.begin(), es.end(), rng);
+    for (const aloha::Entity e : es) r.emplace<Velocity>(e, 1.0f, 2.0f, 3.0f);
+    auto view = r.view<Position, const Velocity>();
+    for (auto _ : state) {
+        view.each([](Position& p, const Velocity& v) {
+            p.x += v.x * kDt;
+            p.y += v.y * kDt;
+            p.z += v.z * kDt;
+        });
+        benchmark::ClobberMemory();
+    }
+    SetPerEntity(state);
+}
+
+void BM_GroupSpans(benchmark::State& state) {
+    aloha::Registry r;
+    Populate(r, state.range(0));
+    auto group = r.group<Position, Velocity>();
+    for (auto _ : state) {
+        const auto pos = group.span<Position>();
+        const auto vel = group.span<Velocity>();
+        for (size_t i = 0; i < pos.size(); ++i) {
+            pos[i].x += vel[i].x * kDt;
+            pos[i].y += vel[i].y * kDt;
+            pos[i].z += vel[i].z * kDt;
+        }
+        benchmark::ClobberMemory();
+    }
+    SetPerEntity(state);
+}
+
+void BM_PlainSoA(benchmark::State& state) {
+    std::vector<Position> pos(size_t(state.range(0)));
+    std::vector<Velocity> vel(size_t(state.range(0)), Velocity{1.0f, 2.0f, 3.0f});
+    for (auto _ : state) {
+        for (size_t i = 0; i < pos.size(); ++i) {
+            pos[i].x += vel[i].x * kDt;
+            pos[i].y += vel[i].y * kDt;
+            pos[i].z += vel[i].z * kDt;
+        }
+        benchmark::ClobberMemory();
+    }
+    SetPerEntity(state);
+}
+
+// Cost of keeping a group sorted by LOD level when 1% of the keys change per frame.
+void BM_GroupResortOnePercent(benchmark::State& state) {
+    aloha::Registry r;
+    Populate(r, state.range(0));
+    auto group = r.group<Position, Velocity>();
+    std::vector<uint32_t> keys(group.size());
+    for (size_t i = 0; i < keys.size(); ++i) keys[i] = uint32_t(i % 4);
+    group.sort_by_key(keys);
+    std::mt19937 rng(3);
+    for (auto _ : state) {
+        for (size_t k = 0; k < keys.size() / 100; ++k) keys[rng() % keys.size()] = uint32_t(rng() % 4);
+        group.sort_by_key(keys);
+    }
+    SetPerEntity(state);
+}
+
+// The same with the unstable minimal-move partition (each level still one contiguous range).
+void BM_GroupRepartitionOnePercent(benchmark::State& state) {
+    aloha::Registry r;
+    Populate(r, state.range(0));
+    auto group = r.group<Position, Velocity>();
+    std::vector<uint32_t> keys(group.size());
+    for (size_t i = 0; i < keys.size(); ++i) keys[i] = uint32_t(i % 4);
+    group.partition_by_key(keys);
+    std::mt19937 rng(3);
+    for (auto _ : state) {
+        for (size_t k = 0; k < keys.size() / 100; ++k) keys[rng() % keys.size()] = uint32_t(rng() % 4);
+        group.partition_by_key(keys);
+    }
+    SetPerEntity(state);
+}
+
+void BM_CreateDestroyWithCommands(benchmark::State& state) {
+    aloha::Registry r;
+    aloha::CommandBuffer cmds;
+    std::vector<aloha::Entity> es;
+    for (auto _ : state) {
+        for (int64_t i = 0; i < state.range(0); ++i) {
+            const aloha::Entity e = cmds.spawn();
+            cmds.add<Position>(e, Position{});
+            cmds.add<Velocity>(e, Velocity{});
+        }
+        cmds.apply(r);
+        for (const aloha::Entity e : cmds.spawned()) cmds.despawn(e);
+        cmds.apply(r);
+    }
+    SetPerEntity(state);
+}
+
+}  // namespace
+
+BENCHMARK(BM_PlainSoA)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_GroupSpans)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_View)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_ViewShuffled)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_GroupResortOnePercent)->Arg(10'000)->Arg(100'000);
+BENCHMARK(BM_GroupRepartitionOnePercent)->Arg(10'000)->Arg(100'000);
+BENCHMARK(BM_CreateDestroyWithCommands)->Arg(10'000);
+BENCHMARK_MAIN();

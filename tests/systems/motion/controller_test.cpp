@@ -1,0 +1,213 @@
+// Motion controller: request queue order and durations, cross-fade continuity, throttled updates,
+// resting characters untouched, walking root motion along a path.
+#include "systems/motion/controller.hpp"
+#include "tests/systems/motion/motion_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace aloha {
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+// A 4-joint chain with two clips: "swing" rotates every joint about X by 0.6*sin(2*pi*t) (1 s
+// loop), "still" holds every joint at 0.8 rad about X.
+struct Fixture {
+    Skeleton sk = build_skeleton(test::make_chain(4), "chain4").value();
+    ClipLibrary clips;
+    ClipId swing = 0, still = 0;
+    size_t count;
+    std::vector<AnimLod> lods;
+    std::vector<MotionState> states;
+    std::vector<Transform> xs;
+    std::vector<Velocity> vs;
+    explicit Fixture(size_t n) : count(n), lods(n), states(n), xs(n), vs(n) {
+        RawAnimation a;
+        a.name = "swing";
+        a.tracks.resize(4);
+        for (auto& tr : a.tracks)
+            for (int k = 0; k <= 60; ++k) {
+                const float t = static_cast<float>(k) / 60.0f;
+                tr.rotations.times.push_back(t);
+                tr.rotations.values.push_back(glm::angleAxis(0.6f * std::sin(6.2831853f * t), glm::vec3(1, 0, 0)));
+            }
+        swing = clips.add(a, sk).value();
+        RawAnimation b;
+        b.name = "still";
+        b.tracks.resize(4);
+        for (auto& tr : b.tracks) {
+            tr.rotations.times = {0.0f};
+            tr.rotations.values = {glm::angleAxis(0.8f, glm::vec3(1, 0, 0))};
+        }
+        still = clips.add(b, sk).value();
+    }
+    size_t step(MotionController& mc) { return mc.update(kDt, lods, states, xs, vs); }
+};
+
+MotionRequest play(ClipId clip, float duration, float crossfade = 0.0f, bool loop = true) {
+    MotionRequest r;
+    r.kind = RequestKind::PlayClip;
+    r.clip = clip;
+    r.duration = duration;
+    r.crossfade_s = crossfade;
+    r.loop = loop ? 1 : 0;
+    return r;
+}
+
+TEST(MotionController, QueueRunsInOrderForTheirDurations) {
+    Fixture f(2);
+    MotionController mc(f.sk, f.clips, 2);
+    ASSERT_TRUE(mc.push_request(0, play(f.swing, 0.5f)));
+    ASSERT_TRUE(mc.push_request(0, play(f.still, 0.25f)));
+    ASSERT_TRUE(mc.push_request(0, play(f.swing, -1.0f, 0.0f, false)));  // once: ends after 1 s
+    EXPECT_EQ(mc.queued(0), 3u);
+    std::vector<std::pair<int, uint16_t>> switches;  // (frame, clip or 0xFFFF for rest) at each start
+    int frame = 0;
+    for (; frame < 200 && !mc.active().empty(); ++frame) {
+        f.step(mc);
+        const MotionRequest& cur = mc.current(0);
+        if (f.states[0].request_time <= kDt * 1.001f)  // a request started this frame
+            switches.emplace_back(frame, cur.kind == RequestKind::Rest ? uint16_t{0xFFFF} : cur.clip);
+    }
+    // Durations are counted in whole frames: 0.5 s = 30 frames, 0.25 s = 15, the once clip 60.
+    ASSERT_EQ(switches.size(), 4u);
+    EXPECT_EQ(switches[0], std::make_pair(0, f.swing));
+    EXPECT_EQ(switches[1].second, f.still);
+    EXPECT_NEAR(switches[1].first, 30, 1);  // float accumulation of 1/60 may end a frame late
+    EXPECT_EQ(switches[2].second, f.swing);
+    EXPECT_NEAR(switches[2].first - switches[1].first, 15, 1);
+    EXPECT_EQ(switches[3].second, 0xFFFF);  // back to rest, then inactive
+    EXPECT_NEAR(switches[3].first - switches[2].first, 60, 1);
+    EXPECT_TRUE(mc.active().empty());
+    EXPECT_EQ(f.states[0].at_rest, 1);
+    // Character 1 never had a request: never touched.
+    EXPECT_EQ(f.states[1].frames_since_update, 0);
+    EXPECT_EQ(f.states[1].at_rest, 1);
+}
+
+// Largest per-joint rotation angle between two local poses.
+float pose_distance(const ConstPoseView& a, const std::vector<glm::quat>& b) {
+    float d = 0.0f;
+    for (size_t j = 0; j < b.size(); ++j)
+        d = std::max(d, 2.0f * std::acos(std::min(1.0f, std::abs(glm::dot(a.rotations[j], b[j])))));
+    return d;
+}
+
+TEST(MotionController, CrossFadeHasNoJumpAtTheSwitch) {
+    Fixture f(1);
+    MotionController mc(f.sk, f.clips, 1);
+    const float fade = 0.25f;
+    ASSERT_TRUE(mc.push_request(0, play(f.swing, 0.4f)));
+    ASSERT_TRUE(mc.push_request(0, play(f.still, -1.0f, fade)));
+    std::vector<glm::quat> prev(4);
+    f.step(mc);
+    auto copy = [&] {
+        const ConstPoseView v = mc.poses().view(0);
+        std::copy(v.rotations.begin(), v.rotations.end(), prev.begin());
+    };
+    copy();
+    // Bound per frame: the swing clip moves at most 0.6 * 2*pi rad/s * dt = 0.063 rad; the fade moves
+    // the blend by dt/fade of the gap between the poses (at most 0.6 + 0.8 = 1.4 rad): 0.093 rad.
+    // Without a fade the switch would jump by up to 1.4 rad.
+    const float bound = 0.6f * 6.2831853f * kDt + 1.4f * kDt / fade + 1e-3f;
+    float worst = 0.0f;
+    bool faded = false;
+    for (int frame = 1; frame < 60; ++frame) {
+        f.step(mc);
+        faded = faded || mc.fading(0);
+        const float d = pose_distance(mc.poses().view(0), prev);
+        worst = std::max(worst, d);
+        copy();
+    }
+    EXPECT_TRUE(faded);
+    EXPECT_LE(worst, bound);
+    // After the fade the pose is the still clip's.
+    EXPECT_NEAR(glm::angle(mc.poses().view(0).rotations[2]), 0.8f, 1e-4f);
+}
+
+TEST(MotionController, UpdateIntervalPosesEveryNFramesWhileTimeAdvances) {
+    Fixture f(1);
+    f.lods[0].update_interval = 3;
+    MotionController mc(f.sk, f.clips, 1);
+    ASSERT_TRUE(mc.push_request(0, play(f.swing, -1.0f)));
+    std::vector<int> posed_frames;
+    float last_time = -1.0f;
+    for (int frame = 0; frame < 12; ++frame) {
+        if (f.step(mc) == 1) posed_frames.push_back(frame);
+        EXPECT_GT(f.states[0].time, last_time);  // time advances every frame
+        last_time = f.states[0].time;
+    }
+    EXPECT_EQ(posed_frames, (std::vector<int>{0, 3, 6, 9}));
+    EXPECT_NEAR(f.states[0].time, 12 * kDt, 1e-5f);
+    // The pose shown is the clip at the time of the last update (frame 9: t = 10 dt).
+    const float t = 10.0f * kDt;
+    EXPECT_NEAR(glm::angle(mc.poses().view(0).rotations[1]), std::abs(0.6f * std::sin(6.2831853f * t)), 2e-3f);
+}
+
+TEST(MotionController, RestingCharactersAreNotIterated) {
+    Fixture f(1000);
+    MotionController mc(f.sk, f.clips, 1000);
+    for (auto& s : f.states) s.frames_since_update = 77;  // sentinel
+    f.xs[500].position = glm::vec3(1, 2, 3);
+    ASSERT_TRUE(mc.push_request(7, play(f.swing, -1.0f)));
+    for (int i = 0; i < 10; ++i) EXPECT_EQ(f.step(mc), 1u);
+    EXPECT_EQ(mc.active().size(), 1u);
+    for (size_t c = 0; c < 1000; ++c) {
+        if (c == 7) continue;
+        EXPECT_EQ(f.states[c].frames_since_update, 77);
+    }
+    EXPECT_EQ(f.xs[500].position, glm::vec3(1, 2, 3));
+    EXPECT_EQ(mc.poses().view(3).rotations[1], f.sk.rest_rotations()[1]);
+    // Rest request: character 7 drops out of the active list.
+    MotionRequest rest;
+    ASSERT_TRUE(mc.push_request(7, rest));
+    f.step(mc);
+    EXPECT_TRUE(mc.active().empty());
+    EXPECT_EQ(f.states[7].at_rest, 1);
+}
+
+TEST(MotionController, WalkFollowsPathWithRootMotion) {
+    Fixture f(1);
+    MotionController mc(f.sk, f.clips, 1);
+    const uint16_t path = mc.add_path({glm::vec3(0, 0, 2), glm::vec3(2, 0, 2)});
+    MotionRequest walk;
+    walk.kind = RequestKind::Walk;
+    walk.speed = 1.5f;
+    walk.path = path;
+    ASSERT_TRUE(mc.push_request(0, walk));
+    f.step(mc);
+    EXPECT_NEAR(f.xs[0].position.z, 1.5f * kDt, 1e-6f);
+    EXPECT_NEAR(glm::length(f.vs[0].linear), 1.5f, 1e-5f);
+    int frames = 1;
+    uint32_t cursor = 0;
+    while (!mc.active().empty() && frames < 1000) {
+        f.step(mc);
+        ++frames;
+        if (f.states[0].active == RequestKind::Walk) cursor = std::max(cursor, f.states[0].path_cursor);
+    }
+    // 4 m of path at 1.5 m/s = 2.67 s = 160 frames (+1 frame to notice the end).
+    EXPECT_NEAR(frames, 161, 2);
+    EXPECT_NEAR(f.xs[0].position.x, 2.0f, 0.03f);  // within one frame of travel (0.025 m)
+    EXPECT_NEAR(f.xs[0].position.z, 2.0f, 0.03f);
+    EXPECT_EQ(f.vs[0].linear, glm::vec3(0.0f));
+    EXPECT_EQ(cursor, 2u);  // both waypoints passed
+}
+
+TEST(MotionController, JobValidates) {
+    Fixture f(2);
+    MotionController mc(f.sk, f.clips, 3);
+    MotionUpdateJob job{&mc, kDt, f.lods, f.states, f.xs, f.vs};
+    std::vector<std::string> errors;
+    EXPECT_FALSE(job.Validate(&errors));
+    EXPECT_EQ(errors.size(), 4u);
+    MotionController ok(f.sk, f.clips, 2);
+    job.controller = &ok;
+    EXPECT_TRUE(job.Validate());
+    EXPECT_EQ(job.Run(), 0u);
+}
+
+}  // namespace
+}  // namespace aloha

@@ -1,0 +1,6 @@
+# Dynamic walk tests; included by tests/systems/motion/CMakeLists.txt.
+aloha_test(dynamic_tests
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/dynamic_walk_test.cpp
+          ${CMAKE_CURRENT_LIST_DIR}/dynamic_long_test.cpp
+  LIBS aloha::motion
+  LABELS motion dynamic)

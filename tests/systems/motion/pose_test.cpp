@@ -1,0 +1,123 @@
+// Local-to-model, blending and the batched pose pool job.
+#include "systems/motion/blend.hpp"
+#include "systems/motion/local_to_model.hpp"
+#include "systems/motion/pose_pool.hpp"
+#include "tests/systems/motion/motion_test_util.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <utility>
+
+namespace aloha {
+namespace {
+
+void expect_vec_near(const glm::vec3& a, const glm::vec3& b, float tol) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+TEST(LocalToModel, HandComputedThreeJointChain) {
+    const int16_t parents[3] = {-1, 0, 1};
+    const glm::quat rz = glm::angleAxis(glm::radians(90.0f), glm::vec3(0, 0, 1));
+    const glm::vec3 t[3] = {{1, 0, 0}, {2, 0, 0}, {1, 0, 0}};
+    const glm::quat r[3] = {rz, rz, glm::quat(1, 0, 0, 0)};
+    const glm::vec3 s[3] = {{1, 1, 1}, {2, 2, 2}, {1, 1, 1}};
+    const glm::mat4 root = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 5));
+    glm::mat4 model[3];
+    LocalToModelJob job{parents, t, r, s, &root, model};
+    ASSERT_TRUE(job.Validate());
+    job.Run();
+    // By hand: origin0 = (1,0,0); origin1 = R0*(2,0,0)+(1,0,0) = (1,2,0);
+    // origin2 = origin1 + R0*R1*S1*(1,0,0) = (1,2,0) + (-2,0,0) = (-1,2,0); x axis of 2 = (-2,0,0).
+    // The root adds z = 5. cos(90 deg) in float is ~4e-8, so errors stay below 1e-6 * 4 (largest value).
+    const float tol = 4e-6f;
+    expect_vec_near(glm::vec3(model[0][3]), {1, 0, 5}, tol);
+    expect_vec_near(glm::vec3(model[1][3]), {1, 2, 5}, tol);
+    expect_vec_near(glm::vec3(model[2][3]), {-1, 2, 5}, tol);
+    expect_vec_near(glm::vec3(model[2][0]), {-2, 0, 0}, tol);
+    expect_vec_near(glm::vec3(model[1][1]), {0, -2, 0}, tol);  // y axis of 1: R0*R1*(0,2,0), 180 deg about z
+    EXPECT_FLOAT_EQ(model[2][3][3], 1.0f);
+    // compose_trs matches GLM's reference construction.
+    const glm::mat4 ref = glm::translate(glm::mat4(1.0f), t[1]) * glm::mat4_cast(r[1]) * glm::scale(glm::mat4(1.0f), s[1]);
+    const glm::mat4 got = compose_trs(t[1], r[1], s[1]);
+    for (int c = 0; c < 4; ++c)
+        for (int k = 0; k < 4; ++k) EXPECT_NEAR(got[c][k], ref[c][k], 1e-6f);
+}
+
+TEST(LocalToModel, ValidateRejectsChildBeforeParent) {
+    const int16_t parents[2] = {1, -1};
+    glm::vec3 t[2], s[2];
+    glm::quat r[2];
+    glm::mat4 m[1];
+    LocalToModelJob job{parents, t, r, s, nullptr, m};
+    std::vector<std::string> errors;
+    EXPECT_FALSE(job.Validate(&errors));
+    EXPECT_EQ(errors.size(), 2u);  // model too short + parent order
+}
+
+TEST(Blend, WeightsZeroAndOneGiveTheInputsExactly) {
+    const glm::vec3 at[2] = {{1, 2, 3}, {0.1f, 0.2f, 0.3f}}, bt[2] = {{-1, 5, 0}, {7, 8, 9}};
+    const glm::quat ar[2] = {glm::angleAxis(0.3f, glm::vec3(1, 0, 0)), glm::angleAxis(1.0f, glm::vec3(0, 1, 0))};
+    const glm::quat br[2] = {-glm::angleAxis(1.3f, glm::vec3(1, 0, 0)), glm::angleAxis(-1.0f, glm::vec3(0, 0, 1))};
+    const glm::vec3 as[2] = {{1, 1, 1}, {2, 2, 2}}, bs[2] = {{3, 3, 3}, {1, 1, 1}};
+    glm::vec3 ot[2], os[2];
+    glm::quat orr[2];
+    BlendJob job{at, ar, as, bt, br, bs, 0.0f, ot, orr, os};
+    ASSERT_TRUE(job.Validate());
+    job.Run();
+    for (int j = 0; j < 2; ++j) {
+        EXPECT_EQ(ot[j], at[j]);
+        EXPECT_EQ(orr[j], ar[j]);
+        EXPECT_EQ(os[j], as[j]);
+    }
+    job.weight = 1.0f;
+    job.Run();
+    for (int j = 0; j < 2; ++j) {
+        EXPECT_EQ(ot[j], bt[j]);
+        EXPECT_EQ(orr[j], br[j]);
+        EXPECT_EQ(os[j], bs[j]);
+    }
+    // Half way, joint 0: br is the negated 1.3 rad rotation; the hemisphere fix blends 0.3 and 1.3
+    // about the same axis, whose nlerp midpoint is exactly 0.8 rad (symmetric about the middle).
+    job.weight = 0.5f;
+    job.Run();
+    EXPECT_NEAR(glm::angle(orr[0]), 0.8f, 1e-5f);
+    expect_vec_near(ot[0], {0, 3.5f, 1.5f}, 1e-6f);
+    job.weight = 1.5f;
+    EXPECT_FALSE(job.Validate());
+}
+
+TEST(PosePool, BatchEqualsPerCharacterJobs) {
+    const Skeleton sk = build_skeleton(test::make_humanoid64(), "h64").value();
+    ASSERT_EQ(sk.joint_count(), 64);
+    const AnimationClip clip = build_clip(test::make_wave_clip(sk, 61, 2.0f), sk).value();
+    PosePool pool(64, 3, &sk);
+    const float times[2] = {0.37f, 2.9f};
+    const uint32_t slots[2] = {2, 0};
+    SamplingCache caches[2];
+    AnimateBatchJob batch{&clip, &sk, true, times, slots, caches, &pool};
+    std::vector<std::string> errors;
+    ASSERT_TRUE(batch.Validate(&errors));
+    batch.Run();
+    std::vector<glm::vec3> t(64), s(64);
+    std::vector<glm::quat> r(64);
+    std::vector<glm::mat4> m(64);
+    for (int i = 0; i < 2; ++i) {
+        SampleJob sj{&clip, times[i], true, nullptr, t, r, s};
+        sj.Run();
+        LocalToModelJob lj{sk.parents(), t, r, s, nullptr, m};
+        lj.Run();
+        const ConstPoseView v = std::as_const(pool).view(slots[i]);
+        for (size_t j = 0; j < 64; ++j) EXPECT_EQ(v.model[j], m[j]);  // same code path: same bits
+    }
+    // Slot 1 was not in the batch: still the rest pose.
+    EXPECT_EQ(pool.view(1).translations[5], sk.rest_translations()[5]);
+    const uint32_t bad_slots[2] = {2, 7};
+    batch.slots = bad_slots;
+    EXPECT_FALSE(batch.Validate());
+}
+
+}  // namespace
+}  // namespace aloha

@@ -1,0 +1,18 @@
+# Motion controller core tests (clips, sampling, local-to-model, blending, controller, walk).
+if(TARGET aloha_motion)
+  aloha_test(motion_tests
+    SOURCES
+      ${CMAKE_CURRENT_LIST_DIR}/sampling_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/pose_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/controller_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/walk_test.cpp
+    LIBS aloha::motion
+    LABELS motion)
+endif()
+# The BVH walk needs the asset loaders (engine/assets).
+if(TARGET aloha_motion AND TARGET aloha_assets)
+  aloha_test(motion_bvh_tests
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/bvh_walk_test.cpp
+    LIBS aloha::motion aloha::assets
+    LABELS motion)
+endif()
