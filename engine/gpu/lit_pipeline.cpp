@@ -1,0 +1,243 @@
+#include "engine/gpu/lit_pipeline.hpp"
+
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/vk_error.hpp"
+
+#include "shaders/line_frag.h"
+#include "shaders/line_vert.h"
+#include "shaders/lit_mesh_frag.h"
+#include "shaders/lit_mesh_vert.h"
+
+#include <span>
+#include <utility>
+
+namespace aloha::gpu {
+namespace {
+
+Result<VkShaderModule> make_module(VkDevice device, std::span<const uint32_t> code) {
+    VkShaderModuleCreateInfo ci{};
+    ci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    ci.codeSize = code.size_bytes();
+    ci.pCode = code.data();
+    VkShaderModule m = VK_NULL_HANDLE;
+    ALOHA_VK_RETURN(vkCreateShaderModule(device, &ci, nullptr, &m));
+    return m;
+}
+
+struct PipelineDesc {
+    std::span<const uint32_t> vert;
+    std::span<const uint32_t> frag;
+    VkPrimitiveTopology topology;
+    VkCompareOp depth_compare;
+    VkCullModeFlags cull;
+};
+
+Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass,
+                                 const PipelineDesc& d) {
+    Result<VkShaderModule> vs = make_module(device, d.vert);
+    if (!vs) return vs.error();
+    Result<VkShaderModule> fs = make_module(device, d.frag);
+    if (!fs) {
+        vkDestroyShaderModule(device, vs.value(), nullptr);
+        return fs.error();
+    }
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vs.value();
+    stages[0].pName = "main";
+    stages[1] = stages[0];
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = fs.value();
+    VkPipelineVertexInputStateCreateInfo vi{};
+    vi.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+    VkPipelineInputAssemblyStateCreateInfo ia{};
+    ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+    ia.topology = d.topology;
+    VkPipelineViewportStateCreateInfo vp{};
+    vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+    vp.viewportCount = 1;
+    vp.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo rs{};
+    rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = d.cull;
+    rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    rs.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo ms{};
+    ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo ds{};
+    ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+    ds.depthTestEnable = VK_TRUE;
+    ds.depthWriteEnable = VK_TRUE;
+    ds.depthCompareOp = d.depth_compare;
+    VkPipelineColorBlendAttachmentState cb{};
+    cb.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                        VK_COLOR_COMPONENT_A_BIT;
+    VkPipelineColorBlendStateCreateInfo cbs{};
+    cbs.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+    cbs.attachmentCount = 1;
+    cbs.pAttachments = &cb;
+    const VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dys{};
+    dys.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
+    dys.dynamicStateCount = 2;
+    dys.pDynamicStates = dyn;
+    VkGraphicsPipelineCreateInfo pci{};
+    pci.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+    pci.stageCount = 2;
+    pci.pStages = stages;
+    pci.pVertexInputState = &vi;
+    pci.pInputAssemblyState = &ia;
+    pci.pViewportState = &vp;
+    pci.pRasterizationState = &rs;
+    pci.pMultisampleState = &ms;
+    pci.pDepthStencilState = &ds;
+    pci.pColorBlendState = &cbs;
+    pci.pDynamicState = &dys;
+    pci.layout = layout;
+    pci.renderPass = pass;
+    VkPipeline p = VK_NULL_HANDLE;
+    const VkResult r = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &pci, nullptr, &p);
+    vkDestroyShaderModule(device, vs.value(), nullptr);
+    vkDestroyShaderModule(device, fs.value(), nullptr);
+    if (r != VK_SUCCESS) return vk_error("vkCreateGraphicsPipelines", r);
+    return p;
+}
+
+}  // namespace
+
+glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light) {
+    const float diffuse = glm::max(glm::dot(glm::normalize(n), glm::vec3(light)), 0.0f);
+    return colour * (light.w + (1.0f - light.w) * diffuse);
+}
+
+glm::mat4 vulkan_clip_from_gl() {
+    glm::mat4 m(1.0f);
+    m[1][1] = -1.0f;  // y down
+    m[2][2] = 0.5f;   // z' = 0.5 z + 0.5 w
+    m[3][2] = 0.5f;
+    return m;
+}
+
+Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass render_pass, uint32_t max_sets) {
+    LitPipelines lp;
+    lp.device_ = ctx.device();
+    VkDescriptorSetLayoutBinding b[4]{};
+    for (uint32_t i = 0; i < 4; ++i) {
+        b[i].binding = i;
+        b[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        b[i].descriptorCount = 1;
+        b[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
+    }
+    VkDescriptorSetLayoutCreateInfo sli{};
+    sli.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    sli.bindingCount = 4;
+    sli.pBindings = b;
+    ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.set_layout_));
+    VkPushConstantRange pcr{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(LitPush)};
+    VkPipelineLayoutCreateInfo pli{};
+    pli.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &lp.set_layout_;
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &pcr;
+    ALOHA_VK_RETURN(vkCreatePipelineLayout(lp.device_, &pli, nullptr, &lp.layout_));
+    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * max_sets};
+    VkDescriptorPoolCreateInfo dpi{};
+    dpi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    dpi.maxSets = max_sets;
+    dpi.poolSizeCount = 1;
+    dpi.pPoolSizes = &ps;
+    ALOHA_VK_RETURN(vkCreateDescriptorPool(lp.device_, &dpi, nullptr, &lp.pool_));
+    Result<VkPipeline> mesh = make_pipeline(
+        lp.device_, lp.layout_, render_pass,
+        {k_lit_mesh_vert_spv, k_lit_mesh_frag_spv, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
+         VK_CULL_MODE_NONE});
+    if (!mesh) return mesh.error();
+    lp.mesh_ = mesh.value();
+    Result<VkPipeline> culled = make_pipeline(
+        lp.device_, lp.layout_, render_pass,
+        {k_lit_mesh_vert_spv, k_lit_mesh_frag_spv, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
+         VK_CULL_MODE_BACK_BIT});
+    if (!culled) return culled.error();
+    lp.culled_ = culled.value();
+    Result<VkPipeline> lines = make_pipeline(
+        lp.device_, lp.layout_, render_pass,
+        {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL,
+         VK_CULL_MODE_NONE});
+    if (!lines) return lines.error();
+    lp.lines_ = lines.value();
+    return lp;
+}
+
+LitPipelines::LitPipelines(LitPipelines&& o) noexcept
+    : device_(std::exchange(o.device_, VK_NULL_HANDLE)),
+      set_layout_(std::exchange(o.set_layout_, VK_NULL_HANDLE)),
+      layout_(std::exchange(o.layout_, VK_NULL_HANDLE)),
+      pool_(std::exchange(o.pool_, VK_NULL_HANDLE)),
+      mesh_(std::exchange(o.mesh_, VK_NULL_HANDLE)),
+      culled_(std::exchange(o.culled_, VK_NULL_HANDLE)),
+      lines_(std::exchange(o.lines_, VK_NULL_HANDLE)) {}
+
+LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
+    if (this != &o) {
+        destroy();
+        device_ = std::exchange(o.device_, VK_NULL_HANDLE);
+        set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
+        layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+        pool_ = std::exchange(o.pool_, VK_NULL_HANDLE);
+        mesh_ = std::exchange(o.mesh_, VK_NULL_HANDLE);
+        culled_ = std::exchange(o.culled_, VK_NULL_HANDLE);
+        lines_ = std::exchange(o.lines_, VK_NULL_HANDLE);
+    }
+    return *this;
+}
+
+void LitPipelines::destroy() {
+    if (device_ == VK_NULL_HANDLE) return;
+    if (mesh_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, mesh_, nullptr);
+    if (culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, culled_, nullptr);
+    if (lines_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, lines_, nullptr);
+    if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
+    if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
+    if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
+    device_ = VK_NULL_HANDLE;
+    mesh_ = culled_ = lines_ = VK_NULL_HANDLE;
+    pool_ = VK_NULL_HANDLE;
+    layout_ = VK_NULL_HANDLE;
+    set_layout_ = VK_NULL_HANDLE;
+}
+
+Result<VkDescriptorSet> LitPipelines::allocate_set() const {
+    VkDescriptorSetAllocateInfo ai{};
+    ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    ai.descriptorPool = pool_;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &set_layout_;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    ALOHA_VK_RETURN(vkAllocateDescriptorSets(device_, &ai, &set));
+    return set;
+}
+
+void LitPipelines::write_set(VkDescriptorSet set, const Buffer& positions, const Buffer& normals,
+                             const Buffer& instances, const Buffer& lines) const {
+    const VkDescriptorBufferInfo infos[4] = {{positions.handle(), 0, VK_WHOLE_SIZE},
+                                             {normals.handle(), 0, VK_WHOLE_SIZE},
+                                             {instances.handle(), 0, VK_WHOLE_SIZE},
+                                             {lines.handle(), 0, VK_WHOLE_SIZE}};
+    VkWriteDescriptorSet w[4]{};
+    for (uint32_t i = 0; i < 4; ++i) {
+        w[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        w[i].dstSet = set;
+        w[i].dstBinding = i;
+        w[i].descriptorCount = 1;
+        w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(device_, 4, w, 0, nullptr);
+}
+
+}  // namespace aloha::gpu

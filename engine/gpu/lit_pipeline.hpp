@@ -1,0 +1,92 @@
+// The lit-mesh and line pipelines (shaders/lit_mesh.*, shaders/line.*): vertex pulling from storage buffers,
+// per-instance model matrix + colour, one directional light + ambient, depth test, push-constant camera.
+#pragma once
+
+#include "engine/core/result.hpp"
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+namespace aloha::gpu {
+
+class Buffer;
+class Context;
+
+/// Push constants shared by both pipelines (112 bytes, std430 layout of shaders/lit_mesh.vert).
+struct LitPush {
+    glm::mat4 view_proj{1.0f};  ///< Vulkan clip space from world (see vulkan_clip_from_gl())
+    glm::vec4 light{0.0f, 0.0f, 1.0f, 0.2f}; ///< xyz: unit direction towards the light, w: ambient in [0,1]
+    glm::vec4 camera{0.0f};     ///< xyz: camera position in world space (normals are turned to face it)
+    glm::uvec4 offsets{0u};     ///< mesh: x vertex_base, y vertex_stride (0 = shared), z instance_base;
+                                ///< lines: x first line vertex
+};
+static_assert(sizeof(LitPush) == 112, "LitPush must match the shader push-constant block");
+
+/// One instance in binding 2: model matrix and RGBA colour (80 bytes, std430).
+struct LitInstance {
+    glm::mat4 model{1.0f};      ///< world from model
+    glm::vec4 colour{1.0f};     ///< albedo RGB, alpha written as is
+};
+static_assert(sizeof(LitInstance) == 80, "LitInstance must match the shader's std430 struct");
+
+/// One line vertex in binding 3 (32 bytes, std430).
+struct LineVertex {
+    glm::vec4 position{0.0f, 0.0f, 0.0f, 1.0f}; ///< world position (w ignored)
+    glm::vec4 colour{1.0f};                     ///< RGBA written unlit
+};
+static_assert(sizeof(LineVertex) == 32, "LineVertex must match the shader's std430 struct");
+
+/// The colour the lit shader writes for albedo `colour` and world normal `n` (already facing the camera):
+/// colour.rgb * (ambient + (1 - ambient) * max(dot(n, L), 0)). Used by tests to predict pixels.
+[[nodiscard]] glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light);
+
+/// Matrix taking OpenGL clip space (glm::perspective: y up, z in [-w, w]) to Vulkan clip space
+/// (y down, z in [0, w]). Multiply it on the left of a glm projection.
+[[nodiscard]] glm::mat4 vulkan_clip_from_gl();
+
+/// Descriptor set layout (bindings 0 positions float[], 1 normals float[], 2 LitInstance[], 3 LineVertex[],
+/// all storage buffers), the pipeline layout (set 0 + LitPush), the three pipelines and a descriptor pool.
+class LitPipelines {
+public:
+    /// Builds the pipelines for render passes compatible with `render_pass` (colour + D32 depth, see
+    /// create_render_pass); the pool holds `max_sets` descriptor sets.
+    [[nodiscard]] static Result<LitPipelines> create(const Context& ctx, VkRenderPass render_pass,
+                                                     uint32_t max_sets = 4);
+    LitPipelines() = default;
+    ~LitPipelines() { destroy(); }
+    LitPipelines(LitPipelines&& other) noexcept;
+    LitPipelines& operator=(LitPipelines&& other) noexcept;
+    LitPipelines(const LitPipelines&) = delete;
+    LitPipelines& operator=(const LitPipelines&) = delete;
+
+    /// Triangle-list pipeline: lit, depth test and write, no culling (two-sided lighting).
+    [[nodiscard]] VkPipeline mesh() const { return mesh_; }
+    /// The mesh pipeline with back faces culled, for closed meshes wound counter-clockwise seen from
+    /// outside in a right-handed world (proxy boxes, closed skins); about halves the rasteriser's work.
+    [[nodiscard]] VkPipeline mesh_culled() const { return culled_; }
+    /// Line-list pipeline: unlit vertex colour, depth test LESS_OR_EQUAL.
+    [[nodiscard]] VkPipeline lines() const { return lines_; }
+    /// Layout for vkCmdPushConstants (stages vertex + fragment, LitPush) and vkCmdBindDescriptorSets.
+    [[nodiscard]] VkPipelineLayout layout() const { return layout_; }
+    /// Allocates one descriptor set from the pool (at most max_sets in total).
+    [[nodiscard]] Result<VkDescriptorSet> allocate_set() const;
+    /// Points `set` at the four buffers (whole ranges); each must be a non-empty storage buffer.
+    /// The set must not be in use by a pending command buffer.
+    void write_set(VkDescriptorSet set, const Buffer& positions, const Buffer& normals, const Buffer& instances,
+                   const Buffer& lines) const;
+    /// Releases everything now (also done by the destructor).
+    void destroy();
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkPipeline mesh_ = VK_NULL_HANDLE;
+    VkPipeline culled_ = VK_NULL_HANDLE;
+    VkPipeline lines_ = VK_NULL_HANDLE;
+};
+
+}  // namespace aloha::gpu

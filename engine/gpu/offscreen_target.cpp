@@ -1,0 +1,195 @@
+#include "engine/gpu/offscreen_target.hpp"
+
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/vk_error.hpp"
+
+#include <cstring>
+#include <utility>
+
+namespace aloha::gpu {
+
+Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format, VkImageLayout final_layout) {
+    VkAttachmentDescription att[2]{};
+    att[0].format = colour_format;
+    att[0].samples = VK_SAMPLE_COUNT_1_BIT;
+    att[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    att[0].finalLayout = final_layout;
+    att[1] = att[0];
+    att[1].format = kDepthFormat;
+    att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    VkAttachmentReference colour_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.colorAttachmentCount = 1;
+    sub.pColorAttachments = &colour_ref;
+    sub.pDepthStencilAttachment = &depth_ref;
+    // Earlier reads (readback copy, present) and attachment writes finish before this pass writes;
+    // this pass's writes finish before later transfers (readback) read.
+    VkSubpassDependency deps[2]{};
+    deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+    deps[0].dstSubpass = 0;
+    deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+                           VK_PIPELINE_STAGE_TRANSFER_BIT;
+    deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                           VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                            VK_ACCESS_TRANSFER_READ_BIT;
+    deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT |
+                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+    deps[1].srcSubpass = 0;
+    deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
+    deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    VkRenderPassCreateInfo rpi{};
+    rpi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+    rpi.attachmentCount = 2;
+    rpi.pAttachments = att;
+    rpi.subpassCount = 1;
+    rpi.pSubpasses = &sub;
+    rpi.dependencyCount = 2;
+    rpi.pDependencies = deps;
+    VkRenderPass rp = VK_NULL_HANDLE;
+    ALOHA_VK_RETURN(vkCreateRenderPass(device, &rpi, nullptr, &rp));
+    return rp;
+}
+
+Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t width, uint32_t height, bool srgb) {
+    OffscreenTarget t;
+    t.device_ = ctx.device();
+    const VkFormat fmt = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    Result<Image> colour = Image::create(ctx, width, height, fmt,
+                                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                             VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                         VK_IMAGE_ASPECT_COLOR_BIT);
+    if (!colour) return colour.error();
+    t.colour_ = std::move(colour).value();
+    Result<Image> depth = Image::create(ctx, width, height, kDepthFormat,
+                                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    if (!depth) return depth.error();
+    t.depth_ = std::move(depth).value();
+    Result<VkRenderPass> rp = create_render_pass(t.device_, fmt, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    if (!rp) return rp.error();
+    t.render_pass_ = rp.value();
+    VkImageView views[2] = {t.colour_.view(), t.depth_.view()};
+    VkFramebufferCreateInfo fci{};
+    fci.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    fci.renderPass = t.render_pass_;
+    fci.attachmentCount = 2;
+    fci.pAttachments = views;
+    fci.width = width;
+    fci.height = height;
+    fci.layers = 1;
+    ALOHA_VK_RETURN(vkCreateFramebuffer(t.device_, &fci, nullptr, &t.framebuffer_));
+    Result<Buffer> rb = Buffer::create(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    if (!rb) return rb.error();
+    t.readback_ = std::move(rb).value();
+
+    // Clear once and leave the colour image in TRANSFER_SRC_OPTIMAL, the layout every pass ends in,
+    // so read_back() is valid even before anything is drawn.
+    const VkImage image = t.colour_.handle();
+    Status s = ctx.submit_once([image](VkCommandBuffer cmd) {
+        VkImageMemoryBarrier b{};
+        b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+        b.srcAccessMask = 0;
+        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        b.image = image;
+        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr,
+                             0, nullptr, 1, &b);
+        VkClearColorValue zero{};
+        vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &b.subresourceRange);
+        b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+        b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                             nullptr, 1, &b);
+    });
+    if (!s) return s.error();
+    return t;
+}
+
+OffscreenTarget::OffscreenTarget(OffscreenTarget&& other) noexcept
+    : device_(std::exchange(other.device_, VK_NULL_HANDLE)),
+      colour_(std::move(other.colour_)),
+      depth_(std::move(other.depth_)),
+      render_pass_(std::exchange(other.render_pass_, VK_NULL_HANDLE)),
+      framebuffer_(std::exchange(other.framebuffer_, VK_NULL_HANDLE)),
+      readback_(std::move(other.readback_)) {}
+
+OffscreenTarget& OffscreenTarget::operator=(OffscreenTarget&& other) noexcept {
+    if (this != &other) {
+        destroy();
+        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        colour_ = std::move(other.colour_);
+        depth_ = std::move(other.depth_);
+        render_pass_ = std::exchange(other.render_pass_, VK_NULL_HANDLE);
+        framebuffer_ = std::exchange(other.framebuffer_, VK_NULL_HANDLE);
+        readback_ = std::move(other.readback_);
+    }
+    return *this;
+}
+
+void OffscreenTarget::destroy() {
+    if (device_ != VK_NULL_HANDLE) {
+        if (framebuffer_ != VK_NULL_HANDLE) vkDestroyFramebuffer(device_, framebuffer_, nullptr);
+        if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device_, render_pass_, nullptr);
+    }
+    framebuffer_ = VK_NULL_HANDLE;
+    render_pass_ = VK_NULL_HANDLE;
+    readback_.destroy();
+    depth_.destroy();
+    colour_.destroy();
+    device_ = VK_NULL_HANDLE;
+}
+
+TargetView OffscreenTarget::view() const {
+    return TargetView{render_pass_, framebuffer_, colour_.extent(), colour_.format()};
+}
+
+Result<Rgba8Image> OffscreenTarget::read_back(const Context& ctx) const {
+    const VkExtent2D ext = colour_.extent();
+    const VkImage image = colour_.handle();
+    const VkBuffer dst = readback_.handle();
+    Status s = ctx.submit_once([&](VkCommandBuffer cmd) {
+        // Make earlier render-pass writes available to this copy (same queue, earlier submission).
+        VkMemoryBarrier mb{};
+        mb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+        mb.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+        mb.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, nullptr, 0, nullptr);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {ext.width, ext.height, 1};
+        vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &region);
+        VkMemoryBarrier hb{};
+        hb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+        hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        hb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &hb, 0, nullptr,
+                             0, nullptr);
+    });
+    if (!s) return s.error();
+    Rgba8Image out;
+    out.width = ext.width;
+    out.height = ext.height;
+    out.pixels.resize(size_t(ext.width) * ext.height * 4);
+    std::memcpy(out.pixels.data(), readback_.mapped(), out.pixels.size());
+    return out;
+}
+
+}  // namespace aloha::gpu

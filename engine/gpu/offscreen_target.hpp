@@ -1,0 +1,75 @@
+// Render targets: the view a renderer draws into, and a headless colour + depth target with CPU readback.
+#pragma once
+
+#include "engine/core/result.hpp"
+#include "engine/gpu/buffer.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace aloha::gpu {
+
+class Context;
+
+/// Depth format of every ALOHA target.
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+/// What a renderer needs to draw into one image: a render pass (colour + D32 depth, both cleared),
+/// the framebuffer of this image, its size and colour format. Valid while the owning target lives.
+struct TargetView {
+    VkRenderPass render_pass = VK_NULL_HANDLE;  ///< colour attachment 0 + depth attachment 1
+    VkFramebuffer framebuffer = VK_NULL_HANDLE; ///< framebuffer for this image
+    VkExtent2D extent{0, 0};                    ///< size in pixels
+    VkFormat colour_format = VK_FORMAT_UNDEFINED; ///< colour attachment format
+};
+
+/// Creates a render pass with one colour attachment of `colour_format` (cleared, stored, ending in
+/// `final_layout`) and one kDepthFormat attachment (cleared, not stored). Caller destroys it.
+[[nodiscard]] Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
+                                                      VkImageLayout final_layout);
+
+/// A CPU-RGBA8 picture: width * height * 4 bytes, rows top to bottom.
+struct Rgba8Image {
+    uint32_t width = 0;          ///< pixels
+    uint32_t height = 0;         ///< pixels
+    std::vector<uint8_t> pixels; ///< RGBA, row-major, top row first
+};
+
+/// A headless colour (R8G8B8A8 UNORM or SRGB) + depth (D32) target with its render pass and framebuffer.
+/// After each render pass the colour image is in TRANSFER_SRC_OPTIMAL, ready for read_back(). Move-only.
+class OffscreenTarget {
+public:
+    /// Creates a `width` x `height` target (both > 0); `srgb` picks R8G8B8A8_SRGB over UNORM.
+    /// The colour image starts cleared to transparent black.
+    [[nodiscard]] static Result<OffscreenTarget> create(const Context& ctx, uint32_t width, uint32_t height,
+                                                        bool srgb = false);
+    OffscreenTarget() = default;
+    ~OffscreenTarget() { destroy(); }
+    OffscreenTarget(OffscreenTarget&& other) noexcept;
+    OffscreenTarget& operator=(OffscreenTarget&& other) noexcept;
+    OffscreenTarget(const OffscreenTarget&) = delete;
+    OffscreenTarget& operator=(const OffscreenTarget&) = delete;
+
+    /// The view a renderer draws into.
+    [[nodiscard]] TargetView view() const;
+    /// Size in pixels.
+    [[nodiscard]] VkExtent2D extent() const { return colour_.extent(); }
+    /// The colour image (for custom copies).
+    [[nodiscard]] const Image& colour() const { return colour_; }
+    /// Copies the colour image to the CPU, waiting for all earlier work on ctx's queue to finish.
+    [[nodiscard]] Result<Rgba8Image> read_back(const Context& ctx) const;
+    /// Releases everything now (also done by the destructor); the device must be idle.
+    void destroy();
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    Image colour_;
+    Image depth_;
+    VkRenderPass render_pass_ = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+    Buffer readback_;
+};
+
+}  // namespace aloha::gpu

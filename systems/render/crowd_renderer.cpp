@@ -1,0 +1,257 @@
+#include "systems/render/crowd_renderer.hpp"
+
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/vk_error.hpp"
+#include "systems/render/proxy_mesh.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <cstring>
+
+namespace aloha {
+namespace {
+
+static_assert(sizeof(ProxyInstance) == sizeof(gpu::LitInstance) &&
+                  offsetof(ProxyInstance, colour) == offsetof(gpu::LitInstance, colour),
+              "ProxyInstance is copied to the GPU as LitInstance");
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "positions are uploaded as tight float triples");
+
+constexpr uint64_t kVec3Bytes = sizeof(glm::vec3);
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Result<std::unique_ptr<CrowdRenderer>> CrowdRenderer::create(gpu::Context& ctx, const RendererOptions& options) {
+    std::unique_ptr<CrowdRenderer> r(new CrowdRenderer(ctx));
+    Status s = r->init(options);
+    if (!s) return s.error();
+    return r;
+}
+
+Status CrowdRenderer::init(const RendererOptions& options) {
+    options_ = options;
+    options_.frames_in_flight = std::clamp(options.frames_in_flight, 1u, 4u);
+    const VkDevice dev = ctx_.device();
+    Result<VkRenderPass> pass = gpu::create_render_pass(dev, options_.colour_format,
+                                                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    if (!pass) return pass.error();
+    compat_pass_ = pass.value();
+    Result<gpu::LitPipelines> pipes = gpu::LitPipelines::create(ctx_, compat_pass_, options_.frames_in_flight);
+    if (!pipes) return pipes.error();
+    pipes_ = std::move(pipes).value();
+
+    slots_.resize(options_.frames_in_flight);
+    for (Slot& s : slots_) {
+        VkCommandBufferAllocateInfo ai{};
+        ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+        ai.commandPool = ctx_.command_pool();
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        ALOHA_VK_RETURN(vkAllocateCommandBuffers(dev, &ai, &s.cmd));
+        VkFenceCreateInfo fi{};
+        fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+        ALOHA_VK_RETURN(vkCreateFence(dev, &fi, nullptr, &s.fence));
+        if (ctx_.timestamps_supported()) {
+            VkQueryPoolCreateInfo qi{};
+            qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+            qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+            qi.queryCount = 2;
+            ALOHA_VK_RETURN(vkCreateQueryPool(dev, &qi, nullptr, &s.queries));
+        }
+        Result<VkDescriptorSet> set = pipes_.allocate_set();
+        if (!set) return set.error();
+        s.set = set.value();
+        const uint64_t verts = std::max<uint64_t>(options_.initial_vertices, 1);
+        bool grew = false;
+        for (auto [buf, bytes] : {std::pair{&s.positions, verts * kVec3Bytes}, std::pair{&s.normals, verts * kVec3Bytes},
+                                  std::pair{&s.instances, uint64_t(std::max(options_.initial_instances, 1u)) *
+                                                              sizeof(gpu::LitInstance)},
+                                  std::pair{&s.lines, uint64_t(std::max(options_.initial_line_segments, 1u)) * 2 *
+                                                          sizeof(gpu::LineVertex)}}) {
+            Status st = ensure(*buf, bytes, grew);
+            if (!st) return st;
+        }
+        Status st = ensure_proxy_indices(s, std::max(options_.initial_instances, 1u));
+        if (!st) return st;
+    }
+    growth_events_ = 0;  // initial allocations are not growth
+    return {};
+}
+
+CrowdRenderer::~CrowdRenderer() {
+    const VkDevice dev = ctx_.device();
+    vkDeviceWaitIdle(dev);
+    for (Slot& s : slots_) {
+        if (s.queries != VK_NULL_HANDLE) vkDestroyQueryPool(dev, s.queries, nullptr);
+        if (s.fence != VK_NULL_HANDLE) vkDestroyFence(dev, s.fence, nullptr);
+        if (s.cmd != VK_NULL_HANDLE) vkFreeCommandBuffers(dev, ctx_.command_pool(), 1, &s.cmd);
+    }
+    if (compat_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(dev, compat_pass_, nullptr);
+}
+
+Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indices, uint32_t vertex_count,
+                                                 bool cull_back_faces) {
+    if (indices.empty() || indices.size() % 3 != 0)
+        return gpu::gpu_error("register_topology: index count " + std::to_string(indices.size()) +
+                              " is not a non-zero multiple of 3");
+    const uint32_t max_index = *std::max_element(indices.begin(), indices.end());
+    if (vertex_count == 0) vertex_count = max_index + 1;
+    if (max_index >= vertex_count)
+        return gpu::gpu_error("register_topology: index " + std::to_string(max_index) + " >= vertex_count " +
+                              std::to_string(vertex_count));
+    Result<gpu::Buffer> buf = gpu::Buffer::create(ctx_, indices.size_bytes(), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    if (!buf) return buf.error();
+    buf.value().write(std::as_bytes(indices));
+    Topology t;
+    t.indices = std::move(buf).value();
+    t.index_count = static_cast<uint32_t>(indices.size());
+    t.vertex_count = vertex_count;
+    t.cull_back_faces = cull_back_faces;
+    topologies_.push_back(std::move(t));
+    return static_cast<uint32_t>(topologies_.size() - 1);
+}
+
+uint32_t CrowdRenderer::topology_vertex_count(uint32_t topology) const {
+    return topology < topologies_.size() ? topologies_[topology].vertex_count : 0;
+}
+
+bool CrowdRenderer::Validate(const FrameInput& frame, std::vector<std::string>* errors) const {
+    bool ok = true;
+    auto fail = [&](std::string msg) {
+        ok = false;
+        if (errors) errors->push_back(std::move(msg));
+    };
+    for (size_t i = 0; i < frame.meshes.size(); ++i) {
+        const DeformableMesh& m = frame.meshes[i];
+        // Strings are built only for failures: validation runs every frame over every mesh.
+        auto where = [i] { return "meshes[" + std::to_string(i) + "]: "; };
+        if (m.topology >= topologies_.size()) {
+            fail(where() + "topology " + std::to_string(m.topology) + " is not registered (" +
+                 std::to_string(topologies_.size()) + " registered)");
+            continue;
+        }
+        const uint32_t vc = topologies_[m.topology].vertex_count;
+        if (m.positions.size() != vc)
+            fail(where() + std::to_string(m.positions.size()) + " positions but topology " +
+                 std::to_string(m.topology) + " has " + std::to_string(vc) + " vertices");
+        if (m.normals.size() != m.positions.size())
+            fail(where() + std::to_string(m.normals.size()) + " normals for " + std::to_string(m.positions.size()) +
+                 " positions");
+    }
+    if (glm::length(frame.light_direction) <= 0.0f) fail("light_direction must be non-zero");
+    if (!(frame.ambient >= 0.0f && frame.ambient <= 1.0f)) fail("ambient must be in [0, 1]");
+    return ok;
+}
+
+Status CrowdRenderer::ensure(gpu::Buffer& buffer, uint64_t bytes, bool& grew) {
+    if (buffer.handle() != VK_NULL_HANDLE && buffer.size() >= bytes) return {};
+    const uint64_t size = std::max<uint64_t>(bytes, buffer.size() + buffer.size() / 2);
+    Result<gpu::Buffer> b = gpu::Buffer::create(ctx_, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!b) return b.error();
+    buffer = std::move(b).value();
+    ++growth_events_;
+    grew = true;
+    return {};
+}
+
+Status CrowdRenderer::ensure_proxy_indices(Slot& slot, uint32_t boxes) {
+    if (slot.proxy_capacity >= boxes) return {};
+    const uint32_t capacity = std::max(boxes, slot.proxy_capacity + slot.proxy_capacity / 2);
+    Result<gpu::Buffer> b = gpu::Buffer::create(ctx_, uint64_t(capacity) * kBoxIndexCount * sizeof(uint32_t),
+                                                VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    if (!b) return b.error();
+    slot.proxy_indices = std::move(b).value();
+    fill_box_batch_indices(capacity, std::span(reinterpret_cast<uint32_t*>(slot.proxy_indices.mapped()),
+                                               size_t(capacity) * kBoxIndexCount));
+    if (slot.proxy_capacity > 0) ++growth_events_;
+    slot.proxy_capacity = capacity;
+    return {};
+}
+
+Status CrowdRenderer::retire(Slot& slot) {
+    if (!slot.pending) return {};
+    ALOHA_VK_RETURN(vkWaitForFences(ctx_.device(), 1, &slot.fence, VK_TRUE, UINT64_MAX));
+    slot.pending = false;
+    if (slot.queries != VK_NULL_HANDLE && slot.frame + 1 > last_completed_frame_) {
+        uint64_t ticks[2] = {0, 0};
+        const VkResult r = vkGetQueryPoolResults(ctx_.device(), slot.queries, 0, 2, sizeof(ticks), ticks,
+                                                 sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+        if (r != VK_SUCCESS) return gpu::vk_error("vkGetQueryPoolResults", r);
+        last_gpu_ms_ = double(ticks[1] - ticks[0]) * double(ctx_.timestamp_period_ns()) * 1e-6;
+        last_completed_frame_ = slot.frame + 1;
+    }
+    return {};
+}
+
+Status CrowdRenderer::finish() {
+    // Retire oldest first so last_gpu_ms() ends on the newest frame.
+    const size_t n = slots_.size();
+    for (size_t k = 0; k < n; ++k) {
+        Status s = retire(slots_[(frame_index_ + k) % n]);
+        if (!s) return s;
+    }
+    return {};
+}
+
+Status CrowdRenderer::render(const FrameInput& frame, gpu::OffscreenTarget& target) {
+    return render(frame, target.view());
+}
+
+Status CrowdRenderer::render(const FrameInput& frame, const gpu::TargetView& target, const FrameSync& sync) {
+    std::vector<std::string> problems;
+    if (!Validate(frame, &problems)) {
+        std::string msg = "invalid frame input:";
+        for (const std::string& p : problems) msg += "\n  " + p;
+        return gpu::gpu_error(msg);
+    }
+    if (target.colour_format != options_.colour_format)
+        return gpu::gpu_error("target colour format " + std::to_string(target.colour_format) +
+                              " differs from the renderer's " + std::to_string(options_.colour_format));
+    Slot& slot = slots_[frame_index_ % slots_.size()];
+    Status st = retire(slot);
+    if (!st) return st;
+
+    const auto t0 = std::chrono::steady_clock::now();
+    uint64_t vertices = 1;  // never 0: the storage buffers must not be empty
+    for (const DeformableMesh& m : frame.meshes) vertices += m.positions.size();
+    bool grew = false;
+    for (auto [buf, bytes] :
+         {std::pair{&slot.positions, vertices * kVec3Bytes}, std::pair{&slot.normals, vertices * kVec3Bytes},
+          std::pair{&slot.instances, (frame.meshes.size() + frame.proxies.size()) * sizeof(gpu::LitInstance)},
+          std::pair{&slot.lines, frame.lines.size() * 2 * sizeof(gpu::LineVertex)}}) {
+        st = ensure(*buf, bytes, grew);
+        if (!st) return st;
+    }
+    st = ensure_proxy_indices(slot, static_cast<uint32_t>(frame.proxies.size()));
+    if (!st) return st;
+    if (grew || slot.set_dirty) {
+        pipes_.write_set(slot.set, slot.positions, slot.normals, slot.instances, slot.lines);
+        slot.set_dirty = false;
+    }
+    last_upload_bytes_ = upload(frame, slot);
+    last_upload_ms_ = ms_since(t0);
+    st = record(frame, target, slot);
+    if (!st) return st;
+
+    ALOHA_VK_RETURN(vkResetFences(ctx_.device(), 1, &slot.fence));
+    const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    VkSubmitInfo si{};
+    si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    si.waitSemaphoreCount = sync.wait != VK_NULL_HANDLE ? 1 : 0;
+    si.pWaitSemaphores = &sync.wait;
+    si.pWaitDstStageMask = &wait_stage;
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &slot.cmd;
+    si.signalSemaphoreCount = sync.signal != VK_NULL_HANDLE ? 1 : 0;
+    si.pSignalSemaphores = &sync.signal;
+    ALOHA_VK_RETURN(vkQueueSubmit(ctx_.queue(), 1, &si, slot.fence));
+    slot.pending = true;
+    slot.frame = frame_index_++;
+    return {};
+}
+
+}  // namespace aloha

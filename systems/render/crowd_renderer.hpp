@@ -1,0 +1,171 @@
+// CrowdRenderer: draws a crowd frame (deformable meshes, instanced rigid proxies, lines) into a target.
+// Inputs arrive per frame through spans (no ECS dependency); uploads go into persistently mapped,
+// per-frame-in-flight buffers that grow only when exceeded.
+#pragma once
+
+#include "engine/core/result.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/lit_pipeline.hpp"
+#include "engine/gpu/offscreen_target.hpp"
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+namespace gpu {
+class Context;
+}
+
+/// Camera matrices in OpenGL convention (glm::lookAt / glm::perspective); the renderer converts to Vulkan.
+struct RenderCamera {
+    glm::mat4 view{1.0f};  ///< view from world
+    glm::mat4 proj{1.0f};  ///< OpenGL clip from view (y up, z in [-w, w])
+};
+
+/// One character's deformed surface: vertices in model space over a registered topology.
+struct DeformableMesh {
+    uint32_t topology = 0;                   ///< id from CrowdRenderer::register_topology
+    std::span<const glm::vec3> positions;    ///< exactly the topology's vertex_count entries
+    std::span<const glm::vec3> normals;      ///< same count as positions (need not be unit length)
+    glm::mat4 model{1.0f};                   ///< world from model
+    glm::vec4 colour{1.0f};                  ///< albedo (e.g. a debug palette colour)
+};
+
+/// One rigid proxy: the unit box [-0.5, 0.5]^3 transformed by `model` (see bone_box_matrix).
+struct ProxyInstance {
+    glm::mat4 model{1.0f};   ///< world from unit box
+    glm::vec4 colour{1.0f};  ///< albedo
+};
+
+/// One overlay line segment (bones, springs), drawn unlit and depth-tested.
+struct LineSegment {
+    glm::vec3 a{0.0f};       ///< start, world space
+    glm::vec3 b{0.0f};       ///< end, world space
+    glm::vec4 colour{1.0f};  ///< RGBA
+};
+
+/// Everything one frame draws. Spans must stay valid until render() returns (data is copied).
+struct FrameInput {
+    RenderCamera camera;                         ///< view and projection
+    std::span<const DeformableMesh> meshes;      ///< batch (a): one draw per topology
+    std::span<const ProxyInstance> proxies;      ///< batch (b): one instanced draw
+    std::span<const LineSegment> lines;          ///< batch (c): one line-list draw
+    glm::vec4 clear_colour{0.12f, 0.12f, 0.14f, 1.0f}; ///< background
+    glm::vec3 light_direction{0.3f, 0.8f, 0.5f}; ///< towards the light, world space (normalised here)
+    float ambient = 0.3f;                        ///< 0..1; 1 writes the albedo unlit
+};
+
+/// Where the renderer waits/signals for swapchain use; all optional.
+struct FrameSync {
+    VkSemaphore wait = VK_NULL_HANDLE;    ///< waited at colour-attachment output (image acquired)
+    VkSemaphore signal = VK_NULL_HANDLE;  ///< signalled when the frame's commands finish (ready to present)
+};
+
+/// Construction options.
+struct RendererOptions {
+    VkFormat colour_format = VK_FORMAT_R8G8B8A8_UNORM; ///< format of the targets drawn into
+    uint32_t frames_in_flight = 2;                     ///< 1..4 sets of per-frame buffers
+    uint32_t initial_vertices = 1u << 16;              ///< initial per-frame vertex capacity
+    uint32_t initial_instances = 1u << 12;             ///< initial per-frame instance capacity
+    uint32_t initial_line_segments = 1u << 12;         ///< initial per-frame line capacity
+};
+
+/// Draws crowd frames on a gpu::Context. Not thread-safe; destroy before the Context.
+class CrowdRenderer {
+public:
+    /// Builds pipelines, per-frame command buffers, fences, timestamp queries and buffers.
+    [[nodiscard]] static Result<std::unique_ptr<CrowdRenderer>> create(gpu::Context& ctx,
+                                                                       const RendererOptions& options = {});
+    /// Waits for in-flight frames, then releases everything.
+    ~CrowdRenderer();
+    CrowdRenderer(const CrowdRenderer&) = delete;
+    CrowdRenderer& operator=(const CrowdRenderer&) = delete;
+
+    /// Registers a shared triangle index list (size a non-zero multiple of 3) once; vertex_count 0 means
+    /// max index + 1. `cull_back_faces`: the mesh is closed and wound counter-clockwise seen from outside,
+    /// so back faces are skipped (about half the raster work). Returns the id for DeformableMesh::topology.
+    [[nodiscard]] Result<uint32_t> register_topology(std::span<const uint32_t> indices, uint32_t vertex_count = 0,
+                                                     bool cull_back_faces = false);
+    /// Vertex count of a registered topology (0 when unknown).
+    [[nodiscard]] uint32_t topology_vertex_count(uint32_t topology) const;
+
+    /// Lists every problem in `frame` (unknown topology, wrong vertex/normal counts); true when none.
+    bool Validate(const FrameInput& frame, std::vector<std::string>* errors = nullptr) const;
+    /// Uploads `frame` and submits its draws into `target` (formats must match the options). Waits only
+    /// for the frame that last used this frame slot. Errors: invalid input, Vulkan failures.
+    [[nodiscard]] Status render(const FrameInput& frame, const gpu::TargetView& target, const FrameSync& sync = {});
+    /// Same, into an offscreen target (read it back with target.read_back()).
+    [[nodiscard]] Status render(const FrameInput& frame, gpu::OffscreenTarget& target);
+    /// Waits for every submitted frame and collects its GPU time.
+    [[nodiscard]] Status finish();
+
+    /// GPU time of the most recently completed frame in ms (timestamp queries); -1 when unavailable.
+    [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
+    /// CPU time of the last frame's upload (copies into mapped buffers) in ms.
+    [[nodiscard]] double last_upload_ms() const { return last_upload_ms_; }
+    /// Bytes copied into GPU-visible buffers by the last frame.
+    [[nodiscard]] uint64_t last_upload_bytes() const { return last_upload_bytes_; }
+    /// Draw calls recorded by the last frame.
+    [[nodiscard]] uint32_t last_draw_count() const { return last_draw_count_; }
+    /// Times a per-frame buffer had to be reallocated because a frame exceeded its capacity.
+    [[nodiscard]] uint32_t growth_events() const { return growth_events_; }
+    /// Frames submitted so far.
+    [[nodiscard]] uint64_t frame_count() const { return frame_index_; }
+
+private:
+    struct Topology {
+        gpu::Buffer indices;
+        uint32_t index_count = 0;
+        uint32_t vertex_count = 0;
+        bool cull_back_faces = false;
+    };
+    struct Slot {
+        VkCommandBuffer cmd = VK_NULL_HANDLE;
+        VkFence fence = VK_NULL_HANDLE;
+        VkQueryPool queries = VK_NULL_HANDLE;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        gpu::Buffer positions, normals, instances, lines;
+        gpu::Buffer proxy_indices;  // fill_box_batch_indices for proxy_capacity boxes (rewritten on growth)
+        uint32_t proxy_capacity = 0;
+        bool pending = false;
+        bool set_dirty = true;
+        uint64_t frame = 0;
+    };
+
+    explicit CrowdRenderer(gpu::Context& ctx) : ctx_(ctx) {}
+    Status init(const RendererOptions& options);
+    Status ensure(gpu::Buffer& buffer, uint64_t bytes, bool& grew);
+    Status ensure_proxy_indices(Slot& slot, uint32_t boxes);
+    Status retire(Slot& slot);
+    uint64_t upload(const FrameInput& frame, Slot& slot);
+    Status record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot);
+
+    gpu::Context& ctx_;
+    RendererOptions options_;
+    gpu::LitPipelines pipes_;
+    VkRenderPass compat_pass_ = VK_NULL_HANDLE;
+    std::vector<Topology> topologies_;
+    std::vector<Slot> slots_;
+    // Per-frame scratch, reused (capacity only grows): meshes ordered by topology, group offsets.
+    std::vector<uint32_t> order_;
+    std::vector<uint32_t> group_start_;
+    std::vector<uint32_t> group_count_;
+    std::vector<uint32_t> group_vertex_base_;
+    std::vector<uint32_t> group_cursor_;
+    uint64_t frame_index_ = 0;
+    double last_gpu_ms_ = -1.0;
+    double last_upload_ms_ = 0.0;
+    uint64_t last_upload_bytes_ = 0;
+    uint32_t last_draw_count_ = 0;
+    uint32_t growth_events_ = 0;
+    uint64_t last_completed_frame_ = 0;
+};
+
+}  // namespace aloha
