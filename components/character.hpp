@@ -8,6 +8,7 @@ namespace aloha {
 /// Which character type (skeleton + muscle layout + optional mesh) an entity uses.
 struct CharacterRef {
     uint16_t type = 0;       ///< index into the scene's character library
+    uint32_t id = 0;         ///< stable id within its type (index into the type's controllers)
 };
 
 /// Debug colour choice for rendering.

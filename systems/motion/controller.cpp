@@ -4,7 +4,9 @@
 #include "systems/motion/local_to_model.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <string>
 #include <utility>
 
 namespace aloha {
@@ -31,8 +33,14 @@ glm::quat turn_towards(const glm::quat& rotation, const glm::vec3& dir, float ma
 
 MotionController::MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity)
     : skeleton_(&skeleton), clips_(&clips), chars_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
-      snapshot_(skeleton.joint_count(), capacity + 1, nullptr) {
+      snapshot_(skeleton.joint_count(), capacity, nullptr), scratch_(skeleton.joint_count(), 1, nullptr) {
     active_.reserve(capacity);
+    due_.reserve(capacity);
+}
+
+void MotionController::set_worker_slots(size_t count) {
+    workers_ = std::max<size_t>(1, count);
+    scratch_ = PosePool(skeleton_->joint_count(), workers_, nullptr);
 }
 
 void MotionController::set_walk_rig(WalkRig rig, GaitParams gait) {
@@ -42,9 +50,10 @@ void MotionController::set_walk_rig(WalkRig rig, GaitParams gait) {
 
 void MotionController::set_walk_clip(ClipId clip) { walk_clip_ = clips_->find(clip) ? clip : -1; }
 
-void MotionController::set_method_hook(MethodSlot slot, MethodHook hook, void* user) {
+void MotionController::set_method_hook(MethodSlot slot, MethodHook hook, void* user, MethodRelease release) {
     hooks_[static_cast<size_t>(slot)] = hook;
     hook_users_[static_cast<size_t>(slot)] = user;
+    releases_[static_cast<size_t>(slot)] = hook ? release : nullptr;
 }
 
 uint16_t MotionController::add_path(std::vector<glm::vec3> waypoints) {
@@ -107,7 +116,9 @@ void MotionController::start_next(uint32_t c, Character& ch) {
     const bool fade = next.kind != RequestKind::Rest && next.crossfade_s > 0.0f;
     // Fade from the live previous request when it can be re-evaluated; from a frozen snapshot of the
     // pose shown now otherwise (rest, IK holds, or a fade already in progress).
-    const bool live = fade && is_live(ch.cur.req.kind) && ch.fade_left <= 0.0f;
+    // A dynamic walk is never re-evaluated as the source of a fade (that would step its simulation twice).
+    const bool dynamic = ch.cur.req.kind == RequestKind::Walk && ch.has_walk_method && ch.walk_method == WalkMethod::Dynamic;
+    const bool live = fade && is_live(ch.cur.req.kind) && !dynamic && ch.fade_left <= 0.0f;
     if (fade) {
         if (live) ch.prev = ch.cur;
         begin_fade(c, ch, next.crossfade_s, live);
@@ -126,7 +137,7 @@ WalkMethod MotionController::walk_method(const AnimLod& lod) const {
     const bool kin = rig_.has_value();
     switch (lod.walk) {
         case WalkMethod::Dynamic:
-            if (hooks_[static_cast<size_t>(MethodSlot::DynamicWalk)]) return WalkMethod::Dynamic;
+            if (kin && hooks_[static_cast<size_t>(MethodSlot::DynamicWalk)]) return WalkMethod::Dynamic;
             return kin ? WalkMethod::Kinematic : WalkMethod::ClipPlayback;
         case WalkMethod::Kinematic: return kin || !clip ? WalkMethod::Kinematic : WalkMethod::ClipPlayback;
         case WalkMethod::ClipPlayback: return clip || !kin ? WalkMethod::ClipPlayback : WalkMethod::Kinematic;
@@ -183,88 +194,38 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
     if (r.duration >= 0.0f && ch.request_time >= r.duration) ch.done = 1;
 }
 
-void MotionController::sample_walk_clip(Channel& ch, const PoseView& out) const {
-    const AnimationClip& clip = *clips_->find(static_cast<ClipId>(walk_clip_));
-    const float t = wrap_clip_time(ch.time, clip.duration(), true);
-    int k = 0;
-    float alpha = 0.0f;
-    find_key(clip, t, &ch.cache, &k, &alpha);
-    sample_blocks(clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
-    // Root motion: remove the clip's average horizontal travel (the Transform moves instead) and
-    // turn the clip so it travels along +Z.
-    const glm::vec3 d = horizontal(clip.root_end() - clip.root_start());
-    const float frac = clip.duration() > 0.0f ? t / clip.duration() : 0.0f;
-    glm::vec3& rt = out.translations[0];
-    rt.x -= clip.root_start().x + d.x * frac;
-    rt.z -= clip.root_start().z + d.z * frac;
-    if (glm::length(d) > 1e-6f) {
-        const glm::quat q = glm::angleAxis(-std::atan2(d.x, d.z), glm::vec3(0, 1, 0));
-        rt = q * rt;
-        out.rotations[0] = glm::normalize(q * out.rotations[0]);
-    }
+void MotionController::update_slots(uint32_t c, Character& ch) {
+    uint8_t want = 0;
+    const RequestKind k = ch.cur.req.kind;
+    if (k == RequestKind::Reach) want = 1u << static_cast<unsigned>(MethodSlot::Reach);
+    if (k == RequestKind::LookAt) want = 1u << static_cast<unsigned>(MethodSlot::LookAt);
+    if (k == RequestKind::Walk && ch.has_walk_method && ch.walk_method == WalkMethod::Dynamic)
+        want = 1u << static_cast<unsigned>(MethodSlot::DynamicWalk);
+    const uint8_t dropped = static_cast<uint8_t>(ch.slots_in_use & ~want);
+    for (size_t s = 0; s < releases_.size(); ++s)
+        if ((dropped >> s) & 1u && releases_[s]) releases_[s](hook_users_[s], c);
+    ch.slots_in_use = want;
 }
 
-void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
-                                Velocity& velocity, float posed_dt) {
-    const int16_t* parents = skeleton_->parents().data();
-    const size_t n = static_cast<size_t>(skeleton_->joint_count());
-    auto l2m = [&] { local_to_model(parents, out.translations.data(), out.rotations.data(), out.scales.data(), nullptr, out.model.data(), n); };
-    auto hook = [&](MethodSlot slot) {
-        MethodContext ctx{c, &ch.req, skeleton_, &lod, out, &placement, &velocity, posed_dt, ch.request_time};
-        hooks_[static_cast<size_t>(slot)](hook_users_[static_cast<size_t>(slot)], ctx);
-    };
-    switch (ch.req.kind) {
-        case RequestKind::PlayClip: {
-            const AnimationClip* clip = clips_->find(ch.req.clip);
-            if (!clip) return;  // unknown clip: hold the pose
-            const float t = wrap_clip_time(ch.time, clip->duration(), ch.req.loop != 0);
-            int k = 0;
-            float alpha = 0.0f;
-            find_key(*clip, t, &ch.cache, &k, &alpha);
-            sample_blocks(*clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
-            l2m();
-            return;
-        }
-        case RequestKind::Walk: {
-            const WalkMethod m = walk_method(lod);
-            const float speed = std::max(ch.req.speed, 0.0f);
-            if (m == WalkMethod::ClipPlayback && walk_clip_ >= 0) {
-                sample_walk_clip(ch, out);
-                l2m();
-            } else if (rig_) {
-                kinematic_walk_pose(*rig_, *skeleton_, ch.walk, speed, placement, out, gait_);
-                if (m == WalkMethod::Dynamic) {
-                    hook(MethodSlot::DynamicWalk);
-                    l2m();
-                }
-            }
-            return;
-        }
-        case RequestKind::Reach:
-        case RequestKind::LookAt: {
-            const MethodSlot slot = ch.req.kind == RequestKind::Reach ? MethodSlot::Reach : MethodSlot::LookAt;
-            if (!hooks_[static_cast<size_t>(slot)]) return;  // no IK registered: hold the pose
-            l2m();
-            hook(slot);
-            l2m();
-            return;
-        }
-        case RequestKind::Rest: return;
-    }
-}
-
-size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
-                                std::span<Transform> transforms, std::span<Velocity> velocities) {
-    size_t posed = 0;
-    const int16_t* parents = skeleton_->parents().data();
-    const size_t n = static_cast<size_t>(skeleton_->joint_count());
+size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                                      std::span<Transform> transforms, std::span<Velocity> velocities,
+                                      std::span<const uint32_t> element_of_character) {
+    due_.clear();
+    lods_ = lods;
+    transforms_ = transforms;
+    velocities_ = velocities;
+    const bool mapped = !element_of_character.empty();
+    assert(dt >= 0.0f);
+    assert(!mapped || element_of_character.size() >= chars_.size());
     for (size_t k = active_.size(); k-- > 0;) {  // backwards: swap-removal only moves visited entries
         const uint32_t c = active_[k];
+        const uint32_t e = mapped ? element_of_character[c] : c;
+        assert(e < lods.size() && e < states.size() && e < transforms.size() && e < velocities.size());
         Character& ch = chars_[c];
-        const AnimLod& lod = lods[c];
-        MotionState& st = states[c];
-        Transform& x = transforms[c];
-        Velocity& v = velocities[c];
+        const AnimLod& lod = lods[e];
+        MotionState& st = states[e];
+        Transform& x = transforms[e];
+        Velocity& v = velocities[e];
 
         // Switch first: requests that ended last frame, or a queued request pre-empting one that would
         // run forever; the request started is then advanced by this frame's dt like any other.
@@ -295,28 +256,17 @@ size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::sp
             ch.has_walk_method = 0;
             if (ch.cur.req.kind != RequestKind::Walk && switched) v.linear = glm::vec3(0.0f);
         }
+        update_slots(c, ch);
 
         ch.since_posed += dt;
         ++st.frames_since_update;
-        const int interval = std::max<int>(1, lod.update_interval);
-        if (ch.cur.req.kind != RequestKind::Rest && (switched || st.frames_since_update >= interval)) {
-            const PoseView out = pool_.view(c);
-            evaluate(c, ch.cur, lod, out, x, v, ch.since_posed);
-            if (ch.fade_left > 0.0f) {
-                const float w = ch.fade_left / ch.fade_total;  // weight of the pose faded from
-                if (ch.fade_snapshot) {
-                    blend_into(out, std::as_const(snapshot_).view(c), w);
-                } else {
-                    const PoseView scratch = snapshot_.view(chars_.size());
-                    evaluate(c, ch.prev, lod, scratch, x, v, ch.since_posed);
-                    blend_into(out, std::as_const(snapshot_).view(chars_.size()), w);
-                }
-                local_to_model(parents, out.translations.data(), out.rotations.data(), out.scales.data(), nullptr,
-                               out.model.data(), n);
-            }
+        // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
+        const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
+        const bool on_phase = (frame_ + c) % interval == 0;
+        if (ch.cur.req.kind != RequestKind::Rest && (switched || on_phase)) {
+            due_.push_back(Due{c, e, ch.since_posed, switched});
             st.frames_since_update = 0;
             ch.since_posed = 0.0f;
-            ++posed;
         }
 
         st.active = ch.cur.req.kind;
@@ -336,7 +286,8 @@ size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::sp
             ch.active_index = -1;
         }
     }
-    return posed;
+    ++frame_;
+    return due_.size();
 }
 
 bool MotionUpdateJob::Validate(std::vector<std::string>* errors) const {
@@ -348,13 +299,40 @@ bool MotionUpdateJob::Validate(std::vector<std::string>* errors) const {
     }
     const size_t n = controller->capacity();
     if (!(std::isfinite(dt) && dt >= 0.0f)) fail("dt must be finite and >= 0");
-    if (lods.size() < n) fail("lods span is shorter than the controller capacity (" + std::to_string(n) + ")");
-    if (states.size() < n) fail("states span is shorter than the controller capacity (" + std::to_string(n) + ")");
-    if (transforms.size() < n) fail("transforms span is shorter than the controller capacity (" + std::to_string(n) + ")");
-    if (velocities.size() < n) fail("velocities span is shorter than the controller capacity (" + std::to_string(n) + ")");
+    auto check = [&](size_t size, const char* name) {
+        if (element_of_character.empty() && size < n)
+            fail(std::string(name) + " span is shorter than the controller capacity (" + std::to_string(n) + ")");
+    };
+    check(lods.size(), "lods");
+    check(states.size(), "states");
+    check(transforms.size(), "transforms");
+    check(velocities.size(), "velocities");
+    if (!element_of_character.empty()) {
+        if (element_of_character.size() < n) {
+            fail("element_of_character has " + std::to_string(element_of_character.size()) +
+                 " entries, fewer than the controller capacity (" + std::to_string(n) + ")");
+        } else {
+            const size_t limit = std::min({lods.size(), states.size(), transforms.size(), velocities.size()});
+            std::vector<uint8_t> seen(limit, 0);
+            for (size_t c = 0; c < n; ++c) {
+                const uint32_t e = element_of_character[c];
+                if (e >= limit) {
+                    fail("element_of_character[" + std::to_string(c) + "] = " + std::to_string(e) +
+                         " is out of range of the spans (" + std::to_string(limit) + " elements)");
+                } else if (seen[e]++) {
+                    fail("element_of_character[" + std::to_string(c) + "] = " + std::to_string(e) +
+                         " is used by another character");
+                }
+            }
+        }
+    }
     return ok;
 }
 
-size_t MotionUpdateJob::Run() const { return controller->update(dt, lods, states, transforms, velocities); }
+size_t MotionUpdateJob::Run() const {
+    if (grain > 0)
+        return controller->update_parallel(dt, lods, states, transforms, velocities, element_of_character, grain);
+    return controller->update(dt, lods, states, transforms, velocities, element_of_character);
+}
 
 }  // namespace aloha

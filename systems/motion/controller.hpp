@@ -1,7 +1,9 @@
 // The motion controller: per-character request queues, state vectors, cross-fades, root motion,
 // the pose pool, and a packed list of active characters so characters at rest cost nothing.
 // Clip playback and walking (clip playback / kinematic) are built in; reach, look-at and dynamic
-// walking are dispatched to hooks that the IK and dynamics modules register (set_method_hook).
+// walking are dispatched to hooks that the IK and dynamics modules register (register_ik_hooks in
+// ik/ik_hooks.hpp, register_dynamic_walk_hook in dynamic/dynamic_hook.hpp). Host arrays may be in
+// any order (element_of_character); pose evaluation can run in parallel chunks (update_parallel).
 #pragma once
 
 #include "components/lod.hpp"
@@ -36,14 +38,23 @@ struct MethodContext {
     Velocity* velocity = nullptr;
     float dt = 0.0f;                         ///< seconds since this character was last posed
     float request_time = 0.0f;               ///< seconds since the request started
+    bool first = false;                      ///< first evaluation of this request (it started this frame)
 };
 
 /// A method implementation: `user` is the pointer given at registration. Must not allocate per call.
+/// update_parallel calls it concurrently for different characters: it may touch only state that
+/// belongs to ctx.character (and must not grow shared containers).
 using MethodHook = void (*)(void* user, MethodContext& ctx);
 
+/// Called (serially, from the bookkeeping phase) when `character` stops using a method: its
+/// request ended or changed kind, or its walk left the method. Frees per-character method state.
+using MethodRelease = void (*)(void* user, uint32_t character);
+
 /// Owns the motion state of up to `capacity` characters of one skeleton (character i uses pose
-/// slot i). Not thread-safe: one update at a time; characters are independent, so callers may
-/// split work across controllers.
+/// slot i). An update runs in two phases: serial bookkeeping (requests, fades, time, root motion,
+/// which characters are due for a pose) and pose evaluation of the due characters, which
+/// update_parallel splits into chunks on TBB. Each character's pose depends only on its own data,
+/// so serial and parallel updates give the same bits. One update at a time.
 class MotionController {
 public:
     /// Requests each character can have queued behind the active one.
@@ -57,8 +68,9 @@ public:
     void set_walk_rig(WalkRig rig, GaitParams gait = {});
     /// Enables WalkMethod::ClipPlayback with this looping walk clip (its root motion sets the natural speed).
     void set_walk_clip(ClipId clip);
-    /// Registers the implementation of a method (nullptr removes it).
-    void set_method_hook(MethodSlot slot, MethodHook hook, void* user);
+    /// Registers the implementation of a method (nullptr removes it) and optionally its release
+    /// callback. Not during an update.
+    void set_method_hook(MethodSlot slot, MethodHook hook, void* user, MethodRelease release = nullptr);
     /// Adds a walk path (world waypoints, at least one) and returns its id for MotionRequest::path.
     uint16_t add_path(std::vector<glm::vec3> waypoints);
 
@@ -70,10 +82,34 @@ public:
     bool interrupt(uint32_t character, const MotionRequest& request);
 
     /// Advances every active character by `dt` seconds and poses those due this frame (per
-    /// AnimLod::update_interval). Spans are indexed by character and need capacity() elements.
-    /// Returns the number of characters posed. Requires dt >= 0.
+    /// AnimLod::update_interval; a character with interval N is posed when (frame + id) % N == 0,
+    /// or at once when its request changes, so throttled characters spread evenly over N frames).
+    /// Spans are indexed by element_of_character[c] for character c (empty = by character id);
+    /// every index used must be in range of every span. Returns the number of characters posed.
+    /// Requires dt >= 0.
     size_t update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
-                  std::span<Transform> transforms, std::span<Velocity> velocities);
+                  std::span<Transform> transforms, std::span<Velocity> velocities,
+                  std::span<const uint32_t> element_of_character = {});
+    /// update() with the pose evaluation split into chunks of `grain` due characters run on TBB
+    /// (grain 0 = 64). Same results, bit for bit, as update(). Hooks must be thread-safe per character.
+    size_t update_parallel(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                           std::span<Transform> transforms, std::span<Velocity> velocities,
+                           std::span<const uint32_t> element_of_character = {}, size_t grain = 0);
+
+    /// Phase 1 of an update (serial): the bookkeeping of update(); returns the number of
+    /// characters due for a pose this frame. The spans must stay valid until evaluate_due is done.
+    size_t begin_update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                        std::span<Transform> transforms, std::span<Velocity> velocities,
+                        std::span<const uint32_t> element_of_character = {});
+    /// Phase 2: poses due characters [begin, end) of the last begin_update using scratch slot
+    /// `worker` (< worker_slots()). Disjoint ranges with distinct workers may run concurrently.
+    void evaluate_due(size_t begin, size_t end, size_t worker = 0);
+    /// Sets the number of scratch slots for concurrent evaluate_due calls (at least 1). Not during an update.
+    void set_worker_slots(size_t count);
+    /// Scratch slots available to evaluate_due.
+    [[nodiscard]] size_t worker_slots() const { return workers_; }
+    /// Characters due in the last begin_update, in evaluation order.
+    [[nodiscard]] size_t due_count() const { return due_.size(); }
 
     /// Characters in motion, packed (characters at rest are not in it).
     [[nodiscard]] std::span<const uint32_t> active() const { return active_; }
@@ -110,6 +146,13 @@ private:
         std::array<MotionRequest, kQueueCapacity> queue{};
         uint8_t head = 0, count = 0;
         int32_t active_index = -1;
+        uint8_t slots_in_use = 0;    // bit per MethodSlot used by the current request
+    };
+    struct Due {
+        uint32_t character;
+        uint32_t element;
+        float posed_dt;
+        bool started;  // the request started this frame
     };
     void activate(uint32_t c);
     void start_next(uint32_t c, Character& ch);
@@ -117,7 +160,9 @@ private:
     void advance(Channel& ch, const AnimLod& lod, float dt, Transform* placement, Velocity* velocity);
     WalkMethod walk_method(const AnimLod& lod) const;
     void evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
-                  Velocity& velocity, float posed_dt);
+                  Velocity& velocity, float posed_dt, bool primary, bool first);
+    void pose_one(const Due& d, size_t worker);
+    void update_slots(uint32_t c, Character& ch);
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
 
     const Skeleton* skeleton_;
@@ -127,14 +172,24 @@ private:
     int walk_clip_ = -1;
     std::array<MethodHook, 3> hooks_{};
     std::array<void*, 3> hook_users_{};
+    std::array<MethodRelease, 3> releases_{};
     std::vector<std::vector<glm::vec3>> paths_;
     std::vector<Character> chars_;
     std::vector<uint32_t> active_;
     PosePool pool_;      // slot i = character i
-    PosePool snapshot_;  // slot i = pose character i fades from; slot capacity() = scratch
+    PosePool snapshot_;  // slot i = pose character i fades from
+    PosePool scratch_;   // slot w = worker w's pose of the request faded from
+    size_t workers_ = 1;
+    uint64_t frame_ = 0;  // updates so far (phase of throttled characters)
+    std::vector<Due> due_;
+    // Spans of the update in progress (set by begin_update, read by evaluate_due).
+    std::span<const AnimLod> lods_;
+    std::span<Transform> transforms_;
+    std::span<Velocity> velocities_;
 };
 
-/// Job form of MotionController::update over spans of characters (index = character id).
+/// Job form of MotionController::update over spans of characters (index = character id, or
+/// element_of_character[id] when given).
 struct MotionUpdateJob {
     MotionController* controller = nullptr;  ///< required
     float dt = 0.0f;                         ///< seconds since the last frame (>= 0, finite)
@@ -142,6 +197,8 @@ struct MotionUpdateJob {
     std::span<MotionState> states;           ///< per character, written for active characters only
     std::span<Transform> transforms;         ///< per character; walking moves them (root motion)
     std::span<Velocity> velocities;          ///< per character; walking sets them
+    std::span<const uint32_t> element_of_character{};  ///< optional: element of character c (distinct, in range)
+    size_t grain = 0;                        ///< 0 = serial; else parallel chunks of this many characters
 
     /// True when the job can run; appends one message per failure to `errors` when given.
     bool Validate(std::vector<std::string>* errors = nullptr) const;

@@ -4,4 +4,5 @@ list(APPEND ALOHA_MOTION_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/chain_fk.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ik_chain.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ccd.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/dls.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/dls.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/ik_hooks.cpp)

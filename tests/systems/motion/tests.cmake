@@ -9,6 +9,13 @@ if(TARGET aloha_motion)
     LIBS aloha::motion
     LABELS motion)
 endif()
+# Controller integration: host element order, parallel chunks, throttling spread (with IK and dynamic hooks).
+if(TARGET aloha_motion)
+  aloha_test(motion_integration_tests
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/controller_parallel_test.cpp
+    LIBS aloha::motion
+    LABELS motion)
+endif()
 # The BVH walk needs the asset loaders (engine/assets).
 if(TARGET aloha_motion AND TARGET aloha_assets)
   aloha_test(motion_bvh_tests

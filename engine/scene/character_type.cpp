@@ -1,0 +1,127 @@
+#include "engine/scene/character_type.hpp"
+
+#include "engine/assets/bvh_loader.hpp"
+#include "engine/assets/gltf_loader.hpp"
+#include "engine/assets/joint_limits.hpp"
+#include "systems/geometry/controller/gltf_character_mesh.hpp"
+#include "systems/geometry/muscle/muscle_fit.hpp"
+#include "systems/geometry/muscle/muscle_loader.hpp"
+
+#include <algorithm>
+#include <cfloat>
+
+namespace aloha {
+
+namespace {
+
+// A copy of `clip` whose root stays over the origin horizontally (keeps its height): idlers dance in place.
+RawAnimation in_place(const RawAnimation& clip, const std::string& name) {
+    RawAnimation out = clip;
+    out.name = name;
+    if (!out.tracks.empty() && !out.tracks[0].translations.values.empty()) {
+        auto& v = out.tracks[0].translations.values;
+        for (auto& p : v) p.x = 0.0f, p.z = 0.0f;
+    }
+    return out;
+}
+
+// Height and radius of the rest pose from the joints' model positions.
+void measure(CharacterType& type) {
+    const auto model = rest_model_matrices(type.skeleton);
+    glm::vec3 lo(FLT_MAX), hi(-FLT_MAX);
+    for (const auto& m : model) {
+        lo = glm::min(lo, glm::vec3(m[3]));
+        hi = glm::max(hi, glm::vec3(m[3]));
+    }
+    type.height = std::max(0.5f, (hi.y - lo.y) * 1.08f);  // joints stop short of the skull and soles
+    type.radius = std::max(0.2f, 0.5f * std::max(hi.x - lo.x, hi.z - lo.z));
+}
+
+Status add_clip(CharacterType& type, const RawAnimation& raw, const std::string& file) {
+    auto id = type.clips.add(raw, type.skeleton);
+    if (!id.ok()) {
+        Error e = id.error();
+        if (e.file.empty()) e.file = file;
+        return e;
+    }
+    return {};
+}
+
+Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
+    auto bvh = load_bvh(desc.bvh);
+    if (!bvh.ok()) return bvh.error();
+    auto skeleton = build_skeleton(bvh.value().skeleton, desc.bvh);
+    if (!skeleton.ok()) return skeleton.error();
+    type.skeleton = std::move(skeleton.value());
+    RawAnimation mocap = bvh.value().animation;
+    mocap.name = desc.name + ".mocap";
+    if (Status s = add_clip(type, mocap, desc.bvh); !s.ok()) return s;
+    if (Status s = add_clip(type, in_place(mocap, desc.name + ".inplace"), desc.bvh); !s.ok()) return s;
+    type.mocap_clip = 0;
+    type.inplace_clip = 1;
+    return {};
+}
+
+Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
+    auto gltf = load_gltf_character(desc.gltf);
+    if (!gltf.ok()) return gltf.error();
+    GltfCharacter& g = gltf.value();
+    auto skeleton = build_skeleton(g.skeleton, desc.gltf);
+    if (!skeleton.ok()) return skeleton.error();
+    type.skeleton = std::move(skeleton.value());
+    type.notes = g.notes;
+    for (size_t i = 0; i < g.clips.size(); ++i) {
+        RawAnimation clip = g.clips[i];
+        clip.name = g.clip_names[i];
+        if (Status s = add_clip(type, clip, desc.gltf); !s.ok()) return s;
+        if (i == 0) {
+            type.mocap_clip = 0;
+            if (Status s2 = add_clip(type, in_place(clip, desc.name + ".inplace"), desc.gltf); !s2.ok()) return s2;
+            type.inplace_clip = 1;
+        }
+    }
+    if (!g.meshes.empty()) type.mesh = character_mesh_from_gltf(g, type.skeleton);
+    return {};
+}
+
+}  // namespace
+
+int find_clip(const CharacterType& type, const std::string& name) {
+    if (name.empty()) return type.inplace_clip;
+    return type.clips.find(name);
+}
+
+Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
+    CharacterType type;
+    type.name = desc.name;
+    Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
+    if (!loaded.ok()) return loaded.error();
+    if (!desc.limits.empty()) {
+        auto limits = load_joint_limits(desc.limits);
+        if (!limits.ok()) return limits.error();
+        if (Status s = apply_joint_limits(type.skeleton, limits.value()); !s.ok()) return s.error();
+    }
+    auto rig = resolve_walk_rig(type.skeleton, desc.bvh.empty() ? desc.gltf : desc.bvh);
+    if (rig.ok()) type.rig = std::move(rig.value());
+    else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
+    if (!desc.muscles.empty()) {
+        auto muscles = load_muscle_set(desc.muscles, type.skeleton);
+        if (!muscles.ok()) return muscles.error();
+        type.muscles = std::move(muscles.value());
+    } else if (type.mesh) {
+        std::vector<glm::mat4> bind_model;
+        for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));
+        const std::vector<glm::ivec4> joints = widen_joints(type.mesh->joints);
+        MuscleFitOptions options;
+        options.source_name = desc.gltf;
+        auto muscles = fit_muscles_per_bone(type.skeleton, bind_model, type.mesh->positions, joints, type.mesh->weights, options);
+        if (!muscles.ok()) return muscles.error();
+        type.muscles = std::move(muscles.value());
+    } else {
+        return make_error(desc.bvh, "character type '" + desc.name + "' has neither a muscle layout nor a skinned mesh to fit muscles to");
+    }
+    measure(type);
+    return type;
+}
+
+}  // namespace aloha

@@ -1,0 +1,40 @@
+// A character type at run time: skeleton (BVH or glTF), joint limits, clips, walk rig, muscle layout,
+// optional skinned mesh. Loaded once per scene from a CharacterTypeDesc; shared by all its characters.
+#pragma once
+
+#include "engine/anim/skeleton.hpp"
+#include "engine/core/result.hpp"
+#include "engine/scene/scene_desc.hpp"
+#include "systems/geometry/controller/character_geometry.hpp"
+#include "systems/geometry/muscle/muscle_set.hpp"
+#include "systems/motion/clip.hpp"
+#include "systems/motion/walk_rig.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+/// Everything the systems need about one kind of character. Immutable after load.
+struct CharacterType {
+    std::string name;
+    Skeleton skeleton;
+    ClipLibrary clips;
+    int mocap_clip = -1;            ///< the file's own motion ("<name>.mocap"), -1 when none
+    int inplace_clip = -1;          ///< the same with horizontal root travel removed ("<name>.inplace")
+    std::optional<WalkRig> rig;     ///< leg rig for kinematic walking (none when legs are not found)
+    MuscleSet muscles;
+    std::optional<CharacterMesh> mesh;  ///< glTF skin, when the type has one
+    float height = 1.8f;            ///< standing height (m), for bounds
+    float radius = 0.4f;            ///< horizontal radius (m), for bounds
+    std::vector<std::string> notes; ///< what was skipped or assumed while loading
+};
+
+/// Loads a character type. Errors name the file and the problem (BVH/glTF/muscles/limits).
+Result<CharacterType> load_character_type(const CharacterTypeDesc& desc);
+
+/// Id of clip `name` in `type` ("" = the type's in-place mocap clip), or -1.
+int find_clip(const CharacterType& type, const std::string& name);
+
+}  // namespace aloha

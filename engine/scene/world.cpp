@@ -1,0 +1,244 @@
+#include "engine/scene/world.hpp"
+
+#include "engine/core/hash.hpp"
+#include "engine/scene/character_runtime.hpp"
+#include "systems/lod/resolver.hpp"
+#include "systems/lod/rule_table.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+
+CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move(t)), count(n) {
+    ik = std::make_unique<IkHookContext>();
+    dynamics = std::make_unique<DynamicHookContext>();
+    motion = std::make_unique<MotionController>(type.skeleton, type.clips, n);
+    if (type.rig) motion->set_walk_rig(*type.rig);
+    if (type.mocap_clip >= 0) motion->set_walk_clip(static_cast<ClipId>(type.mocap_clip));
+    register_ik_hooks(*motion, *ik);
+    register_dynamic_walk_hook(*motion, *dynamics);
+    element_of_character.assign(n, 0);
+    // Proxy boxes only for bones long enough to be seen: zero-length joints and finger stubs are
+    // skipped, which roughly halves the boxes of the CMU skeleton.
+    const auto parents = type.skeleton.parents();
+    const auto rest_t = type.skeleton.rest_translations();
+    for (size_t j = 0; j < parents.size(); ++j)
+        if (parents[j] < 0 || glm::length(rest_t[j]) >= 0.05f) proxy_joints.push_back(static_cast<uint16_t>(j));
+}
+
+Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const GeomLod> levels) {
+    CharacterGeometryDesc desc;
+    desc.type = type_index;
+    desc.name = type.name;
+    desc.skeleton = type.skeleton;
+    desc.muscles = type.muscles;
+    desc.mesh = type.mesh;
+    if (type.mesh)  // muscles were fitted in bind space: let them rest there
+        for (const glm::mat4& ibm : type.mesh->inverse_bind) desc.rest_model.push_back(glm::inverse(ibm));
+    auto built = CharacterGeometry::create(std::move(desc));
+    if (!built.ok()) return built.error();
+    geometry_data = std::move(built.value());
+    geometry = std::make_unique<GeometryController>(*geometry_data, levels, count);
+    return {};
+}
+
+PoseSource CharacterRuntime::poses() const {
+    if (count == 0) return {};
+    return PoseSource{motion->poses().view(0).model.data(), static_cast<size_t>(type.skeleton.joint_count())};
+}
+
+World::~World() = default;
+
+const CharacterType& World::type(size_t i) const { return types_[i]->type; }
+
+size_t World::character_count() const {
+    auto& reg = const_cast<Registry&>(registry_);
+    return character_group(reg).size();
+}
+
+Result<std::unique_ptr<World>> World::create(const SceneDesc& scene, const WorldOptions& options) {
+    std::unique_ptr<World> world(new World());
+    if (Status s = world->load(scene, options); !s.ok()) return s.error();
+    return world;
+}
+
+Status World::load(const SceneDesc& scene, const WorldOptions& options) {
+    scene_ = scene;
+    options_ = options;
+    if (options.characters) {
+        // Rescale the crowds so the scene has the asked number of characters in all.
+        const uint64_t placed = scene_.characters.size();
+        uint64_t crowd_total = 0;
+        for (const auto& c : scene_.crowds) crowd_total += c.count;
+        if (crowd_total == 0 || *options.characters < placed)
+            return make_error(scene.file, "--characters " + std::to_string(*options.characters) +
+                                              ": the scene has no crowd to rescale to that size");
+        uint64_t left = *options.characters - placed;
+        for (size_t i = 0; i < scene_.crowds.size(); ++i) {
+            auto& c = scene_.crowds[i];
+            const uint64_t n = i + 1 == scene_.crowds.size() ? left : c.count * (*options.characters - placed) / crowd_total;
+            if (c.layout == CrowdDesc::Layout::Disc && c.count > 0)
+                c.radius *= static_cast<float>(std::sqrt(static_cast<double>(n) / static_cast<double>(c.count)));
+            c.count = static_cast<uint32_t>(n);
+            left -= n;
+        }
+    }
+    if (Status s = rules_.load(scene_.rules); !s.ok()) return s;
+    const RuleTable& table = rules_.table();
+    if (options.budget_ms) {
+        BudgetParams params = table.budget.value_or(BudgetParams{});
+        params.target_ms = static_cast<float>(*options.budget_ms);
+        budget_.set_params(params);
+        budget_on_ = true;
+    }
+    if (Status s = spawn_characters(); !s.ok()) return s;
+    std::vector<GeomLod> levels;
+    for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
+    for (size_t t = 0; t < types_.size(); ++t)
+        if (Status s = types_[t]->init_geometry(static_cast<uint16_t>(t), levels); !s.ok()) return s;
+    register_systems();
+    if (Status s = scheduler_.build(); !s.ok()) return s;
+    scheduler_.set_threads(options.threads);
+    return {};
+}
+
+Status World::spawn_characters() {
+    const std::vector<CharacterDesc> chars = expand_characters(scene_, options_.seed_override);
+    std::vector<uint32_t> per_type(scene_.types.size(), 0);
+    for (const auto& c : chars) per_type[static_cast<size_t>(c.type)]++;
+    for (size_t t = 0; t < scene_.types.size(); ++t) {
+        auto type = load_character_type(scene_.types[t]);
+        if (!type.ok()) return type.error();
+        types_.push_back(std::make_unique<CharacterRuntime>(std::move(type.value()), per_type[t]));
+        for (const auto& p : scene_.paths) {
+            types_.back()->motion->add_path(p.points);
+            types_.back()->path_names.push_back(p.name);
+        }
+    }
+    (void)character_group(registry_);  // create the owning group before the components arrive
+    registry_.reserve(chars.size());
+    for (size_t i = 0; i < chars.size(); ++i) {
+        const CharacterDesc& c = chars[i];
+        CharacterRuntime& rt = *types_[static_cast<size_t>(c.type)];
+        const uint32_t id = rt.spawned++;
+        const Entity e = registry_.create();
+        Transform tr;
+        tr.position = c.position;
+        tr.rotation = glm::angleAxis(glm::radians(c.heading_deg), glm::vec3(0, 1, 0));
+        registry_.emplace<Transform>(e, tr);
+        registry_.emplace<Velocity>(e);
+        registry_.emplace<Bounds>(e, Bounds{rt.type.height, rt.type.radius});
+        registry_.emplace<Importance>(e, Importance{c.importance});
+        registry_.emplace<CharacterRef>(e, CharacterRef{static_cast<uint16_t>(c.type), id});
+        registry_.emplace<LodAttributes>(e);
+        registry_.emplace<LodRequest>(e);
+        registry_.emplace<LodState>(e);
+        registry_.emplace<GeomLod>(e);
+        registry_.emplace<AnimLod>(e);
+        MotionState ms;
+        ms.pose_slot = id;
+        registry_.emplace<MotionState>(e, ms);
+        for (size_t k = 0; k < c.requests.size(); ++k) {
+            const RequestDesc& rd = c.requests[k];
+            MotionRequest req = rd.request;
+            const std::string where = "character " + std::to_string(i) + " request " + std::to_string(k);
+            if (req.kind == RequestKind::PlayClip) {
+                const int clip = find_clip(rt.type, rd.clip);
+                if (clip < 0) return make_error(scene_.file, where + ": unknown clip '" + rd.clip + "' for type '" + rt.type.name + "'");
+                req.clip = static_cast<uint16_t>(clip);
+            } else if (req.kind == RequestKind::Walk && !rd.path.empty()) {
+                const auto it = std::find(rt.path_names.begin(), rt.path_names.end(), rd.path);
+                req.path = static_cast<uint16_t>(it - rt.path_names.begin());
+            } else if (req.kind == RequestKind::Reach || req.kind == RequestKind::LookAt) {
+                const int joint = rt.type.skeleton.find(rd.effector);
+                if (joint < 0) return make_error(scene_.file, where + ": unknown effector joint '" + rd.effector + "' for type '" + rt.type.name + "'");
+                req.effector = static_cast<int16_t>(joint);
+            }
+            if (!rt.motion->push_request(id, req))
+                return make_error(scene_.file, where + ": more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued");
+        }
+    }
+    regroup();
+    return {};
+}
+
+void World::regroup() {
+    auto group = character_group(registry_);
+    const size_t n = group.size();
+    sort_keys_.resize(n);
+    auto refs = group.span<CharacterRef>();
+    auto geom = group.span<GeomLod>();
+    for (size_t i = 0; i < n; ++i) sort_keys_[i] = (static_cast<uint32_t>(refs[i].type) << 8) | geom[i].level;
+    group.partition_by_key(sort_keys_);
+    ids_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        sort_keys_[i] = (static_cast<uint32_t>(refs[i].type) << 8) | geom[i].level;
+        types_[refs[i].type]->element_of_character[refs[i].id] = static_cast<uint32_t>(i);
+        ids_[i] = refs[i].id;
+    }
+    key_ranges(sort_keys_, ranges_);
+}
+
+void World::step() {
+    const float dt = scene_.dt;
+    const CameraKey cam = sample_camera(scene_.camera, time_);
+    camera_ = make_lod_camera(cam.position, cam.target, glm::radians(scene_.camera.fov_y_deg),
+                              glm::vec2(static_cast<float>(scene_.width), static_cast<float>(scene_.height)),
+                              scene_.camera.near_plane, scene_.camera.far_plane);
+    if (rules_.shared()) {
+        auto polled = rules_.poll();  // live tuning: pick up an edited rule file
+        if (polled.ok() && polled.value()) {
+            auto group = character_group(registry_);
+            clamp_lod_states(rules_.table(), group.span<LodState>());
+            const RuleTable& table = rules_.table();
+            std::vector<GeomLod> levels;
+            for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
+            for (auto& rt : types_) rt->geometry->set_levels(levels);
+            topologies_.clear();  // level topologies may have changed: register again on demand
+        }
+    }
+    scheduler_.run_frame(dt);
+    const TimingRing& frame_ring = scheduler_.frame_timings();
+    last_cpu_ms_ = frame_ring.size() ? static_cast<double>(frame_ring.latest()) * 1e-6 : 0.0;
+    first_frame_ = false;
+    ++frame_;
+    time_ += dt;
+}
+
+RenderCamera World::render_camera() const { return RenderCamera{camera_.view, camera_.projection}; }
+
+nlohmann::json World::explain(uint32_t i) const {
+    auto& reg = const_cast<Registry&>(registry_);
+    auto group = character_group(reg);
+    if (i >= group.size()) return nlohmann::json::object();
+    nlohmann::json j = to_json(aloha::explain(rules_.table(), i, group.span<LodAttributes>(), group.span<LodState>()));
+    const CharacterRef ref = group.span<CharacterRef>()[i];
+    j["type"] = types_[ref.type]->type.name;
+    j["character_id"] = ref.id;
+    return j;
+}
+
+uint64_t World::state_hash() const {
+    auto& reg = const_cast<Registry&>(registry_);
+    auto group = character_group(reg);
+    StateHasher h;
+    auto transforms = group.span<Transform>();
+    auto states = group.span<LodState>();
+    for (const auto& rt : types_) {
+        for (uint32_t id = 0; id < rt->count; ++id) {
+            const uint32_t i = rt->element_of_character[id];
+            h.add(transforms[i].position);
+            h.add(transforms[i].rotation);
+            h.add(states[i].geom_level);
+            h.add(states[i].anim_level);
+            const ConstPoseView pose = rt->motion->poses().view(id);
+            h.add_span(pose.model);
+        }
+    }
+    return h.value();
+}
+
+}  // namespace aloha

@@ -1,0 +1,166 @@
+// The World: ALOHA's own host of the systems. It spawns a scene's characters as entities in one owning
+// group (kept sorted by character type and geometric level), registers the systems with the scheduler by
+// what they read and write, and runs one frame per step(). Games with their own entity store call the
+// systems' jobs on their own spans instead (docs/INTEGRATION.md).
+#pragma once
+
+#include "components/character.hpp"
+#include "components/lod.hpp"
+#include "components/motion.hpp"
+#include "components/transform.hpp"
+#include "engine/ecs/ecs.hpp"
+#include "engine/scene/character_type.hpp"
+#include "engine/scene/scene_desc.hpp"
+#include "engine/scheduler/scheduler.hpp"
+#include "systems/geometry/controller/geometry_controller.hpp"
+#include "systems/lod/attributes.hpp"
+#include "systems/lod/frame_budget.hpp"
+#include "systems/lod/rule_set.hpp"
+#include "systems/lod/stats.hpp"
+#include "systems/render/crowd_renderer.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+class CharacterRuntime;
+
+/// The owning group every character belongs to: element i of each span is the same character.
+using CharacterGroup = Group<Transform, Velocity, Bounds, Importance, CharacterRef, LodAttributes, LodRequest,
+                             LodState, GeomLod, AnimLod, MotionState>;
+
+/// The character group of `registry` (created on first use).
+inline CharacterGroup character_group(Registry& registry) {
+    return registry.group<Transform, Velocity, Bounds, Importance, CharacterRef, LodAttributes, LodRequest,
+                          LodState, GeomLod, AnimLod, MotionState>();
+}
+
+/// How a World is built and run.
+struct WorldOptions {
+    unsigned threads = 0;                  ///< scheduler threads (0 = all cores)
+    bool lod = true;                       ///< false: every character at level 0 (full detail) always
+    std::optional<double> budget_ms;       ///< CPU frame budget; overrides the rule file's
+    uint64_t seed_override = 0;            ///< != 0 replaces every crowd's seed
+    std::optional<uint32_t> characters;    ///< rescale crowds to this many characters in all
+    DebugColour colour = DebugColour::Shaded;
+};
+
+/// The draw lists one frame produces (Skin phase), in world space, ready for the renderer.
+struct RenderLists {
+    std::vector<DeformableMesh> meshes;
+    std::vector<ProxyInstance> proxies;
+    std::vector<LineSegment> lines;
+};
+
+/// The frame as the profiler's fidelity check sees it (see World::reference_frame).
+struct ReferenceFrame {
+    std::vector<DeformableMesh> meshes;           ///< visible characters at the reference level
+    std::vector<double> deviation_sum;            ///< per geometric level: summed screen deviation (px)
+    std::vector<double> deviation_max;            ///< per geometric level: largest deviation (px)
+    std::vector<uint64_t> deviation_count;        ///< per geometric level: vertices measured
+    uint32_t switches = 0;                        ///< visible characters that switched level this frame
+    std::vector<std::vector<glm::vec3>> positions, normals;     ///< storage behind `meshes`
+    std::vector<glm::vec3> current_scratch, reference_scratch;  ///< reused per character
+};
+
+/// Hosts a scene's characters and systems. Not copyable; one thread drives step().
+class World {
+public:
+    /// Loads the character types and rules a scene names, spawns its characters and builds the
+    /// system plan. Errors name the file and the problem.
+    static Result<std::unique_ptr<World>> create(const SceneDesc& scene, const WorldOptions& options);
+    ~World();
+    World(const World&) = delete;
+    World& operator=(const World&) = delete;
+
+    /// Runs one frame of every system (CPU phases; the Render phase too when a renderer is attached).
+    void step();
+    /// Attaches a renderer and target for the Render phase (mesh topologies are registered with it on
+    /// first use); nullptr detaches.
+    Status attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target);
+    /// Debug colouring of the draw lists from the next frame on.
+    void set_colour(DebugColour colour) { options_.colour = colour; }
+
+    /// Frames run so far / simulated seconds.
+    [[nodiscard]] uint64_t frame() const { return frame_; }
+    [[nodiscard]] float time() const { return time_; }
+    [[nodiscard]] const SceneDesc& scene() const { return scene_; }
+    [[nodiscard]] const WorldOptions& options() const { return options_; }
+    /// Number of characters alive.
+    [[nodiscard]] size_t character_count() const;
+    /// The ECS registry and the scheduler (timings, plan, trace).
+    [[nodiscard]] Registry& registry() { return registry_; }
+    [[nodiscard]] Scheduler& scheduler() { return scheduler_; }
+    [[nodiscard]] const Scheduler& scheduler() const { return scheduler_; }
+    /// The knowledge base (reload it live with rules().reload_from_file() or poll()).
+    [[nodiscard]] RuleSet& rules() { return rules_; }
+    /// Characters per level / method / rule after the last frame.
+    [[nodiscard]] const LodStats& lod_stats() const { return stats_; }
+    /// Camera used by the last frame (LOD view) and its render matrices.
+    [[nodiscard]] const LodCamera& camera() const { return camera_; }
+    [[nodiscard]] RenderCamera render_camera() const;
+    /// The last frame's draw lists.
+    [[nodiscard]] const RenderLists& render_lists() const { return lists_; }
+    /// Per-frame statistics of the last Render phase (GPU ms; -1 without a renderer).
+    [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
+    /// Outcome of the last Render phase (Vulkan errors surface here, not as exceptions).
+    [[nodiscard]] const Status& render_status() const { return render_status_; }
+    /// Why character `i` (group order) has its levels, as JSON (attributes, rule, levels).
+    [[nodiscard]] nlohmann::json explain(uint32_t i) const;
+    /// The richest Layered level of the rule table: the full-detail picture the fidelity check renders.
+    [[nodiscard]] uint8_t reference_level() const;
+    /// Fills `out` for the last frame: every visible character's surface at reference_level() (springs
+    /// at rest) as draw items, and per level the screen-space deviation of each mesh character's displayed
+    /// control surface from its level-0 control surface. Requires an attached renderer. Allocates.
+    Status reference_frame(ReferenceFrame& out);
+    /// Approximate bytes of per-character state per geometric level (for the profiler).
+    [[nodiscard]] std::vector<uint64_t> memory_per_level() const;
+    /// Hash of every character's placement, LOD state and pose, in spawn order: equal across runs and
+    /// thread counts for the same scene and options.
+    [[nodiscard]] uint64_t state_hash() const;
+    /// Number of character types and each one's data.
+    [[nodiscard]] size_t type_count() const { return types_.size(); }
+    [[nodiscard]] const CharacterType& type(size_t i) const;
+
+private:
+    World() = default;
+    Status load(const SceneDesc& scene, const WorldOptions& options);
+    Status spawn_characters();
+    void register_systems();
+    void regroup();
+    void gather_render_lists();
+    static constexpr uint32_t kNoTopology = 0xFFFFFFFFu;
+    uint32_t topology_id(const CharacterRuntime& rt, const SurfaceView& surface);
+
+    SceneDesc scene_;
+    WorldOptions options_;
+    Registry registry_;
+    Scheduler scheduler_;
+    RuleSet rules_;
+    FrameBudget budget_;
+    bool budget_on_ = false;
+    LodStats stats_;
+    LodCamera camera_;
+    std::vector<std::unique_ptr<CharacterRuntime>> types_;
+    std::vector<uint32_t> sort_keys_;
+    std::vector<uint32_t> ids_;                      ///< group position -> character id in its type
+    std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< geometry topology key -> renderer id
+    std::vector<uint32_t> changed_;
+    std::vector<KeyRange> ranges_;
+    RenderLists lists_;
+    CrowdRenderer* renderer_ = nullptr;
+    gpu::OffscreenTarget* target_ = nullptr;
+    double last_gpu_ms_ = -1.0;
+    Status render_status_;
+    double last_cpu_ms_ = 0.0;
+    uint64_t frame_ = 0;
+    float time_ = 0.0f;
+    bool first_frame_ = true;
+};
+
+}  // namespace aloha

@@ -1,0 +1,92 @@
+// Fidelity support for the profiler: the frame as it would look at full detail, and how far each
+// character's LOD skin is from its full-detail skin on screen.
+#include "engine/scene/character_runtime.hpp"
+#include "engine/scene/world.hpp"
+#include "systems/geometry/spring_skin/skin_mesh.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace aloha {
+
+namespace {
+
+glm::mat4 world_of(const Transform& t) {
+    return glm::scale(glm::translate(glm::mat4(1.0f), t.position) * glm::mat4_cast(t.rotation), glm::vec3(t.scale));
+}
+
+// Pixel position of a world point (OpenGL-convention camera); false when behind the eye.
+bool to_pixels(const glm::mat4& view_proj, const glm::vec3& p, const glm::vec2& viewport, glm::vec2& out) {
+    const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
+    if (c.w <= 1e-6f) return false;
+    out = glm::vec2((c.x / c.w * 0.5f + 0.5f) * viewport.x, (0.5f - c.y / c.w * 0.5f) * viewport.y);
+    return true;
+}
+
+}  // namespace
+
+uint8_t World::reference_level() const {
+    const RuleTable& table = rules_.table();
+    for (size_t l = 0; l < table.geom_levels.size(); ++l)
+        if (table.geom_lod(static_cast<uint8_t>(l)).method == GeomMethod::Layered) return static_cast<uint8_t>(l);
+    return 0;
+}
+
+Status World::reference_frame(ReferenceFrame& out) {
+    out.meshes.clear();
+    out.deviation_sum.assign(rules_.table().geom_levels.size(), 0.0);
+    out.deviation_max.assign(out.deviation_sum.size(), 0.0);
+    out.deviation_count.assign(out.deviation_sum.size(), 0);
+    out.switches = 0;
+    auto g = character_group(registry_);
+    auto refs = g.span<CharacterRef>();
+    auto transforms = g.span<Transform>();
+    auto attributes = g.span<LodAttributes>();
+    auto states = g.span<LodState>();
+    const uint8_t picture_level = reference_level();
+    const glm::mat4 view_proj = camera_.projection * camera_.view;
+    const glm::vec2 viewport = camera_.viewport_px;
+    size_t used = 0;
+    for (size_t i = 0; i < g.size(); ++i) {
+        if (!attributes[i].visible) continue;
+        if (states[i].frames_at_geom == 0 && !first_frame_) ++out.switches;
+        CharacterRuntime& rt = *types_[refs[i].type];
+        const PoseSource poses = rt.poses();
+        const glm::mat4 world = world_of(transforms[i]);
+        // Screen-space deviation of the displayed control surface from the richest level's.
+        rt.geometry->deviation_pairs(poses, refs[i].id, 0, out.current_scratch, out.reference_scratch);
+        const uint8_t level = states[i].geom_level;
+        for (size_t k = 0; k < out.current_scratch.size(); ++k) {
+            glm::vec2 a, b;
+            if (!to_pixels(view_proj, glm::vec3(world * glm::vec4(out.current_scratch[k], 1.0f)), viewport, a) ||
+                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, b))
+                continue;
+            const double d = glm::length(a - b);
+            out.deviation_sum[level] += d;
+            out.deviation_max[level] = std::max(out.deviation_max[level], d);
+            ++out.deviation_count[level];
+        }
+        // The full-detail picture: every visible character at the richest layered level.
+        if (used == out.positions.size()) {
+            out.positions.emplace_back();
+            out.normals.emplace_back();
+        }
+        auto& pos = out.positions[used];
+        auto& nrm = out.normals[used];
+        rt.geometry->reference_surface(poses, refs[i].id, picture_level, pos);
+        if (pos.empty()) continue;
+        const std::span<const uint32_t> indices = rt.geometry->level_indices(picture_level);
+        nrm.assign(pos.size(), glm::vec3(0.0f));
+        accumulate_vertex_normals(pos, indices, nrm);
+        SurfaceView view;
+        view.level = picture_level;
+        view.topology_key = rt.geometry->topology_key(picture_level);
+        view.positions = pos;
+        const uint32_t topology = topology_id(rt, view);
+        if (topology == kNoTopology) return render_status_;
+        out.meshes.push_back({topology, pos, nrm, world, glm::vec4(0.86f, 0.68f, 0.56f, 1.0f)});
+        ++used;
+    }
+    return {};
+}
+
+}  // namespace aloha

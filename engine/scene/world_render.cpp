@@ -1,0 +1,104 @@
+// The World's draw lists: world-space proxies and deformable meshes per character, coloured by the
+// chosen debug view, and the renderer hook-up.
+#include "engine/scene/character_runtime.hpp"
+#include "engine/scene/world.hpp"
+#include "systems/render/debug_colours.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace aloha {
+
+namespace {
+
+glm::mat4 world_matrix(const Transform& t) {
+    return glm::scale(glm::translate(glm::mat4(1.0f), t.position) * glm::mat4_cast(t.rotation), glm::vec3(t.scale));
+}
+
+glm::vec4 character_colour(DebugColour mode, const LodState& state, const AnimLod& anim, bool proxy) {
+    switch (mode) {
+        case DebugColour::ByLodLevel: return colour_for_level(state.geom_level);
+        case DebugColour::ByRule: return colour_for_rule(state.rule_id);
+        case DebugColour::ByMotionMethod: return colour_for_motion_method(static_cast<int>(anim.walk));
+        case DebugColour::Shaded: break;
+    }
+    return proxy ? glm::vec4(0.62f, 0.66f, 0.74f, 1.0f) : glm::vec4(0.86f, 0.68f, 0.56f, 1.0f);
+}
+
+// The renderer's unit box is [-0.5, 0.5]^3; proxy boxes map [-1, 1]^3.
+const glm::mat4 kHalfToUnit = glm::scale(glm::mat4(1.0f), glm::vec3(2.0f));
+
+}  // namespace
+
+Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target) {
+    renderer_ = renderer;
+    target_ = target;
+    topologies_.clear();
+    return {};
+}
+
+void World::gather_render_lists() {
+    lists_.meshes.clear();
+    lists_.proxies.clear();
+    lists_.lines.clear();
+    auto g = character_group(registry_);
+    auto refs = g.span<CharacterRef>();
+    auto geom = g.span<GeomLod>();
+    auto states = g.span<LodState>();
+    auto anims = g.span<AnimLod>();
+    auto transforms = g.span<Transform>();
+    for (const KeyRange& r : ranges_) {
+        const GeomMethod method = geom[r.begin].method;
+        if (method == GeomMethod::Hidden) continue;
+        CharacterRuntime& rt = *types_[refs[r.begin].type];
+        const GeometryController& gc = *rt.geometry;
+        if (method == GeomMethod::RigidProxy) {
+            for (size_t i = r.begin; i < r.end; ++i) {
+                const std::span<const glm::mat4> boxes = gc.proxy_boxes(refs[i].id);
+                if (boxes.empty()) continue;
+                const glm::mat4 world = world_matrix(transforms[i]);
+                const glm::vec4 colour = character_colour(options_.colour, states[i], anims[i], true);
+                for (uint16_t j : rt.proxy_joints) lists_.proxies.push_back({world * boxes[j] * kHalfToUnit, colour});
+            }
+            continue;
+        }
+        if (!renderer_) continue;  // meshes need a renderer's topology ids
+        for (size_t i = r.begin; i < r.end; ++i) {
+            const SurfaceView surface = gc.surface(refs[i].id);
+            if (surface.positions.empty()) continue;
+            const uint32_t topology = topology_id(rt, surface);
+            if (topology == kNoTopology) continue;
+            lists_.meshes.push_back({topology, surface.positions, surface.normals, world_matrix(transforms[i]),
+                                     character_colour(options_.colour, states[i], anims[i], false)});
+        }
+    }
+}
+
+uint32_t World::topology_id(const CharacterRuntime& rt, const SurfaceView& surface) {
+    for (const auto& [key, id] : topologies_)
+        if (key == surface.topology_key) return id;
+    auto id = renderer_->register_topology(rt.geometry->level_indices(surface.level),
+                                           static_cast<uint32_t>(surface.positions.size()), /*cull_back_faces=*/true);
+    if (!id.ok()) {
+        render_status_ = id.error();
+        return kNoTopology;
+    }
+    topologies_.emplace_back(surface.topology_key, id.value());
+    return id.value();
+}
+
+std::vector<uint64_t> World::memory_per_level() const {
+    std::vector<uint64_t> bytes(rules_.table().geom_levels.size(), 0);
+    const uint64_t base = sizeof(Transform) + sizeof(Velocity) + sizeof(Bounds) + sizeof(Importance) +
+                          sizeof(CharacterRef) + sizeof(LodAttributes) + sizeof(LodRequest) + sizeof(LodState) +
+                          sizeof(GeomLod) + sizeof(AnimLod) + sizeof(MotionState);
+    for (size_t l = 0; l < bytes.size(); ++l) {
+        for (const auto& rt : types_) {
+            const uint64_t pose = static_cast<uint64_t>(rt->joints()) *
+                                  (sizeof(glm::vec3) * 2 + sizeof(glm::quat) + sizeof(glm::mat4) * 2);
+            bytes[l] = std::max<uint64_t>(bytes[l], base + pose + rt->geometry->bytes_per_character(static_cast<uint8_t>(l)));
+        }
+    }
+    return bytes;
+}
+
+}  // namespace aloha

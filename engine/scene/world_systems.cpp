@@ -1,0 +1,173 @@
+// The World's systems: each declares what it reads and writes; the scheduler derives the passes.
+#include "engine/scene/character_runtime.hpp"
+#include "engine/scene/world.hpp"
+#include "systems/lod/resolver.hpp"
+#include "systems/lod/rule_eval.hpp"
+#include "systems/lod/rule_table.hpp"
+
+namespace aloha {
+
+namespace {
+// Resources that are not components, named for the scheduler's access sets.
+struct CameraResource {};
+struct RuleResource {};
+struct PoseResource {};
+struct SurfaceResource {};
+struct DrawListResource {};
+struct GpuResource {};
+
+// Characters per parallel chunk for the cheap per-character LOD loops.
+constexpr size_t kLodGrain = 2048;
+}  // namespace
+
+void World::register_systems() {
+    const std::vector<ComponentTypeId> everything_in_group =
+        writes<Transform, Velocity, Bounds, Importance, CharacterRef, LodAttributes, LodRequest, LodState, GeomLod,
+               AnimLod, MotionState>();
+
+    scheduler_.add({"lod_attributes", Phase::Attributes,
+                    reads<Transform, Velocity, Bounds, Importance, CameraResource>(), writes<LodAttributes>(),
+                    [this](SystemContext& ctx) {
+                        auto g = character_group(registry_);
+                        ctx.parallel_for(g.size(), kLodGrain, [&](size_t b, size_t e) {
+                            LodAttributesJob job;
+                            job.transforms = g.span<Transform>().subspan(b, e - b);
+                            job.velocities = g.span<Velocity>().subspan(b, e - b);
+                            job.bounds = g.span<Bounds>().subspan(b, e - b);
+                            job.importance = g.span<Importance>().subspan(b, e - b);
+                            job.camera = camera_;
+                            job.output = g.span<LodAttributes>().subspan(b, e - b);
+                            job.Run();
+                        });
+                    }});
+
+    if (budget_on_) {
+        scheduler_.add({"lod_budget", Phase::Rules, reads<LodAttributes, RuleResource>(), writes<LodState>(),
+                        [this](SystemContext&) {
+                            auto g = character_group(registry_);
+                            budget_.update(static_cast<float>(last_cpu_ms_), g.span<LodAttributes>(),
+                                           g.span<LodState>(), rules_.table());
+                        }});
+    }
+
+    scheduler_.add({"lod_rules", Phase::Rules, reads<LodAttributes, LodState, RuleResource>(), writes<LodRequest>(),
+                    [this](SystemContext& ctx) {
+                        auto g = character_group(registry_);
+                        const RuleTable& table = rules_.table();
+                        if (!options_.lod) {  // LOD off: everyone asks for the richest levels
+                            for (LodRequest& r : g.span<LodRequest>()) r = LodRequest{0, 0, 0};
+                            return;
+                        }
+                        ctx.parallel_for(g.size(), kLodGrain, [&](size_t b, size_t e) {
+                            RuleEvalJob job;
+                            job.table = &table;
+                            job.attributes = g.span<LodAttributes>().subspan(b, e - b);
+                            job.states = g.span<LodState>().subspan(b, e - b);
+                            job.tier = table.default_tier;
+                            job.output = g.span<LodRequest>().subspan(b, e - b);
+                            job.Run();
+                        });
+                    }});
+
+    {
+        SystemDesc resolve{"lod_resolve", Phase::Resolve, reads<RuleResource>(), everything_in_group, nullptr};
+        resolve.writes.push_back(resource_type_id<SurfaceResource>());
+        resolve.run = [this](SystemContext&) {
+            auto g = character_group(registry_);
+            const RuleTable& table = rules_.table();
+            changed_.resize(g.size());
+            LodResolveJob job;
+            job.table = &table;
+            job.requests = g.span<LodRequest>();
+            job.states = g.span<LodState>();
+            job.geom = g.span<GeomLod>();
+            job.anim = g.span<AnimLod>();
+            job.changed_indices = changed_;
+            job.snap = first_frame_;
+            const size_t changed = job.Run();
+            // Marshal level switches to the geometric controller (geomorph from the old surface).
+            auto refs = g.span<CharacterRef>();
+            auto states = g.span<LodState>();
+            auto geom = g.span<GeomLod>();
+            if (first_frame_) {
+                for (size_t i = 0; i < g.size(); ++i)
+                    types_[refs[i].type]->geometry->begin_level(refs[i].id, states[i].geom_level, -1, 0);
+            } else {
+                for (size_t k = 0; k < changed; ++k) {
+                    const uint32_t i = changed_[k];
+                    GeometryController& gc = *types_[refs[i].type]->geometry;
+                    if (gc.level_of(refs[i].id) == states[i].geom_level) continue;  // animation level only
+                    gc.begin_level(refs[i].id, states[i].geom_level, static_cast<int8_t>(states[i].prev_geom_level),
+                                   geom[i].geomorph_frames);
+                }
+            }
+            if (changed > 0 || first_frame_) regroup();  // keep characters grouped by (type, level)
+            LodStatsJob stats;
+            stats.table = &table;
+            stats.states = g.span<LodState>();
+            stats.attributes = g.span<LodAttributes>();
+            stats.output = &stats_;
+            stats.Run();
+        };
+        scheduler_.add(std::move(resolve));
+    }
+
+    scheduler_.add({"motion", Phase::Motion, reads<AnimLod, CharacterRef>(),
+                    writes<MotionState, Transform, Velocity, PoseResource>(), [this](SystemContext& ctx) {
+                        auto g = character_group(registry_);
+                        for (auto& rt : types_) {
+                            MotionUpdateJob job;
+                            job.controller = rt->motion.get();
+                            job.dt = ctx.dt();
+                            job.lods = g.span<AnimLod>();
+                            job.states = g.span<MotionState>();
+                            job.transforms = g.span<Transform>();
+                            job.velocities = g.span<Velocity>();
+                            job.element_of_character = rt->element_of_character;
+                            job.grain = 64;  // pose evaluation in parallel chunks (bit-identical to serial)
+                            job.Run();
+                        }
+                    }});
+
+    // The geometric controller: per (type, level) range one tight loop of that level's method (rigid
+    // proxies, linear-blend skin, muscles + fat springs + skin, OpenSubdiv), chunks in parallel.
+    scheduler_.add({"geometry", Phase::Tessellate, reads<GeomLod, CharacterRef, PoseResource>(),
+                    writes<SurfaceResource>(), [this](SystemContext& ctx) {
+                        auto g = character_group(registry_);
+                        auto refs = g.span<CharacterRef>();
+                        auto geom = g.span<GeomLod>();
+                        for (const KeyRange& r : ranges_) {
+                            if (geom[r.begin].method == GeomMethod::Hidden) continue;
+                            CharacterRuntime& rt = *types_[refs[r.begin].type];
+                            const PoseSource poses = rt.poses();
+                            const uint8_t level = geom[r.begin].level;
+                            // Grain: cheap methods in big chunks, rich ones one or a few characters each.
+                            const size_t grain = geom[r.begin].method == GeomMethod::RigidProxy ? 256
+                                                 : geom[r.begin].method == GeomMethod::SkinnedMesh ? 16 : 1;
+                            const std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
+                            ctx.parallel_for(ids.size(), grain, [&](size_t b, size_t e) {
+                                rt.geometry->update(level, ids.subspan(b, e - b), poses, ctx.dt());
+                            });
+                        }
+                    }});
+
+    scheduler_.add({"render_prepare", Phase::Skin,
+                    reads<SurfaceResource, Transform, GeomLod, LodState, AnimLod, CharacterRef>(),
+                    writes<DrawListResource>(), [this](SystemContext&) { gather_render_lists(); }});
+
+    scheduler_.add({"render", Phase::Render, reads<DrawListResource, CameraResource>(), writes<GpuResource>(),
+                    [this](SystemContext&) {
+                        if (!renderer_ || !target_) return;
+                        FrameInput input;
+                        input.camera = render_camera();
+                        input.meshes = lists_.meshes;
+                        input.proxies = lists_.proxies;
+                        input.lines = lists_.lines;
+                        Status s = renderer_->render(input, *target_);
+                        if (s.ok()) s = renderer_->finish();
+                        render_status_ = s;
+                        last_gpu_ms_ = renderer_->last_gpu_ms();
+                    }});
+}
+
+}  // namespace aloha

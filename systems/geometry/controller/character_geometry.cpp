@@ -1,0 +1,274 @@
+// CharacterGeometry: validation, rest-pose data, mesh bindings and the lazily built caches.
+#include "systems/geometry/controller/character_geometry.hpp"
+
+#include "systems/geometry/muscle/muscle_shape_job.hpp"
+#include "systems/geometry/muscle/muscle_tessellate_job.hpp"
+#include "systems/geometry/muscle/superellipsoid.hpp"
+#include "systems/geometry/spring_skin/skin_mesh.hpp"
+#include "systems/geometry/surface_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+namespace {
+
+bool finite3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+bool finite_matrix(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return true;
+}
+
+// Every problem of a real mesh, one message each (first offending element named).
+void check_mesh(const CharacterMesh& mesh, uint32_t joints, std::vector<std::string>& problems) {
+    const size_t n = mesh.positions.size();
+    if (n == 0) problems.push_back("mesh has no vertices");
+    if (mesh.normals.size() != n) problems.push_back("mesh normals count differs from positions");
+    if (mesh.joints.size() != n) problems.push_back("mesh joints count differs from positions");
+    if (mesh.weights.size() != n) problems.push_back("mesh weights count differs from positions");
+    if (mesh.indices.empty() || mesh.indices.size() % 3 != 0) problems.push_back("mesh indices are not a non-empty triangle list");
+    if (mesh.inverse_bind.size() != joints)
+        problems.push_back("mesh has " + std::to_string(mesh.inverse_bind.size()) + " inverse bind matrices for " +
+                           std::to_string(joints) + " joints");
+    for (size_t i = 0; i < mesh.indices.size(); ++i) {
+        if (mesh.indices[i] >= n) {
+            problems.push_back("mesh index " + std::to_string(i) + " = " + std::to_string(mesh.indices[i]) + " is out of range");
+            break;
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        if (!finite3(mesh.positions[i])) {
+            problems.push_back("mesh vertex " + std::to_string(i) + " is not finite");
+            break;
+        }
+    }
+    if (mesh.joints.size() == n && mesh.weights.size() == n) {
+        for (size_t i = 0; i < n; ++i) {
+            bool bad = false;
+            for (int k = 0; k < 4; ++k) bad |= mesh.weights[i][k] != 0.0f && mesh.joints[i][k] >= joints;
+            if (bad) {
+                problems.push_back("mesh vertex " + std::to_string(i) + " uses a joint outside the skeleton");
+                break;
+            }
+        }
+    }
+    for (const glm::mat4& m : mesh.inverse_bind) {
+        if (!finite_matrix(m)) {
+            problems.push_back("mesh has a non-finite inverse bind matrix");
+            break;
+        }
+    }
+}
+
+// Box radius of the proxy of joint j: the thickest rest muscle (plus its fat) anchored on the bone
+// the box covers (origin on j's parent, or on j for a root), clamped to [2 cm, 15 cm]; 4 cm without.
+std::vector<float> proxy_radii_of(const Skeleton& skeleton, const MuscleSet& set) {
+    std::vector<float> radii(static_cast<size_t>(skeleton.joint_count()), 0.0f);
+    for (size_t j = 0; j < radii.size(); ++j) {
+        const int bone = skeleton.parents()[j] < 0 ? static_cast<int>(j) : skeleton.parents()[j];
+        float r = 0.0f;
+        for (size_t m = 0; m < static_cast<size_t>(set.size()); ++m) {
+            if (set.origin_joint[m] != bone) continue;
+            const glm::vec3 rr = volume_preserving_radii(set.rest_length[m], set.volume[m], set.ratio[m], set.volume_factor[m]);
+            r = std::max(r, std::max(rr.y, rr.z) + set.fat_thickness[m]);
+        }
+        radii[j] = r > 0.0f ? std::clamp(r, 0.02f, 0.15f) : 0.04f;
+    }
+    return radii;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> skin_mesh_positions(const CharacterMesh& mesh, std::span<const glm::mat4> model) {
+    std::vector<glm::vec3> out(mesh.positions.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        glm::vec4 p(0.0f);
+        for (int k = 0; k < 4; ++k) {
+            const float w = mesh.weights[i][k];
+            if (w == 0.0f) continue;
+            const size_t j = mesh.joints[i][k];
+            p += w * (model[j] * (mesh.inverse_bind[j] * glm::vec4(mesh.positions[i], 1.0f)));
+        }
+        out[i] = glm::vec3(p);
+    }
+    return out;
+}
+
+namespace {
+
+// Joints whose matrices skin muscle m of the generated mesh: the chain from the origin joint down
+// to the insertion joint (origin first), at most 4, with each pivot's rest position. A pivot that
+// coincides with the next one is dropped (the next joint's matrix carries its rotation, and the
+// optimal cumulative weight of two coincident pivots is the same). Origin not an ancestor of the
+// insertion: just the two joints, the insertion joint's position as the pivot.
+struct MuscleChain {
+    int count = 0;
+    uint16_t joints[4] = {0, 0, 0, 0};
+    glm::vec3 pivots[4];  // pivots[k] = rest position of joints[k] (k >= 1)
+};
+
+MuscleChain muscle_chain(std::span<const int16_t> parents, std::span<const glm::mat4> rest_model, int origin, int insertion) {
+    MuscleChain chain;
+    std::vector<int> path;  // insertion up to (excluding) origin
+    int j = insertion;
+    while (j >= 0 && j != origin) {
+        path.push_back(j);
+        j = parents[static_cast<size_t>(j)];
+    }
+    if (j != origin) path.assign(1, insertion);
+    std::vector<int> kept;
+    for (size_t k = path.size(); k-- > 0;) {  // origin side first
+        const glm::vec3 p(rest_model[static_cast<size_t>(path[k])][3]);
+        if (k > 0 && glm::length(p - glm::vec3(rest_model[static_cast<size_t>(path[k - 1])][3])) < 1e-4f) continue;
+        kept.push_back(path[k]);
+    }
+    if (kept.size() > 3) kept.erase(kept.begin(), kept.end() - 3);  // keep the pivots nearest the insertion
+    chain.joints[0] = static_cast<uint16_t>(origin);
+    chain.count = 1;
+    for (const int k : kept) {
+        chain.joints[chain.count] = static_cast<uint16_t>(k);
+        chain.pivots[chain.count] = glm::vec3(rest_model[static_cast<size_t>(k)][3]);
+        ++chain.count;
+    }
+    return chain;
+}
+
+}  // namespace
+
+GeneratedBindMesh build_generated_mesh(const MuscleSet& muscles, std::span<const int16_t> parents,
+                                       std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables) {
+    const size_t M = static_cast<size_t>(muscles.size());
+    const uint32_t T = tables.theta_steps(), P = tables.phi_steps(), V = grid_vertex_count(T, P);
+    std::vector<glm::vec3> centres(M), radii(M), mpos(M * V), mnrm(M * V);
+    std::vector<glm::quat> rotations(M);
+    const MuscleShapeJob shape{&muscles, rest_model, centres, rotations, radii};
+    assert(shape.Validate());
+    shape.Run();
+    const MuscleTessellateJob tess{&tables, centres, rotations, radii, mpos, mnrm};
+    assert(tess.Validate());
+    tess.Run();
+
+    GeneratedBindMesh out;
+    out.theta_steps = T;
+    out.phi_steps = P;
+    out.positions.resize(M * V);
+    out.normals.resize(M * V);
+    out.joints.resize(M * V);
+    out.weights.resize(M * V);
+    for (size_t m = 0; m < M; ++m) {
+        const float h = muscles.fat_thickness[m];
+        const glm::vec3 axis = glm::mat3_cast(rotations[m])[0];
+        const glm::vec3 o = centres[m] - radii[m].x * axis, ins = centres[m] + radii[m].x * axis;  // tendons at rest
+        const MuscleChain chain = muscle_chain(parents, rest_model, muscles.origin_joint[m], muscles.insertion_joint[m]);
+        for (size_t i = m * V; i < (m + 1) * V; ++i) {
+            out.positions[i] = mpos[i] + h * mnrm[i];
+            // Position along the muscle axis: u = 0 at the origin tendon, 1 at the insertion.
+            const float u = std::clamp(0.5f * (glm::dot(mpos[i] - centres[m], axis) / radii[m].x + 1.0f), 0.0f, 1.0f);
+            // Cumulative weight past pivot k: a small rotation d at the pivot moves the straight muscle's
+            // point at u by u * d x (ins - pivot) but an LBS vertex with weight W past the pivot by
+            // W * d x (point - pivot); W = u a_i / (u a_i + (1 - u) a_o) balances the two tendon
+            // lever arms a_o = |o - pivot|, a_i = |ins - pivot| (exact at both tendons, smooth in u).
+            float W[5] = {1.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+            for (int k = 1; k < chain.count; ++k) {
+                const float ai = u * glm::length(ins - chain.pivots[k]), ao = (1.0f - u) * glm::length(o - chain.pivots[k]);
+                W[k] = ai + ao > 1e-9f ? ai / (ai + ao) : u;
+                W[k] = std::min(W[k], W[k - 1]);  // weights stay non-negative along the chain
+            }
+            glm::vec4 w(0.0f);
+            for (int k = 0; k < chain.count; ++k) w[k] = W[k] - W[k + 1];
+            out.joints[i] = glm::u16vec4(chain.joints[0], chain.joints[1], chain.joints[2], chain.joints[3]);
+            out.weights[i] = w;
+        }
+    }
+    const SkinJob normals{T, P, out.positions, mnrm, out.normals};
+    assert(normals.Validate());
+    normals.Run();
+    return out;
+}
+
+Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGeometryDesc desc) {
+    const uint32_t J = static_cast<uint32_t>(desc.skeleton.joint_count());
+    std::vector<std::string> problems;
+    if (J == 0) problems.push_back("skeleton has no joints");
+    if (desc.muscles.size() == 0) problems.push_back("muscle set is empty");
+    if (desc.muscles.joint_count != static_cast<int>(J))
+        problems.push_back("muscle set was resolved for " + std::to_string(desc.muscles.joint_count) +
+                           " joints, the skeleton has " + std::to_string(J));
+    if (desc.rest_model.empty()) desc.rest_model = rest_model_matrices(desc.skeleton);
+    if (desc.rest_model.size() != J) problems.push_back("rest_model needs one matrix per joint");
+    for (const glm::mat4& m : desc.rest_model) {
+        if (!finite_matrix(m) || std::abs(glm::determinant(m)) < 1e-12f) {
+            problems.push_back("rest_model holds a non-finite or singular matrix");
+            break;
+        }
+    }
+    if (desc.bind_theta_steps < 3 || desc.bind_phi_steps < 2) problems.push_back("bind tessellation needs T >= 3, P >= 2");
+    if (desc.mesh) check_mesh(*desc.mesh, J, problems);
+    if (!problems.empty()) {
+        std::string message = "character type '" + desc.name + "': " + problems.front();
+        for (size_t i = 1; i < problems.size(); ++i) message += "; " + problems[i];
+        return make_error(desc.name, message);
+    }
+
+    std::unique_ptr<CharacterGeometry> g(new CharacterGeometry());
+    g->type_ = desc.type;
+    g->name_ = std::move(desc.name);
+    g->skeleton_ = std::move(desc.skeleton);
+    g->muscles_ = std::move(desc.muscles);
+    g->rest_model_ = std::move(desc.rest_model);
+    g->inverse_rest_.resize(J);
+    for (size_t j = 0; j < J; ++j) g->inverse_rest_[j] = glm::inverse(g->rest_model_[j]);
+    g->proxy_radii_ = proxy_radii_of(g->skeleton_, g->muscles_);
+    g->table_cache_ = std::make_unique<SuperEllipsoidTableCache>(g->muscles_);
+    g->mesh_ = std::move(desc.mesh);
+    if (g->mesh_) {
+        g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
+        // Bind every mesh vertex to the nearest rest-pose muscle point at the bind tessellation.
+        const SuperEllipsoidTables& tab = g->tables(desc.bind_theta_steps, desc.bind_phi_steps);
+        const size_t M = static_cast<size_t>(g->muscles_.size()), V = tab.vertices_per_muscle();
+        std::vector<glm::vec3> centres(M), radii(M), mpos(M * V), mnrm(M * V);
+        std::vector<glm::quat> rotations(M);
+        const MuscleShapeJob shape{&g->muscles_, g->rest_model_, centres, rotations, radii};
+        shape.Run();
+        const MuscleTessellateJob tess{&tab, centres, rotations, radii, mpos, mnrm};
+        tess.Run();
+        g->bindings_.resize(g->mesh_rest_positions_.size());
+        const SkinBindJob bind{desc.bind_theta_steps, desc.bind_phi_steps, mpos, mnrm, g->mesh_rest_positions_, g->bindings_};
+        std::vector<std::string> errors;
+        if (!bind.Validate(&errors)) return make_error(g->name_, "character type '" + g->name_ + "': " + errors.front());
+        bind.Run();
+    }
+    return g;
+}
+
+const SuperEllipsoidTables& CharacterGeometry::tables(uint32_t theta_steps, uint32_t phi_steps) const {
+    std::lock_guard lock(mutex_);
+    return table_cache_->get(theta_steps, phi_steps);
+}
+
+const GeneratedBindMesh& CharacterGeometry::generated_mesh(uint32_t theta_steps, uint32_t phi_steps) const {
+    const SuperEllipsoidTables& tab = tables(theta_steps, phi_steps);
+    std::lock_guard lock(mutex_);
+    auto& slot = generated_[{theta_steps, phi_steps}];
+    if (!slot) slot = std::make_unique<GeneratedBindMesh>(build_generated_mesh(muscles_, skeleton_.parents(), rest_model_, tab));
+    return *slot;
+}
+
+const SubdivisionTopology& CharacterGeometry::subdivision(uint32_t theta_steps, uint32_t phi_steps, uint32_t level) const {
+    if (!mesh_) return grid_subdivisions_.get({theta_steps, phi_steps, static_cast<uint32_t>(muscles_.size()), level});
+    std::lock_guard lock(mutex_);
+    auto& slot = mesh_subdivisions_[level];
+    if (!slot) {
+        GridFaces faces;
+        const std::vector<uint32_t>& idx = mesh_->indices;
+        faces.vertex_counts.assign(idx.size() / 3, 3);
+        faces.vertex_indices.assign(idx.begin(), idx.end());
+        slot = build_subdivision(faces, static_cast<uint32_t>(mesh_->positions.size()), level);
+    }
+    return *slot;
+}
+
+}  // namespace aloha

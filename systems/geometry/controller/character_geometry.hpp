@@ -1,0 +1,149 @@
+// Per character type geometry, built once at load and shared (read-only) by every geometric
+// controller of that type: skeleton, muscle layout, rest pose, optional real skinned mesh with its
+// muscle bindings, and lazily built per-tessellation data (super-ellipsoid tables, the generated
+// peeled bind mesh, subdivision refinements), cached for the lifetime of the type.
+#pragma once
+
+#include "engine/anim/skeleton.hpp"
+#include "engine/core/result.hpp"
+#include "systems/geometry/muscle/muscle_set.hpp"
+#include "systems/geometry/muscle/superellipsoid_tables.hpp"
+#include "systems/geometry/spring_skin/skin_binding.hpp"
+#include "systems/geometry/spring_skin/subdivision.hpp"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_precision.hpp>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace aloha {
+
+/// A real skinned triangle mesh (e.g. from glTF), all primitives concatenated.
+/// Skinning: v_model = sum_k w_k * model[joints_k] * inverse_bind[joints_k] * v.
+struct CharacterMesh {
+    std::vector<glm::vec3> positions;      ///< bind-space positions
+    std::vector<glm::vec3> normals;        ///< bind-space unit normals, one per position
+    std::vector<glm::u16vec4> joints;      ///< runtime skeleton joint indices, one per position
+    std::vector<glm::vec4> weights;        ///< weights (sum 1), one per position
+    std::vector<uint32_t> indices;         ///< triangle list
+    std::vector<glm::mat4> inverse_bind;   ///< one per RUNTIME joint
+};
+
+/// The peeled (SkinnedMesh) bind mesh generated from the muscles of a type without a real mesh, at
+/// one (T, P): vertex i of muscle m is the rest-pose muscle point plus the fat thickness along the
+/// muscle normal (surface_grid layout, muscles concatenated). It is skinned to the joints from the
+/// muscle's origin joint down to its insertion joint (at most 4), weighted smoothly by the vertex's
+/// position u along the muscle axis: the cumulative weight past each pivot joint is
+/// u a_i / (u a_i + (1 - u) a_o) with a_o, a_i the distances from the pivot to the two tendons, which
+/// makes linear blending follow the straight origin-insertion muscle to first order in the rotation.
+struct GeneratedBindMesh {
+    uint32_t theta_steps = 0;               ///< T of the grids
+    uint32_t phi_steps = 0;                 ///< P of the grids
+    std::vector<glm::vec3> positions;       ///< rest-pose model space, muscles x V(T, P)
+    std::vector<glm::vec3> normals;         ///< area-weighted skin normals at rest
+    std::vector<glm::u16vec4> joints;       ///< origin .. insertion chain (runtime joint indices)
+    std::vector<glm::vec4> weights;         ///< matching weights (sum 1)
+};
+
+/// What a character type is made of. `rest_model` empty = the skeleton's rest pose.
+struct CharacterGeometryDesc {
+    uint16_t type = 0;                       ///< the type id (CharacterRef::type), part of topology keys
+    std::string name;                        ///< names the type in errors
+    Skeleton skeleton;                       ///< runtime skeleton
+    MuscleSet muscles;                       ///< resolved against `skeleton` (at least one muscle)
+    std::vector<glm::mat4> rest_model;       ///< rest-pose model matrix per joint (muscles rest here)
+    std::optional<CharacterMesh> mesh;       ///< real skinned mesh, or none (generated peeled mesh)
+    uint32_t bind_theta_steps = 16;          ///< tessellation the mesh is bound to the muscles at
+    uint32_t bind_phi_steps = 12;
+};
+
+/// Immutable geometry of one character type plus thread-safe lazily built caches. Create with
+/// CharacterGeometry::create; the object never moves (controllers keep pointers into it).
+class CharacterGeometry {
+public:
+    /// Validates `desc` (muscles resolved for this skeleton, rest_model size, mesh sizes, joint
+    /// indices in range, finite values) and builds the type: rest-pose mesh positions, muscle
+    /// bindings of the mesh (SkinBindJob at the bind tessellation), per-joint proxy radii.
+    /// Errors name desc.name and the problem.
+    static Result<std::unique_ptr<CharacterGeometry>> create(CharacterGeometryDesc desc);
+
+    CharacterGeometry(const CharacterGeometry&) = delete;
+    CharacterGeometry& operator=(const CharacterGeometry&) = delete;
+
+    /// Type id given at creation.
+    [[nodiscard]] uint16_t type() const { return type_; }
+    /// Name given at creation.
+    [[nodiscard]] const std::string& name() const { return name_; }
+    /// The skeleton.
+    [[nodiscard]] const Skeleton& skeleton() const { return skeleton_; }
+    /// Joint count of the skeleton.
+    [[nodiscard]] uint32_t joint_count() const { return static_cast<uint32_t>(skeleton_.joint_count()); }
+    /// The muscle layout.
+    [[nodiscard]] const MuscleSet& muscles() const { return muscles_; }
+    /// Muscle count.
+    [[nodiscard]] uint32_t muscle_count() const { return static_cast<uint32_t>(muscles_.size()); }
+    /// Rest-pose model matrices (one per joint).
+    [[nodiscard]] std::span<const glm::mat4> rest_model() const { return rest_model_; }
+    /// Inverse of each rest-pose model matrix (the palette base of the generated mesh).
+    [[nodiscard]] std::span<const glm::mat4> inverse_rest_model() const { return inverse_rest_; }
+    /// Box radius per joint for the rigid proxy (from the muscles along the bone, 0.04 m without).
+    [[nodiscard]] std::span<const float> proxy_radii() const { return proxy_radii_; }
+    /// True when the type has a real skinned mesh.
+    [[nodiscard]] bool has_mesh() const { return mesh_.has_value(); }
+    /// The real mesh. Requires has_mesh().
+    [[nodiscard]] const CharacterMesh& mesh() const { return *mesh_; }
+    /// The real mesh skinned at the rest pose (model space). Empty without a mesh.
+    [[nodiscard]] std::span<const glm::vec3> mesh_rest_positions() const { return mesh_rest_positions_; }
+    /// Muscle binding of every real mesh vertex. Empty without a mesh.
+    [[nodiscard]] std::span<const SkinBinding> bindings() const { return bindings_; }
+
+    /// Super-ellipsoid tables at (T, P), built on first use. Thread-safe; the reference stays valid.
+    /// Requires T >= 3, P >= 2.
+    const SuperEllipsoidTables& tables(uint32_t theta_steps, uint32_t phi_steps) const;
+    /// Generated peeled bind mesh at (T, P), built on first use. Thread-safe; stays valid.
+    /// Requires T >= 3, P >= 2.
+    const GeneratedBindMesh& generated_mesh(uint32_t theta_steps, uint32_t phi_steps) const;
+    /// Catmull-Clark refinement of the skin at `level` (1..4): of the muscle grids at (T, P) for a
+    /// type without a mesh, of the real mesh's triangles (T, P ignored) otherwise. Thread-safe.
+    const SubdivisionTopology& subdivision(uint32_t theta_steps, uint32_t phi_steps, uint32_t level) const;
+
+private:
+    CharacterGeometry() = default;
+    uint16_t type_ = 0;
+    std::string name_;
+    Skeleton skeleton_;
+    MuscleSet muscles_;
+    std::vector<glm::mat4> rest_model_, inverse_rest_;
+    std::vector<float> proxy_radii_;
+    std::optional<CharacterMesh> mesh_;
+    std::vector<glm::vec3> mesh_rest_positions_;
+    std::vector<SkinBinding> bindings_;
+
+    mutable std::mutex mutex_;
+    mutable std::unique_ptr<SuperEllipsoidTableCache> table_cache_;
+    mutable std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<GeneratedBindMesh>> generated_;
+    mutable SubdivisionCache grid_subdivisions_;
+    mutable std::map<uint32_t, std::unique_ptr<SubdivisionTopology>> mesh_subdivisions_;
+};
+
+/// Linear-blend skins `mesh` with palette model[j] * mesh.inverse_bind[j] (e.g. the rest pose, to get
+/// model-space positions for muscle fitting). Requires model.size() == mesh.inverse_bind.size() and
+/// valid joint indices.
+[[nodiscard]] std::vector<glm::vec3> skin_mesh_positions(const CharacterMesh& mesh, std::span<const glm::mat4> model);
+
+/// Builds the generated peeled bind mesh of `muscles` at the tables' (T, P) from the skeleton's
+/// parents and rest-pose model matrices. Requires rest_model.size() == parents.size() ==
+/// muscles.joint_count and tables built for `muscles`.
+[[nodiscard]] GeneratedBindMesh build_generated_mesh(const MuscleSet& muscles, std::span<const int16_t> parents,
+                                                     std::span<const glm::mat4> rest_model,
+                                                     const SuperEllipsoidTables& tables);
+
+}  // namespace aloha

@@ -1,0 +1,49 @@
+// Internal to the geometric controller: the shared data and storage of one level.
+#pragma once
+
+#include "systems/geometry/controller/geometry_controller.hpp"
+
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+/// One level: its parameters, what its method reads (tables, bind mesh, refinement, index buffer)
+/// and the slots of its characters.
+struct GeometryController::Level {
+    GeomLod lod;                                   ///< parameters from the rule file
+    uint8_t index = 0;                             ///< position in the level table
+    uint8_t revision = 0;                          ///< bumped when set_levels rebuilds the level
+    bool mesh_level = false;                       ///< SkinnedMesh, Layered or Subdivided
+    bool real_mesh = false;                        ///< the control surface is the real mesh
+    uint32_t theta_steps = 0, phi_steps = 0;       ///< grid tessellation (muscles, grid skin)
+    uint32_t grid_vertices = 0;                    ///< V(T, P)
+    uint32_t control_vertices = 0;                 ///< control surface vertices per character
+    uint32_t display_vertices = 0;                 ///< displayed vertices per character
+    const SuperEllipsoidTables* tables = nullptr;  ///< Layered / Subdivided
+    const GeneratedBindMesh* generated = nullptr;  ///< SkinnedMesh of a type without a mesh
+    const SubdivisionTopology* subdivision = nullptr;  ///< Subdivided
+    std::vector<uint32_t> own_indices;             ///< grid index buffer when built here
+    std::span<const uint32_t> indices;             ///< the level's triangle list
+    SlotStore store;                               ///< per-character storage
+
+    /// Level with storage shaped by `layout`.
+    explicit Level(const SlotLayout& layout) : store(layout) {}
+
+    /// True when the level's control surface is a set of (T, P) grids (morphs by grid sampling).
+    [[nodiscard]] bool grid() const { return mesh_level && !real_mesh; }
+    /// True when the level runs muscles (Layered / Subdivided).
+    [[nodiscard]] bool layered() const {
+        return lod.method == GeomMethod::Layered || lod.method == GeomMethod::Subdivided;
+    }
+    /// The displayed control surface of slot `s` (morphed positions or the grid spring ends).
+    [[nodiscard]] std::span<const glm::vec3> control(uint32_t s) const {
+        const bool springs = grid() && layered() && !store.shows_morph[s];
+        return springs ? store.spring_end(s) : store.positions(s);
+    }
+};
+
+/// True when two parameter sets give the same storage and topology (method, T, P, subdivision).
+[[nodiscard]] bool same_level_shape(const GeomLod& a, const GeomLod& b);
+
+}  // namespace aloha

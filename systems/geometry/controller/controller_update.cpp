@@ -1,0 +1,143 @@
+// GeometryController::update: the per-frame method of a level, run as one loop over its characters.
+// Every buffer written belongs to the character's slot, so disjoint character lists may run
+// concurrently; nothing is allocated. Job sizes are guaranteed by the slot layout (see
+// build_level), so Validate() is only asserted (debug builds) and Run() called directly.
+#include "systems/geometry/controller/controller_level.hpp"
+#include "systems/geometry/muscle/muscle_shape_job.hpp"
+#include "systems/geometry/muscle/muscle_tessellate_job.hpp"
+#include "systems/geometry/spring_skin/geomorph.hpp"
+#include "systems/geometry/spring_skin/peeled.hpp"
+#include "systems/geometry/spring_skin/skin_binding.hpp"
+#include "systems/geometry/spring_skin/skin_mesh.hpp"
+
+#include <cassert>
+
+namespace aloha {
+namespace {
+
+using Level = GeometryController::Level;
+
+// Shows a running morph of slot s: out = fresh + (left / total) * delta (out may alias fresh). On the
+// first frame after the switch the deltas still hold the old surface and become old - fresh.
+// Returns true when the morph was applied this frame.
+bool apply_morph(SlotStore& st, uint32_t s, std::span<const glm::vec3> fresh, std::span<glm::vec3> out) {
+    if (st.frames_left(s)[0] == 0) {
+        st.shows_morph[s] = 0;
+        return false;
+    }
+    const std::span<glm::vec3> d = st.deltas(s);
+    if (st.pending[s]) {
+        for (size_t i = 0; i < d.size(); ++i) d[i] -= fresh[i];
+        st.pending[s] = 0;
+    }
+    const GeomorphJob morph{static_cast<uint32_t>(fresh.size()), fresh, d, st.frames_total(s), st.frames_left(s), out};
+    assert(morph.Validate());
+    morph.Run();
+    st.shows_morph[s] = 1;
+    return true;
+}
+
+void run_proxy(const CharacterGeometry& g, Level& L, uint32_t s, std::span<const glm::mat4> pose) {
+    const RigidProxyJob job{pose, g.skeleton().parents(), g.proxy_radii(), 0.04f, L.store.boxes(s)};
+    assert(job.Validate());
+    job.Run();
+}
+
+void run_skinned(const CharacterGeometry& g, Level& L, uint32_t s, std::span<const glm::mat4> pose) {
+    SlotStore& st = L.store;
+    const std::span<glm::mat4> palette = st.palette(s);
+    const std::span<const glm::mat4> inverse = L.real_mesh ? std::span<const glm::mat4>(g.mesh().inverse_bind) : g.inverse_rest_model();
+    for (size_t j = 0; j < palette.size(); ++j) palette[j] = pose[j] * inverse[j];
+    LinearBlendSkinJob job{palette, {}, {}, {}, {}, st.positions(s), st.normals(s)};
+    if (L.real_mesh) {
+        job.bind_positions = g.mesh().positions;
+        job.bind_normals = g.mesh().normals;
+        job.joints = g.mesh().joints;
+        job.weights = g.mesh().weights;
+    } else {
+        job.bind_positions = L.generated->positions;
+        job.bind_normals = L.generated->normals;
+        job.joints = L.generated->joints;
+        job.weights = L.generated->weights;
+    }
+    assert(job.Validate());
+    job.Run();
+    if (!apply_morph(st, s, st.positions(s), st.positions(s))) return;
+    // While morphing, light the shape that is shown.
+    if (L.real_mesh) {
+        accumulate_vertex_normals(st.positions(s), L.indices, st.normals(s));
+    } else {
+        const SkinJob normals{L.theta_steps, L.phi_steps, st.positions(s), {}, st.normals(s)};
+        normals.Run();
+    }
+}
+
+void run_layered(const CharacterGeometry& g, Level& L, uint32_t s, std::span<const glm::mat4> pose, const FatSpringParams& params) {
+    SlotStore& st = L.store;
+    const MuscleShapeJob shape{&g.muscles(), pose, st.centres(s), st.rotations(s), st.radii(s)};
+    assert(shape.Validate());
+    shape.Run();
+    const MuscleTessellateJob tess{L.tables, st.centres(s), st.rotations(s), st.radii(s), st.muscle_positions(s), st.muscle_normals(s)};
+    assert(tess.Validate());
+    tess.Run();
+    std::span<const glm::vec3> control;
+    if (!L.real_mesh) {
+        const FatSpringJob springs{L.theta_steps, L.phi_steps, params, st.muscle_positions(s), st.muscle_normals(s),
+                                   g.muscles().fat_thickness,
+                                   {st.spring_end(s), st.spring_velocity(s), st.spring_prev_rest(s), st.spring_initialised(s)}};
+        assert(springs.Validate());
+        springs.Run();
+        control = apply_morph(st, s, st.spring_end(s), st.positions(s)) ? st.positions(s) : st.spring_end(s);
+        if (L.lod.method == GeomMethod::Layered) {
+            const SkinJob normals{L.theta_steps, L.phi_steps, control, st.muscle_normals(s), st.normals(s)};
+            assert(normals.Validate());
+            normals.Run();
+        }
+    } else {
+        const BoundSkinJob bound{L.theta_steps, L.phi_steps, g.muscle_count(), st.muscle_positions(s), st.muscle_normals(s),
+                                 g.bindings(), st.positions(s)};
+        assert(bound.Validate());
+        bound.Run();
+        apply_morph(st, s, st.positions(s), st.positions(s));
+        control = st.positions(s);
+        if (L.lod.method == GeomMethod::Layered) accumulate_vertex_normals(control, L.indices, st.normals(s));
+    }
+    if (L.subdivision) {
+        const SubdivideJob refine{L.subdivision, control, st.refined_positions(s), st.refined_normals(s)};
+        assert(refine.Validate());
+        refine.Run();
+    }
+}
+
+}  // namespace
+
+void GeometryController::update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt) {
+    assert(level < levels_.size() && dt > 0.0f);
+    Level& L = *levels_[level];
+    const CharacterGeometry& g = *geometry_;
+    const size_t J = g.joint_count();
+    FatSpringParams params = spring_params_;
+    params.dt = dt;
+    for (const uint32_t c : characters) {
+        assert(level_of(c) == level);
+        const uint32_t s = slot_of_[c];
+        const std::span<const glm::mat4> pose = poses.joints(c, J);
+        switch (L.lod.method) {
+            case GeomMethod::Hidden:
+                break;
+            case GeomMethod::RigidProxy:
+                run_proxy(g, L, s, pose);
+                break;
+            case GeomMethod::SkinnedMesh:
+                run_skinned(g, L, s, pose);
+                break;
+            case GeomMethod::Layered:
+            case GeomMethod::Subdivided:
+                run_layered(g, L, s, pose, params);
+                break;
+        }
+        L.store.valid[s] = 1;
+    }
+}
+
+}  // namespace aloha

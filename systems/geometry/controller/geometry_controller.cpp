@@ -1,0 +1,257 @@
+// GeometryController: level building, slot management, level switches with geomorph capture, and
+// the per-character outputs. The per-frame work is in controller_update.cpp.
+#include "systems/geometry/controller/geometry_controller.hpp"
+
+#include "systems/geometry/controller/controller_level.hpp"
+#include "systems/geometry/spring_skin/grid_sample.hpp"
+#include "systems/geometry/spring_skin/skin_mesh.hpp"
+#include "systems/geometry/surface_grid.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+namespace aloha {
+
+bool same_level_shape(const GeomLod& a, const GeomLod& b) {
+    if (a.method != b.method) return false;
+    switch (a.method) {
+        case GeomMethod::Hidden:
+        case GeomMethod::RigidProxy:
+            return true;
+        case GeomMethod::SkinnedMesh:
+        case GeomMethod::Layered:
+            return a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps;
+        case GeomMethod::Subdivided:
+            return a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps && a.subdiv_level == b.subdiv_level;
+    }
+    return false;
+}
+
+GeometryController::GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity)
+    : geometry_(&geometry), level_of_(capacity, kNoLevel), slot_of_(capacity, 0) {
+    set_levels(levels);
+}
+
+GeometryController::~GeometryController() = default;
+
+std::unique_ptr<GeometryController::Level> GeometryController::build_level(const GeomLod& lod, uint8_t index,
+                                                                           uint8_t revision) const {
+    const CharacterGeometry& g = *geometry_;
+    const uint32_t J = g.joint_count(), M = g.muscle_count();
+    const bool real = g.has_mesh();
+    // Rule files are validated by their loader; clamp here so a bad table cannot break the grids.
+    const uint32_t T = std::max<uint32_t>(3, lod.theta_steps), P = std::max<uint32_t>(2, lod.phi_steps);
+    const uint32_t V = grid_vertex_count(T, P);
+    const uint32_t mesh_vertices = real ? static_cast<uint32_t>(g.mesh().positions.size()) : 0;
+    const uint32_t control = real ? mesh_vertices : M * V;
+
+    SlotLayout layout;
+    const SubdivisionTopology* subdivision = nullptr;
+    switch (lod.method) {
+        case GeomMethod::Hidden:
+            break;
+        case GeomMethod::RigidProxy:
+            layout.boxes = J;
+            break;
+        case GeomMethod::SkinnedMesh:
+            layout.palette = J;
+            layout.control = control;
+            layout.control_normals = control;
+            break;
+        case GeomMethod::Layered:
+        case GeomMethod::Subdivided:
+            layout.shapes = M;
+            layout.muscle_vertices = M * V;
+            if (!real) {
+                layout.springs = M * V;
+                layout.spring_flags = M;
+            }
+            layout.control = control;
+            if (lod.method == GeomMethod::Layered) {
+                layout.control_normals = control;
+            } else {
+                subdivision = &g.subdivision(T, P, std::min<uint32_t>(lod.subdiv_level, 4));
+                layout.refined = subdivision->refined_vertex_count;
+            }
+            break;
+    }
+    auto level = std::make_unique<Level>(layout);
+    level->lod = lod;
+    level->index = index;
+    level->revision = revision;
+    level->mesh_level = layout.control > 0;
+    level->real_mesh = real;
+    level->theta_steps = T;
+    level->phi_steps = P;
+    level->grid_vertices = V;
+    level->control_vertices = layout.control;
+    level->display_vertices = subdivision ? layout.refined : layout.control;
+    level->subdivision = subdivision;
+    if (level->layered()) level->tables = &g.tables(T, P);
+    if (lod.method == GeomMethod::SkinnedMesh && !real) level->generated = &g.generated_mesh(T, P);
+    if (subdivision) {
+        level->indices = subdivision->triangles;
+    } else if (level->mesh_level) {
+        if (real) {
+            level->indices = g.mesh().indices;
+        } else {
+            level->own_indices = build_skin_indices(T, P, M);
+            level->indices = level->own_indices;
+        }
+    }
+    return level;
+}
+
+void GeometryController::set_levels(std::span<const GeomLod> levels) {
+    assert(!levels.empty() && levels.size() < kNoLevel);
+    std::vector<std::unique_ptr<Level>> next(levels.size());
+    std::vector<uint8_t> kept(levels.size(), 0);
+    for (size_t i = 0; i < levels.size(); ++i) {
+        const auto index = static_cast<uint8_t>(i);
+        if (i < levels_.size() && same_level_shape(levels_[i]->lod, levels[i])) {
+            next[i] = std::move(levels_[i]);
+            next[i]->lod = levels[i];
+            kept[i] = 1;
+        } else {
+            const uint8_t revision = i < levels_.size() ? static_cast<uint8_t>(levels_[i]->revision + 1) : 0;
+            next[i] = build_level(levels[i], index, revision);
+        }
+    }
+    for (size_t c = 0; c < level_of_.size(); ++c) {
+        const uint8_t old = level_of_[c];
+        if (old == kNoLevel) continue;
+        const auto now = static_cast<uint8_t>(std::min<size_t>(old, levels.size() - 1));
+        if (now == old && kept[old]) continue;
+        // The old slot lives in a level being dropped or rebuilt: it goes away with that level.
+        SlotStore& store = next[now]->store;
+        const uint32_t s = store.acquire();
+        std::fill(store.spring_initialised(s).begin(), store.spring_initialised(s).end(), uint8_t{0});
+        level_of_[c] = now;
+        slot_of_[c] = s;
+    }
+    levels_ = std::move(next);
+}
+
+void GeometryController::ensure_capacity(uint32_t character) {
+    if (character < level_of_.size()) return;
+    const size_t n = std::max<size_t>(size_t{character} + 1, 2 * level_of_.size());
+    level_of_.resize(n, kNoLevel);
+    slot_of_.resize(n, 0);
+}
+
+void GeometryController::capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot) {
+    const std::span<const glm::vec3> old = from.control(from_slot);
+    const std::span<glm::vec3> target = to.store.deltas(to_slot);
+    if (to.real_mesh) {  // same mesh at every level: vertex by vertex
+        std::copy(old.begin(), old.end(), target.begin());
+        return;
+    }
+    // Grid to grid: the old surface sampled at each new vertex's (theta, phi), muscle by muscle.
+    const uint32_t Vo = from.grid_vertices, Vn = to.grid_vertices, M = geometry_->muscle_count();
+    for (uint32_t i = 0; i < Vn; ++i) {
+        const GridParam param = grid_vertex_param(to.theta_steps, to.phi_steps, i);
+        for (uint32_t m = 0; m < M; ++m)
+            target[size_t{m} * Vn + i] = sample_grid(old.subspan(size_t{m} * Vo, Vo), from.theta_steps, from.phi_steps, param);
+    }
+}
+
+void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames) {
+    assert(level < levels_.size());
+    (void)previous_level;  // the controller's own record is authoritative
+    ensure_capacity(character);
+    const uint8_t old = level_of_[character];
+    if (old == level) return;
+    Level& to = *levels_[level];
+    const uint32_t s = to.store.acquire();
+    std::fill(to.store.spring_initialised(s).begin(), to.store.spring_initialised(s).end(), uint8_t{0});
+    to.store.frames_total(s)[0] = 0;
+    to.store.frames_left(s)[0] = 0;
+    if (old != kNoLevel) {
+        Level& from = *levels_[old];
+        const uint32_t os = slot_of_[character];
+        if (geomorph_frames > 0 && from.mesh_level && to.mesh_level && from.store.valid[os]) {
+            capture_morph(from, os, to, s);
+            to.store.frames_total(s)[0] = geomorph_frames;
+            to.store.frames_left(s)[0] = geomorph_frames;
+            to.store.pending[s] = 1;
+        }
+        from.store.release(os);
+    }
+    level_of_[character] = level;
+    slot_of_[character] = s;
+}
+
+void GeometryController::end_character(uint32_t character) {
+    if (character >= level_of_.size() || level_of_[character] == kNoLevel) return;
+    levels_[level_of_[character]]->store.release(slot_of_[character]);
+    level_of_[character] = kNoLevel;
+}
+
+SurfaceView GeometryController::surface(uint32_t character) const {
+    SurfaceView view;
+    const uint8_t l = level_of(character);
+    if (l == kNoLevel) return view;
+    const Level& L = *levels_[l];
+    const uint32_t s = slot_of_[character];
+    view.level = l;
+    view.topology_key = topology_key(l);
+    if (!L.mesh_level || !L.store.valid[s]) return view;
+    if (L.subdivision) {
+        view.positions = L.store.refined_positions(s);
+        view.normals = L.store.refined_normals(s);
+    } else {
+        view.positions = L.control(s);
+        view.normals = L.store.normals(s);
+    }
+    return view;
+}
+
+std::span<const glm::mat4> GeometryController::proxy_boxes(uint32_t character) const {
+    const uint8_t l = level_of(character);
+    if (l == kNoLevel || levels_[l]->lod.method != GeomMethod::RigidProxy) return {};
+    const uint32_t s = slot_of_[character];
+    return levels_[l]->store.valid[s] ? levels_[l]->store.boxes(s) : std::span<const glm::mat4>{};
+}
+
+std::span<const glm::vec3> GeometryController::muscle_positions(uint32_t character) const {
+    const uint8_t l = level_of(character);
+    if (l == kNoLevel || !levels_[l]->layered()) return {};
+    const uint32_t s = slot_of_[character];
+    return levels_[l]->store.valid[s] ? levels_[l]->store.muscle_positions(s) : std::span<const glm::vec3>{};
+}
+
+std::span<const uint32_t> GeometryController::level_indices(uint8_t level) const { return levels_.at(level)->indices; }
+
+uint32_t GeometryController::topology_key(uint8_t level) const {
+    const Level& L = *levels_.at(level);
+    return uint32_t{geometry_->type()} << 16 | uint32_t{L.revision} << 8 | level;
+}
+
+const GeomLod& GeometryController::level(uint8_t level) const { return levels_.at(level)->lod; }
+
+uint32_t GeometryController::vertices_per_character(uint8_t level) const { return levels_.at(level)->display_vertices; }
+
+size_t GeometryController::bytes_per_character(uint8_t level) const { return levels_.at(level)->store.bytes_per_slot(); }
+
+uint32_t GeometryController::slot_capacity(uint8_t level) const { return levels_.at(level)->store.capacity(); }
+
+uint32_t GeometryController::characters_at(uint8_t level) const { return levels_.at(level)->store.in_use(); }
+
+size_t GeometryController::memory_bytes() const {
+    size_t bytes = level_of_.size() * (sizeof(uint8_t) + sizeof(uint32_t));
+    for (const auto& L : levels_)
+        bytes += size_t{L->store.capacity()} * L->store.bytes_per_slot() + L->own_indices.size() * sizeof(uint32_t);
+    return bytes;
+}
+
+uint8_t GeometryController::level_of(uint32_t character) const {
+    return character < level_of_.size() ? level_of_[character] : kNoLevel;
+}
+
+uint16_t GeometryController::geomorph_frames_left(uint32_t character) const {
+    const uint8_t l = level_of(character);
+    if (l == kNoLevel) return 0;
+    return levels_[l]->store.frames_left_of(slot_of_[character]);
+}
+
+}  // namespace aloha

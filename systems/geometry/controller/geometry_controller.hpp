@@ -1,0 +1,161 @@
+// GeometryController: runs the geometric LOD levels of one character type for a crowd.
+//
+// Each level (a GeomLod of the rule file, level 0 = richest) owns a SlotStore; a character holds one
+// slot of the level it is in. Methods:
+//   RigidProxy  -> RigidProxyJob: one box per joint, matrices map the cube [-1, 1]^3 onto the box
+//                  (character space).
+//   SkinnedMesh -> LinearBlendSkinJob of the real mesh, or of the bind mesh generated from the
+//                  muscles at the level's (T, P) (a type without a mesh).
+//   Layered     -> MuscleShapeJob + MuscleTessellateJob, then FatSpringJob + SkinJob (skin = outer
+//                  spring ends, grid layout) or, for a real mesh, BoundSkinJob + vertex normals.
+//   Subdivided  -> Layered, then SubdivideJob at GeomLod::subdiv_level (the control surface is the
+//                  Layered skin; its normals are not computed).
+// The "control surface" of a mesh level is the grid skin at (T, P) for a type without a mesh and the
+// real mesh's vertices otherwise, so every pair of mesh levels of one type can geomorph: the old
+// displayed control surface is sampled at the new vertices' (muscle, theta, phi) (or taken vertex
+// by vertex for a real mesh) when the character enters the new level, and GeomorphJob slides the
+// new surface from it over N frames (the morph is applied to the control surface, before
+// subdivision).
+// Threading: begin_level / end_character / set_levels are serial (between frames or in the resolve
+// phase). update() may run concurrently for DISJOINT character lists of the same or different
+// levels: it only writes the slots of its characters and allocates nothing.
+#pragma once
+
+#include "components/lod.hpp"
+#include "systems/geometry/controller/character_geometry.hpp"
+#include "systems/geometry/controller/slot_store.hpp"
+#include "systems/geometry/spring_skin/fat_spring.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+/// Where the model-space (character space) joint matrices of every character live: character c's
+/// joint_count matrices start at model + c * stride. Requires stride >= the type's joint count.
+struct PoseSource {
+    const glm::mat4* model = nullptr;  ///< matrices of character 0
+    size_t stride = 0;                 ///< matrices between consecutive character ids
+    /// The `count` matrices of character `c`.
+    [[nodiscard]] std::span<const glm::mat4> joints(uint32_t c, size_t count) const {
+        return {model + size_t{c} * stride, count};
+    }
+};
+
+/// One character's current mesh surface (character space). Empty spans for RigidProxy / Hidden /
+/// no level / not yet updated.
+struct SurfaceView {
+    uint8_t level = 0xFF;                 ///< geometric level, 0xFF = none
+    uint32_t topology_key = 0;            ///< type << 16 | revision << 8 | level: same key, same index buffer
+    std::span<const glm::vec3> positions; ///< vertices (grid layout, mesh order or refined)
+    std::span<const glm::vec3> normals;   ///< unit normals, same size
+};
+
+/// The geometric controller of one character type.
+class GeometryController {
+public:
+    /// "No level" marker for level_of().
+    static constexpr uint8_t kNoLevel = 0xFF;
+
+    /// Controller for `geometry` (must outlive it) with the rule file's levels (at most 255; each
+    /// grid level needs T >= 3, P >= 2; subdiv_level <= 4) and room for `capacity` character ids
+    /// (grows when a larger id enters). Builds every level's shared data (tables, bind meshes,
+    /// subdivision, index buffers).
+    GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity);
+    ~GeometryController();
+    GeometryController(const GeometryController&) = delete;
+    GeometryController& operator=(const GeometryController&) = delete;
+
+    /// Replaces the level table (rule reload). Levels whose method, (T, P) and subdivision are
+    /// unchanged keep their storage and characters; changed levels are rebuilt (new topology key)
+    /// and their characters get fresh slots (springs restart at rest, no morph). Characters in a
+    /// level past the new table's end move to its last level. Serial only.
+    void set_levels(std::span<const GeomLod> levels);
+
+    /// `character` enters `level`: takes a slot there, starts a geomorph of `geomorph_frames` frames
+    /// from its old surface when both levels are mesh levels and the old surface has been shown,
+    /// and releases the old slot. `previous_level` is the caller's view of the old level (-1 on
+    /// spawn); the controller's own record wins when they differ. Entering the current level again
+    /// does nothing. Serial only. Requires level < level_count().
+    void begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames);
+    /// Releases the character's slot (despawn). Serial only.
+    void end_character(uint32_t character);
+
+    /// Runs `level`'s method for `characters` (each must currently be in `level`) with their poses
+    /// from `poses` and frame time `dt` > 0 (fat springs). Thread-safe for disjoint character lists.
+    void update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
+
+    /// The character's displayed surface (valid until its next update / begin_level / set_levels).
+    [[nodiscard]] SurfaceView surface(uint32_t character) const;
+    /// The character's proxy boxes (one per joint, unit cube [-1, 1]^3 -> box, character space), or
+    /// empty when it is not at a RigidProxy level.
+    [[nodiscard]] std::span<const glm::mat4> proxy_boxes(uint32_t character) const;
+    /// The character's tessellated muscle surface (muscles x V(T, P), for debug drawing), or empty
+    /// when its level has no muscles.
+    [[nodiscard]] std::span<const glm::vec3> muscle_positions(uint32_t character) const;
+    /// Triangle list shared by every character of `level` (empty for RigidProxy / Hidden).
+    [[nodiscard]] std::span<const uint32_t> level_indices(uint8_t level) const;
+    /// Topology key of `level` (see SurfaceView::topology_key).
+    [[nodiscard]] uint32_t topology_key(uint8_t level) const;
+
+    /// Number of levels.
+    [[nodiscard]] uint8_t level_count() const { return static_cast<uint8_t>(levels_.size()); }
+    /// The level's parameters.
+    [[nodiscard]] const GeomLod& level(uint8_t level) const;
+    /// Displayed vertices per character at `level` (0 for RigidProxy / Hidden).
+    [[nodiscard]] uint32_t vertices_per_character(uint8_t level) const;
+    /// Bytes of per-character storage at `level` (what one character costs there).
+    [[nodiscard]] size_t bytes_per_character(uint8_t level) const;
+    /// Slots allocated at `level` (grows only when all are in use).
+    [[nodiscard]] uint32_t slot_capacity(uint8_t level) const;
+    /// Characters currently at `level`.
+    [[nodiscard]] uint32_t characters_at(uint8_t level) const;
+    /// Bytes of all per-character storage plus the shared index buffers.
+    [[nodiscard]] size_t memory_bytes() const;
+    /// The character's level, or kNoLevel.
+    [[nodiscard]] uint8_t level_of(uint32_t character) const;
+    /// Geomorph frames the character still has to show (0 when not morphing).
+    [[nodiscard]] uint16_t geomorph_frames_left(uint32_t character) const;
+    /// Character ids the controller has room for.
+    [[nodiscard]] uint32_t capacity() const { return static_cast<uint32_t>(level_of_.size()); }
+    /// The character type.
+    [[nodiscard]] const CharacterGeometry& geometry() const { return *geometry_; }
+
+    /// Fat-spring tuning (dt is replaced by update's dt).
+    [[nodiscard]] const FatSpringParams& spring_params() const { return spring_params_; }
+    /// Sets the fat-spring tuning. Serial only.
+    void set_spring_params(const FatSpringParams& params) { spring_params_ = params; }
+
+    /// The surface `character` would have at `reference_level` for its pose in `poses`, computed
+    /// without touching any state (springs at rest, no morph). Empty for RigidProxy / Hidden.
+    /// Allocates (a measurement tool, not per-frame code).
+    void reference_surface(const PoseSource& poses, uint32_t character, uint8_t reference_level,
+                           std::vector<glm::vec3>& positions) const;
+    /// Matched point pairs for fidelity: for every vertex of the character's current control surface
+    /// (the displayed surface, before subdivision) `current` gets the vertex and `reference` the
+    /// reference level's control surface (springs at rest) at the same (muscle, theta, phi) (bilinear
+    /// on the reference grid), or the same mesh vertex for a real mesh. Both are empty when either
+    /// level is not a mesh level or the character has not been updated yet. Allocates.
+    void deviation_pairs(const PoseSource& poses, uint32_t character, uint8_t reference_level,
+                         std::vector<glm::vec3>& current, std::vector<glm::vec3>& reference) const;
+
+    struct Level;  ///< per-level shared data + storage (internal)
+
+private:
+    std::unique_ptr<Level> build_level(const GeomLod& lod, uint8_t index, uint8_t revision) const;
+    void capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot);
+    void control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out) const;
+    void ensure_capacity(uint32_t character);
+
+    const CharacterGeometry* geometry_;
+    std::vector<std::unique_ptr<Level>> levels_;
+    std::vector<uint8_t> level_of_;
+    std::vector<uint32_t> slot_of_;
+    FatSpringParams spring_params_;
+};
+
+}  // namespace aloha

@@ -1,0 +1,156 @@
+// Phase 2 of the motion controller: pose evaluation of the characters due this frame (clip
+// sampling, walks, method hooks, cross-fade blending), serially or in parallel chunks on TBB.
+#include "systems/motion/blend.hpp"
+#include "systems/motion/controller.hpp"
+#include "systems/motion/local_to_model.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace aloha {
+
+namespace {
+glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
+}  // namespace
+
+void MotionController::sample_walk_clip(Channel& ch, const PoseView& out) const {
+    const AnimationClip& clip = *clips_->find(static_cast<ClipId>(walk_clip_));
+    const float t = wrap_clip_time(ch.time, clip.duration(), true);
+    int k = 0;
+    float alpha = 0.0f;
+    find_key(clip, t, &ch.cache, &k, &alpha);
+    sample_blocks(clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
+    // Root motion: remove the clip's average horizontal travel (the Transform moves instead) and
+    // turn the clip so it travels along +Z.
+    const glm::vec3 d = horizontal(clip.root_end() - clip.root_start());
+    const float frac = clip.duration() > 0.0f ? t / clip.duration() : 0.0f;
+    glm::vec3& rt = out.translations[0];
+    rt.x -= clip.root_start().x + d.x * frac;
+    rt.z -= clip.root_start().z + d.z * frac;
+    if (glm::length(d) > 1e-6f) {
+        const glm::quat q = glm::angleAxis(-std::atan2(d.x, d.z), glm::vec3(0, 1, 0));
+        rt = q * rt;
+        out.rotations[0] = glm::normalize(q * out.rotations[0]);
+    }
+}
+
+void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
+                                Velocity& velocity, float posed_dt, bool primary, bool first) {
+    const int16_t* parents = skeleton_->parents().data();
+    const size_t n = static_cast<size_t>(skeleton_->joint_count());
+    auto l2m = [&] { local_to_model(parents, out.translations.data(), out.rotations.data(), out.scales.data(), nullptr, out.model.data(), n); };
+    auto hook = [&](MethodSlot slot) {
+        MethodContext ctx{c, &ch.req, skeleton_, &lod, out, &placement, &velocity, posed_dt, ch.request_time, first};
+        hooks_[static_cast<size_t>(slot)](hook_users_[static_cast<size_t>(slot)], ctx);
+    };
+    switch (ch.req.kind) {
+        case RequestKind::PlayClip: {
+            const AnimationClip* clip = clips_->find(ch.req.clip);
+            if (!clip) return;  // unknown clip: hold the pose
+            const float t = wrap_clip_time(ch.time, clip->duration(), ch.req.loop != 0);
+            int k = 0;
+            float alpha = 0.0f;
+            find_key(*clip, t, &ch.cache, &k, &alpha);
+            sample_blocks(*clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
+            l2m();
+            return;
+        }
+        case RequestKind::Walk: {
+            const WalkMethod m = walk_method(lod);
+            const float speed = std::max(ch.req.speed, 0.0f);
+            if (m == WalkMethod::ClipPlayback && walk_clip_ >= 0) {
+                sample_walk_clip(ch, out);
+                l2m();
+            } else if (rig_) {
+                kinematic_walk_pose(*rig_, *skeleton_, ch.walk, speed, placement, out, gait_);
+                if (m == WalkMethod::Dynamic && primary) {
+                    hook(MethodSlot::DynamicWalk);
+                    l2m();
+                }
+            }
+            return;
+        }
+        case RequestKind::Reach:
+        case RequestKind::LookAt: {
+            const MethodSlot slot = ch.req.kind == RequestKind::Reach ? MethodSlot::Reach : MethodSlot::LookAt;
+            if (!hooks_[static_cast<size_t>(slot)]) return;  // no IK registered: hold the pose
+            l2m();
+            hook(slot);
+            l2m();
+            return;
+        }
+        case RequestKind::Rest: return;
+    }
+}
+
+void MotionController::pose_one(const Due& d, size_t worker) {
+    const uint32_t c = d.character;
+    Character& ch = chars_[c];
+    const AnimLod& lod = lods_[d.element];
+    Transform& x = transforms_[d.element];
+    Velocity& v = velocities_[d.element];
+    const PoseView out = pool_.view(c);
+    const bool live_fade = ch.fade_left > 0.0f && !ch.fade_snapshot;
+    const PoseView scratch = scratch_.view(worker);
+    if (live_fade) {
+        // The request faded from holds the pose shown so far if it cannot produce one: start the
+        // scratch from it, so the result never depends on what another character left there.
+        const ConstPoseView shown = std::as_const(pool_).view(c);
+        std::copy(shown.translations.begin(), shown.translations.end(), scratch.translations.begin());
+        std::copy(shown.rotations.begin(), shown.rotations.end(), scratch.rotations.begin());
+        std::copy(shown.scales.begin(), shown.scales.end(), scratch.scales.begin());
+        std::copy(shown.model.begin(), shown.model.end(), scratch.model.begin());
+    }
+    evaluate(c, ch.cur, lod, out, x, v, d.posed_dt, true, d.started);
+    if (ch.fade_left > 0.0f) {
+        const float w = ch.fade_left / ch.fade_total;  // weight of the pose faded from
+        if (ch.fade_snapshot) {
+            blend_into(out, std::as_const(snapshot_).view(c), w);
+        } else {
+            evaluate(c, ch.prev, lod, scratch, x, v, d.posed_dt, false, false);
+            blend_into(out, std::as_const(scratch_).view(worker), w);
+        }
+        local_to_model(skeleton_->parents().data(), out.translations.data(), out.rotations.data(),
+                       out.scales.data(), nullptr, out.model.data(), static_cast<size_t>(skeleton_->joint_count()));
+    }
+}
+
+void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
+    end = std::min(end, due_.size());
+    for (size_t i = begin; i < end; ++i) pose_one(due_[i], worker);
+}
+
+size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                                std::span<Transform> transforms, std::span<Velocity> velocities,
+                                std::span<const uint32_t> element_of_character) {
+    const size_t due = begin_update(dt, lods, states, transforms, velocities, element_of_character);
+    evaluate_due(0, due, 0);
+    return due;
+}
+
+size_t MotionController::update_parallel(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                                         std::span<Transform> transforms, std::span<Velocity> velocities,
+                                         std::span<const uint32_t> element_of_character, size_t grain) {
+    const size_t due = begin_update(dt, lods, states, transforms, velocities, element_of_character);
+    if (grain == 0) grain = 64;
+    if (due <= grain) {
+        evaluate_due(0, due, 0);
+        return due;
+    }
+    // One scratch slot per thread of the arena; results do not depend on which thread runs a chunk.
+    const auto threads = static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
+    if (workers_ < threads) set_worker_slots(threads);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, due, grain), [this](const tbb::blocked_range<size_t>& r) {
+        const int t = tbb::this_task_arena::current_thread_index();
+        const size_t worker = t >= 0 && static_cast<size_t>(t) < workers_ ? static_cast<size_t>(t) : 0;
+        evaluate_due(r.begin(), r.end(), worker);
+    });
+    return due;
+}
+
+}  // namespace aloha

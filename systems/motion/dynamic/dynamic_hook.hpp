@@ -1,0 +1,39 @@
+// Dynamic walk for the motion controller: the MethodSlot::DynamicWalk hook. Each character whose
+// AnimLod::walk is Dynamic gets a DynamicWalkState (initialised from its pose when it enters the
+// method, freed when it leaves) that is stepped toward the kinematic gait pose the controller
+// computed (local rotations + root), and the simulated pose replaces the kinematic one.
+#pragma once
+
+#include "systems/motion/controller.hpp"
+#include "systems/motion/dynamic/dynamic_walk.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace aloha {
+
+/// One character's simulation slot.
+struct DynamicCharacter {
+    DynamicWalkState state;              ///< the simulation (buffers sized at initialisation)
+    std::vector<glm::quat> target;       ///< scratch: target local rotations (joint count)
+    uint8_t initialised = 0;             ///< 1 while the character is simulated
+    uint8_t failed = 0;                  ///< 1 when initialisation failed (the kinematic pose is kept)
+    uint32_t steps = 0;                  ///< simulation steps taken since initialisation
+};
+
+/// Settings and per-character state of the dynamic walk hook. Must outlive the controller it is
+/// registered with; change settings before registering.
+struct DynamicHookContext {
+    DynamicWalkSettings settings;        ///< passed to init_dynamic_walk
+    float max_step = 1.0f / 60.0f;       ///< longest simulation step (s); longer posed intervals are split
+    std::vector<DynamicCharacter> characters;  ///< per character (controller capacity), filled by registration
+    /// Number of characters simulated now.
+    [[nodiscard]] size_t simulated() const;
+};
+
+/// Sizes `context` for `controller` and registers the DynamicWalk hook and its release callback.
+/// The controller then runs WalkMethod::Dynamic (it requires a walk rig: set_walk_rig) instead of
+/// falling back to Kinematic. The simulation frame is the character's Transform without scale.
+void register_dynamic_walk_hook(MotionController& controller, DynamicHookContext& context);
+
+}  // namespace aloha

@@ -1,0 +1,143 @@
+#include "engine/scene/scene_loader.hpp"
+#include "engine/scene/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace aloha {
+namespace {
+
+const std::string kScenes = std::string(ALOHA_SOURCE_DIR) + "/data/scenes/";
+
+SceneDesc small_crowd(uint32_t count, CrowdMix mix = {0.6f, 0.3f, 0.1f}) {
+    auto scene = load_scene(kScenes + "crowd_1k.json");
+    EXPECT_TRUE(scene.ok());
+    SceneDesc s = scene.value();
+    s.crowds[0].count = count;
+    s.crowds[0].mix = mix;
+    return s;
+}
+
+std::unique_ptr<World> make_world(const SceneDesc& s, WorldOptions o = {}) {
+    auto w = World::create(s, o);
+    EXPECT_TRUE(w.ok()) << (w.ok() ? "" : w.error().to_string());
+    return w.ok() ? std::move(w.value()) : nullptr;
+}
+
+TEST(World, SameSceneSameHashAcrossRunsAndThreadCounts) {
+    const SceneDesc s = small_crowd(300);
+    WorldOptions one, two;
+    one.threads = 1;
+    two.threads = 2;
+    auto a = make_world(s, one), b = make_world(s, one), c = make_world(s, two);
+    ASSERT_TRUE(a && b && c);
+    for (int f = 0; f < 40; ++f) {
+        a->step();
+        b->step();
+        c->step();
+    }
+    EXPECT_EQ(a->state_hash(), b->state_hash());
+    EXPECT_EQ(a->state_hash(), c->state_hash());
+    auto d = make_world(s, one);
+    for (int f = 0; f < 39; ++f) d->step();
+    EXPECT_NE(a->state_hash(), d->state_hash());  // the hash really covers the motion
+}
+
+TEST(World, CharactersStayGroupedByTypeAndLevel) {
+    auto w = make_world(small_crowd(500));
+    ASSERT_TRUE(w);
+    for (int f = 0; f < 30; ++f) {
+        w->step();
+        auto g = character_group(w->registry());
+        auto geom = g.span<GeomLod>();
+        auto refs = g.span<CharacterRef>();
+        for (size_t i = 1; i < g.size(); ++i) {
+            const uint32_t prev = (uint32_t(refs[i - 1].type) << 8) | geom[i - 1].level;
+            const uint32_t cur = (uint32_t(refs[i].type) << 8) | geom[i].level;
+            ASSERT_LE(prev, cur) << "frame " << f << " position " << i;
+        }
+    }
+}
+
+TEST(World, LodOffPutsEveryoneAtTheTopLevel) {
+    WorldOptions o;
+    o.lod = false;
+    auto w = make_world(small_crowd(50), o);
+    ASSERT_TRUE(w);
+    for (int f = 0; f < 3; ++f) w->step();
+    auto g = character_group(w->registry());
+    for (const LodState& s : g.span<LodState>()) {
+        EXPECT_EQ(s.geom_level, 0);
+        EXPECT_EQ(s.anim_level, 0);
+    }
+    const LodStats& stats = w->lod_stats();
+    ASSERT_FALSE(stats.per_geom_level.empty());
+    EXPECT_EQ(stats.per_geom_level[0], 50u);
+}
+
+TEST(World, DefaultRulesSpreadACrowdOverLevels) {
+    auto w = make_world(small_crowd(1000));
+    ASSERT_TRUE(w);
+    for (int f = 0; f < 5; ++f) w->step();
+    const LodStats& stats = w->lod_stats();
+    uint32_t used = 0, total = 0;
+    for (uint32_t n : stats.per_geom_level) used += n > 0, total += n;
+    EXPECT_EQ(total, 1000u);
+    EXPECT_GE(used, 2u);  // not everyone at one level
+    EXPECT_FALSE(w->render_lists().proxies.empty());
+}
+
+TEST(World, RestingCharactersCostNothingInMotion) {
+    SceneDesc s = small_crowd(200);
+    s.crowds.clear();
+    for (int i = 0; i < 200; ++i) {
+        CharacterDesc c;
+        c.position = glm::vec3(float(i % 20) * 2.0f, 0.0f, float(i / 20) * 2.0f);
+        s.characters.push_back(c);  // no requests: at rest
+    }
+    s.characters[0].requests.push_back(RequestDesc{});
+    s.characters[0].requests[0].request.kind = RequestKind::Walk;
+    auto w = make_world(s);
+    ASSERT_TRUE(w);
+    w->step();
+    auto g = character_group(w->registry());
+    size_t moving = 0;
+    for (const MotionState& m : g.span<MotionState>()) moving += m.at_rest == 0;
+    EXPECT_EQ(moving, 1u);  // only the walker is in the motion pass
+}
+
+TEST(World, RuleFileReloadKeepsCharacterState) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "aloha_world_reload";
+    fs::create_directories(dir);
+    const fs::path rules = dir / "rules.json";
+    fs::copy_file(std::string(ALOHA_SOURCE_DIR) + "/data/rules/default.json", rules, fs::copy_options::overwrite_existing);
+    SceneDesc s = small_crowd(100);
+    s.rules = rules.string();
+    auto w = make_world(s);
+    ASSERT_TRUE(w);
+    for (int f = 0; f < 20; ++f) w->step();
+    const uint64_t hash_before = w->state_hash();
+    const uint32_t generation = w->rules().generation();
+    // Rewrite the file (same content, new modification time): the World picks it up without a restart.
+    std::string text;
+    {
+        std::ifstream in(rules);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    fs::last_write_time(rules, fs::last_write_time(rules) + std::chrono::seconds(5));
+    {
+        std::ofstream out(rules);
+        out << text << "\n";
+    }
+    ASSERT_TRUE(w->rules().reload_from_file().ok());
+    EXPECT_GT(w->rules().generation(), generation);
+    EXPECT_EQ(w->state_hash(), hash_before);  // nothing reset by the reload itself
+    w->step();
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace aloha

@@ -1,0 +1,119 @@
+// A glTF character (CesiumMan, muscles fitted per bone) at every geometric level.
+#include "engine/assets/gltf_loader.hpp"
+#include "systems/geometry/controller/gltf_character_mesh.hpp"
+#include "systems/geometry/muscle/muscle_fit.hpp"
+#include "tests/systems/geometry/controller/test_humanoid.hpp"
+
+#include <gtest/gtest.h>
+
+namespace aloha {
+namespace {
+
+struct Cesium {
+    std::unique_ptr<CharacterGeometry> geometry;
+    RawAnimation clip;
+    std::string error;
+};
+
+const Cesium& cesium() {
+    static const Cesium c = [] {
+        Cesium out;
+        const std::string path = std::string(ALOHA_SHARED_ASSETS_DIR) + "/CesiumMan.glb";
+        auto loaded = load_gltf_character(path);
+        if (!loaded.ok()) {
+            out.error = loaded.error().to_string();
+            return out;
+        }
+        auto skeleton = build_skeleton(loaded.value().skeleton, path);
+        if (!skeleton.ok()) {
+            out.error = skeleton.error().to_string();
+            return out;
+        }
+        CharacterMesh mesh = character_mesh_from_gltf(loaded.value(), skeleton.value());
+        const std::vector<glm::mat4> rest = rest_model_matrices(skeleton.value());
+        const std::vector<glm::vec3> rest_positions = skin_mesh_positions(mesh, rest);
+        MuscleFitOptions fit;
+        fit.source_name = path;
+        auto muscles = fit_muscles_per_bone(skeleton.value(), rest, rest_positions, widen_joints(mesh.joints), mesh.weights, fit);
+        if (!muscles.ok()) {
+            out.error = muscles.error().to_string();
+            return out;
+        }
+        CharacterGeometryDesc desc;
+        desc.type = 7;
+        desc.name = path;
+        desc.skeleton = std::move(skeleton).value();
+        desc.muscles = std::move(muscles).value();
+        desc.rest_model = rest;
+        desc.mesh = std::move(mesh);
+        auto geometry = CharacterGeometry::create(std::move(desc));
+        if (!geometry.ok()) {
+            out.error = geometry.error().to_string();
+            return out;
+        }
+        out.geometry = std::move(geometry).value();
+        out.clip = loaded.value().clips.front();
+        return out;
+    }();
+    return c;
+}
+
+TEST(GeometryControllerGltf, CesiumManWorksAtEveryLevel) {
+    ASSERT_NE(cesium().geometry, nullptr) << cesium().error;
+    const CharacterGeometry& g = *cesium().geometry;
+    const uint32_t n = static_cast<uint32_t>(g.mesh().positions.size());
+    EXPECT_EQ(n, 3273u);
+    const auto levels = test::test_levels();
+    GeometryController ctl(g, levels, levels.size());
+    for (uint8_t l = 0; l < levels.size(); ++l) ctl.begin_level(l, l, -1, 0);
+    // Mesh levels show the real mesh's vertices (refined ones at the Subdivided level).
+    for (uint8_t l = 1; l <= 3; ++l) EXPECT_EQ(ctl.vertices_per_character(l), n);
+    EXPECT_GT(ctl.vertices_per_character(0), n);
+    EXPECT_EQ(ctl.level_indices(1).size(), g.mesh().indices.size());
+
+    // At the rest pose the real mesh is reproduced: SkinnedMesh by construction (palette = rest *
+    // inverse bind) and Layered(16, 12) because it is the bind tessellation, where a binding
+    // evaluates to its own vertex (float rounding of frames at ~1 m: 1e-4).
+    const PoseSource rest{g.rest_model().data(), 0};
+    for (uint32_t c = 0; c < levels.size(); ++c) ctl.update(static_cast<uint8_t>(c), std::span(&c, 1), rest, 1.0f / 30.0f);
+    EXPECT_LE(test::max_distance(ctl.surface(3).positions, g.mesh_rest_positions()), 1e-4f);
+    EXPECT_LE(test::max_distance(ctl.surface(1).positions, g.mesh_rest_positions()), 1e-4f);
+
+    // Animated frames: every level gives finite output of its size, unit normals.
+    for (size_t key = 0; key < 40; key += 8) {
+        const auto pose = test::clip_pose(g.skeleton(), cesium().clip, key);
+        for (uint32_t c = 0; c < levels.size(); ++c) ctl.update(static_cast<uint8_t>(c), std::span(&c, 1), PoseSource{pose.data(), 0}, 1.0f / 30.0f);
+        for (uint8_t l = 0; l <= 3; ++l) {
+            SCOPED_TRACE(static_cast<int>(l));
+            const SurfaceView view = ctl.surface(l);
+            ASSERT_EQ(view.positions.size(), ctl.vertices_per_character(l));
+            ASSERT_EQ(view.normals.size(), view.positions.size());
+            for (size_t i = 0; i < view.positions.size(); ++i) {
+                ASSERT_TRUE(test::finite(view.positions[i])) << i;
+                ASSERT_NEAR(glm::length(view.normals[i]), 1.0f, 1e-5f) << i;
+            }
+        }
+        EXPECT_EQ(ctl.proxy_boxes(4).size(), g.joint_count());
+        // The layered mesh follows the skinned one: muscles sit inside the skin, so the two agree to
+        // a few centimetres in any pose (not exactly: the muscles bulge and the tessellation differs).
+        EXPECT_LT(test::max_distance(ctl.surface(1).positions, ctl.surface(3).positions), 0.1f);
+    }
+
+    // Morphing between mesh levels of a real mesh is vertex to vertex: the first frame moves each
+    // vertex by |old - new| / N.
+    const auto pose = test::clip_pose(g.skeleton(), cesium().clip, 20);
+    const PoseSource src{pose.data(), 0};
+    const std::vector<glm::vec3> old(ctl.surface(1).positions.begin(), ctl.surface(1).positions.end());
+    ctl.begin_level(1, 3, 1, 4);
+    const uint32_t c1 = 1;
+    ctl.update(3, std::span(&c1, 1), src, 1.0f / 30.0f);
+    std::vector<glm::vec3> fresh;
+    ctl.reference_surface(src, 1, 3, fresh);  // what level 3 shows without a morph
+    const auto shown = ctl.surface(1).positions;
+    ASSERT_EQ(shown.size(), old.size());
+    for (size_t i = 0; i < shown.size(); ++i)
+        ASSERT_NEAR(glm::length(shown[i] - old[i]), glm::length(old[i] - fresh[i]) / 4.0f, 2e-5f) << i;
+}
+
+}  // namespace
+}  // namespace aloha

@@ -1,0 +1,9 @@
+# Tests of the geometric controller (included from tests/systems/geometry/CMakeLists.txt).
+aloha_test(geomctl_tests
+  SOURCES
+    ${CMAKE_CURRENT_LIST_DIR}/controller_levels_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/controller_morph_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/controller_threads_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/controller_gltf_test.cpp
+  LIBS aloha::geometry aloha::assets
+  LABELS geometry)
