@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake --preset release >/dev/null
-cmake --build --preset release --target aloha
+cmake --build --preset release --target aloha_tool
 SCENE="${1:-data/scenes/crowd_1k.json}"
 OUT="${OUT:-out/profile}"
 ./build/release/engine/tool/aloha profile "$SCENE" --out "$OUT" "${@:2}"

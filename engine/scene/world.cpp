@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 
 namespace aloha {
@@ -51,6 +52,17 @@ PoseSource CharacterRuntime::poses() const {
 }
 
 World::~World() = default;
+
+uint64_t available_memory_bytes() {
+    std::FILE* f = std::fopen("/proc/meminfo", "r");
+    if (!f) return 0;
+    char line[256];
+    uint64_t kib = 0;
+    while (std::fgets(line, sizeof line, f))
+        if (std::sscanf(line, "MemAvailable: %lu kB", &kib) == 1) break;
+    std::fclose(f);
+    return kib * 1024;
+}
 
 const CharacterType& World::type(size_t i) const { return types_[i]->type; }
 
@@ -99,6 +111,18 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
     for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
     for (size_t t = 0; t < types_.size(); ++t)
         if (Status s = types_[t]->init_geometry(static_cast<uint16_t>(t), levels); !s.ok()) return s;
+    if (!options.lod) {
+        // With LOD off every character sits at level 0: refuse up front (with the figures) rather than
+        // run out of memory half-way through the first frame.
+        uint64_t need = 0;
+        for (const auto& rt : types_) need += uint64_t(rt->count) * rt->geometry->bytes_per_character(0);
+        const uint64_t have = available_memory_bytes();
+        if (have > 0 && need > have * 8 / 10)
+            return make_error(scene.file, "--lod off puts all " + std::to_string(character_count()) + " characters at level '" +
+                                              table.geom_levels[0].name + "': " + std::to_string(need >> 20) +
+                                              " MiB of geometry, more than 80% of the " + std::to_string(have >> 20) +
+                                              " MiB available; use --characters to profile fewer");
+    }
     register_systems();
     if (Status s = scheduler_.build(); !s.ok()) return s;
     scheduler_.set_threads(options.threads);

@@ -57,6 +57,9 @@ struct RenderLists {
     std::vector<LineSegment> lines;
 };
 
+/// Memory the system reports as available (MemAvailable), 0 when unknown.
+uint64_t available_memory_bytes();
+
 /// The frame as the profiler's fidelity check sees it (see World::reference_frame).
 struct ReferenceFrame {
     std::vector<DeformableMesh> meshes;           ///< visible characters at the reference level
@@ -148,6 +151,7 @@ private:
     LodCamera camera_;
     std::vector<std::unique_ptr<CharacterRuntime>> types_;
     std::vector<uint32_t> sort_keys_;
+    std::vector<uint32_t> due_ids_;                  ///< per-frame scratch: characters needing geometry work
     std::vector<uint32_t> ids_;                      ///< group position -> character id in its type
     std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< geometry topology key -> renderer id
     std::vector<uint32_t> changed_;

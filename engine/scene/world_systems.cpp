@@ -131,29 +131,46 @@ void World::register_systems() {
 
     // The geometric controller: per (type, level) range one tight loop of that level's method (rigid
     // proxies, linear-blend skin, muscles + fat springs + skin, OpenSubdiv), chunks in parallel.
-    scheduler_.add({"geometry", Phase::Tessellate, reads<GeomLod, CharacterRef, PoseResource>(),
+    scheduler_.add({"geometry", Phase::Tessellate, reads<GeomLod, LodState, MotionState, CharacterRef, PoseResource>(),
                     writes<SurfaceResource>(), [this](SystemContext& ctx) {
                         auto g = character_group(registry_);
                         auto refs = g.span<CharacterRef>();
                         auto geom = g.span<GeomLod>();
+                        auto motion = g.span<MotionState>();
+                        auto states = g.span<LodState>();
+                        due_ids_.resize(g.size());
                         for (const KeyRange& r : ranges_) {
-                            if (geom[r.begin].method == GeomMethod::Hidden) continue;
+                            const GeomMethod method = geom[r.begin].method;
+                            if (method == GeomMethod::Hidden) continue;
                             CharacterRuntime& rt = *types_[refs[r.begin].type];
                             const PoseSource poses = rt.poses();
                             const uint8_t level = geom[r.begin].level;
+                            // Proxies and linear-blend skins depend on the pose alone: only characters posed
+                            // this frame (update_interval throttling), entering the level or morphing need
+                            // work. Layered levels run every frame (the fat springs move).
+                            std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
+                            if (method == GeomMethod::RigidProxy || method == GeomMethod::SkinnedMesh) {
+                                size_t n = 0;
+                                for (size_t i = r.begin; i < r.end; ++i)
+                                    if (motion[i].frames_since_update == 0 || states[i].frames_at_geom == 0 ||
+                                        states[i].geomorph_left > 0 || first_frame_ ||
+                                        rt.geometry->geomorph_frames_left(refs[i].id) > 0)
+                                        due_ids_[r.begin + n++] = refs[i].id;
+                                ids = std::span<const uint32_t>(due_ids_.data() + r.begin, n);
+                            }
                             // Grain: cheap methods in big chunks, rich ones one or a few characters each.
-                            const size_t grain = geom[r.begin].method == GeomMethod::RigidProxy ? 256
-                                                 : geom[r.begin].method == GeomMethod::SkinnedMesh ? 16 : 1;
-                            const std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
+                            const size_t grain = method == GeomMethod::RigidProxy ? 256 : method == GeomMethod::SkinnedMesh ? 16 : 1;
                             ctx.parallel_for(ids.size(), grain, [&](size_t b, size_t e) {
                                 rt.geometry->update(level, ids.subspan(b, e - b), poses, ctx.dt());
                             });
                         }
                     }});
 
-    scheduler_.add({"render_prepare", Phase::Skin,
+    scheduler_.add({"render_prepare", Phase::Render,
                     reads<SurfaceResource, Transform, GeomLod, LodState, AnimLod, CharacterRef>(),
-                    writes<DrawListResource>(), [this](SystemContext&) { gather_render_lists(); }});
+                    writes<DrawListResource>(), [this](SystemContext&) {
+                        if (renderer_) gather_render_lists();
+                    }});
 
     scheduler_.add({"render", Phase::Render, reads<DrawListResource, CameraResource>(), writes<GpuResource>(),
                     [this](SystemContext&) {

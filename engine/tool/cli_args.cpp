@@ -1,0 +1,180 @@
+#include "engine/tool/cli_args.hpp"
+
+#include <charconv>
+#include <set>
+
+namespace aloha::tool {
+
+namespace {
+
+Error arg_error(const std::string& message) { return make_error("command line", message); }
+
+template <class T>
+bool parse_number(const std::string& text, T& out) {
+    const char* end = text.data() + text.size();
+    auto [p, ec] = std::from_chars(text.data(), end, out);
+    return ec == std::errc() && p == end;
+}
+
+const std::set<std::string> kCommands = {"render", "view", "profile", "validate", "help"};
+
+// Which options each command accepts.
+bool accepts(const std::string& command, const std::string& option) {
+    static const std::set<std::string> common = {"--help", "-h", "--threads", "--seed", "--lod", "--budget-ms",
+                                                 "--characters", "--device", "--validation", "--width", "--height"};
+    if (common.count(option)) return command != "validate" || option == "--help" || option == "-h";
+    if (command == "render") return option == "--frame" || option == "--out" || option == "--colour" || option == "--force";
+    if (command == "view") return option == "--frames" || option == "--colour" || option == "--out";
+    if (command == "profile")
+        return option == "--frames" || option == "--warmup" || option == "--out" || option == "--fidelity" ||
+               option == "--no-render" || option == "--colour" || option == "--force" || option == "--quiet";
+    return false;
+}
+
+}  // namespace
+
+Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
+    CliOptions o;
+    if (args.empty()) {
+        o.command = "help";
+        return o;
+    }
+    o.command = args[0];
+    if (o.command == "--help" || o.command == "-h") {
+        o.command = "help";
+        return o;
+    }
+    if (!kCommands.count(o.command))
+        return arg_error("unknown command '" + o.command + "' (expected render, view, profile or validate; try --help)");
+    for (size_t i = 1; i < args.size(); ++i) {
+        std::string a = args[i];
+        std::string value;
+        bool has_inline = false;
+        if (a.rfind("--", 0) == 0) {
+            if (auto eq = a.find('='); eq != std::string::npos) {
+                value = a.substr(eq + 1);
+                a = a.substr(0, eq);
+                has_inline = true;
+            }
+        } else if (a != "-h") {
+            if (!o.scene.empty() || o.command == "help")
+                return arg_error("unexpected argument '" + a + "' (the scene is already '" + o.scene + "')");
+            o.scene = a;
+            continue;
+        }
+        if (o.command == "help") {
+            o.scene = a;
+            continue;
+        }
+        if (!accepts(o.command, a)) return arg_error("option '" + a + "' is not known to 'aloha " + o.command + "'");
+        auto take = [&]() -> Result<std::string> {
+            if (has_inline) return value;
+            if (i + 1 >= args.size()) return arg_error("option '" + a + "' needs a value");
+            return args[++i];
+        };
+        auto take_u32 = [&](uint32_t lo, uint32_t hi) -> Result<uint32_t> {
+            auto v = take();
+            if (!v.ok()) return v.error();
+            uint32_t n = 0;
+            if (!parse_number(v.value(), n) || n < lo || n > hi)
+                return arg_error("option '" + a + "' expects a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" + v.value() + "'");
+            return n;
+        };
+        if (a == "--help" || a == "-h") { o.help = true; continue; }
+        if (a == "--fidelity") { o.fidelity = true; continue; }
+        if (a == "--no-render") { o.no_render = true; continue; }
+        if (a == "--force") { o.force = true; continue; }
+        if (a == "--validation") { o.validation = true; continue; }
+        if (a == "--quiet") { o.quiet = true; continue; }
+        if (a == "--out" || a == "--colour" || a == "--device" || a == "--lod") {
+            auto v = take();
+            if (!v.ok()) return v.error();
+            if (v.value().empty()) return arg_error("option '" + a + "' needs a non-empty value");
+            if (a == "--out") o.out = v.value();
+            if (a == "--device") o.device = v.value();
+            if (a == "--colour") {
+                if (v.value() != "shaded" && v.value() != "level" && v.value() != "rule" && v.value() != "method")
+                    return arg_error("--colour expects shaded, level, rule or method, got '" + v.value() + "'");
+                o.colour = v.value();
+            }
+            if (a == "--lod") {
+                if (v.value() != "on" && v.value() != "off") return arg_error("--lod expects on or off, got '" + v.value() + "'");
+                o.lod = v.value() == "on";
+            }
+            continue;
+        }
+        if (a == "--budget-ms") {
+            auto v = take();
+            if (!v.ok()) return v.error();
+            double d = 0;
+            if (!parse_number(v.value(), d) || !(d > 0.0 && d < 10000.0))
+                return arg_error("--budget-ms expects a number of milliseconds in (0, 10000), got '" + v.value() + "'");
+            o.budget_ms = d;
+            continue;
+        }
+        if (a == "--seed") {
+            auto v = take();
+            if (!v.ok()) return v.error();
+            uint64_t s = 0;
+            if (!parse_number(v.value(), s)) return arg_error("--seed expects a whole number, got '" + v.value() + "'");
+            o.seed = s;
+            continue;
+        }
+        Result<uint32_t> n = arg_error("");
+        if (a == "--frames") n = take_u32(1, 10'000'000), o.frames = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
+        else if (a == "--warmup") n = take_u32(0, 1'000'000), o.warmup = n.ok() ? n.value() : 0;
+        else if (a == "--frame") n = take_u32(0, 10'000'000), o.frame = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
+        else if (a == "--width") n = take_u32(16, 8192), o.width = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
+        else if (a == "--height") n = take_u32(16, 8192), o.height = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
+        else if (a == "--threads") n = take_u32(0, 256), o.threads = n.ok() ? n.value() : 0;
+        else if (a == "--characters") n = take_u32(1, 1'000'000), o.characters = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
+        if (!n.ok()) return n.error();
+    }
+    if (o.command != "help" && !o.help && o.scene.empty()) return arg_error("'aloha " + o.command + "' needs a scene file");
+    return o;
+}
+
+std::string help_text(const std::string& command) {
+    const std::string common =
+        "  --threads T        worker threads (0 = all cores)\n"
+        "  --seed S           override every crowd's seed\n"
+        "  --lod on|off       LOD on (rules) or off (every character at the top level)\n"
+        "  --budget-ms X      CPU frame budget: lower detail where least noticed to fit X ms\n"
+        "  --characters N     rescale the scene's crowds to N characters in all\n"
+        "  --width W, --height H  override the viewport\n"
+        "  --device D         lavapipe | gpu | device index (default: a real GPU if present, else lavapipe)\n"
+        "  --validation       enable Vulkan validation layers\n";
+    if (command == "render")
+        return "aloha render SCENE --frame N --out frame.png [options]\n"
+               "  Simulates frames 0..N headless and writes frame N as PNG.\n"
+               "  --frame N          frame to write (default: the last)\n"
+               "  --out FILE         PNG path (default frame.png; refuses to overwrite without --force)\n"
+               "  --colour C         shaded | level | rule | method\n" + common;
+    if (command == "view")
+        return "aloha view SCENE [options]\n"
+               "  Opens a window (GLFW) with orbit/fly camera and an overlay of timings, the LOD histogram and live rules.\n"
+               "  --frames N         close after N frames (for tests); --out FILE saves the last frame as PNG\n"
+               "  --colour C         shaded | level | rule | method\n" + common;
+    if (command == "profile")
+        return "aloha profile SCENE [--frames N] [--warmup W] [--out DIR] [options]\n"
+               "  Runs headless and writes report.json, frames.csv, trace.json (Perfetto), frame_times.svg, last_frame.png.\n"
+               "  --frames N         measured frames (default: the scene's)\n"
+               "  --warmup W         frames run before measuring (default 30)\n"
+               "  --out DIR          output folder (default out/profile; existing reports are kept unless --force)\n"
+               "  --fidelity         also render each frame at full detail and report screen-space deviation, PSNR, popping\n"
+               "  --no-render        CPU systems only\n"
+               "  --quiet            no progress bar\n" + common;
+    if (command == "validate")
+        return "aloha validate SCENE\n"
+               "  Checks the scene, its rule file and every asset it names; exits 1 and prints every problem found.\n";
+    return "aloha: adaptive level of detail for crowds of layered virtual humans\n"
+           "usage: aloha COMMAND SCENE [options]\n"
+           "commands:\n"
+           "  render    render one frame headless to PNG\n"
+           "  view      open a window with a live overlay\n"
+           "  profile   headless frame-time profile (report, trace, CSV, plot, PNG)\n"
+           "  validate  check a scene, its rules and assets\n"
+           "'aloha COMMAND --help' describes a command's options.\n";
+}
+
+}  // namespace aloha::tool

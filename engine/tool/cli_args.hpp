@@ -1,0 +1,44 @@
+// Command-line parsing for the aloha tool: GNU-style long options, every problem reported with the
+// argument that caused it; no silent defaults for malformed values.
+#pragma once
+
+#include "engine/core/result.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace aloha::tool {
+
+/// Options shared by the subcommands (each subcommand uses the ones that apply to it).
+struct CliOptions {
+    std::string command;               ///< render | view | profile | validate | help
+    std::string scene;                 ///< scene file
+    std::string out;                   ///< output file (render) or folder (profile)
+    std::optional<uint32_t> frames;    ///< --frames N
+    uint32_t warmup = 30;              ///< --warmup W
+    std::optional<uint32_t> frame;     ///< --frame N (render)
+    std::optional<uint32_t> width, height;
+    std::optional<uint64_t> seed;
+    bool lod = true;                   ///< --lod on|off
+    std::optional<double> budget_ms;   ///< --budget-ms X
+    uint32_t threads = 0;              ///< --threads T (0 = all cores)
+    std::optional<uint32_t> characters;///< --characters N: rescale the scene's crowds to N characters
+    bool fidelity = false;             ///< --fidelity
+    bool no_render = false;            ///< --no-render: CPU systems only
+    bool force = false;                ///< --force: allow overwriting existing outputs
+    std::string colour = "shaded";     ///< --colour shaded|level|rule|method
+    std::string device;                ///< --device lavapipe|gpu|INDEX
+    bool validation = false;           ///< --validation: Vulkan validation layers on
+    bool help = false;
+    bool quiet = false;                ///< --quiet: no progress bar
+};
+
+/// Parses argv (without argv[0]). Errors name the offending argument.
+Result<CliOptions> parse_cli(const std::vector<std::string>& args);
+
+/// Help text for `command` ("" for the overview).
+std::string help_text(const std::string& command);
+
+}  // namespace aloha::tool

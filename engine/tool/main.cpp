@@ -1,0 +1,47 @@
+// aloha: the command-line tool (render, view, profile, validate).
+#include "engine/tool/commands.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace aloha::tool {
+
+void print_error(const std::string& message) { std::cerr << "aloha: " << message << "\n"; }
+
+bool check_can_write(const std::string& path, bool force) {
+    std::error_code ec;
+    if (!force && std::filesystem::exists(path, ec)) {
+        print_error(path + " already exists; pass --force to overwrite it");
+        return false;
+    }
+    return true;
+}
+
+}  // namespace aloha::tool
+
+int main(int argc, char** argv) {
+    using namespace aloha::tool;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    auto parsed = parse_cli(args);
+    if (!parsed.ok()) {
+        print_error(parsed.error().to_string());
+        std::cerr << "try 'aloha --help'\n";
+        return 2;
+    }
+    const CliOptions& o = parsed.value();
+    if (o.command == "help") {
+        std::cout << help_text(o.scene);
+        return 0;
+    }
+    if (o.help) {
+        std::cout << help_text(o.command);
+        return 0;
+    }
+    if (o.command == "render") return run_render(o);
+    if (o.command == "validate") return run_validate(o);
+    if (o.command == "profile") return run_profile(o);
+    if (o.command == "view") return run_view(o);
+    print_error("unknown command '" + o.command + "'");
+    return 2;
+}

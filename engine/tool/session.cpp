@@ -1,0 +1,73 @@
+#include "engine/tool/session.hpp"
+
+#include "engine/gpu/png.hpp"
+#include "engine/scene/scene_loader.hpp"
+
+#include <cstdlib>
+
+namespace aloha::tool {
+
+Session::~Session() {
+    if (world) (void)world->attach_renderer(nullptr, nullptr);
+    renderer.reset();
+    target = gpu::OffscreenTarget();
+    context.reset();
+}
+
+DebugColour colour_from_option(const std::string& name) {
+    if (name == "level") return DebugColour::ByLodLevel;
+    if (name == "rule") return DebugColour::ByRule;
+    if (name == "method") return DebugColour::ByMotionMethod;
+    return DebugColour::Shaded;
+}
+
+Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool render) {
+    auto session = std::make_unique<Session>();
+    auto scene = load_scene(options.scene);
+    if (!scene.ok()) return scene.error();
+    session->scene = std::move(scene.value());
+    if (options.width) session->scene.width = *options.width;
+    if (options.height) session->scene.height = *options.height;
+    if (options.frames) session->scene.frames = *options.frames;
+    WorldOptions wo;
+    wo.threads = options.threads;
+    wo.lod = options.lod;
+    wo.budget_ms = options.budget_ms;
+    wo.seed_override = options.seed.value_or(0);
+    wo.characters = options.characters;
+    wo.colour = colour_from_option(options.colour);
+    auto world = World::create(session->scene, wo);
+    if (!world.ok()) return world.error();
+    session->world = std::move(world.value());
+    if (!render) return session;
+    gpu::ContextOptions co;
+    const char* env = std::getenv("ALOHA_VALIDATION");
+    co.validation = options.validation || (env && std::string(env) == "1");
+    co.device = options.device;
+    auto ctx = gpu::Context::create(co);
+    if (!ctx.ok()) return ctx.error();
+    session->context = std::move(ctx.value());
+    auto renderer = CrowdRenderer::create(*session->context);
+    if (!renderer.ok()) return renderer.error();
+    session->renderer = std::move(renderer.value());
+    auto target = gpu::OffscreenTarget::create(*session->context, session->scene.width, session->scene.height);
+    if (!target.ok()) return target.error();
+    session->target = std::move(target.value());
+    if (Status s = session->world->attach_renderer(session->renderer.get(), &session->target); !s.ok()) return s.error();
+    return session;
+}
+
+Status check_validation(const Session& session) {
+    if (!session.context || session.context->validation_message_count() == 0) return {};
+    std::string text = std::to_string(session.context->validation_message_count()) + " Vulkan validation message(s):";
+    for (const auto& m : session.context->validation_messages()) text += "\n  " + m;
+    return make_error("", text);
+}
+
+Status save_frame(Session& session, const std::string& path) {
+    auto image = session.target.read_back(*session.context);
+    if (!image.ok()) return image.error();
+    return gpu::write_png(path, image.value().width, image.value().height, image.value().pixels);
+}
+
+}  // namespace aloha::tool

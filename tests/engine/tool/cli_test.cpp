@@ -1,0 +1,67 @@
+#include "engine/tool/cli_args.hpp"
+
+#include <gtest/gtest.h>
+
+namespace aloha::tool {
+namespace {
+
+Result<CliOptions> parse(std::vector<std::string> args) { return parse_cli(args); }
+
+TEST(Cli, ParsesProfileOptions) {
+    auto r = parse({"profile", "scene.json", "--frames", "120", "--warmup=5", "--out", "dir", "--lod", "off",
+                    "--budget-ms", "12.5", "--threads", "2", "--seed", "9", "--characters", "2000", "--fidelity"});
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const CliOptions& o = r.value();
+    EXPECT_EQ(o.command, "profile");
+    EXPECT_EQ(o.scene, "scene.json");
+    EXPECT_EQ(*o.frames, 120u);
+    EXPECT_EQ(o.warmup, 5u);
+    EXPECT_EQ(o.out, "dir");
+    EXPECT_FALSE(o.lod);
+    EXPECT_DOUBLE_EQ(*o.budget_ms, 12.5);
+    EXPECT_EQ(o.threads, 2u);
+    EXPECT_EQ(*o.seed, 9u);
+    EXPECT_EQ(*o.characters, 2000u);
+    EXPECT_TRUE(o.fidelity);
+}
+
+TEST(Cli, RejectsBadArgumentsNamingThem) {
+    struct Case { std::vector<std::string> args; std::string words; };
+    const std::vector<Case> cases = {
+        {{"fly", "s.json"}, "unknown command 'fly'"},
+        {{"profile"}, "needs a scene file"},
+        {{"profile", "s.json", "--frames"}, "'--frames' needs a value"},
+        {{"profile", "s.json", "--frames", "ten"}, "'ten'"},
+        {{"profile", "s.json", "--frames", "0"}, "[1, 10000000]"},
+        {{"profile", "s.json", "--frames", "-3"}, "'-3'"},
+        {{"profile", "s.json", "--lod", "maybe"}, "--lod expects on or off"},
+        {{"profile", "s.json", "--budget-ms", "nan"}, "--budget-ms"},
+        {{"profile", "s.json", "--budget-ms", "-1"}, "--budget-ms"},
+        {{"profile", "s.json", "--threads", "1000"}, "[0, 256]"},
+        {{"profile", "s.json", "--frame", "3"}, "not known to 'aloha profile'"},
+        {{"render", "s.json", "--warmup", "3"}, "not known to 'aloha render'"},
+        {{"render", "s.json", "--colour", "pink"}, "--colour expects"},
+        {{"render", "a.json", "b.json"}, "unexpected argument 'b.json'"},
+        {{"profile", "s.json", "--width", "8"}, "[16, 8192]"},
+    };
+    for (const Case& c : cases) {
+        auto r = parse(c.args);
+        ASSERT_FALSE(r.ok()) << c.words;
+        EXPECT_NE(r.error().to_string().find(c.words), std::string::npos) << r.error().to_string();
+    }
+}
+
+TEST(Cli, HelpEverywhere) {
+    auto top = parse({"--help"});
+    ASSERT_TRUE(top.ok());
+    EXPECT_EQ(top.value().command, "help");
+    for (const char* cmd : {"render", "view", "profile", "validate"}) {
+        auto r = parse({cmd, "--help"});
+        ASSERT_TRUE(r.ok()) << cmd;
+        EXPECT_TRUE(r.value().help);
+        EXPECT_NE(help_text(cmd).find(std::string("aloha ") + cmd), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace aloha::tool

@@ -1,0 +1,96 @@
+// Runs the built `aloha` program end to end (headless, lavapipe) and checks its outputs and errors.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int code = -1;
+    std::string output;
+};
+
+RunResult run(const std::string& args) {
+    RunResult r;
+    const std::string cmd = std::string(ALOHA_TOOL) + " " + args + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
+    const int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+const std::string kScenes = std::string(ALOHA_SOURCE_DIR) + "/data/scenes/";
+
+fs::path temp_dir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("aloha_tool_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+TEST(Tool, ProfileWritesEveryReport) {
+    const fs::path out = temp_dir("profile");
+    const RunResult r = run("profile " + kScenes + "crowd_1k.json --frames 6 --warmup 2 --characters 200 --quiet "
+                            "--validation --out " + (out / "p").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* f : {"report.json", "frames.csv", "trace.json", "frame_times.svg", "last_frame.png"})
+        EXPECT_TRUE(fs::exists(out / "p" / f)) << f;
+    std::ifstream in(out / "p" / "report.json");
+    const nlohmann::json report = nlohmann::json::parse(in);
+    EXPECT_EQ(report["characters"], 200);
+    EXPECT_EQ(report["frames"], 6);
+    for (const char* k : {"mean", "p50", "p95", "p99", "max"}) {
+        EXPECT_TRUE(report["cpu_systems_ms"].contains(k));
+        EXPECT_TRUE(report["systems"]["lod_rules"].contains(k));
+    }
+    EXPECT_EQ(report["characters_per_level_per_frame"].size(), 6u);
+    std::ifstream trace(out / "p" / "trace.json");
+    const nlohmann::json t = nlohmann::json::parse(trace);
+    EXPECT_FALSE(t["traceEvents"].empty());
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    // A second run refuses to overwrite the reports without --force.
+    const RunResult again = run("profile " + kScenes + "crowd_1k.json --frames 2 --characters 50 --quiet --out " + (out / "p").string());
+    EXPECT_NE(again.code, 0);
+    EXPECT_NE(again.output.find("--force"), std::string::npos) << again.output;
+    fs::remove_all(out);
+}
+
+TEST(Tool, RenderWritesAPngAndRefusesToOverwrite) {
+    const fs::path out = temp_dir("render");
+    const std::string png = (out / "f.png").string();
+    const RunResult r = run("render " + kScenes + "crowd_1k.json --frame 3 --characters 100 --out " + png);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_GT(fs::file_size(png), 1000u);
+    const RunResult again = run("render " + kScenes + "crowd_1k.json --frame 1 --characters 100 --out " + png);
+    EXPECT_NE(again.code, 0);
+    fs::remove_all(out);
+}
+
+TEST(Tool, ValidateReportsBadScenesAndPassesGoodOnes) {
+    const RunResult good = run("validate " + kScenes + "closeup.json");
+    EXPECT_EQ(good.code, 0) << good.output;
+    const fs::path out = temp_dir("validate");
+    {
+        std::ofstream f(out / "bad.json");
+        f << R"({"camera": {"position": [0, 1, 5], "target": [0, 1, 0]}, "crowds": [{"count": 1e9}]})";
+    }
+    const RunResult bad = run("validate " + (out / "bad.json").string());
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.output.find("bad.json"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("/crowds/0/count"), std::string::npos) << bad.output;
+    const RunResult usage = run("profile --frames x");
+    EXPECT_EQ(usage.code, 2);
+    fs::remove_all(out);
+}
+
+}  // namespace
