@@ -1,6 +1,8 @@
 // glTF character loader: runs tinygltf, then checks and converts skin 0, its meshes and clips.
 #include "engine/assets/gltf_loader.hpp"
 
+#include "engine/core/json_depth.hpp"
+
 #include "engine/anim/skeleton.hpp"
 #include "engine/assets/animation_remap.hpp"
 #include "engine/assets/file_io.hpp"
@@ -128,15 +130,70 @@ Result<GltfCharacter> convert(const tinygltf::Model& model, const std::string& f
     return out;
 }
 
+// External buffers may only come from the character's own folder (no "../secret.bin", no absolute
+// paths elsewhere): tinygltf's file callbacks are wrapped with a containment check on real paths.
+struct FolderGuard {
+    std::filesystem::path folder;  // weakly canonical
+    bool inside(const std::string& path) const {
+        std::error_code ec;
+        const auto p = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+        if (ec) return false;
+        auto f = folder.begin();
+        auto q = p.begin();
+        for (; f != folder.end() && !f->empty(); ++f, ++q)
+            if (q == p.end() || *f != *q) return false;
+        return true;
+    }
+};
+
+bool guarded_exists(const std::string& path, void* user) {
+    // Outside paths are reported by guarded_read (with a clear message), not as "file not found".
+    return !static_cast<FolderGuard*>(user)->inside(path) || tinygltf::FileExists(path, nullptr);
+}
+
+bool guarded_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    if (!static_cast<FolderGuard*>(user)->inside(path)) {
+        if (err) {
+            if (!tinygltf::FileExists(path, nullptr)) *err += "buffer file '" + path + "' not found\n";
+            else *err += "refusing to read '" + path + "': it escapes the glTF file's folder\n";
+        }
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, nullptr);
+}
+
+bool refuse_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "writing files is not supported\n";
+    return false;
+}
+
 // Runs tinygltf on `bytes` (GLB when it starts with "glTF", JSON otherwise) and converts.
 Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, const std::string& file, const std::string& base_dir) {
     if (size > std::numeric_limits<unsigned int>::max()) return make_error(file, "file is too large for tinygltf");
+    const bool is_glb = size >= 4 && bytes[0] == 'g' && bytes[1] == 'l' && bytes[2] == 'T' && bytes[3] == 'F';
+    {
+        // tinygltf converts JSON recursively: refuse hostile nesting before it sees the text.
+        size_t begin = 0, length = size;
+        if (is_glb) {
+            begin = 20;
+            length = size >= 20 ? (size_t{bytes[12]} | size_t{bytes[13]} << 8 | size_t{bytes[14]} << 16 | size_t{bytes[15]} << 24) : 0;
+            length = std::min(length, size >= 20 ? size - 20 : 0);
+        }
+        if (Status deep = check_json_depth(std::string_view(reinterpret_cast<const char*>(bytes) + begin, length), file); !deep.ok())
+            return deep.error();
+    }
+    FolderGuard guard;
+    {
+        std::error_code ec;
+        guard.folder = std::filesystem::weakly_canonical(std::filesystem::absolute(base_dir.empty() ? "." : base_dir, ec), ec);
+    }
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(skip_image, nullptr);
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{guarded_exists, tinygltf::ExpandFilePath, guarded_read, refuse_write, &guard});
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
-    const bool glb = size >= 4 && bytes[0] == 'g' && bytes[1] == 'l' && bytes[2] == 'T' && bytes[3] == 'F';
+    const bool glb = is_glb;
     try {
         ok = glb ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes, static_cast<unsigned int>(size), base_dir)
                  : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes), static_cast<unsigned int>(size), base_dir);

@@ -1,5 +1,7 @@
 #include "engine/assets/joint_limits.hpp"
 
+#include "engine/core/json_depth.hpp"
+
 #include "engine/assets/file_io.hpp"
 
 #include <nlohmann/json.hpp>
@@ -32,8 +34,11 @@ std::string type_of(const json& v) { return v.type_name(); }
 
 Result<JointLimitTable> parse_joint_limits(std::string_view text, const std::string& source_name) {
     json doc;
+    if (Status deep = check_json_depth(text, source_name); !deep.ok()) return deep.error();
     try {
         doc = json::parse(text.begin(), text.end());
+    } catch (const json::out_of_range& e) {  // e.g. 1e999
+        return make_error(source_name, std::string("JSON number out of range: ") + e.what());
     } catch (const json::parse_error& e) {
         int line = 0, column = 0;
         line_column(text, e.byte > 0 ? e.byte - 1 : 0, &line, &column);

@@ -1,5 +1,7 @@
 #include "engine/scene/json_reader.hpp"
 
+#include "engine/core/json_depth.hpp"
+
 #include <cmath>
 
 namespace aloha {
@@ -151,6 +153,7 @@ void JsonObjectReader::reject_unknown_keys() {
 }
 
 Result<nlohmann::json> parse_json_text(const std::string& text, const std::string& file) {
+    if (Status deep = check_json_depth(text, file); !deep.ok()) return deep.error();
     nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false, /*ignore_comments=*/false);
     if (!j.is_discarded()) return j;
     // Re-parse with exceptions to get the byte position of the syntax error.

@@ -201,6 +201,11 @@ Result<std::string> resolve_scene_path(const std::string& scene_file, const std:
     if (!is_inside(folder, full))
         return make_error(scene_file, "path '" + reference + "' escapes the scene's folder", 0, 0, json_path);
     if (!fs::exists(full)) return make_error(scene_file, "referenced file '" + reference + "' does not exist", 0, 0, json_path);
+    // Symbolic links are followed before comparing, so a link inside the folder cannot lead out of it.
+    std::error_code ec;
+    const fs::path real_folder = fs::weakly_canonical(folder, ec), real_full = fs::weakly_canonical(full, ec);
+    if (ec || !is_inside(real_folder, real_full))
+        return make_error(scene_file, "path '" + reference + "' escapes the scene's folder through a symbolic link", 0, 0, json_path);
     return full.string();
 }
 

@@ -208,10 +208,15 @@ void World::regroup() {
 
 void World::step() {
     const float dt = scene_.dt;
-    const CameraKey cam = sample_camera(scene_.camera, time_);
-    camera_ = make_lod_camera(cam.position, cam.target, glm::radians(scene_.camera.fov_y_deg),
-                              glm::vec2(static_cast<float>(scene_.width), static_cast<float>(scene_.height)),
-                              scene_.camera.near_plane, scene_.camera.far_plane);
+    if (view_override_) {
+        camera_ = make_lod_camera(view_override_->position, view_override_->target, glm::radians(override_fov_deg_),
+                                  override_viewport_, scene_.camera.near_plane, scene_.camera.far_plane);
+    } else {
+        const CameraKey cam = sample_camera(scene_.camera, time_);
+        camera_ = make_lod_camera(cam.position, cam.target, glm::radians(scene_.camera.fov_y_deg),
+                                  glm::vec2(static_cast<float>(scene_.width), static_cast<float>(scene_.height)),
+                                  scene_.camera.near_plane, scene_.camera.far_plane);
+    }
     if (rules_.shared()) {
         auto polled = rules_.poll();  // live tuning: pick up an edited rule file
         if (polled.ok() && polled.value()) {

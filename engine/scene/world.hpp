@@ -86,6 +86,14 @@ public:
     /// Attaches a renderer and target for the Render phase (mesh topologies are registered with it on
     /// first use); nullptr detaches.
     Status attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target);
+    /// The view the LOD is computed for: from the next step() on, `key` seen with a vertical field of
+    /// view of `fov_y_deg` on a `viewport` (pixels) replaces the scene's camera path (a viewer's free
+    /// camera, a resized window). std::nullopt returns to the scene camera.
+    void set_view_override(std::optional<CameraKey> key, float fov_y_deg, glm::vec2 viewport) {
+        view_override_ = key;
+        override_fov_deg_ = fov_y_deg;
+        override_viewport_ = viewport;
+    }
     /// Debug colouring of the draw lists from the next frame on.
     void set_colour(DebugColour colour) { options_.colour = colour; }
 
@@ -160,6 +168,9 @@ private:
     CrowdRenderer* renderer_ = nullptr;
     gpu::OffscreenTarget* target_ = nullptr;
     double last_gpu_ms_ = -1.0;
+    std::optional<CameraKey> view_override_;
+    float override_fov_deg_ = 50.0f;
+    glm::vec2 override_viewport_{1280.0f, 720.0f};
     Status render_status_;
     double last_cpu_ms_ = 0.0;
     uint64_t frame_ = 0;

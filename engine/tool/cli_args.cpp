@@ -16,7 +16,7 @@ bool parse_number(const std::string& text, T& out) {
     return ec == std::errc() && p == end;
 }
 
-const std::set<std::string> kCommands = {"render", "view", "profile", "validate", "help"};
+const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "validate", "help"};
 
 // Which options each command accepts.
 bool accepts(const std::string& command, const std::string& option) {
@@ -27,7 +27,11 @@ bool accepts(const std::string& command, const std::string& option) {
     if (command == "view") return option == "--frames" || option == "--colour" || option == "--out";
     if (command == "profile")
         return option == "--frames" || option == "--warmup" || option == "--out" || option == "--fidelity" ||
-               option == "--no-render" || option == "--colour" || option == "--force" || option == "--quiet";
+               option == "--no-render" || option == "--colour" || option == "--force" || option == "--quiet" ||
+               option == "--compare-lod" || option == "--compare-frames";
+    if (command == "scale")
+        return option == "--counts" || option == "--frames" || option == "--warmup" || option == "--out" ||
+               option == "--force" || option == "--quiet" || option == "--no-render";
     return false;
 }
 
@@ -86,6 +90,23 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
         if (a == "--force") { o.force = true; continue; }
         if (a == "--validation") { o.validation = true; continue; }
         if (a == "--quiet") { o.quiet = true; continue; }
+        if (a == "--compare-lod") { o.compare_lod = true; continue; }
+        if (a == "--counts") {
+            auto v = take();
+            if (!v.ok()) return v.error();
+            o.counts.clear();
+            size_t start = 0;
+            const std::string& list = v.value();
+            while (start <= list.size()) {
+                const size_t comma = std::min(list.find(',', start), list.size());
+                uint32_t count = 0;
+                if (!parse_number(list.substr(start, comma - start), count) || count < 1 || count > 1'000'000)
+                    return arg_error("--counts expects comma-separated whole numbers in [1, 1000000], got '" + list + "'");
+                o.counts.push_back(count);
+                start = comma + 1;
+            }
+            continue;
+        }
         if (a == "--out" || a == "--colour" || a == "--device" || a == "--lod") {
             auto v = take();
             if (!v.ok()) return v.error();
@@ -127,10 +148,12 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
         else if (a == "--width") n = take_u32(16, 8192), o.width = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
         else if (a == "--height") n = take_u32(16, 8192), o.height = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
         else if (a == "--threads") n = take_u32(0, 256), o.threads = n.ok() ? n.value() : 0;
+        else if (a == "--compare-frames") n = take_u32(1, 100000), o.compare_frames = n.ok() ? n.value() : 0;
         else if (a == "--characters") n = take_u32(1, 1'000'000), o.characters = n.ok() ? std::optional<uint32_t>(n.value()) : std::nullopt;
         if (!n.ok()) return n.error();
     }
     if (o.command != "help" && !o.help && o.scene.empty()) return arg_error("'aloha " + o.command + "' needs a scene file");
+    if (o.command == "scale" && !o.help && o.counts.empty()) return arg_error("'aloha scale' needs --counts A,B,...");
     return o;
 }
 
@@ -163,7 +186,13 @@ std::string help_text(const std::string& command) {
                "  --out DIR          output folder (default out/profile; existing reports are kept unless --force)\n"
                "  --fidelity         also render each frame at full detail and report screen-space deviation, PSNR, popping\n"
                "  --no-render        CPU systems only\n"
-               "  --quiet            no progress bar\n" + common;
+               "  --quiet            no progress bar\n"
+               "  --compare-lod      also run the scene with LOD off (CPU systems) and report the slowdown ratio\n"
+               "  --compare-frames K frames of that LOD-off run (default 10)\n" + common;
+    if (command == "scale")
+        return "aloha scale SCENE --counts 1000,2000,5000,10000,20000 [--frames N] [--warmup W] [--out DIR]\n"
+               "  Rescales the scene's crowds to each count, profiles the CPU systems (and the render unless\n"
+               "  --no-render) and writes scaling.json, scaling.csv and scaling.svg: frame time against crowd size.\n" + common;
     if (command == "validate")
         return "aloha validate SCENE\n"
                "  Checks the scene, its rule file and every asset it names; exits 1 and prints every problem found.\n";
@@ -173,6 +202,7 @@ std::string help_text(const std::string& command) {
            "  render    render one frame headless to PNG\n"
            "  view      open a window with a live overlay\n"
            "  profile   headless frame-time profile (report, trace, CSV, plot, PNG)\n"
+           "  scale     frame time against crowd size\n"
            "  validate  check a scene, its rules and assets\n"
            "'aloha COMMAND --help' describes a command's options.\n";
 }

@@ -13,7 +13,7 @@ namespace aloha::tool {
 
 /// Options shared by the subcommands (each subcommand uses the ones that apply to it).
 struct CliOptions {
-    std::string command;               ///< render | view | profile | validate | help
+    std::string command;               ///< render | view | profile | scale | validate | help
     std::string scene;                 ///< scene file
     std::string out;                   ///< output file (render) or folder (profile)
     std::optional<uint32_t> frames;    ///< --frames N
@@ -33,6 +33,9 @@ struct CliOptions {
     bool validation = false;           ///< --validation: Vulkan validation layers on
     bool help = false;
     bool quiet = false;                ///< --quiet: no progress bar
+    bool compare_lod = false;          ///< --compare-lod: also time the scene with LOD off (profile)
+    uint32_t compare_frames = 10;      ///< --compare-frames K: frames of the LOD-off run
+    std::vector<uint32_t> counts;      ///< --counts A,B,...: crowd sizes (scale)
 };
 
 /// Parses argv (without argv[0]). Errors name the offending argument.

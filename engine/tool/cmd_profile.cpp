@@ -41,6 +41,41 @@ void progress(size_t done, size_t total, bool tty, const std::string& label) {
               << (tty && done != total ? "" : "\n") << std::flush;
 }
 
+template <class Get>
+std::vector<double> series_of(const std::vector<FrameRecord>& records, Get get) {
+    std::vector<double> v;
+    for (const auto& r : records) v.push_back(get(r));
+    return v;
+}
+
+// Runs the scene again with LOD off (CPU systems only) and compares per-frame CPU time.
+nlohmann::json compare_lod_off(const CliOptions& options, const SeriesStats& lod_on) {
+    CliOptions off = options;
+    off.lod = false;
+    off.no_render = true;
+    auto opened = open_session(off, /*render=*/false);
+    if (!opened.ok()) return {{"error", opened.error().to_string()}};
+    World& world = *opened.value()->world;
+    const Scheduler& sched = world.scheduler();
+    for (uint32_t f = 0; f < std::min<uint32_t>(options.warmup, 2); ++f) world.step();
+    std::vector<double> cpu;
+    for (uint32_t f = 0; f < options.compare_frames; ++f) {
+        world.step();
+        double ms = 0;
+        for (const auto& pass : sched.plan())
+            if (pass.phase != Phase::Render)
+                for (uint32_t i : pass.systems) ms += static_cast<double>(sched.timings(i).latest()) * 1e-6;
+        cpu.push_back(ms);
+        if (!options.quiet) progress(f + 1, options.compare_frames, isatty(2), "lod off ");
+    }
+    const SeriesStats st = summarize(cpu);
+    return {{"frames", options.compare_frames},
+            {"cpu_systems_ms", to_json(st)},
+            {"ratio_mean", lod_on.mean > 0 ? st.mean / lod_on.mean : 0.0},
+            {"ratio_p95", lod_on.p95 > 0 ? st.p95 / lod_on.p95 : 0.0},
+            {"target_ratio", 20.0}};
+}
+
 std::string fmt(double v) {
     std::ostringstream o;
     o << std::fixed << std::setprecision(v < 10 ? 3 : 2) << v;
@@ -138,6 +173,10 @@ int run_profile(const CliOptions& options) {
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     world.scheduler().set_trace_sink(nullptr);
 
+    // ---- LOD off, same scene, same process: the slowdown ratio of the CPU systems.
+    nlohmann::json compare = nullptr;
+    if (options.compare_lod) compare = compare_lod_off(options, summarize(series_of(records, [](const FrameRecord& r) { return r.cpu_ms; })));
+
     // ---- report.json
     nlohmann::json report;
     report["scene"] = options.scene;
@@ -192,6 +231,7 @@ int run_profile(const CliOptions& options) {
     const size_t n = world.character_count();
     for (size_t k = 0; k < 5 && n > 0; ++k) explain.push_back(world.explain(static_cast<uint32_t>(k * (n - 1) / 4)));
     report["explain_sample"] = explain;
+    if (options.compare_lod) report["lod_off_comparison"] = compare;
     if (fidelity) report["fidelity"] = fidelity_report(records.empty() ? std::vector<FidelityFrame>{} : [&] {
         std::vector<FidelityFrame> v;
         for (const auto& r : records) v.push_back(r.fidelity);
@@ -265,6 +305,11 @@ int run_profile(const CliOptions& options) {
     row("= CPU systems", cpu);
     if (render) row("GPU (timestamps)", gpu);
     row("= whole frame", frame);
+    if (options.compare_lod) {
+        if (compare.contains("error")) std::cout << "LOD off: " << compare["error"].get<std::string>() << "\n";
+        else std::cout << "LOD off: CPU systems mean " << fmt(compare["cpu_systems_ms"]["mean"].get<double>()) << " ms, "
+                       << fmt(compare["ratio_mean"].get<double>()) << "x slower than LOD on (target 20x)\n";
+    }
     std::cout << "state hash " << world.state_hash() << "; reports in " << out << "/\n";
     return 0;
 }

@@ -234,6 +234,13 @@ int run_view(const CliOptions& options) {
                 shown.viewport.x > 0.0f)  // a click, not a drag
                 pick_at(world, state, shown.camera, shown.viewport, {io.MousePos.x, io.MousePos.y});
             if (!state.paused || state.step_once) {
+                // The LOD follows what the window shows: the free camera and the window's size.
+                int fb_w = 0, fb_h = 0;
+                glfwGetFramebufferSize(window, &fb_w, &fb_h);
+                if (fb_w > 0 && fb_h > 0)
+                    world.set_view_override(camera.mode == CameraMode::ScenePath ? std::nullopt
+                                                                               : std::optional<CameraKey>(camera.placement(scene_key(world))),
+                                            camera.fov_y_deg, glm::vec2(float(fb_w), float(fb_h)));
                 world.step();
                 record_frame_time(state, world);
                 state.step_once = false;

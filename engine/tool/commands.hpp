@@ -11,6 +11,8 @@ int run_render(const CliOptions& options);
 int run_validate(const CliOptions& options);
 /// `aloha profile SCENE ...`
 int run_profile(const CliOptions& options);
+/// `aloha scale SCENE --counts ...`
+int run_scale(const CliOptions& options);
 /// `aloha view SCENE` (GLFW window with overlay)
 int run_view(const CliOptions& options);
 

@@ -62,7 +62,7 @@ void draw_camera(ViewerCamera& camera, const World& world, const CameraKey& scen
     if (ImGui::Button("put free cameras at the scene camera")) camera.reset_from(world.scene().camera, scene_key);
     ImGui::TextDisabled("orbit: drag turns, right-drag pans, wheel zooms");
     ImGui::TextDisabled("fly: WASD move, Q/E down/up, Shift faster, drag looks");
-    ImGui::TextDisabled("LOD is computed from the scene camera path");
+    ImGui::TextDisabled("LOD follows the camera shown");
 }
 
 void draw_timings(World& world, const ViewerState& state) {

@@ -81,7 +81,12 @@ bool not_dnf(const std::vector<RawBox>& a, std::vector<RawBox>* out, const Condi
 bool operand(const nlohmann::json& v, int slot, const std::string& path, const ConditionContext& ctx,
              float* out) {
     if (v.is_number()) {
-        *out = v.get<float>();
+        const double d = v.get<double>();
+        if (!std::isfinite(d) || std::abs(d) > 3.0e38) {  // would become +-inf as a float
+            report(ctx, path, "threshold " + v.dump() + " is not a finite number a float can hold");
+            return false;
+        }
+        *out = static_cast<float>(d);
         return true;
     }
     if (v.is_boolean() && slot == static_cast<int>(LodAttribute::Visible)) {

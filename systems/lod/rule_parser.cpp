@@ -3,6 +3,8 @@
 #include "systems/lod/rule_conditions.hpp"
 #include "systems/lod/rule_table.hpp"
 
+#include "engine/core/json_depth.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -213,7 +215,8 @@ struct Parser {
             r.anim_level = static_cast<uint8_t>(std::max(ai, 0));
         }
         lod_detail::ConditionContext ctx{&source, &table.tiers, &errors};
-        const json when = j.contains("when") ? j["when"] : json::object();
+        static const json kAlways = json::object();
+        const json& when = j.contains("when") ? j["when"] : kAlways;
         const size_t before = errors.size();
         if (lod_detail::compile_condition(when, p + "/when", ctx, boxes) && boxes->empty() &&
             errors.size() == before) {
@@ -331,8 +334,16 @@ Result<RuleTable> parse_rules(std::string_view text, const std::string& source_n
     parser.source = source_name;
     parser.table.source = source_name;
     json root;
+    if (Status deep = check_json_depth(text, source_name); !deep.ok()) {
+        if (all_errors) all_errors->push_back(deep.error());
+        return deep.error();
+    }
     try {
         root = json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
+    } catch (const json::out_of_range& e) {  // e.g. 1e999: a number no double holds
+        Error err = make_error(source_name, std::string("JSON number out of range: ") + e.what());
+        if (all_errors) all_errors->push_back(err);
+        return err;
     } catch (const json::parse_error& e) {
         int line = 0;
         int column = 0;

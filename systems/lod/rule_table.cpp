@@ -1,6 +1,7 @@
 #include "systems/lod/rule_table.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -71,6 +72,12 @@ AnimLod RuleTable::anim_lod(uint8_t level) const {
 }
 
 Result<RuleTable> load_rules(const std::string& path, std::vector<Error>* all_errors) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        Error e = make_error(path, "is a folder, not a regular file");
+        if (all_errors) all_errors->push_back(e);
+        return e;
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         Error e = make_error(path, "cannot open rule file for reading");

@@ -1,5 +1,9 @@
 #include "systems/geometry/muscle/muscle_loader.hpp"
 
+#include "engine/core/json_depth.hpp"
+
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include <cctype>
@@ -181,14 +185,19 @@ Result<std::vector<MuscleDef>> parse_muscle_defs(const json& doc, const std::str
 }
 
 Result<std::vector<MuscleDef>> load_muscle_defs(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) return make_error(path, "is a folder, not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) return make_error(path, "cannot open muscle layout file");
     std::stringstream buffer;
     buffer << in.rdbuf();
     const std::string text = buffer.str();
     json doc;
+    if (Status deep = check_json_depth(text, path); !deep.ok()) return deep.error();
     try {
         doc = json::parse(text);
+    } catch (const json::out_of_range& e) {  // e.g. 1e999
+        return make_error(path, std::string("JSON number out of range: ") + e.what());
     } catch (const json::parse_error& e) {
         int line = 0, column = 0;
         line_column(text, e.byte > 0 ? e.byte - 1 : 0, line, column);

@@ -51,11 +51,26 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
     }
 }
 
+TEST(Cli, ScaleTakesAListOfCounts) {
+    auto r = parse({"scale", "s.json", "--counts", "1000,2000,5000", "--no-render"});
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    EXPECT_EQ(r.value().counts, (std::vector<uint32_t>{1000, 2000, 5000}));
+    for (const char* bad : {"1000,,2000", "1000,x", "0", "2000000", ""}) {
+        auto b = parse({"scale", "s.json", "--counts", bad});
+        EXPECT_FALSE(b.ok()) << bad;
+    }
+    EXPECT_FALSE(parse({"scale", "s.json"}).ok());  // --counts is required
+    auto cmp = parse({"profile", "s.json", "--compare-lod", "--compare-frames", "4"});
+    ASSERT_TRUE(cmp.ok());
+    EXPECT_TRUE(cmp.value().compare_lod);
+    EXPECT_EQ(cmp.value().compare_frames, 4u);
+}
+
 TEST(Cli, HelpEverywhere) {
     auto top = parse({"--help"});
     ASSERT_TRUE(top.ok());
     EXPECT_EQ(top.value().command, "help");
-    for (const char* cmd : {"render", "view", "profile", "validate"}) {
+    for (const char* cmd : {"render", "view", "profile", "scale", "validate"}) {
         auto r = parse({cmd, "--help"});
         ASSERT_TRUE(r.ok()) << cmd;
         EXPECT_TRUE(r.value().help);
