@@ -250,6 +250,27 @@ nlohmann::json World::explain(uint32_t i) const {
     return j;
 }
 
+uint64_t World::nonfinite_count() const {
+    auto& reg = const_cast<Registry&>(registry_);
+    auto group = character_group(reg);
+    uint64_t bad = 0;
+    auto check = [&](const float* v, size_t n) {
+        for (size_t i = 0; i < n; ++i) bad += !std::isfinite(v[i]);
+    };
+    for (const Transform& t : group.span<Transform>()) check(&t.position.x, 3), check(&t.rotation.x, 4);
+    for (const auto& rt : types_) {
+        for (uint32_t id = 0; id < rt->count; ++id) {
+            const ConstPoseView pose = rt->motion->poses().view(id);
+            check(&pose.model[0][0][0], pose.model.size() * 16);
+            const SurfaceView surface = rt->geometry->surface(id);
+            if (!surface.positions.empty()) check(&surface.positions[0].x, surface.positions.size() * 3);
+            const std::span<const glm::mat4> boxes = rt->geometry->proxy_boxes(id);
+            if (!boxes.empty()) check(&boxes[0][0][0], boxes.size() * 16);
+        }
+    }
+    return bad;
+}
+
 uint64_t World::state_hash() const {
     auto& reg = const_cast<Registry&>(registry_);
     auto group = character_group(reg);

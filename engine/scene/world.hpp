@@ -40,6 +40,9 @@ inline CharacterGroup character_group(Registry& registry) {
                           LodState, GeomLod, AnimLod, MotionState>();
 }
 
+/// Debug overlays drawn as lines over the characters (bits, combine with |).
+enum OverlayBits : uint8_t { kOverlayBones = 1u << 0, kOverlayMuscles = 1u << 1, kOverlaySprings = 1u << 2 };
+
 /// How a World is built and run.
 struct WorldOptions {
     unsigned threads = 0;                  ///< scheduler threads (0 = all cores)
@@ -48,6 +51,7 @@ struct WorldOptions {
     uint64_t seed_override = 0;            ///< != 0 replaces every crowd's seed
     std::optional<uint32_t> characters;    ///< rescale crowds to this many characters in all
     DebugColour colour = DebugColour::Shaded;
+    uint8_t overlay = 0;                   ///< OverlayBits: bones, muscle outlines, fat springs
 };
 
 /// The draw lists one frame produces (Skin phase), in world space, ready for the renderer.
@@ -96,6 +100,8 @@ public:
     }
     /// Debug colouring of the draw lists from the next frame on.
     void set_colour(DebugColour colour) { options_.colour = colour; }
+    /// Debug overlays (OverlayBits) from the next frame on.
+    void set_overlay(uint8_t overlay) { options_.overlay = overlay; }
 
     /// Frames run so far / simulated seconds.
     [[nodiscard]] uint64_t frame() const { return frame_; }
@@ -134,6 +140,9 @@ public:
     /// Hash of every character's placement, LOD state and pose, in spawn order: equal across runs and
     /// thread counts for the same scene and options.
     [[nodiscard]] uint64_t state_hash() const;
+    /// Counts NaN/Inf values in every character's placement, pose matrices and displayed surface (0 when
+    /// healthy): the long-run stability check.
+    [[nodiscard]] uint64_t nonfinite_count() const;
     /// Number of character types and each one's data.
     [[nodiscard]] size_t type_count() const { return types_.size(); }
     [[nodiscard]] const CharacterType& type(size_t i) const;
@@ -145,6 +154,7 @@ private:
     void register_systems();
     void regroup();
     void gather_render_lists();
+    void gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::mat4& world);
     static constexpr uint32_t kNoTopology = 0xFFFFFFFFu;
     uint32_t topology_id(const CharacterRuntime& rt, const SurfaceView& surface);
 

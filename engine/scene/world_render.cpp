@@ -2,6 +2,7 @@
 // chosen debug view, and the renderer hook-up.
 #include "engine/scene/character_runtime.hpp"
 #include "engine/scene/world.hpp"
+#include "systems/geometry/surface_grid.hpp"
 #include "systems/render/debug_colours.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -58,6 +59,7 @@ void World::gather_render_lists() {
                 const glm::mat4 world = world_matrix(transforms[i]);
                 const glm::vec4 colour = character_colour(options_.colour, states[i], anims[i], true);
                 for (uint16_t j : rt.proxy_joints) lists_.proxies.push_back({world * boxes[j] * kHalfToUnit, colour});
+                if (options_.overlay) gather_overlays(rt, refs[i].id, world);
             }
             continue;
         }
@@ -67,10 +69,44 @@ void World::gather_render_lists() {
             if (surface.positions.empty()) continue;
             const uint32_t topology = topology_id(rt, surface);
             if (topology == kNoTopology) continue;
-            lists_.meshes.push_back({topology, surface.positions, surface.normals, world_matrix(transforms[i]),
-                                     character_colour(options_.colour, states[i], anims[i], false)});
+            const glm::mat4 world = world_matrix(transforms[i]);
+            // With overlays on, the skin is left out so the inner layers (bones, muscles, springs) show.
+            if (!options_.overlay)
+                lists_.meshes.push_back({topology, surface.positions, surface.normals, world,
+                                         character_colour(options_.colour, states[i], anims[i], false)});
+            else
+                gather_overlays(rt, refs[i].id, world);
         }
     }
+}
+
+void World::gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::mat4& world) {
+    auto to_world = [&](const glm::vec3& p) { return glm::vec3(world * glm::vec4(p, 1.0f)); };
+    if (options_.overlay & kOverlayBones) {
+        const ConstPoseView pose = rt.motion->poses().view(id);
+        const auto parents = rt.type.skeleton.parents();
+        for (size_t j = 0; j < parents.size(); ++j)
+            if (parents[j] >= 0)
+                lists_.lines.push_back({to_world(glm::vec3(pose.model[static_cast<size_t>(parents[j])][3])),
+                                        to_world(glm::vec3(pose.model[j][3])), glm::vec4(1.0f, 0.85f, 0.1f, 1.0f)});
+    }
+    const std::span<const glm::vec3> muscle = rt.geometry->muscle_positions(id);
+    if (muscle.empty()) return;
+    const GeomLod& lod = rt.geometry->level(rt.geometry->level_of(id));
+    const uint32_t T = lod.theta_steps, P = lod.phi_steps, per = grid_vertex_count(T, P);
+    if (T < 3 || P < 2 || muscle.size() % per != 0) return;
+    if (options_.overlay & kOverlayMuscles) {  // each muscle's rings, as an outline
+        for (size_t m = 0; m < muscle.size() / per; ++m)
+            for (uint32_t r = 1; r < P; ++r)
+                for (uint32_t t = 0; t < T; ++t)
+                    lists_.lines.push_back({to_world(muscle[m * per + grid_ring_vertex(T, r, t)]),
+                                            to_world(muscle[m * per + grid_ring_vertex(T, r, t + 1)]),
+                                            glm::vec4(0.85f, 0.15f, 0.15f, 1.0f)});
+    }
+    const SurfaceView skin = rt.geometry->surface(id);
+    if ((options_.overlay & kOverlaySprings) && skin.positions.size() == muscle.size())  // springs: muscle -> skin
+        for (size_t k = 0; k < muscle.size(); ++k)
+            lists_.lines.push_back({to_world(muscle[k]), to_world(skin.positions[k]), glm::vec4(0.2f, 0.9f, 0.9f, 1.0f)});
 }
 
 uint32_t World::topology_id(const CharacterRuntime& rt, const SurfaceView& surface) {

@@ -21,7 +21,8 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 // Which options each command accepts.
 bool accepts(const std::string& command, const std::string& option) {
     static const std::set<std::string> common = {"--help", "-h", "--threads", "--seed", "--lod", "--budget-ms",
-                                                 "--characters", "--device", "--validation", "--width", "--height"};
+                                                 "--characters", "--device", "--validation", "--width", "--height",
+                                                 "--overlay"};
     if (common.count(option)) return command != "validate" || option == "--help" || option == "-h";
     if (command == "render") return option == "--frame" || option == "--out" || option == "--colour" || option == "--force";
     if (command == "view") return option == "--frames" || option == "--colour" || option == "--out";
@@ -107,6 +108,21 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
             }
             continue;
         }
+        if (a == "--overlay") {
+            auto v = take();
+            if (!v.ok()) return v.error();
+            size_t start = 0;
+            const std::string& list = v.value();
+            while (start <= list.size()) {
+                const size_t comma = std::min(list.find(',', start), list.size());
+                const std::string item = list.substr(start, comma - start);
+                if (item != "bones" && item != "muscles" && item != "springs")
+                    return arg_error("--overlay expects a comma list of bones, muscles, springs, got '" + list + "'");
+                start = comma + 1;
+            }
+            o.overlay = list;
+            continue;
+        }
         if (a == "--out" || a == "--colour" || a == "--device" || a == "--lod") {
             auto v = take();
             if (!v.ok()) return v.error();
@@ -166,7 +182,8 @@ std::string help_text(const std::string& command) {
         "  --characters N     rescale the scene's crowds to N characters in all\n"
         "  --width W, --height H  override the viewport\n"
         "  --device D         lavapipe | gpu | device index (default: a real GPU if present, else lavapipe)\n"
-        "  --validation       enable Vulkan validation layers\n";
+        "  --validation       enable Vulkan validation layers\n"
+        "  --overlay LIST     draw bones, muscles and/or springs over the characters (e.g. bones,springs)\n";
     if (command == "render")
         return "aloha render SCENE --frame N --out frame.png [options]\n"
                "  Simulates frames 0..N headless and writes frame N as PNG.\n"

@@ -30,6 +30,7 @@ struct CliOptions {
     bool force = false;                ///< --force: allow overwriting existing outputs
     std::string colour = "shaded";     ///< --colour shaded|level|rule|method
     std::string device;                ///< --device lavapipe|gpu|INDEX
+    std::string overlay;               ///< --overlay bones,muscles,springs (comma list)
     bool validation = false;           ///< --validation: Vulkan validation layers on
     bool help = false;
     bool quiet = false;                ///< --quiet: no progress bar

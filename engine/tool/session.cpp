@@ -36,6 +36,9 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     wo.seed_override = options.seed.value_or(0);
     wo.characters = options.characters;
     wo.colour = colour_from_option(options.colour);
+    if (options.overlay.find("bones") != std::string::npos) wo.overlay |= kOverlayBones;
+    if (options.overlay.find("muscles") != std::string::npos) wo.overlay |= kOverlayMuscles;
+    if (options.overlay.find("springs") != std::string::npos) wo.overlay |= kOverlaySprings;
     auto world = World::create(session->scene, wo);
     if (!world.ok()) return world.error();
     session->world = std::move(world.value());
