@@ -218,6 +218,8 @@ Result<SceneDesc> parse_scene(const std::string& text, const std::string& file) 
     scene.file = fs::absolute(fs::path(file)).lexically_normal().string();
     JsonObjectReader root(j, "", scene.file, errors);
     if (!root.is_object()) return errors.front();
+    (void)root.string("$schema", "");      // editor hint (data/schemas/scene.schema.json)
+    (void)root.string("description", "");  // free text for people
     scene.name = root.string("name", fs::path(file).stem().string());
     scene.frames = static_cast<uint32_t>(root.integer("frames", 300, 1, 10'000'000));
     scene.dt = static_cast<float>(root.number("dt", 1.0 / 60.0, 1e-5, 1.0));
