@@ -2,7 +2,10 @@
 // characters) and per-character geometry buffers, plus the map from character id to group position.
 #pragma once
 
+#include "components/transform.hpp"
 #include "engine/scene/character_type.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/motion/controller.hpp"
 #include "systems/motion/dynamic/dynamic_hook.hpp"
@@ -12,6 +15,11 @@
 #include <vector>
 
 namespace aloha {
+
+/// World matrix of a character's root placement (translation * rotation * uniform scale).
+inline glm::mat4 world_matrix(const Transform& t) {
+    return glm::scale(glm::translate(glm::mat4(1.0f), t.position) * glm::mat4_cast(t.rotation), glm::vec3(t.scale));
+}
 
 /// Internal to the World: one per character type.
 class CharacterRuntime {

@@ -10,10 +10,6 @@ namespace aloha {
 
 namespace {
 
-glm::mat4 world_of(const Transform& t) {
-    return glm::scale(glm::translate(glm::mat4(1.0f), t.position) * glm::mat4_cast(t.rotation), glm::vec3(t.scale));
-}
-
 // Pixel position of a world point (OpenGL-convention camera); false when behind the eye.
 bool to_pixels(const glm::mat4& view_proj, const glm::vec3& p, const glm::vec2& viewport, glm::vec2& out) {
     const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
@@ -51,7 +47,7 @@ Status World::reference_frame(ReferenceFrame& out) {
         if (states[i].frames_at_geom == 0 && !first_frame_) ++out.switches;
         CharacterRuntime& rt = *types_[refs[i].type];
         const PoseSource poses = rt.poses();
-        const glm::mat4 world = world_of(transforms[i]);
+        const glm::mat4 world = world_matrix(transforms[i]);
         // Screen-space deviation of the displayed control surface from the richest level's.
         rt.geometry->deviation_pairs(poses, refs[i].id, 0, out.current_scratch, out.reference_scratch);
         const uint8_t level = states[i].geom_level;

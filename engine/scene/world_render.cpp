@@ -11,10 +11,6 @@ namespace aloha {
 
 namespace {
 
-glm::mat4 world_matrix(const Transform& t) {
-    return glm::scale(glm::translate(glm::mat4(1.0f), t.position) * glm::mat4_cast(t.rotation), glm::vec3(t.scale));
-}
-
 glm::vec4 character_colour(DebugColour mode, const LodState& state, const AnimLod& anim, bool proxy) {
     switch (mode) {
         case DebugColour::ByLodLevel: return colour_for_level(state.geom_level);
