@@ -1,7 +1,7 @@
 // Replays of the fuzzing inputs through the normally built loaders (docs/BAD_INPUT.md, section
 // "Fuzzer findings"): every seed in tests/fuzz/corpus/<target>/ must give a value or an Error naming
 // the file, without throwing. Crashes the fuzzers found live in tests/robustness/crashes/<target>/;
-// their replay and the deep-nesting stack overflows below are DISABLED_ until the loaders are fixed.
+// their replay and the deep-nesting stack overflows below are regression tests (the loaders are fixed).
 #include "bad_input.hpp"
 
 #include "engine/assets/bvh_loader.hpp"
@@ -60,8 +60,8 @@ TEST(FuzzRegression, SeedCorporaGiveValuesOrNamedErrors) {
     for (const std::string& f : failures) ADD_FAILURE() << f;
 }
 
-// Disabled: the crash files throw nlohmann::json::out_of_range out of parse_rules and
-// parse_joint_limits (fixes: see RulesBadInput/JointLimitsBadInput.DISABLED_NumberOverflowIsAnError).
+// Regression (found while fuzzing, fixed): the crash files throw nlohmann::json::out_of_range out of parse_rules and
+// parse_joint_limits (see RulesBadInput/JointLimitsBadInput.NumberOverflowIsAnError).
 TEST(FuzzRegression, CrashFilesGiveValuesOrNamedErrors) {
     const std::vector<std::string> failures = replay_folder(kRoot + "/tests/robustness/crashes");
     for (const std::string& f : failures) ADD_FAILURE() << f;
@@ -70,7 +70,7 @@ TEST(FuzzRegression, CrashFilesGiveValuesOrNamedErrors) {
 // `depth` nested JSON arrays.
 std::string nested(int depth) { return std::string(static_cast<size_t>(depth), '[') + std::string(static_cast<size_t>(depth), ']'); }
 
-// Disabled: 100000 nested arrays where a value is expected overflow the stack (SIGSEGV; found with the
+// Regression (found while fuzzing, fixed): 100000 nested arrays where a value is expected overflow the stack (SIGSEGV; found with the
 // ASan fuzz builds): nlohmann's dump() and copy constructor and tinygltf's JSON-to-Value conversion
 // recurse once per level. Sites: engine/scene/json_reader.cpp (messages "found " + value.dump()),
 // engine/assets/joint_limits.cpp ("found ... " + v.dump()), systems/lod/rule_parser.cpp:216 (`const

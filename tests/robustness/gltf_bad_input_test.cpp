@@ -147,7 +147,7 @@ TEST(GltfBadInput, ExternalFilesAndFolders) {
     EXPECT_TRUE(refused(load_gltf_character(dir.write("empty.glb", "")), "G29 empty file", "empty.glb", {}));
 }
 
-// Disabled: tinygltf resolves buffer URIs relative to base_dir without any containment check, so a
+// Regression (found while fuzzing, fixed): tinygltf resolves buffer URIs relative to base_dir without any containment check, so a
 // character file can read any file the process can reach with "../" (here the bytes of secret.bin are
 // loaded and show up as joint 30840 = "xx"); absolute URIs are appended to base_dir and not found. Fix (engine/assets/gltf_loader.cpp, load_from_memory):
 // install tinygltf FsCallbacks (loader.SetFsCallbacks) whose ReadWholeFile/ExpandFilePath refuse

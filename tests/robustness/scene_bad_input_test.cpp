@@ -125,7 +125,7 @@ TEST(SceneBadInput, PathsThatEscapeTheSceneFolder) {
     EXPECT_TRUE(with_bvh("./sub/../ok.bvh").ok()) << "a path that goes down and back up stays inside";
 }
 
-// Disabled: resolve_scene_path checks containment lexically, so a symbolic link inside the scene's
+// Regression (found while fuzzing, fixed): resolve_scene_path checks containment lexically, so a symbolic link inside the scene's
 // folder that points elsewhere is followed (the loader would read /etc/passwd through it). Fix:
 // engine/scene/scene_loader.cpp resolve_scene_path(): compare fs::weakly_canonical(folder) with
 // fs::weakly_canonical(full) in is_inside() (canonical paths resolve links) before accepting.
