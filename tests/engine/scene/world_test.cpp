@@ -185,7 +185,13 @@ TEST(WorldSoak, LongRunStaysFiniteWithFlatMemory) {
     EXPECT_GT(mesh_levels, 0u) << "the soak must exercise skinned/layered characters";
     // Memory is flat after warm-up: allow 2 MiB of allocator noise (no per-frame growth: 1 byte per frame
     // per character would already exceed it after a few thousand frames).
+#if defined(__SANITIZE_ADDRESS__)
+    // ASan keeps freed blocks in its quarantine (up to 256 MiB), so resident size is no measure of growth
+    // there; the NaN checks above still run. Memory flatness is checked in the normal build.
+    (void)peak;
+#else
     EXPECT_LE(peak, after_warmup + (2u << 20)) << "resident grew from " << after_warmup << " to " << peak;
+#endif
     std::printf("soak: %ld frames, resident after warm-up %.1f MiB, peak %.1f MiB\n", frames,
                 double(after_warmup) / 1048576.0, double(peak) / 1048576.0);
 }
