@@ -172,23 +172,30 @@ Result<Rgba8Image> OffscreenTarget::read_back(const Context& ctx) const {
         mb.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                              VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, nullptr, 0, nullptr);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {ext.width, ext.height, 1};
-        vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &region);
-        VkMemoryBarrier hb{};
-        hb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-        hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        hb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &hb, 0, nullptr,
-                             0, nullptr);
+        record_image_to_host_copy(cmd, image, ext, dst);
     });
     if (!s) return s.error();
+    return image_from_mapped(readback_.mapped(), ext);
+}
+
+void record_image_to_host_copy(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer dst) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &region);
+    VkMemoryBarrier hb{};
+    hb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    hb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &hb, 0, nullptr, 0, nullptr);
+}
+
+Rgba8Image image_from_mapped(const void* mapped, VkExtent2D extent) {
     Rgba8Image out;
-    out.width = ext.width;
-    out.height = ext.height;
-    out.pixels.resize(size_t(ext.width) * ext.height * 4);
-    std::memcpy(out.pixels.data(), readback_.mapped(), out.pixels.size());
+    out.width = extent.width;
+    out.height = extent.height;
+    out.pixels.resize(size_t(extent.width) * extent.height * 4);
+    std::memcpy(out.pixels.data(), mapped, out.pixels.size());
     return out;
 }
 

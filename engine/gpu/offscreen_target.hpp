@@ -38,6 +38,13 @@ struct Rgba8Image {
 };
 
 /// A headless colour (R8G8B8A8 UNORM or SRGB) + depth (D32) target with its render pass and framebuffer.
+/// Records the copy of a colour image (in TRANSFER_SRC_OPTIMAL) into the host-visible buffer `dst` and the
+/// barrier that makes it readable by the host. Shared by the offscreen and swapchain readbacks.
+void record_image_to_host_copy(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer dst);
+
+/// The RGBA8 image of `extent` held in mapped memory at `mapped` (tightly packed rows).
+[[nodiscard]] Rgba8Image image_from_mapped(const void* mapped, VkExtent2D extent);
+
 /// After each render pass the colour image is in TRANSFER_SRC_OPTIMAL, ready for read_back(). Move-only.
 class OffscreenTarget {
 public:

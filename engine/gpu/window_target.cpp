@@ -252,29 +252,16 @@ Result<Rgba8Image> WindowTarget::read_back(const AcquiredImage& image) {
         b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
                              nullptr, 0, nullptr, 1, &b);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {ext.width, ext.height, 1};
-        vkCmdCopyImageToBuffer(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &region);
+        record_image_to_host_copy(cmd, img, ext, dst);
         b.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
         b.dstAccessMask = 0;
         b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
         b.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, 0, nullptr,
                              0, nullptr, 1, &b);
-        VkMemoryBarrier hb{};
-        hb.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-        hb.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        hb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &hb, 0, nullptr,
-                             0, nullptr);
     });
     if (!s) return s.error();
-    Rgba8Image out;
-    out.width = ext.width;
-    out.height = ext.height;
-    out.pixels.resize(size_t(ext.width) * ext.height * 4);
-    std::memcpy(out.pixels.data(), readback_.mapped(), out.pixels.size());
+    Rgba8Image out = image_from_mapped(readback_.mapped(), ext);
     if (format_ == VK_FORMAT_B8G8R8A8_UNORM || format_ == VK_FORMAT_B8G8R8A8_SRGB)
         for (size_t i = 0; i < out.pixels.size(); i += 4) std::swap(out.pixels[i], out.pixels[i + 2]);
     return out;
