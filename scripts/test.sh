@@ -10,7 +10,7 @@ bash scripts/setup.sh
 export ALOHA_VALIDATION=1
 cmake --preset dev >/dev/null
 cmake --build --preset dev
-ctest --preset dev -j2
+xvfb-run -a ctest --preset dev -j2   # a virtual X server so the window tests run too
 bash scripts/fuzz.sh "${ALOHA_FUZZ_SECONDS:-20}"
 if [ "${ALOHA_SANITIZERS:-0}" = "1" ]; then
   cmake --preset asan-ubsan >/dev/null
