@@ -2,6 +2,7 @@
 #pragma once
 
 #include "systems/geometry/controller/geometry_controller.hpp"
+#include "systems/geometry/spring_skin/peeled.hpp"
 
 #include <span>
 #include <vector>
@@ -42,6 +43,22 @@ struct GeometryController::Level {
         return springs ? store.spring_end(s) : store.positions(s);
     }
 };
+
+/// Points `job`'s bind inputs at the mesh `level` skins: the type's real mesh, or the level's bind mesh
+/// generated from the muscles.
+inline void set_lbs_source(const CharacterGeometry& g, const GeometryController::Level& level, LinearBlendSkinJob& job) {
+    if (level.real_mesh) {
+        job.bind_positions = g.mesh().positions;
+        job.bind_normals = g.mesh().normals;
+        job.joints = g.mesh().joints;
+        job.weights = g.mesh().weights;
+    } else {
+        job.bind_positions = level.generated->positions;
+        job.bind_normals = level.generated->normals;
+        job.joints = level.generated->joints;
+        job.weights = level.generated->weights;
+    }
+}
 
 /// True when two parameter sets give the same storage and topology (method, T, P, subdivision).
 [[nodiscard]] bool same_level_shape(const GeomLod& a, const GeomLod& b);

@@ -20,17 +20,7 @@ void GeometryController::control_surface(const Level& level, std::span<const glm
         for (size_t j = 0; j < palette.size(); ++j) palette[j] = pose[j] * inverse[j];
         std::vector<glm::vec3> normals(out.size());
         LinearBlendSkinJob job{palette, {}, {}, {}, {}, out, normals};
-        if (level.real_mesh) {
-            job.bind_positions = g.mesh().positions;
-            job.bind_normals = g.mesh().normals;
-            job.joints = g.mesh().joints;
-            job.weights = g.mesh().weights;
-        } else {
-            job.bind_positions = level.generated->positions;
-            job.bind_normals = level.generated->normals;
-            job.joints = level.generated->joints;
-            job.weights = level.generated->weights;
-        }
+        set_lbs_source(g, level, job);
         job.Run();
         return;
     }

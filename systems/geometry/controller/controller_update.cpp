@@ -49,17 +49,7 @@ void run_skinned(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
     const std::span<const glm::mat4> inverse = L.real_mesh ? std::span<const glm::mat4>(g.mesh().inverse_bind) : g.inverse_rest_model();
     for (size_t j = 0; j < palette.size(); ++j) palette[j] = pose[j] * inverse[j];
     LinearBlendSkinJob job{palette, {}, {}, {}, {}, st.positions(s), st.normals(s)};
-    if (L.real_mesh) {
-        job.bind_positions = g.mesh().positions;
-        job.bind_normals = g.mesh().normals;
-        job.joints = g.mesh().joints;
-        job.weights = g.mesh().weights;
-    } else {
-        job.bind_positions = L.generated->positions;
-        job.bind_normals = L.generated->normals;
-        job.joints = L.generated->joints;
-        job.weights = L.generated->weights;
-    }
+    set_lbs_source(g, L, job);
     assert(job.Validate());
     job.Run();
     if (!apply_morph(st, s, st.positions(s), st.positions(s))) return;
