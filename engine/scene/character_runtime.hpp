@@ -27,8 +27,9 @@ public:
     /// Sets up the motion controller for `count` characters of `type` (ids 0..count-1); the
     /// geometric controller is made by init_geometry once the rule file's levels are known.
     CharacterRuntime(CharacterType type, uint32_t count);
-    /// Builds the type's geometry and its geometric controller for `levels`. Errors name the type.
-    Status init_geometry(uint16_t type_index, std::span<const GeomLod> levels);
+    /// Builds the type's geometry and its geometric controller for `levels` (refined surfaces kept
+    /// per character when `keep_refined_surfaces`). Errors name the type.
+    Status init_geometry(uint16_t type_index, std::span<const GeomLod> levels, bool keep_refined_surfaces);
     /// Where this type's pose matrices live, for GeometryController::update.
     [[nodiscard]] PoseSource poses() const;
 

@@ -30,7 +30,7 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
         if (parents[j] < 0 || glm::length(rest_t[j]) >= 0.05f) proxy_joints.push_back(static_cast<uint16_t>(j));
 }
 
-Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const GeomLod> levels) {
+Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const GeomLod> levels, bool keep_refined_surfaces) {
     CharacterGeometryDesc desc;
     desc.type = type_index;
     desc.name = type.name;
@@ -42,7 +42,7 @@ Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const Geom
     auto built = CharacterGeometry::create(std::move(desc));
     if (!built.ok()) return built.error();
     geometry_data = std::move(built.value());
-    geometry = std::make_unique<GeometryController>(*geometry_data, levels, count);
+    geometry = std::make_unique<GeometryController>(*geometry_data, levels, count, keep_refined_surfaces);
     return {};
 }
 
@@ -110,7 +110,8 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
     std::vector<GeomLod> levels;
     for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
     for (size_t t = 0; t < types_.size(); ++t)
-        if (Status s = types_[t]->init_geometry(static_cast<uint16_t>(t), levels); !s.ok()) return s;
+        if (Status s = types_[t]->init_geometry(static_cast<uint16_t>(t), levels, options.keep_refined_surfaces); !s.ok())
+            return s;
     if (!options.lod) {
         // With LOD off every character sits at level 0: refuse up front (with the figures) rather than
         // run out of memory half-way through the first frame.
@@ -122,6 +123,8 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
                                               table.geom_levels[0].name + "': " + std::to_string(need >> 20) +
                                               " MiB of geometry, more than 80% of the " + std::to_string(have >> 20) +
                                               " MiB available; use --characters to profile fewer");
+        // All of them enter level 0 on the first frame: allocate once rather than by doubling.
+        for (const auto& rt : types_) rt->geometry->reserve(0, rt->count);
     }
     register_systems();
     if (Status s = scheduler_.build(); !s.ok()) return s;

@@ -52,6 +52,8 @@ struct WorldOptions {
     std::optional<uint32_t> characters;    ///< rescale crowds to this many characters in all
     DebugColour colour = DebugColour::Shaded;
     uint8_t overlay = 0;                   ///< OverlayBits: bones, muscle outlines, fat springs
+    bool keep_refined_surfaces = true;     ///< false (runs with no renderer): subdivided skins are
+                                           ///< computed each frame but not kept (see GeometryController)
 };
 
 /// The draw lists one frame produces (Skin phase), in world space, ready for the renderer.
@@ -175,6 +177,7 @@ private:
     std::vector<uint32_t> changed_;
     std::vector<KeyRange> ranges_;
     RenderLists lists_;
+    std::vector<glm::vec3> overlay_muscles_;         ///< scratch: one character's muscle surface (overlays)
     CrowdRenderer* renderer_ = nullptr;
     gpu::OffscreenTarget* target_ = nullptr;
     double last_gpu_ms_ = -1.0;

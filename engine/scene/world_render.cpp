@@ -86,7 +86,8 @@ void World::gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::
                 lists_.lines.push_back({to_world(glm::vec3(pose.model[static_cast<size_t>(parents[j])][3])),
                                         to_world(glm::vec3(pose.model[j][3])), glm::vec4(1.0f, 0.85f, 0.1f, 1.0f)});
     }
-    const std::span<const glm::vec3> muscle = rt.geometry->muscle_positions(id);
+    rt.geometry->muscle_surface(id, overlay_muscles_);
+    const std::span<const glm::vec3> muscle = overlay_muscles_;
     if (muscle.empty()) return;
     const GeomLod& lod = rt.geometry->level(rt.geometry->level_of(id));
     const uint32_t T = lod.theta_steps, P = lod.phi_steps, per = grid_vertex_count(T, P);

@@ -39,6 +39,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     if (options.overlay.find("bones") != std::string::npos) wo.overlay |= kOverlayBones;
     if (options.overlay.find("muscles") != std::string::npos) wo.overlay |= kOverlayMuscles;
     if (options.overlay.find("springs") != std::string::npos) wo.overlay |= kOverlaySprings;
+    wo.keep_refined_surfaces = render;  // nothing displays them without a renderer
     auto world = World::create(session->scene, wo);
     if (!world.ok()) return world.error();
     session->world = std::move(world.value());

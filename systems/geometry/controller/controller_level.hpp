@@ -17,6 +17,7 @@ struct GeometryController::Level {
     uint8_t revision = 0;                          ///< bumped when set_levels rebuilds the level
     bool mesh_level = false;                       ///< SkinnedMesh, Layered or Subdivided
     bool real_mesh = false;                        ///< the control surface is the real mesh
+    bool keep_refined = true;                      ///< Subdivided: refined surface kept per slot
     uint32_t theta_steps = 0, phi_steps = 0;       ///< grid tessellation (muscles, grid skin)
     uint32_t grid_vertices = 0;                    ///< V(T, P)
     uint32_t control_vertices = 0;                 ///< control surface vertices per character

@@ -1,7 +1,8 @@
 // GeometryController::update: the per-frame method of a level, run as one loop over its characters.
-// Every buffer written belongs to the character's slot, so disjoint character lists may run
-// concurrently; nothing is allocated. Job sizes are guaranteed by the slot layout (see
-// build_level), so Validate() is only asserted (debug builds) and Run() called directly.
+// Every buffer written belongs to the character's slot or to the calling thread's scratch, so
+// disjoint character lists may run concurrently; nothing is allocated once a thread's scratch has
+// grown to the largest level. Job sizes are guaranteed by the slot layout (see build_level), so
+// Validate() is only asserted (debug builds) and Run() called directly.
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/muscle/muscle_shape_job.hpp"
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
@@ -11,11 +12,28 @@
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 
 #include <cassert>
+#include <vector>
 
 namespace aloha {
 namespace {
 
 using Level = GeometryController::Level;
+
+// Per-thread buffers for what lives only inside one character's update: the tessellated muscle
+// surface (the springs' roots) and, when the level does not keep it, the refined surface.
+struct FrameScratch {
+    std::vector<glm::vec3> muscle_positions, muscle_normals, refined_positions, refined_normals;
+};
+
+std::span<glm::vec3> sized(std::vector<glm::vec3>& v, size_t n) {
+    if (v.size() < n) v.resize(n);
+    return std::span(v).first(n);
+}
+
+FrameScratch& frame_scratch() {
+    thread_local FrameScratch scratch;
+    return scratch;
+}
 
 // Shows a running morph of slot s: out = fresh + (left / total) * delta (out may alias fresh). On the
 // first frame after the switch the deltas still hold the old surface and become old - fresh.
@@ -64,27 +82,31 @@ void run_skinned(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
 
 void run_layered(const CharacterGeometry& g, Level& L, uint32_t s, std::span<const glm::mat4> pose, const FatSpringParams& params) {
     SlotStore& st = L.store;
+    FrameScratch& scratch = frame_scratch();
     const MuscleShapeJob shape{&g.muscles(), pose, st.centres(s), st.rotations(s), st.radii(s)};
     assert(shape.Validate());
     shape.Run();
-    const MuscleTessellateJob tess{L.tables, st.centres(s), st.rotations(s), st.radii(s), st.muscle_positions(s), st.muscle_normals(s)};
+    const size_t muscle_vertices = size_t{g.muscle_count()} * L.grid_vertices;
+    const std::span<glm::vec3> muscle_positions = sized(scratch.muscle_positions, muscle_vertices);
+    const std::span<glm::vec3> muscle_normals = sized(scratch.muscle_normals, muscle_vertices);
+    const MuscleTessellateJob tess{L.tables, st.centres(s), st.rotations(s), st.radii(s), muscle_positions, muscle_normals};
     assert(tess.Validate());
     tess.Run();
     std::span<const glm::vec3> control;
     if (!L.real_mesh) {
-        const FatSpringJob springs{L.theta_steps, L.phi_steps, params, st.muscle_positions(s), st.muscle_normals(s),
+        const FatSpringJob springs{L.theta_steps, L.phi_steps, params, muscle_positions, muscle_normals,
                                    g.muscles().fat_thickness,
                                    {st.spring_end(s), st.spring_velocity(s), st.spring_prev_rest(s), st.spring_initialised(s)}};
         assert(springs.Validate());
         springs.Run();
         control = apply_morph(st, s, st.spring_end(s), st.positions(s)) ? st.positions(s) : st.spring_end(s);
         if (L.lod.method == GeomMethod::Layered) {
-            const SkinJob normals{L.theta_steps, L.phi_steps, control, st.muscle_normals(s), st.normals(s)};
+            const SkinJob normals{L.theta_steps, L.phi_steps, control, muscle_normals, st.normals(s)};
             assert(normals.Validate());
             normals.Run();
         }
     } else {
-        const BoundSkinJob bound{L.theta_steps, L.phi_steps, g.muscle_count(), st.muscle_positions(s), st.muscle_normals(s),
+        const BoundSkinJob bound{L.theta_steps, L.phi_steps, g.muscle_count(), muscle_positions, muscle_normals,
                                  g.bindings(), st.positions(s)};
         assert(bound.Validate());
         bound.Run();
@@ -93,7 +115,10 @@ void run_layered(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
         if (L.lod.method == GeomMethod::Layered) accumulate_vertex_normals(control, L.indices, st.normals(s));
     }
     if (L.subdivision) {
-        const SubdivideJob refine{L.subdivision, control, st.refined_positions(s), st.refined_normals(s)};
+        const size_t refined = L.subdivision->refined_vertex_count;
+        const bool keep = L.keep_refined;
+        const SubdivideJob refine{L.subdivision, control, keep ? st.refined_positions(s) : sized(scratch.refined_positions, refined),
+                                  keep ? st.refined_normals(s) : sized(scratch.refined_normals, refined)};
         assert(refine.Validate());
         refine.Run();
     }

@@ -3,6 +3,7 @@
 #include "systems/geometry/controller/geometry_controller.hpp"
 
 #include "systems/geometry/controller/controller_level.hpp"
+#include "systems/geometry/muscle/muscle_tessellate_job.hpp"
 #include "systems/geometry/spring_skin/grid_sample.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 #include "systems/geometry/surface_grid.hpp"
@@ -27,8 +28,9 @@ bool same_level_shape(const GeomLod& a, const GeomLod& b) {
     return false;
 }
 
-GeometryController::GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity)
-    : geometry_(&geometry), level_of_(capacity, kNoLevel), slot_of_(capacity, 0) {
+GeometryController::GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity,
+                                       bool keep_refined_surfaces)
+    : geometry_(&geometry), level_of_(capacity, kNoLevel), slot_of_(capacity, 0), keep_refined_(keep_refined_surfaces) {
     set_levels(levels);
 }
 
@@ -61,7 +63,6 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
         case GeomMethod::Layered:
         case GeomMethod::Subdivided:
             layout.shapes = M;
-            layout.muscle_vertices = M * V;
             if (!real) {
                 layout.springs = M * V;
                 layout.spring_flags = M;
@@ -71,7 +72,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
                 layout.control_normals = control;
             } else {
                 subdivision = &g.subdivision(T, P, std::min<uint32_t>(lod.subdiv_level, 4));
-                layout.refined = subdivision->refined_vertex_count;
+                layout.refined = keep_refined_ ? subdivision->refined_vertex_count : 0;
             }
             break;
     }
@@ -81,11 +82,12 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     level->revision = revision;
     level->mesh_level = layout.control > 0;
     level->real_mesh = real;
+    level->keep_refined = keep_refined_;
     level->theta_steps = T;
     level->phi_steps = P;
     level->grid_vertices = V;
     level->control_vertices = layout.control;
-    level->display_vertices = subdivision ? layout.refined : layout.control;
+    level->display_vertices = subdivision ? subdivision->refined_vertex_count : layout.control;
     level->subdivision = subdivision;
     if (level->layered()) level->tables = &g.tables(T, P);
     if (lod.method == GeomMethod::SkinnedMesh && !real) level->generated = &g.generated_mesh(T, P);
@@ -181,6 +183,8 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
     slot_of_[character] = s;
 }
 
+void GeometryController::reserve(uint8_t level, uint32_t characters) { levels_.at(level)->store.reserve(characters); }
+
 void GeometryController::end_character(uint32_t character) {
     if (character >= level_of_.size() || level_of_[character] == kNoLevel) return;
     levels_[level_of_[character]]->store.release(slot_of_[character]);
@@ -197,6 +201,7 @@ SurfaceView GeometryController::surface(uint32_t character) const {
     view.topology_key = topology_key(l);
     if (!L.mesh_level || !L.store.valid[s]) return view;
     if (L.subdivision) {
+        if (!L.keep_refined) return view;
         view.positions = L.store.refined_positions(s);
         view.normals = L.store.refined_normals(s);
     } else {
@@ -213,11 +218,18 @@ std::span<const glm::mat4> GeometryController::proxy_boxes(uint32_t character) c
     return levels_[l]->store.valid[s] ? levels_[l]->store.boxes(s) : std::span<const glm::mat4>{};
 }
 
-std::span<const glm::vec3> GeometryController::muscle_positions(uint32_t character) const {
+void GeometryController::muscle_surface(uint32_t character, std::vector<glm::vec3>& positions) const {
+    positions.clear();
     const uint8_t l = level_of(character);
-    if (l == kNoLevel || !levels_[l]->layered()) return {};
+    if (l == kNoLevel || !levels_[l]->layered()) return;
+    const Level& L = *levels_[l];
     const uint32_t s = slot_of_[character];
-    return levels_[l]->store.valid[s] ? levels_[l]->store.muscle_positions(s) : std::span<const glm::vec3>{};
+    if (!L.store.valid[s]) return;
+    positions.resize(size_t{geometry_->muscle_count()} * L.grid_vertices);
+    std::vector<glm::vec3> normals(positions.size());
+    const MuscleTessellateJob tess{L.tables, L.store.centres(s), L.store.rotations(s), L.store.radii(s), positions, normals};
+    assert(tess.Validate());
+    tess.Run();
 }
 
 std::span<const uint32_t> GeometryController::level_indices(uint8_t level) const { return levels_.at(level)->indices; }

@@ -64,8 +64,12 @@ public:
     /// Controller for `geometry` (must outlive it) with the rule file's levels (at most 255; each
     /// grid level needs T >= 3, P >= 2; subdiv_level <= 4) and room for `capacity` character ids
     /// (grows when a larger id enters). Builds every level's shared data (tables, bind meshes,
-    /// subdivision, index buffers).
-    GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity);
+    /// subdivision, index buffers). `keep_refined_surfaces` false: Subdivided levels still refine
+    /// every frame but into per-thread scratch, keeping no refined surface per character (for runs
+    /// with no renderer; surface() is then empty at those levels), which takes their memory per
+    /// character from ~3 MB to ~1 MB at 24x16.
+    GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity,
+                       bool keep_refined_surfaces = true);
     ~GeometryController();
     GeometryController(const GeometryController&) = delete;
     GeometryController& operator=(const GeometryController&) = delete;
@@ -82,6 +86,9 @@ public:
     /// spawn); the controller's own record wins when they differ. Entering the current level again
     /// does nothing. Serial only. Requires level < level_count().
     void begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames);
+    /// Allocates room for `characters` characters at `level` at once (no-op when there is room), for a
+    /// caller that knows they will all enter it. Serial only. Requires level < level_count().
+    void reserve(uint8_t level, uint32_t characters);
     /// Releases the character's slot (despawn). Serial only.
     void end_character(uint32_t character);
 
@@ -89,14 +96,17 @@ public:
     /// from `poses` and frame time `dt` > 0 (fat springs). Thread-safe for disjoint character lists.
     void update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
 
-    /// The character's displayed surface (valid until its next update / begin_level / set_levels).
+    /// The character's displayed surface (valid until its next update / begin_level / set_levels);
+    /// positions and normals are empty before its first update, at levels with no mesh, and at
+    /// Subdivided levels when refined surfaces are not kept.
     [[nodiscard]] SurfaceView surface(uint32_t character) const;
     /// The character's proxy boxes (one per joint, unit cube [-1, 1]^3 -> box, character space), or
     /// empty when it is not at a RigidProxy level.
     [[nodiscard]] std::span<const glm::mat4> proxy_boxes(uint32_t character) const;
-    /// The character's tessellated muscle surface (muscles x V(T, P), for debug drawing), or empty
-    /// when its level has no muscles.
-    [[nodiscard]] std::span<const glm::vec3> muscle_positions(uint32_t character) const;
+    /// Writes the character's tessellated muscle surface as of its last update (muscles x V(T, P),
+    /// for debug drawing) to `positions`, or clears it when its level has no muscles or it has not
+    /// been updated. The surface is not kept per character: this tessellates again. Allocates.
+    void muscle_surface(uint32_t character, std::vector<glm::vec3>& positions) const;
     /// Triangle list shared by every character of `level` (empty for RigidProxy / Hidden).
     [[nodiscard]] std::span<const uint32_t> level_indices(uint8_t level) const;
     /// Topology key of `level` (see SurfaceView::topology_key).
@@ -156,6 +166,7 @@ private:
     std::vector<uint8_t> level_of_;
     std::vector<uint32_t> slot_of_;
     FatSpringParams spring_params_;
+    bool keep_refined_ = true;
 };
 
 }  // namespace aloha

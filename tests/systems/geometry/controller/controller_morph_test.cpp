@@ -119,7 +119,8 @@ TEST(GeometryControllerMorph, GeneratedSkinnedMeshMatchesLayeredAtRest) {
     ASSERT_EQ(peeled.positions.size(), layered.positions.size());
     // The peeled skin sits exactly one fat thickness outside its muscle vertex (the generated bind
     // mesh is root + h n and the rest palette is the identity up to rounding).
-    const auto muscles = ctl.muscle_positions(1);
+    std::vector<glm::vec3> muscles;
+    ctl.muscle_surface(1, muscles);
     const uint32_t V = grid_vertex_count(8, 6);
     for (size_t i = 0; i < peeled.positions.size(); ++i) {
         const float h = g.muscles().fat_thickness[i / V];

@@ -1,0 +1,101 @@
+// GeometryController memory: what a character costs per level, refined surfaces computed but not
+// kept (runs with no renderer), and allocating a level's slots at once.
+#include "systems/geometry/surface_grid.hpp"
+#include "tests/systems/geometry/controller/test_humanoid.hpp"
+
+#include <gtest/gtest.h>
+
+namespace aloha {
+namespace {
+
+using test::humanoid;
+
+constexpr float kDt = 1.0f / 30.0f;
+
+// Runs `frames` clip frames on character 0 of `ctl` at `level`.
+void animate(GeometryController& ctl, uint8_t level, int first_frame, int frames) {
+    const CharacterGeometry& g = *humanoid().geometry;
+    const uint32_t c = 0;
+    for (int f = first_frame; f < first_frame + frames; ++f) {
+        const auto pose = test::clip_pose(g.skeleton(), humanoid().clip, f);
+        ctl.update(level, std::span(&c, 1), PoseSource{pose.data(), 0}, kDt);
+    }
+}
+
+TEST(GeometryControllerMemory, RefinedSurfacesNotKeptSaveExactlyTheirBytesAndChangeNothingElse) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    const auto levels = test::test_levels();  // level 0: Subdivided (8, 6), one Catmull-Clark step
+    GeometryController kept(g, levels, 1), dropped(g, levels, 1, /*keep_refined_surfaces=*/false);
+    // The refined surface is two vec3 per refined vertex; every other level is unaffected.
+    EXPECT_EQ(kept.bytes_per_character(0) - dropped.bytes_per_character(0),
+              size_t{kept.vertices_per_character(0)} * 2 * sizeof(glm::vec3));
+    for (uint8_t l = 1; l < levels.size(); ++l) EXPECT_EQ(kept.bytes_per_character(l), dropped.bytes_per_character(l));
+    EXPECT_EQ(kept.vertices_per_character(0), dropped.vertices_per_character(0));
+
+    kept.begin_level(0, 0, -1, 0);
+    dropped.begin_level(0, 0, -1, 0);
+    animate(kept, 0, 40, 12);
+    animate(dropped, 0, 40, 12);
+    EXPECT_EQ(kept.surface(0).positions.size(), kept.vertices_per_character(0));
+    EXPECT_TRUE(dropped.surface(0).positions.empty());
+    EXPECT_TRUE(dropped.surface(0).normals.empty());
+    EXPECT_EQ(dropped.surface(0).level, 0);
+
+    // The state behind the skin (springs, control surface) is the same to the bit.
+    const auto pose = test::clip_pose(g.skeleton(), humanoid().clip, 51);
+    const PoseSource src{pose.data(), 0};
+    std::vector<glm::vec3> kept_control, dropped_control, ref;
+    kept.deviation_pairs(src, 0, 1, kept_control, ref);
+    dropped.deviation_pairs(src, 0, 1, dropped_control, ref);
+    ASSERT_FALSE(kept_control.empty());
+    ASSERT_EQ(kept_control.size(), dropped_control.size());
+    EXPECT_EQ(test::max_distance(kept_control, dropped_control), 0.0f);
+
+    // A morph out of the level starts from that state: both show the same surface afterwards.
+    kept.begin_level(0, 1, 0, 6);
+    dropped.begin_level(0, 1, 0, 6);
+    animate(kept, 1, 52, 3);
+    animate(dropped, 1, 52, 3);
+    ASSERT_EQ(kept.surface(0).positions.size(), dropped.surface(0).positions.size());
+    EXPECT_EQ(test::max_distance(kept.surface(0).positions, dropped.surface(0).positions), 0.0f);
+    EXPECT_EQ(test::max_distance(kept.surface(0).normals, dropped.surface(0).normals), 0.0f);
+}
+
+TEST(GeometryControllerMemory, MuscleSurfaceIsRebuiltFromTheKeptShapes) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, test::test_levels(), 1);
+    std::vector<glm::vec3> muscles{glm::vec3(1.0f)};
+    ctl.muscle_surface(0, muscles);  // no level yet
+    EXPECT_TRUE(muscles.empty());
+    ctl.begin_level(0, 2, -1, 0);  // Layered (8, 6)
+    muscles.assign(3, glm::vec3(1.0f));
+    ctl.muscle_surface(0, muscles);  // not updated yet
+    EXPECT_TRUE(muscles.empty());
+    animate(ctl, 2, 10, 1);  // one frame: the springs start at rest, one fat thickness out
+    ctl.muscle_surface(0, muscles);
+    const auto skin = ctl.surface(0).positions;
+    const uint32_t V = grid_vertex_count(8, 6);
+    ASSERT_EQ(muscles.size(), skin.size());
+    for (size_t i = 0; i < skin.size(); ++i)
+        ASSERT_NEAR(glm::length(skin[i] - muscles[i]), g.muscles().fat_thickness[i / V], 1e-5f) << i;
+}
+
+TEST(GeometryControllerMemory, ReserveAllocatesALevelOnce) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, test::test_levels(), 100);
+    ctl.reserve(2, 100);
+    EXPECT_EQ(ctl.slot_capacity(2), 100u);
+    const size_t bytes = ctl.memory_bytes();
+    for (uint32_t c = 0; c < 100; ++c) ctl.begin_level(c, 2, -1, 0);
+    EXPECT_EQ(ctl.slot_capacity(2), 100u);  // no doubling past what was asked for
+    EXPECT_EQ(ctl.memory_bytes(), bytes);
+    ctl.reserve(2, 50);  // already room: nothing changes
+    EXPECT_EQ(ctl.slot_capacity(2), 100u);
+    EXPECT_EQ(ctl.characters_at(2), 100u);
+}
+
+}  // namespace
+}  // namespace aloha
