@@ -5,6 +5,8 @@
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
 
+#include <functional>
+
 namespace aloha {
 
 namespace {
@@ -125,6 +127,9 @@ void World::register_systems() {
                             job.velocities = g.span<Velocity>();
                             job.element_of_character = rt->element_of_character;
                             job.grain = 64;  // pose evaluation in parallel chunks (bit-identical to serial)
+                            job.run_chunks = [&ctx](size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn) {
+                                ctx.parallel_for(count, grain, fn);
+                            };
                             job.Run();
                         }
                     }});

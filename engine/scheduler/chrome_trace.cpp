@@ -45,20 +45,29 @@ std::string chrome_trace_json(std::span<const TraceEvent> events, std::span<cons
     out.reserve(128 + events.size() * 120);
     out += "{\"displayTimeUnit\":\"ms\",\"traceEvents\":[\n";
     out += R"({"name":"process_name","ph":"M","pid":1,"tid":0,"args":{"name":"aloha"}})";
-    std::set<uint32_t> threads;
-    for (const TraceEvent& e : events) threads.insert(e.thread);
-    for (const uint32_t t : threads) {
-        out += ",\n{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":" + std::to_string(t) +
-               ",\"args\":{\"name\":\"worker " + std::to_string(t) + "\"}}";
-    }
+    auto name_of = [&](uint32_t system) {
+        return system < names.size() ? names[system] : "system " + std::to_string(system);
+    };
+    auto track = [](const TraceEvent& e) { return e.kind == TraceKind::System ? kSystemTrackBase + e.system : e.thread; };
+    auto declare = [&](uint32_t tid, const std::string& name, uint32_t sort_index) {
+        out += ",\n{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":" + std::to_string(tid) + ",\"args\":{\"name\":";
+        append_escaped(out, name);
+        out += "}},\n{\"name\":\"thread_sort_index\",\"ph\":\"M\",\"pid\":1,\"tid\":" + std::to_string(tid) +
+               ",\"args\":{\"sort_index\":" + std::to_string(sort_index) + "}}";
+    };
+    std::set<uint32_t> systems, threads;
+    for (const TraceEvent& e : events) (e.kind == TraceKind::System ? systems.insert(e.system) : threads.insert(e.thread));
+    for (const uint32_t s : systems) declare(kSystemTrackBase + s, "system: " + name_of(s), s);
+    for (const uint32_t t : threads) declare(t, "worker " + std::to_string(t), kSystemTrackBase + t);
     for (const TraceEvent& e : events) {
         out += ",\n{\"name\":";
-        append_escaped(out, e.system < names.size() ? names[e.system] : "system " + std::to_string(e.system));
-        out += ",\"cat\":\"system\",\"ph\":\"X\",\"pid\":1,\"tid\":" + std::to_string(e.thread) + ",\"ts\":";
+        append_escaped(out, name_of(e.system));
+        out += std::string(",\"cat\":\"") + (e.kind == TraceKind::System ? "system" : "work") +
+               "\",\"ph\":\"X\",\"pid\":1,\"tid\":" + std::to_string(track(e)) + ",\"ts\":";
         append_micros(out, e.begin_ns);
         out += ",\"dur\":";
         append_micros(out, e.end_ns >= e.begin_ns ? e.end_ns - e.begin_ns : 0);
-        out += ",\"args\":{\"frame\":" + std::to_string(e.frame) + "}}";
+        out += ",\"args\":{\"frame\":" + std::to_string(e.frame) + ",\"thread\":" + std::to_string(e.thread) + "}}";
     }
     out += "\n]}\n";
     return out;

@@ -9,9 +9,14 @@
 
 namespace aloha {
 
+/// Track (tid) of system `system`'s whole runs; worker threads use their arena slot as tid.
+inline constexpr uint32_t kSystemTrackBase = 1000;
+
 /// The Chrome Trace Event JSON for `events`: one "X" (complete) event per entry, named
-/// names[event.system] ("system N" when out of range), tid = arena thread, microsecond times,
-/// plus thread-name metadata events.
+/// names[event.system] ("system N" when out of range), microsecond times. One track per system
+/// (TraceKind::System events, tid kSystemTrackBase + system, named "system: NAME", listed first)
+/// and one per arena thread (TraceKind::Work events, tid = thread, named "worker N"), declared by
+/// thread-name and sort-index metadata events.
 [[nodiscard]] std::string chrome_trace_json(std::span<const TraceEvent> events,
                                             std::span<const std::string> names);
 

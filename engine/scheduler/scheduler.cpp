@@ -49,6 +49,8 @@ Status Scheduler::build() {
     // Per-system state is allocated here, never per frame.
     timings_.assign(systems_.size(), TimingRing());
     frame_events_.assign(systems_.size(), TraceEvent{});
+    work_.assign(systems_.size(), WorkSpans{});
+    for (WorkSpans& w : work_) w.per_thread.assign(threads_, WorkSpans::Span{});
     commands_.clear();
     for (size_t i = 0; i < systems_.size(); ++i) commands_.push_back(std::make_unique<CommandBuffer>());
     built_ = true;
@@ -57,6 +59,7 @@ Status Scheduler::build() {
 
 void Scheduler::set_threads(unsigned threads) {
     threads_ = resolve_threads(threads);
+    for (WorkSpans& w : work_) w.per_thread.assign(threads_, WorkSpans::Span{});
     arena_ = std::make_unique<tbb::task_arena>(static_cast<int>(threads_));
     // The global worker pool defaults to the core count; raise it when more threads are asked for
     // so an arena of `threads_` can really be filled.
@@ -72,9 +75,13 @@ uint64_t Scheduler::now_ns() const {
         std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - epoch_).count());
 }
 
+uint64_t Scheduler::clock_of(const void* scheduler) { return static_cast<const Scheduler*>(scheduler)->now_ns(); }
+
 void Scheduler::run_system(uint32_t index, float dt) {
     const SystemDesc& s = systems_[index];
-    SystemContext ctx(frame_, dt, threads_, index, s.name, commands_[index].get());
+    WorkSpans* work = trace_sink_ ? &work_[index] : nullptr;
+    if (work) work->events.clear();  // keeps its capacity: no allocation once warmed up
+    SystemContext ctx(frame_, dt, threads_, index, s.name, commands_[index].get(), work, &Scheduler::clock_of, this);
     const int slot = tbb::this_task_arena::current_thread_index();
     const uint64_t begin = now_ns();
     s.run(ctx);
@@ -111,6 +118,8 @@ void Scheduler::run_frame(float dt) {
     frame_timings_.push(now_ns() - frame_begin);
     if (trace_sink_) {
         for (const TraceEvent& e : frame_events_) trace_sink_(e);
+        for (const WorkSpans& w : work_)
+            for (const TraceEvent& e : w.events) trace_sink_(e);
     }
     ++frame_;
 }

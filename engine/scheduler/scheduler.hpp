@@ -53,7 +53,9 @@ public:
     /// Hook called after every phase (with that phase), on the calling thread; apply command
     /// buffers there.
     void set_between_phases(std::function<void(Phase)> hook) { between_phases_ = std::move(hook); }
-    /// Sink receiving every trace event after each frame, in system order (calling thread).
+    /// Sink receiving every trace event after each frame (calling thread): each system's run in
+    /// system order, then each system's per-thread parallel work (TraceKind::Work). While a sink is
+    /// set, parallel_for notes which thread ran what (two clock reads per task).
     void set_trace_sink(std::function<void(const TraceEvent&)> sink) { trace_sink_ = std::move(sink); }
 
     /// Runs every phase once; requires built(). Frame index advances by one.
@@ -89,12 +91,14 @@ public:
 private:
     void run_system(uint32_t index, float dt);
     [[nodiscard]] uint64_t now_ns() const;
+    static uint64_t clock_of(const void* scheduler);
 
     std::vector<SystemDesc> systems_;
     std::vector<std::string> names_;
     std::vector<Pass> plan_;
     std::vector<TimingRing> timings_;
     std::vector<TraceEvent> frame_events_;
+    std::vector<WorkSpans> work_;
     std::vector<std::unique_ptr<CommandBuffer>> commands_;
     TimingRing frame_timings_;
     std::function<void(Phase)> between_phases_;

@@ -12,10 +12,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #include "engine/ecs/command_buffer.hpp"
 #include "engine/ecs/type_id.hpp"
 #include "engine/scheduler/phase.hpp"
+#include "engine/scheduler/timing.hpp"
 
 namespace aloha {
 
@@ -48,10 +50,13 @@ std::vector<ComponentTypeId> writes() {
 /// parallel_for inside the scheduler's thread arena.
 class SystemContext {
 public:
-    /// Built by the scheduler for each run.
+    /// Built by the scheduler for each run. `work` (nullptr when not tracing) receives each
+    /// thread's span of every parallel_for; `clock` gives nanoseconds since the scheduler's epoch.
     SystemContext(uint64_t frame, float dt, unsigned threads, uint32_t system, std::string_view name,
-                  CommandBuffer* commands)
-        : frame_(frame), dt_(dt), threads_(threads), system_(system), name_(name), commands_(commands) {}
+                  CommandBuffer* commands, WorkSpans* work = nullptr, uint64_t (*clock)(const void*) = nullptr,
+                  const void* clock_owner = nullptr)
+        : frame_(frame), dt_(dt), threads_(threads), system_(system), name_(name), commands_(commands), work_(work),
+          clock_(clock), clock_owner_(clock_owner) {}
 
     /// Index of the current frame (0 for the first run_frame()).
     [[nodiscard]] uint64_t frame() const { return frame_; }
@@ -75,30 +80,56 @@ public:
     /// Calls fn(begin, end) for the chunks [k*grain, min((k+1)*grain, count)), possibly in
     /// parallel. Chunk boundaries depend only on count and grain (never on the thread count), so
     /// per-chunk results combined in chunk order are identical with 1 or N threads.
+    /// When tracing, each thread's share is recorded (see WorkSpans).
     template <class Fn>
     void parallel_for(size_t count, size_t grain, Fn&& fn) const {
         grain = std::max<size_t>(grain, 1);
         const size_t chunks = chunk_count(count, grain);
+        if (chunks == 0) return;
         auto run_chunks = [&](size_t first, size_t last) {
+            const uint64_t begin = work_ ? clock_(clock_owner_) : 0;
             for (size_t k = first; k < last; ++k) fn(k * grain, std::min(count, (k + 1) * grain));
+            if (work_) note_work(begin, clock_(clock_owner_));
         };
         if (threads_ <= 1 || chunks <= 1) {
             run_chunks(0, chunks);
-            return;
+        } else {
+            tbb::parallel_for(
+                tbb::blocked_range<size_t>(0, chunks, 1),
+                [&](const tbb::blocked_range<size_t>& r) { run_chunks(r.begin(), r.end()); },
+                tbb::simple_partitioner());
         }
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, chunks, 1),
-            [&](const tbb::blocked_range<size_t>& r) { run_chunks(r.begin(), r.end()); },
-            tbb::simple_partitioner());
+        if (work_) close_work();
     }
 
 private:
+    // Widens the calling thread's span to [begin, end].
+    void note_work(uint64_t begin, uint64_t end) const {
+        const int t = tbb::this_task_arena::current_thread_index();
+        if (t < 0 || static_cast<size_t>(t) >= work_->per_thread.size()) return;
+        WorkSpans::Span& span = work_->per_thread[static_cast<size_t>(t)];
+        span.begin_ns = span.end_ns == 0 ? begin : std::min(span.begin_ns, begin);
+        span.end_ns = std::max(span.end_ns, end);
+    }
+    // Turns the threads' spans of the parallel_for just finished into events and clears them.
+    void close_work() const {
+        for (size_t t = 0; t < work_->per_thread.size(); ++t) {
+            WorkSpans::Span& span = work_->per_thread[t];
+            if (span.end_ns == 0) continue;
+            work_->events.push_back({system_, static_cast<uint32_t>(t), span.begin_ns, span.end_ns, frame_, TraceKind::Work});
+            span = {};
+        }
+    }
+
     uint64_t frame_;
     float dt_;
     unsigned threads_;
     uint32_t system_;
     std::string_view name_;
     CommandBuffer* commands_;
+    WorkSpans* work_;
+    uint64_t (*clock_)(const void*);
+    const void* clock_owner_;
 };
 
 }  // namespace aloha

@@ -58,13 +58,30 @@ private:
     uint64_t total_ = 0;
 };
 
-/// One system run: which system, on which arena thread, when (ns since the scheduler started).
+/// What a trace event spans: a whole system run, or one thread's share of a system's parallel_for
+/// (from the first chunk it ran to the end of its last).
+enum class TraceKind : uint8_t { System, Work };
+
+/// One system run (or one thread's work inside it): which system, on which arena thread, when
+/// (ns since the scheduler started).
 struct TraceEvent {
     uint32_t system = 0;     ///< index of the system in the scheduler (add() order)
     uint32_t thread = 0;     ///< arena thread slot that ran it (0 .. threads-1)
     uint64_t begin_ns = 0;   ///< start, nanoseconds since the scheduler's epoch
     uint64_t end_ns = 0;     ///< end, nanoseconds since the scheduler's epoch
     uint64_t frame = 0;      ///< frame index the run belongs to
+    TraceKind kind = TraceKind::System;  ///< whole run or a thread's parallel work
+};
+
+/// Per-system record of the arena threads that ran its parallel_for chunks this frame (tracing
+/// only). Each thread writes only its own `per_thread` entry; `events` is appended by the thread
+/// running the system, after each parallel_for.
+struct WorkSpans {
+    struct Span {
+        uint64_t begin_ns = 0, end_ns = 0;  ///< 0, 0 = no chunk on this thread yet
+    };
+    std::vector<Span> per_thread;     ///< indexed by arena thread slot (sized to the thread count)
+    std::vector<TraceEvent> events;   ///< closed spans of this frame (TraceKind::Work)
 };
 
 }  // namespace aloha

@@ -331,7 +331,7 @@ bool MotionUpdateJob::Validate(std::vector<std::string>* errors) const {
 
 size_t MotionUpdateJob::Run() const {
     if (grain > 0)
-        return controller->update_parallel(dt, lods, states, transforms, velocities, element_of_character, grain);
+        return controller->update_parallel(dt, lods, states, transforms, velocities, element_of_character, grain, run_chunks);
     return controller->update(dt, lods, states, transforms, velocities, element_of_character);
 }
 

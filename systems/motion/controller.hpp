@@ -15,6 +15,7 @@
 #include "systems/motion/sampling.hpp"
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -90,11 +91,17 @@ public:
     size_t update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
                   std::span<Transform> transforms, std::span<Velocity> velocities,
                   std::span<const uint32_t> element_of_character = {});
-    /// update() with the pose evaluation split into chunks of `grain` due characters run on TBB
-    /// (grain 0 = 64). Same results, bit for bit, as update(). Hooks must be thread-safe per character.
+    /// Runs fn(begin, end) over [0, count) in chunks of `grain`, possibly in parallel on the calling
+    /// TBB arena (a host scheduler's parallel_for, so its traces and thread count apply).
+    using ChunkRunner = std::function<void(size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn)>;
+
+    /// update() with the pose evaluation split into chunks of `grain` due characters (grain 0 = 64)
+    /// run by `run_chunks` (empty = tbb::parallel_for). Same results, bit for bit, as update().
+    /// Hooks must be thread-safe per character.
     size_t update_parallel(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
                            std::span<Transform> transforms, std::span<Velocity> velocities,
-                           std::span<const uint32_t> element_of_character = {}, size_t grain = 0);
+                           std::span<const uint32_t> element_of_character = {}, size_t grain = 0,
+                           const ChunkRunner& run_chunks = {});
 
     /// Phase 1 of an update (serial): the bookkeeping of update(); returns the number of
     /// characters due for a pose this frame. The spans must stay valid until evaluate_due is done.
@@ -199,6 +206,7 @@ struct MotionUpdateJob {
     std::span<Velocity> velocities;          ///< per character; walking sets them
     std::span<const uint32_t> element_of_character{};  ///< optional: element of character c (distinct, in range)
     size_t grain = 0;                        ///< 0 = serial; else parallel chunks of this many characters
+    MotionController::ChunkRunner run_chunks{};  ///< optional: who runs the chunks (default: TBB)
 
     /// True when the job can run; appends one message per failure to `errors` when given.
     bool Validate(std::vector<std::string>* errors = nullptr) const;

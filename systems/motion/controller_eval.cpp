@@ -135,7 +135,8 @@ size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::sp
 
 size_t MotionController::update_parallel(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
                                          std::span<Transform> transforms, std::span<Velocity> velocities,
-                                         std::span<const uint32_t> element_of_character, size_t grain) {
+                                         std::span<const uint32_t> element_of_character, size_t grain,
+                                         const ChunkRunner& run_chunks) {
     const size_t due = begin_update(dt, lods, states, transforms, velocities, element_of_character);
     if (grain == 0) grain = 64;
     if (due <= grain) {
@@ -145,11 +146,17 @@ size_t MotionController::update_parallel(float dt, std::span<const AnimLod> lods
     // One scratch slot per thread of the arena; results do not depend on which thread runs a chunk.
     const auto threads = static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
     if (workers_ < threads) set_worker_slots(threads);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, due, grain), [this](const tbb::blocked_range<size_t>& r) {
+    auto chunk = [this](size_t begin, size_t end) {
         const int t = tbb::this_task_arena::current_thread_index();
         const size_t worker = t >= 0 && static_cast<size_t>(t) < workers_ ? static_cast<size_t>(t) : 0;
-        evaluate_due(r.begin(), r.end(), worker);
-    });
+        evaluate_due(begin, end, worker);
+    };
+    if (run_chunks) {
+        run_chunks(due, grain, chunk);
+        return due;
+    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, due, grain),
+                      [&](const tbb::blocked_range<size_t>& r) { chunk(r.begin(), r.end()); });
     return due;
 }
 
