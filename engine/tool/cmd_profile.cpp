@@ -249,7 +249,7 @@ int run_profile(const CliOptions& options) {
     {
         std::ofstream f(out + "/frames.csv");
         f << "frame,cpu_systems_ms,render_ms,gpu_ms,frame_ms";
-        for (const auto& name : sched.names()) f << "," << name << "_ms";
+        for (const auto& name : sched.names()) f << ",system_" << name << "_ms";  // apart from the totals
         for (const auto& g : gnames) f << ",geom_" << g;
         for (const auto& a : anames) f << ",anim_" << a;
         if (fidelity) f << ",mean_deviation_px,max_deviation_px,psnr_db,change_px,switches";

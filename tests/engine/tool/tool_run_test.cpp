@@ -7,6 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -54,9 +58,30 @@ TEST(Tool, ProfileWritesEveryReport) {
         EXPECT_TRUE(report["systems"]["lod_rules"].contains(k));
     }
     EXPECT_EQ(report["characters_per_level_per_frame"].size(), 6u);
+    // frames.csv: a header of distinct column names (per-system columns apart from the totals), then
+    // one row per measured frame with as many fields.
+    std::ifstream csv(out / "p" / "frames.csv");
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(csv, line);) {
+        std::vector<std::string> fields;
+        std::stringstream ss(line);
+        for (std::string field; std::getline(ss, field, ',');) fields.push_back(field);
+        rows.push_back(std::move(fields));
+    }
+    ASSERT_EQ(rows.size(), 7u);
+    const std::set<std::string> columns(rows[0].begin(), rows[0].end());
+    EXPECT_EQ(columns.size(), rows[0].size()) << "duplicate column names";
+    EXPECT_TRUE(columns.count("render_ms") && columns.count("system_render_ms") && columns.count("system_motion_ms"));
+    for (const auto& row : rows) EXPECT_EQ(row.size(), rows[0].size());
+    // trace.json: one track per system, and per worker thread that ran a system's parallel work.
     std::ifstream trace(out / "p" / "trace.json");
     const nlohmann::json t = nlohmann::json::parse(trace);
     EXPECT_FALSE(t["traceEvents"].empty());
+    std::set<std::string> tracks;
+    for (const auto& e : t["traceEvents"])
+        if (e["name"] == "thread_name") tracks.insert(e["args"]["name"].get<std::string>());
+    for (const char* track : {"system: lod_attributes", "system: motion", "system: geometry", "system: render", "worker 0"})
+        EXPECT_TRUE(tracks.count(track)) << track;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
     // A second run refuses to overwrite the reports without --force.
     const RunResult again = run("profile " + kScenes + "crowd_1k.json --frames 2 --characters 50 --quiet --out " + (out / "p").string());
