@@ -14,6 +14,7 @@ namespace {
 struct CameraResource {};
 struct RuleResource {};
 struct PoseResource {};
+struct MuscleSurfaceResource {};
 struct SurfaceResource {};
 struct DrawListResource {};
 struct GpuResource {};
@@ -134,9 +135,31 @@ void World::register_systems() {
                         }
                     }});
 
-    // The geometric controller: per (type, level) range one tight loop of that level's method (rigid
-    // proxies, linear-blend skin, muscles + fat springs + skin, OpenSubdiv), chunks in parallel.
-    scheduler_.add({"geometry", Phase::Tessellate, reads<GeomLod, LodState, MotionState, CharacterRef, PoseResource>(),
+    // The geometric controller, muscle stage: per (type, level) range of a muscle level one tight loop
+    // shaping the muscles for the pose (volume kept) and tessellating them at the level's (T, P).
+    scheduler_.add({"muscle", Phase::Tessellate, reads<GeomLod, CharacterRef, PoseResource>(), writes<MuscleSurfaceResource>(),
+                    [this](SystemContext& ctx) {
+                        auto g = character_group(registry_);
+                        auto refs = g.span<CharacterRef>();
+                        auto geom = g.span<GeomLod>();
+                        for (const KeyRange& r : ranges_) {
+                            const GeomMethod method = geom[r.begin].method;
+                            if (method != GeomMethod::Layered && method != GeomMethod::Subdivided) continue;
+                            CharacterRuntime& rt = *types_[refs[r.begin].type];
+                            const PoseSource poses = rt.poses();
+                            const uint8_t level = geom[r.begin].level;
+                            const std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
+                            ctx.parallel_for(ids.size(), 1, [&](size_t b, size_t e) {
+                                rt.geometry->update_muscles(level, ids.subspan(b, e - b), poses);
+                            });
+                        }
+                    }});
+
+    // The geometric controller, skin stage: per (type, level) range one tight loop of that level's
+    // skin (rigid proxies, linear-blend skin, fat springs on the muscle surface + skin, geomorph,
+    // OpenSubdiv), chunks in parallel.
+    scheduler_.add({"spring_skin", Phase::Skin,
+                    reads<GeomLod, LodState, MotionState, CharacterRef, PoseResource, MuscleSurfaceResource>(),
                     writes<SurfaceResource>(), [this](SystemContext& ctx) {
                         auto g = character_group(registry_);
                         auto refs = g.span<CharacterRef>();
@@ -166,7 +189,7 @@ void World::register_systems() {
                             // Grain: cheap methods in big chunks, rich ones one or a few characters each.
                             const size_t grain = method == GeomMethod::RigidProxy ? 256 : method == GeomMethod::SkinnedMesh ? 16 : 1;
                             ctx.parallel_for(ids.size(), grain, [&](size_t b, size_t e) {
-                                rt.geometry->update(level, ids.subspan(b, e - b), poses, ctx.dt());
+                                rt.geometry->update_skin(level, ids.subspan(b, e - b), poses, ctx.dt());
                             });
                         }
                     }});

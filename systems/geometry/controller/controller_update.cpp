@@ -1,8 +1,10 @@
-// GeometryController::update: the per-frame method of a level, run as one loop over its characters.
-// Every buffer written belongs to the character's slot or to the calling thread's scratch, so
-// disjoint character lists may run concurrently; nothing is allocated once a thread's scratch has
-// grown to the largest level. Job sizes are guaranteed by the slot layout (see build_level), so
-// Validate() is only asserted (debug builds) and Run() called directly.
+// GeometryController's per-frame stages: update_muscles (the `muscle` system: shapes + tessellation)
+// and update_skin (the `spring_skin` system: proxies, linear-blend skins, fat springs, skin, geomorph,
+// refinement), each one loop over a level's characters. Every buffer written belongs to the
+// character's slot or to the calling thread's scratch, so disjoint character lists may run
+// concurrently; nothing is allocated once a thread's scratch has grown to the largest level. Job
+// sizes are guaranteed by the slot layout (see build_level), so Validate() is only asserted (debug
+// builds) and Run() called directly.
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/muscle/muscle_shape_job.hpp"
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
@@ -19,10 +21,9 @@ namespace {
 
 using Level = GeometryController::Level;
 
-// Per-thread buffers for what lives only inside one character's update: the tessellated muscle
-// surface (the springs' roots) and, when the level does not keep it, the refined surface.
+// Per-thread buffers for the refined surface when the level does not keep it.
 struct FrameScratch {
-    std::vector<glm::vec3> muscle_positions, muscle_normals, refined_positions, refined_normals;
+    std::vector<glm::vec3> refined_positions, refined_normals;
 };
 
 std::span<glm::vec3> sized(std::vector<glm::vec3>& v, size_t n) {
@@ -80,18 +81,19 @@ void run_skinned(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
     }
 }
 
-void run_layered(const CharacterGeometry& g, Level& L, uint32_t s, std::span<const glm::mat4> pose, const FatSpringParams& params) {
+void run_muscles(const CharacterGeometry& g, Level& L, uint32_t s, std::span<const glm::mat4> pose) {
     SlotStore& st = L.store;
-    FrameScratch& scratch = frame_scratch();
     const MuscleShapeJob shape{&g.muscles(), pose, st.centres(s), st.rotations(s), st.radii(s)};
     assert(shape.Validate());
     shape.Run();
-    const size_t muscle_vertices = size_t{g.muscle_count()} * L.grid_vertices;
-    const std::span<glm::vec3> muscle_positions = sized(scratch.muscle_positions, muscle_vertices);
-    const std::span<glm::vec3> muscle_normals = sized(scratch.muscle_normals, muscle_vertices);
-    const MuscleTessellateJob tess{L.tables, st.centres(s), st.rotations(s), st.radii(s), muscle_positions, muscle_normals};
+    const MuscleTessellateJob tess{L.tables, st.centres(s), st.rotations(s), st.radii(s), st.muscle_positions(s), st.muscle_normals(s)};
     assert(tess.Validate());
     tess.Run();
+}
+
+void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const FatSpringParams& params) {
+    SlotStore& st = L.store;
+    const std::span<const glm::vec3> muscle_positions = st.muscle_positions(s), muscle_normals = st.muscle_normals(s);
     std::span<const glm::vec3> control;
     if (!L.real_mesh) {
         const FatSpringJob springs{L.theta_steps, L.phi_steps, params, muscle_positions, muscle_normals,
@@ -115,6 +117,7 @@ void run_layered(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
         if (L.lod.method == GeomMethod::Layered) accumulate_vertex_normals(control, L.indices, st.normals(s));
     }
     if (L.subdivision) {
+        FrameScratch& scratch = frame_scratch();
         const size_t refined = L.subdivision->refined_vertex_count;
         const bool keep = L.keep_refined;
         const SubdivideJob refine{L.subdivision, control, keep ? st.refined_positions(s) : sized(scratch.refined_positions, refined),
@@ -126,7 +129,19 @@ void run_layered(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
 
 }  // namespace
 
-void GeometryController::update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt) {
+void GeometryController::update_muscles(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses) {
+    assert(level < levels_.size());
+    Level& L = *levels_[level];
+    if (!L.layered()) return;
+    const CharacterGeometry& g = *geometry_;
+    const size_t J = g.joint_count();
+    for (const uint32_t c : characters) {
+        assert(level_of(c) == level);
+        run_muscles(g, L, slot_of_[c], poses.joints(c, J));
+    }
+}
+
+void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt) {
     assert(level < levels_.size() && dt > 0.0f);
     Level& L = *levels_[level];
     const CharacterGeometry& g = *geometry_;
@@ -136,23 +151,27 @@ void GeometryController::update(uint8_t level, std::span<const uint32_t> charact
     for (const uint32_t c : characters) {
         assert(level_of(c) == level);
         const uint32_t s = slot_of_[c];
-        const std::span<const glm::mat4> pose = poses.joints(c, J);
         switch (L.lod.method) {
             case GeomMethod::Hidden:
                 break;
             case GeomMethod::RigidProxy:
-                run_proxy(g, L, s, pose);
+                run_proxy(g, L, s, poses.joints(c, J));
                 break;
             case GeomMethod::SkinnedMesh:
-                run_skinned(g, L, s, pose);
+                run_skinned(g, L, s, poses.joints(c, J));
                 break;
             case GeomMethod::Layered:
             case GeomMethod::Subdivided:
-                run_layered(g, L, s, pose, params);
+                run_layered_skin(g, L, s, params);
                 break;
         }
         L.store.valid[s] = 1;
     }
+}
+
+void GeometryController::update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt) {
+    update_muscles(level, characters, poses);
+    update_skin(level, characters, poses, dt);
 }
 
 }  // namespace aloha

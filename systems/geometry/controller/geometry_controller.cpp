@@ -3,7 +3,6 @@
 #include "systems/geometry/controller/geometry_controller.hpp"
 
 #include "systems/geometry/controller/controller_level.hpp"
-#include "systems/geometry/muscle/muscle_tessellate_job.hpp"
 #include "systems/geometry/spring_skin/grid_sample.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 #include "systems/geometry/surface_grid.hpp"
@@ -63,6 +62,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
         case GeomMethod::Layered:
         case GeomMethod::Subdivided:
             layout.shapes = M;
+            layout.muscle_vertices = M * V;
             if (!real) {
                 layout.springs = M * V;
                 layout.spring_flags = M;
@@ -225,11 +225,8 @@ void GeometryController::muscle_surface(uint32_t character, std::vector<glm::vec
     const Level& L = *levels_[l];
     const uint32_t s = slot_of_[character];
     if (!L.store.valid[s]) return;
-    positions.resize(size_t{geometry_->muscle_count()} * L.grid_vertices);
-    std::vector<glm::vec3> normals(positions.size());
-    const MuscleTessellateJob tess{L.tables, L.store.centres(s), L.store.rotations(s), L.store.radii(s), positions, normals};
-    assert(tess.Validate());
-    tess.Run();
+    const std::span<const glm::vec3> muscles = L.store.muscle_positions(s);
+    positions.assign(muscles.begin(), muscles.end());
 }
 
 std::span<const uint32_t> GeometryController::level_indices(uint8_t level) const { return levels_.at(level)->indices; }

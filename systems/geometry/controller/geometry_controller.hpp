@@ -67,7 +67,7 @@ public:
     /// subdivision, index buffers). `keep_refined_surfaces` false: Subdivided levels still refine
     /// every frame but into per-thread scratch, keeping no refined surface per character (for runs
     /// with no renderer; surface() is then empty at those levels), which takes their memory per
-    /// character from ~3 MB to ~1 MB at 24x16.
+    /// character from ~3.5 MB to ~1.6 MB at 24x16.
     GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity,
                        bool keep_refined_surfaces = true);
     ~GeometryController();
@@ -92,8 +92,16 @@ public:
     /// Releases the character's slot (despawn). Serial only.
     void end_character(uint32_t character);
 
-    /// Runs `level`'s method for `characters` (each must currently be in `level`) with their poses
-    /// from `poses` and frame time `dt` > 0 (fat springs). Thread-safe for disjoint character lists.
+    /// The `muscle` stage (Tessellate phase) of `level`'s method for `characters` (each must
+    /// currently be in `level`): shapes the muscles for their poses in `poses` (volume kept) and
+    /// tessellates them at the level's (T, P) into each character's muscle surface. Does nothing at
+    /// levels without muscles. Thread-safe for disjoint character lists.
+    void update_muscles(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses);
+    /// The `spring_skin` stage (Skin phase): rigid proxies and linear-blend skins from the poses;
+    /// at muscle levels fat springs (frame time `dt` > 0) on the muscle surface update_muscles wrote
+    /// this frame, the skin, geomorph and OpenSubdiv refinement. Thread-safe for disjoint lists.
+    void update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
+    /// Both stages, one after the other (update_muscles then update_skin).
     void update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
 
     /// The character's displayed surface (valid until its next update / begin_level / set_levels);
@@ -103,9 +111,9 @@ public:
     /// The character's proxy boxes (one per joint, unit cube [-1, 1]^3 -> box, character space), or
     /// empty when it is not at a RigidProxy level.
     [[nodiscard]] std::span<const glm::mat4> proxy_boxes(uint32_t character) const;
-    /// Writes the character's tessellated muscle surface as of its last update (muscles x V(T, P),
+    /// Copies the character's tessellated muscle surface as of its last update (muscles x V(T, P),
     /// for debug drawing) to `positions`, or clears it when its level has no muscles or it has not
-    /// been updated. The surface is not kept per character: this tessellates again. Allocates.
+    /// been updated. Allocates.
     void muscle_surface(uint32_t character, std::vector<glm::vec3>& positions) const;
     /// Triangle list shared by every character of `level` (empty for RigidProxy / Hidden).
     [[nodiscard]] std::span<const uint32_t> level_indices(uint8_t level) const;

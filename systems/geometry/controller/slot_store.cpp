@@ -30,7 +30,7 @@ void SlotStore::release(uint32_t slot) {
 size_t SlotStore::bytes_per_slot() const {
     const SlotLayout& l = layout_;
     return (size_t{l.boxes} + l.palette) * sizeof(glm::mat4) + size_t{l.shapes} * (2 * sizeof(glm::vec3) + sizeof(glm::quat)) +
-           size_t{l.springs} * 3 * sizeof(glm::vec3) + l.spring_flags +
+           size_t{l.muscle_vertices} * 2 * sizeof(glm::vec3) + size_t{l.springs} * 3 * sizeof(glm::vec3) + l.spring_flags +
            (size_t{l.control} * 2 + l.control_normals + size_t{l.refined} * 2) * sizeof(glm::vec3) +
            2 * sizeof(uint16_t) + 3 * sizeof(uint8_t);
 }
@@ -44,6 +44,8 @@ void SlotStore::grow(uint32_t new_capacity) {
     centres_.resize(n * l.shapes);
     rotations_.resize(n * l.shapes);
     radii_.resize(n * l.shapes);
+    muscle_pos_.resize(n * l.muscle_vertices);
+    muscle_nrm_.resize(n * l.muscle_vertices);
     spring_end_.resize(n * l.springs);
     spring_vel_.resize(n * l.springs);
     spring_prev_.resize(n * l.springs);

@@ -18,6 +18,7 @@ struct SlotLayout {
     uint32_t boxes = 0;             ///< proxy boxes (joints) for RigidProxy
     uint32_t palette = 0;           ///< skinning palette (joints) for SkinnedMesh
     uint32_t shapes = 0;            ///< muscle centres / rotations / radii (muscles)
+    uint32_t muscle_vertices = 0;   ///< tessellated muscle positions / normals (muscle -> spring_skin)
     uint32_t springs = 0;           ///< fat-spring end / velocity / previous rest (grid skin)
     uint32_t spring_flags = 0;      ///< fat-spring "initialised" flags (muscles)
     uint32_t control = 0;           ///< displayed control surface positions and morph offsets
@@ -55,6 +56,8 @@ public:
     std::span<glm::vec3> centres(uint32_t s) { return part(centres_, layout_.shapes, s); }
     std::span<glm::quat> rotations(uint32_t s) { return part(rotations_, layout_.shapes, s); }
     std::span<glm::vec3> radii(uint32_t s) { return part(radii_, layout_.shapes, s); }
+    std::span<glm::vec3> muscle_positions(uint32_t s) { return part(muscle_pos_, layout_.muscle_vertices, s); }
+    std::span<glm::vec3> muscle_normals(uint32_t s) { return part(muscle_nrm_, layout_.muscle_vertices, s); }
     std::span<glm::vec3> spring_end(uint32_t s) { return part(spring_end_, layout_.springs, s); }
     std::span<glm::vec3> spring_velocity(uint32_t s) { return part(spring_vel_, layout_.springs, s); }
     std::span<glm::vec3> spring_prev_rest(uint32_t s) { return part(spring_prev_, layout_.springs, s); }
@@ -72,9 +75,8 @@ public:
 
     /// Read-only views of the same buffers.
     [[nodiscard]] std::span<const glm::mat4> boxes(uint32_t s) const { return cpart(boxes_, layout_.boxes, s); }
-    [[nodiscard]] std::span<const glm::vec3> centres(uint32_t s) const { return cpart(centres_, layout_.shapes, s); }
-    [[nodiscard]] std::span<const glm::quat> rotations(uint32_t s) const { return cpart(rotations_, layout_.shapes, s); }
-    [[nodiscard]] std::span<const glm::vec3> radii(uint32_t s) const { return cpart(radii_, layout_.shapes, s); }
+    [[nodiscard]] std::span<const glm::vec3> muscle_positions(uint32_t s) const { return cpart(muscle_pos_, layout_.muscle_vertices, s); }
+    [[nodiscard]] std::span<const glm::vec3> muscle_normals(uint32_t s) const { return cpart(muscle_nrm_, layout_.muscle_vertices, s); }
     [[nodiscard]] std::span<const glm::vec3> spring_end(uint32_t s) const { return cpart(spring_end_, layout_.springs, s); }
     [[nodiscard]] std::span<const glm::vec3> positions(uint32_t s) const { return cpart(positions_, layout_.control, s); }
     [[nodiscard]] std::span<const glm::vec3> normals(uint32_t s) const { return cpart(normals_, layout_.control_normals, s); }
@@ -104,7 +106,7 @@ private:
     std::vector<glm::mat4> boxes_, palette_;
     std::vector<glm::vec3> centres_, radii_;
     std::vector<glm::quat> rotations_;
-    std::vector<glm::vec3> spring_end_, spring_vel_, spring_prev_;
+    std::vector<glm::vec3> muscle_pos_, muscle_nrm_, spring_end_, spring_vel_, spring_prev_;
     std::vector<uint8_t> spring_init_;
     std::vector<glm::vec3> positions_, deltas_, normals_, refined_pos_, refined_nrm_;
     std::vector<uint16_t> frames_total_, frames_left_;

@@ -80,7 +80,7 @@ TEST(Tool, ProfileWritesEveryReport) {
     std::set<std::string> tracks;
     for (const auto& e : t["traceEvents"])
         if (e["name"] == "thread_name") tracks.insert(e["args"]["name"].get<std::string>());
-    for (const char* track : {"system: lod_attributes", "system: motion", "system: geometry", "system: render", "worker 0"})
+    for (const char* track : {"system: lod_attributes", "system: motion", "system: muscle", "system: spring_skin", "system: render", "worker 0"})
         EXPECT_TRUE(tracks.count(track)) << track;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
     // A second run refuses to overwrite the reports without --force.

@@ -35,12 +35,12 @@ TEST(GeometryController, CountsFollowTheOneParameter) {
     EXPECT_EQ(ctl.level_indices(2).size(), 3u * M * grid_triangle_count(8, 6));
     EXPECT_EQ(ctl.level_indices(3).size(), ctl.level_indices(2).size());
     EXPECT_TRUE(ctl.level_indices(4).empty());
-    // Memory is affine in the vertex count: per control vertex a Layered grid level stores spring
-    // end + velocity + previous rest, morph position + offset and a skin normal = 6 vec3 = 72 bytes
-    // (the muscle surface lives only inside an update); the per-muscle and per-joint parts are the
-    // same at both levels.
+    // Memory is affine in the vertex count: per control vertex a Layered grid level stores muscle
+    // position + normal (muscle -> spring_skin), spring end + velocity + previous rest, morph position +
+    // offset and a skin normal = 8 vec3 = 96 bytes; the per-muscle and per-joint parts are the same at
+    // both levels.
     const size_t dv = size_t{M} * (grid_vertex_count(16, 12) - grid_vertex_count(8, 6));
-    EXPECT_EQ(ctl.bytes_per_character(1) - ctl.bytes_per_character(2), 72u * dv);
+    EXPECT_EQ(ctl.bytes_per_character(1) - ctl.bytes_per_character(2), 96u * dv);
     EXPECT_GT(ctl.bytes_per_character(2), ctl.bytes_per_character(3));  // peeling drops muscles and springs
     EXPECT_GT(ctl.bytes_per_character(3), ctl.bytes_per_character(4));
     EXPECT_EQ(ctl.bytes_per_character(4), 31u * sizeof(glm::mat4) + 7u);  // boxes + morph counters/flags

@@ -1,5 +1,6 @@
-// GeometryController memory: what a character costs per level, refined surfaces computed but not
-// kept (runs with no renderer), and allocating a level's slots at once.
+// GeometryController memory and stages: refined surfaces computed but not kept (runs with no
+// renderer), the muscle surface handed from the muscle stage to the skin stage, the two stages
+// against the one-call update, and allocating a level's slots at once.
 #include "systems/geometry/surface_grid.hpp"
 #include "tests/systems/geometry/controller/test_humanoid.hpp"
 
@@ -62,7 +63,7 @@ TEST(GeometryControllerMemory, RefinedSurfacesNotKeptSaveExactlyTheirBytesAndCha
     EXPECT_EQ(test::max_distance(kept.surface(0).normals, dropped.surface(0).normals), 0.0f);
 }
 
-TEST(GeometryControllerMemory, MuscleSurfaceIsRebuiltFromTheKeptShapes) {
+TEST(GeometryControllerMemory, MuscleSurfaceIsWhatTheSpringsStandOn) {
     ASSERT_NE(humanoid().geometry, nullptr);
     const CharacterGeometry& g = *humanoid().geometry;
     GeometryController ctl(g, test::test_levels(), 1);
@@ -80,6 +81,54 @@ TEST(GeometryControllerMemory, MuscleSurfaceIsRebuiltFromTheKeptShapes) {
     ASSERT_EQ(muscles.size(), skin.size());
     for (size_t i = 0; i < skin.size(); ++i)
         ASSERT_NEAR(glm::length(skin[i] - muscles[i]), g.muscles().fat_thickness[i / V], 1e-5f) << i;
+}
+
+// update() is update_muscles() then update_skin(); running the stages as two passes over a list of
+// characters (as the muscle and spring_skin systems do) gives the same bits.
+TEST(GeometryControllerMemory, TwoStagesEqualOneUpdate) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    const auto levels = test::test_levels();
+    GeometryController one(g, levels, levels.size()), two(g, levels, levels.size());
+    for (uint8_t l = 0; l < levels.size(); ++l) {
+        one.begin_level(l, l, -1, 0);
+        two.begin_level(l, l, -1, 0);
+    }
+    for (int f = 0; f < 5; ++f) {
+        const auto pose = test::clip_pose(g.skeleton(), humanoid().clip, 30 + 3 * f);
+        // Every character uses the same pose (PoseSource stride 0).
+        const PoseSource src{pose.data(), 0};
+        for (uint8_t l = 0; l < levels.size(); ++l) {
+            const uint32_t c = l;
+            one.update(l, std::span(&c, 1), src, kDt);
+        }
+        for (uint8_t l = 0; l < levels.size(); ++l) {
+            const uint32_t c = l;
+            two.update_muscles(l, std::span(&c, 1), src);
+        }
+        for (uint8_t l = 0; l < levels.size(); ++l) {
+            const uint32_t c = l;
+            two.update_skin(l, std::span(&c, 1), src, kDt);
+        }
+    }
+    for (uint32_t c = 0; c < levels.size(); ++c) {
+        const SurfaceView a = one.surface(c), b = two.surface(c);
+        ASSERT_EQ(a.positions.size(), b.positions.size()) << c;
+        EXPECT_EQ(test::max_distance(a.positions, b.positions), 0.0f) << c;
+        EXPECT_EQ(test::max_distance(a.normals, b.normals), 0.0f) << c;
+        const auto ba = one.proxy_boxes(c), bb = two.proxy_boxes(c);
+        ASSERT_EQ(ba.size(), bb.size());
+        for (size_t j = 0; j < ba.size(); ++j) EXPECT_EQ(ba[j], bb[j]) << c << " " << j;
+    }
+    // A muscle level shows nothing until its skin stage has run.
+    GeometryController fresh(g, levels, 1);
+    fresh.begin_level(0, 1, -1, 0);
+    const uint32_t c = 0;
+    const PoseSource rest{g.rest_model().data(), 0};
+    fresh.update_muscles(1, std::span(&c, 1), rest);
+    EXPECT_TRUE(fresh.surface(0).positions.empty());
+    fresh.update_skin(1, std::span(&c, 1), rest, kDt);
+    EXPECT_EQ(fresh.surface(0).positions.size(), fresh.vertices_per_character(1));
 }
 
 TEST(GeometryControllerMemory, ReserveAllocatesALevelOnce) {
