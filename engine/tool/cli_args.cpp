@@ -202,7 +202,7 @@ std::string help_text(const std::string& command) {
                "  --warmup W         frames run before measuring (default 30)\n"
                "  --out DIR          output folder (default out/profile; existing reports are kept unless --force)\n"
                "  --fidelity         also render each frame at full detail and report screen-space deviation, PSNR, popping\n"
-               "  --no-render        CPU systems only\n"
+               "  --no-render        CPU systems only (refined skins are computed each frame, not kept)\n"
                "  --quiet            no progress bar\n"
                "  --compare-lod      also run the scene with LOD off (CPU systems) and report the slowdown ratio\n"
                "  --compare-frames K frames of that LOD-off run (default 10)\n" + common;
