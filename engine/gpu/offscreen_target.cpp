@@ -8,19 +8,22 @@
 
 namespace aloha::gpu {
 
-Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format, VkImageLayout final_layout) {
+Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format, VkImageLayout final_layout,
+                                        bool load_colour) {
     VkAttachmentDescription att[2]{};
     att[0].format = colour_format;
     att[0].samples = VK_SAMPLE_COUNT_1_BIT;
-    att[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[0].loadOp = load_colour ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    att[0].initialLayout = load_colour ? final_layout : VK_IMAGE_LAYOUT_UNDEFINED;  // loaded: where the last pass left it
     att[0].finalLayout = final_layout;
     att[1] = att[0];
     att[1].format = kDepthFormat;
+    att[1].loadOp = load_colour ? VK_ATTACHMENT_LOAD_OP_DONT_CARE : VK_ATTACHMENT_LOAD_OP_CLEAR;  // overlays do not depth-test
     att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
     VkAttachmentReference colour_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
@@ -29,8 +32,9 @@ Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
     sub.colorAttachmentCount = 1;
     sub.pColorAttachments = &colour_ref;
     sub.pDepthStencilAttachment = &depth_ref;
-    // Earlier reads (readback copy, present) and attachment writes finish before this pass writes;
-    // this pass's writes finish before later transfers (readback) read.
+    // Earlier reads (readback copy, present) and attachment writes (an earlier pass on the queue)
+    // finish before this pass loads or writes; this pass's writes finish before later transfers
+    // (readback) read.
     VkSubpassDependency deps[2]{};
     deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     deps[0].dstSubpass = 0;
@@ -97,26 +101,15 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
     // so read_back() is valid even before anything is drawn.
     const VkImage image = t.colour_.handle();
     Status s = ctx.submit_once([image](VkCommandBuffer cmd) {
-        VkImageMemoryBarrier b{};
-        b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-        b.srcAccessMask = 0;
-        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = image;
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr,
-                             0, nullptr, 1, &b);
-        VkClearColorValue zero{};
-        vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &b.subresourceRange);
-        b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                             nullptr, 1, &b);
+        record_colour_transition(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                 {0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT},
+                                 {VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT});
+        const VkClearColorValue zero{};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
+        record_colour_transition(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                 {VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT},
+                                 {VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT});
     });
     if (!s) return s.error();
     return t;
@@ -176,6 +169,21 @@ Result<Rgba8Image> OffscreenTarget::read_back(const Context& ctx) const {
     });
     if (!s) return s.error();
     return image_from_mapped(readback_.mapped(), ext);
+}
+
+void record_colour_transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                              BarrierSide before, BarrierSide after) {
+    VkImageMemoryBarrier b{};
+    b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    b.srcAccessMask = before.access;
+    b.dstAccessMask = after.access;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, before.stage, after.stage, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
 void record_image_to_host_copy(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer dst) {

@@ -26,9 +26,12 @@ struct TargetView {
 };
 
 /// Creates a render pass with one colour attachment of `colour_format` (cleared, stored, ending in
-/// `final_layout`) and one kDepthFormat attachment (cleared, not stored). Caller destroys it.
+/// `final_layout`) and one kDepthFormat attachment (cleared, not stored). `load_colour`: the colour
+/// is loaded instead, starting in `final_layout` (a pass drawn over an earlier one, e.g. the viewer's
+/// overlay), and depth is not cleared. Passes differing only in `load_colour` are compatible (same
+/// framebuffers). Caller destroys it.
 [[nodiscard]] Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
-                                                      VkImageLayout final_layout);
+                                                      VkImageLayout final_layout, bool load_colour = false);
 
 /// A CPU-RGBA8 picture: width * height * 4 bytes, rows top to bottom.
 struct Rgba8Image {
@@ -37,14 +40,25 @@ struct Rgba8Image {
     std::vector<uint8_t> pixels; ///< RGBA, row-major, top row first
 };
 
-/// A headless colour (R8G8B8A8 UNORM or SRGB) + depth (D32) target with its render pass and framebuffer.
 /// Records the copy of a colour image (in TRANSFER_SRC_OPTIMAL) into the host-visible buffer `dst` and the
 /// barrier that makes it readable by the host. Shared by the offscreen and swapchain readbacks.
 void record_image_to_host_copy(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer dst);
 
+/// Access and stage of one side of a barrier.
+struct BarrierSide {
+    VkAccessFlags access = 0;
+    VkPipelineStageFlags stage = VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT;
+};
+
+/// Records the layout change `from` -> `to` of a single-mip, single-layer colour image, making the
+/// `before` accesses available to the `after` ones.
+void record_colour_transition(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                              BarrierSide before, BarrierSide after);
+
 /// The RGBA8 image of `extent` held in mapped memory at `mapped` (tightly packed rows).
 [[nodiscard]] Rgba8Image image_from_mapped(const void* mapped, VkExtent2D extent);
 
+/// A headless colour (R8G8B8A8 UNORM or SRGB) + depth (D32) target with its render pass and framebuffer.
 /// After each render pass the colour image is in TRANSFER_SRC_OPTIMAL, ready for read_back(). Move-only.
 class OffscreenTarget {
 public:

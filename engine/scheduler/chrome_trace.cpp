@@ -56,7 +56,12 @@ std::string chrome_trace_json(std::span<const TraceEvent> events, std::span<cons
                ",\"args\":{\"sort_index\":" + std::to_string(sort_index) + "}}";
     };
     std::set<uint32_t> systems, threads;
-    for (const TraceEvent& e : events) (e.kind == TraceKind::System ? systems.insert(e.system) : threads.insert(e.thread));
+    for (const TraceEvent& e : events) {
+        if (e.kind == TraceKind::System)
+            systems.insert(e.system);
+        else
+            threads.insert(e.thread);
+    }
     for (const uint32_t s : systems) declare(kSystemTrackBase + s, "system: " + name_of(s), s);
     for (const uint32_t t : threads) declare(t, "worker " + std::to_string(t), kSystemTrackBase + t);
     for (const TraceEvent& e : events) {

@@ -75,13 +75,11 @@ uint64_t Scheduler::now_ns() const {
         std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - epoch_).count());
 }
 
-uint64_t Scheduler::clock_of(const void* scheduler) { return static_cast<const Scheduler*>(scheduler)->now_ns(); }
-
 void Scheduler::run_system(uint32_t index, float dt) {
     const SystemDesc& s = systems_[index];
     WorkSpans* work = trace_sink_ ? &work_[index] : nullptr;
     if (work) work->events.clear();  // keeps its capacity: no allocation once warmed up
-    SystemContext ctx(frame_, dt, threads_, index, s.name, commands_[index].get(), work, &Scheduler::clock_of, this);
+    SystemContext ctx(frame_, dt, threads_, index, s.name, commands_[index].get(), work, epoch_);
     const int slot = tbb::this_task_arena::current_thread_index();
     const uint64_t begin = now_ns();
     s.run(ctx);

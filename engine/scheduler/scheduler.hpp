@@ -91,7 +91,6 @@ public:
 private:
     void run_system(uint32_t index, float dt);
     [[nodiscard]] uint64_t now_ns() const;
-    static uint64_t clock_of(const void* scheduler);
 
     std::vector<SystemDesc> systems_;
     std::vector<std::string> names_;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -51,12 +52,11 @@ std::vector<ComponentTypeId> writes() {
 class SystemContext {
 public:
     /// Built by the scheduler for each run. `work` (nullptr when not tracing) receives each
-    /// thread's span of every parallel_for; `clock` gives nanoseconds since the scheduler's epoch.
+    /// thread's span of every parallel_for, in nanoseconds since `epoch` (the scheduler's).
     SystemContext(uint64_t frame, float dt, unsigned threads, uint32_t system, std::string_view name,
-                  CommandBuffer* commands, WorkSpans* work = nullptr, uint64_t (*clock)(const void*) = nullptr,
-                  const void* clock_owner = nullptr)
+                  CommandBuffer* commands, WorkSpans* work = nullptr, std::chrono::steady_clock::time_point epoch = {})
         : frame_(frame), dt_(dt), threads_(threads), system_(system), name_(name), commands_(commands), work_(work),
-          clock_(clock), clock_owner_(clock_owner) {}
+          epoch_(epoch) {}
 
     /// Index of the current frame (0 for the first run_frame()).
     [[nodiscard]] uint64_t frame() const { return frame_; }
@@ -87,9 +87,9 @@ public:
         const size_t chunks = chunk_count(count, grain);
         if (chunks == 0) return;
         auto run_chunks = [&](size_t first, size_t last) {
-            const uint64_t begin = work_ ? clock_(clock_owner_) : 0;
+            const uint64_t begin = work_ ? now_ns() : 0;
             for (size_t k = first; k < last; ++k) fn(k * grain, std::min(count, (k + 1) * grain));
-            if (work_) note_work(begin, clock_(clock_owner_));
+            if (work_) note_work(begin, now_ns());
         };
         if (threads_ <= 1 || chunks <= 1) {
             run_chunks(0, chunks);
@@ -103,6 +103,10 @@ public:
     }
 
 private:
+    [[nodiscard]] uint64_t now_ns() const {
+        return static_cast<uint64_t>(
+            std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - epoch_).count());
+    }
     // Widens the calling thread's span to [begin, end].
     void note_work(uint64_t begin, uint64_t end) const {
         const int t = tbb::this_task_arena::current_thread_index();
@@ -128,8 +132,7 @@ private:
     std::string_view name_;
     CommandBuffer* commands_;
     WorkSpans* work_;
-    uint64_t (*clock_)(const void*);
-    const void* clock_owner_;
+    std::chrono::steady_clock::time_point epoch_;
 };
 
 }  // namespace aloha

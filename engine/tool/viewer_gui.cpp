@@ -23,65 +23,6 @@ void check_vk(VkResult r) {
     }
 }
 
-// The overlay pass: the same attachments as the WindowTarget's pass (so its framebuffers fit: render
-// pass compatibility ignores load/store ops and layouts), but colour is loaded, not cleared.
-Result<VkRenderPass> create_overlay_pass(VkDevice device, VkFormat colour_format) {
-    VkAttachmentDescription att[2]{};
-    att[0].format = colour_format;
-    att[0].samples = VK_SAMPLE_COUNT_1_BIT;
-    att[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[0].initialLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;  // where the crowd pass left it
-    att[0].finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    att[1] = att[0];
-    att[1].format = gpu::kDepthFormat;
-    att[1].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // ImGui does not depth-test
-    att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    VkAttachmentReference colour_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription sub{};
-    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    sub.colorAttachmentCount = 1;
-    sub.pColorAttachments = &colour_ref;
-    sub.pDepthStencilAttachment = &depth_ref;
-    // The crowd pass (earlier on the queue) finishes its colour and depth writes, and any earlier
-    // readback copy its reads, before this pass loads colour / discards depth; this pass's colour
-    // writes finish before a later readback copy.
-    VkSubpassDependency deps[2]{};
-    deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
-    deps[0].dstSubpass = 0;
-    deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
-                           VK_PIPELINE_STAGE_TRANSFER_BIT;
-    deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                           VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-    deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                            VK_ACCESS_TRANSFER_READ_BIT;
-    deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT |
-                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
-    deps[1].srcSubpass = 0;
-    deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-    deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
-    deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-    VkRenderPassCreateInfo rpi{};
-    rpi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-    rpi.attachmentCount = 2;
-    rpi.pAttachments = att;
-    rpi.subpassCount = 1;
-    rpi.pSubpasses = &sub;
-    rpi.dependencyCount = 2;
-    rpi.pDependencies = deps;
-    VkRenderPass rp = VK_NULL_HANDLE;
-    ALOHA_VK_RETURN(vkCreateRenderPass(device, &rpi, nullptr, &rp));
-    return rp;
-}
-
 }  // namespace
 
 VkResult GuiLayer::backend_error() { return static_cast<VkResult>(g_backend_error.load()); }
@@ -95,7 +36,9 @@ Result<std::unique_ptr<GuiLayer>> GuiLayer::create(gpu::Context& ctx, GLFWwindow
 
 Status GuiLayer::init(GLFWwindow* window, const gpu::WindowTarget& target) {
     const VkDevice dev = ctx_.device();
-    Result<VkRenderPass> rp = create_overlay_pass(dev, target.colour_format());
+    // The overlay pass: the WindowTarget's attachments (so its framebuffers fit), colour loaded.
+    Result<VkRenderPass> rp = gpu::create_render_pass(dev, target.colour_format(), VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                                                      /*load_colour=*/true);
     if (!rp) return rp.error();
     render_pass_ = rp.value();
 

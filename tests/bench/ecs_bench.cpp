@@ -104,36 +104,30 @@ void BM_PlainSoA(benchmark::State& state) {
     SetPerEntity(state);
 }
 
-// Cost of keeping a group sorted by LOD level when 1% of the keys change per frame.
-void BM_GroupResortOnePercent(benchmark::State& state) {
+// Cost of keeping a group ordered by LOD level when 1% of the keys change per frame, with `reorder`
+// the group's stable sort or its minimal-move partition (each level still one contiguous range).
+template <class Reorder>
+void ReorderOnePercent(benchmark::State& state, Reorder reorder) {
     aloha::Registry r;
     Populate(r, state.range(0));
     auto group = r.group<Position, Velocity>();
     std::vector<uint32_t> keys(group.size());
     for (size_t i = 0; i < keys.size(); ++i) keys[i] = uint32_t(i % 4);
-    group.sort_by_key(keys);
+    reorder(group, keys);
     std::mt19937 rng(3);
     for (auto _ : state) {
         for (size_t k = 0; k < keys.size() / 100; ++k) keys[rng() % keys.size()] = uint32_t(rng() % 4);
-        group.sort_by_key(keys);
+        reorder(group, keys);
     }
     SetPerEntity(state);
 }
 
-// The same with the unstable minimal-move partition (each level still one contiguous range).
+void BM_GroupResortOnePercent(benchmark::State& state) {
+    ReorderOnePercent(state, [](auto& group, std::vector<uint32_t>& keys) { group.sort_by_key(keys); });
+}
+
 void BM_GroupRepartitionOnePercent(benchmark::State& state) {
-    aloha::Registry r;
-    Populate(r, state.range(0));
-    auto group = r.group<Position, Velocity>();
-    std::vector<uint32_t> keys(group.size());
-    for (size_t i = 0; i < keys.size(); ++i) keys[i] = uint32_t(i % 4);
-    group.partition_by_key(keys);
-    std::mt19937 rng(3);
-    for (auto _ : state) {
-        for (size_t k = 0; k < keys.size() / 100; ++k) keys[rng() % keys.size()] = uint32_t(rng() % 4);
-        group.partition_by_key(keys);
-    }
-    SetPerEntity(state);
+    ReorderOnePercent(state, [](auto& group, std::vector<uint32_t>& keys) { group.partition_by_key(keys); });
 }
 
 void BM_CreateDestroyWithCommands(benchmark::State& state) {

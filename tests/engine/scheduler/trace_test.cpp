@@ -1,6 +1,7 @@
 // Chrome trace output: parses as JSON with one "X" event per system run and thread metadata.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -113,8 +114,9 @@ TEST(Trace, ParallelWorkGetsOneTrackPerThread) {
         }
 }
 
-// Without a sink nothing is recorded (the hot path only tests a null pointer).
-TEST(Trace, NoSinkNoWorkEvents) {
+// A sink set after untraced frames gets only its own frames' events, work included (the per-thread
+// spans are sized at build, before any sink).
+TEST(Trace, SinkSetLaterGetsOnlyItsOwnFrames) {
     Scheduler s(2);
     int calls = 0;
     s.add(SystemDesc{"spin", Phase::Motion, {}, {}, [&](SystemContext& ctx) {
@@ -129,6 +131,8 @@ TEST(Trace, NoSinkNoWorkEvents) {
     EXPECT_EQ(calls, 2);
     ASSERT_FALSE(all.empty());
     for (const TraceEvent& e : all) EXPECT_EQ(e.frame, 1u);  // nothing left over from the untraced frame
+    EXPECT_EQ(std::count_if(all.begin(), all.end(), [](const TraceEvent& e) { return e.kind == TraceKind::System; }), 1);
+    EXPECT_GE(std::count_if(all.begin(), all.end(), [](const TraceEvent& e) { return e.kind == TraceKind::Work; }), 1);
 }
 
 TEST(Trace, UnwritablePathNamesTheFile) {
