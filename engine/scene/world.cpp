@@ -233,8 +233,7 @@ void World::step() {
         }
     }
     scheduler_.run_frame(dt);
-    const TimingRing& frame_ring = scheduler_.frame_timings();
-    last_cpu_ms_ = frame_ring.size() ? static_cast<double>(frame_ring.latest()) * 1e-6 : 0.0;
+    last_cpu_ms_ = static_cast<double>(scheduler_.latest_ns_before(Phase::Render)) * 1e-6;
     first_frame_ = false;
     ++frame_;
     time_ += dt;

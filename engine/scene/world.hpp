@@ -127,6 +127,8 @@ public:
     [[nodiscard]] const RenderLists& render_lists() const { return lists_; }
     /// Per-frame statistics of the last Render phase (GPU ms; -1 without a renderer).
     [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
+    /// The last frame's CPU systems (every phase before Render), ms: what the frame budget steers.
+    [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }
     /// Outcome of the last Render phase (Vulkan errors surface here, not as exceptions).
     [[nodiscard]] const Status& render_status() const { return render_status_; }
     /// Why character `i` (group order) has its levels, as JSON (attributes, rule, levels).

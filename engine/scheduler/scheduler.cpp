@@ -156,6 +156,14 @@ std::string Scheduler::describe() const {
     return out;
 }
 
+uint64_t Scheduler::latest_ns_before(Phase phase) const {
+    uint64_t ns = 0;
+    for (const Pass& pass : plan_)
+        if (pass.phase < phase)
+            for (const uint32_t i : pass.systems) ns += timings_[i].size() ? timings_[i].latest() : 0;
+    return ns;
+}
+
 int Scheduler::find(const std::string& name) const {
     for (size_t i = 0; i < names_.size(); ++i) {
         if (names_[i] == name) return static_cast<int>(i);

@@ -81,6 +81,9 @@ public:
     [[nodiscard]] const TimingRing& timings(uint32_t index) const { return timings_[index]; }
     /// Wall time of the system called `name`, or nullptr when there is none.
     [[nodiscard]] const TimingRing* timings(const std::string& name) const;
+    /// Sum of the last frame's run times (ns) of the systems in phases before `phase` (e.g.
+    /// Phase::Render: every CPU system), systems of one pass each counted; 0 before the first frame.
+    [[nodiscard]] uint64_t latest_ns_before(Phase phase) const;
     /// Wall time of whole frames (ns), including between-phase hooks.
     [[nodiscard]] const TimingRing& frame_timings() const { return frame_timings_; }
     /// Trace events of the last frame, one per system, indexed by system.

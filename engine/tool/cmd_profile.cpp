@@ -56,16 +56,11 @@ nlohmann::json compare_lod_off(const CliOptions& options, const SeriesStats& lod
     auto opened = open_session(off, /*render=*/false);
     if (!opened.ok()) return {{"error", opened.error().to_string()}};
     World& world = *opened.value()->world;
-    const Scheduler& sched = world.scheduler();
     for (uint32_t f = 0; f < std::min<uint32_t>(options.warmup, 2); ++f) world.step();
     std::vector<double> cpu;
     for (uint32_t f = 0; f < options.compare_frames; ++f) {
         world.step();
-        double ms = 0;
-        for (const auto& pass : sched.plan())
-            if (pass.phase != Phase::Render)
-                for (uint32_t i : pass.systems) ms += static_cast<double>(sched.timings(i).latest()) * 1e-6;
-        cpu.push_back(ms);
+        cpu.push_back(world.last_cpu_ms());
         if (!options.quiet) progress(f + 1, options.compare_frames, isatty(2), "lod off ");
     }
     const SeriesStats st = summarize(cpu);

@@ -43,11 +43,7 @@ int run_scale(const CliOptions& options) {
         std::vector<double> cpu, frame;
         for (uint32_t f = 0; f < frames; ++f) {
             world.step();
-            double ms = 0;
-            for (const auto& pass : sched.plan())
-                if (pass.phase != Phase::Render)
-                    for (uint32_t i : pass.systems) ms += static_cast<double>(sched.timings(i).latest()) * 1e-6;
-            cpu.push_back(ms);
+            cpu.push_back(world.last_cpu_ms());
             frame.push_back(static_cast<double>(sched.frame_timings().latest()) * 1e-6);
         }
         const SeriesStats c = summarize(cpu), fr = summarize(frame);

@@ -98,6 +98,27 @@ TEST(Run, ParallelForCoversEveryIndexOnce) {
     for (const int h : hits) ASSERT_EQ(h, 1);
 }
 
+// The CPU total the World's frame budget steers: the latest run times of the systems before a phase.
+TEST(Run, LatestTimeBeforeAPhaseSumsThoseSystemsOnly) {
+    Scheduler s(1);
+    auto spin = [](SystemContext&) {
+        const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(50);
+        while (std::chrono::steady_clock::now() < until) {
+        }
+    };
+    s.add(SystemDesc{"attributes", Phase::Attributes, {}, writes<Left>(), spin});
+    s.add(SystemDesc{"motion", Phase::Motion, reads<Left>(), writes<Right>(), spin});
+    s.add(SystemDesc{"render", Phase::Render, reads<Right>(), {}, spin});
+    ASSERT_TRUE(s.build().ok());
+    EXPECT_EQ(s.latest_ns_before(Phase::Render), 0u);  // nothing run yet
+    for (int f = 0; f < 3; ++f) s.run_frame(0.1f);
+    const uint64_t a = s.timings(0).latest(), m = s.timings(1).latest(), r = s.timings(2).latest();
+    EXPECT_GE(r, 50'000u);  // the render system did run, and is left out below
+    EXPECT_EQ(s.latest_ns_before(Phase::Render), a + m);
+    EXPECT_EQ(s.latest_ns_before(Phase::Motion), a);
+    EXPECT_EQ(s.latest_ns_before(Phase::Attributes), 0u);
+}
+
 TEST(Run, HookAfterEveryPhaseAndTimingsEveryFrame) {
     Scheduler s(2);
     std::vector<Phase> seen;
