@@ -17,6 +17,16 @@ struct PoseView {
     std::span<glm::mat4> model;  ///< model-space (character space) matrix of each joint
 };
 
+/// The local matrix T * R * S of a joint (translation `t`, unit rotation `r`, scale `s`).
+[[nodiscard]] inline glm::mat4 trs_matrix(const glm::vec3& t, const glm::quat& r, const glm::vec3& s) {
+    glm::mat4 m = glm::mat4_cast(r);
+    m[0] *= s.x;
+    m[1] *= s.y;
+    m[2] *= s.z;
+    m[3] = glm::vec4(t, 1.0f);
+    return m;
+}
+
 /// Read-only counterpart of PoseView.
 struct ConstPoseView {
     std::span<const glm::vec3> translations;

@@ -1,4 +1,5 @@
 // Node hierarchy checks and transform helpers for the glTF loader.
+#include "engine/anim/pose.hpp"
 #include "engine/assets/gltf_detail.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -74,12 +75,7 @@ Result<glm::mat4> node_local_matrix(const tinygltf::Model& model, int index, con
         if (glm::length(r) < 1e-6f) return make_error(file, "rotation quaternion has zero length", 0, 0, where);
         r = glm::normalize(r);
     }
-    glm::mat4 m = glm::mat4_cast(r);
-    m[0] *= s.x;
-    m[1] *= s.y;
-    m[2] *= s.z;
-    m[3] = glm::vec4(t, 1.0f);
-    return m;
+    return trs_matrix(t, r, s);
 }
 
 Result<Trs> decompose(const glm::mat4& m, const std::string& file, const std::string& where) {

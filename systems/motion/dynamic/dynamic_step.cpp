@@ -1,5 +1,6 @@
 // One step of the dynamic walk: build constraint rows, solve the coupled system for impulses,
 // integrate, write the pose.
+#include "engine/anim/pose.hpp"
 #include "systems/motion/dynamic/dense_solve.hpp"
 #include "systems/motion/dynamic/dynamic_walk.hpp"
 
@@ -317,11 +318,7 @@ void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> targ
             out.rotations[j] = glm::normalize(inv_root_rot * wj);
             out.translations[j] = glm::vec3(inv_root * glm::vec4(body_joint_position(b), 1.0f));
         }
-        glm::mat4 local = glm::mat4_cast(out.rotations[j]);
-        local[0] *= out.scales[j].x;
-        local[1] *= out.scales[j].y;
-        local[2] *= out.scales[j].z;
-        local[3] = glm::vec4(out.translations[j], 1.0f);
+        const glm::mat4 local = trs_matrix(out.translations[j], out.rotations[j], out.scales[j]);
         out.model[j] = p < 0 ? local : out.model[static_cast<size_t>(p)] * local;
     }
     if (out_root_world) *out_root_world = s.root_world;

@@ -5,15 +5,6 @@
 
 namespace aloha::ik {
 
-glm::mat4 local_matrix(const glm::vec3& t, const glm::quat& r, const glm::vec3& s) {
-    glm::mat4 m = glm::mat4_cast(r);
-    m[0] *= s.x;
-    m[1] *= s.y;
-    m[2] *= s.z;
-    m[3] = glm::vec4(t, 1.0f);
-    return m;
-}
-
 glm::quat matrix_rotation(const glm::mat4& m) {
     const glm::mat3 r(glm::normalize(glm::vec3(m[0])), glm::normalize(glm::vec3(m[1])),
                       glm::normalize(glm::vec3(m[2])));
@@ -29,7 +20,7 @@ void update_chain_model(const Skeleton& skeleton, std::span<const int> chain, co
     glm::mat4 m = parent_model(skeleton, pose.model, chain[first]);
     for (size_t k = first; k < chain.size(); ++k) {
         const auto j = static_cast<size_t>(chain[k]);
-        m = m * local_matrix(pose.translations[j], pose.rotations[j], pose.scales[j]);
+        m = m * trs_matrix(pose.translations[j], pose.rotations[j], pose.scales[j]);
         pose.model[j] = m;
     }
 }

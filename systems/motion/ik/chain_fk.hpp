@@ -12,9 +12,6 @@
 
 namespace aloha::ik {
 
-/// Local matrix T * R * S.
-[[nodiscard]] glm::mat4 local_matrix(const glm::vec3& t, const glm::quat& r, const glm::vec3& s);
-
 /// Translation part of a model matrix.
 [[nodiscard]] inline glm::vec3 matrix_position(const glm::mat4& m) { return glm::vec3(m[3]); }
 

@@ -52,7 +52,7 @@ void chain_fk(const Skeleton& skeleton, std::span<const int> chain, const PoseVi
     glm::mat4 m = base_parent;
     for (size_t k = 0; k < chain.size(); ++k) {
         const auto j = static_cast<size_t>(chain[k]);
-        m = m * local_matrix(pose.translations[j], local[k], pose.scales[j]);
+        m = m * trs_matrix(pose.translations[j], local[k], pose.scales[j]);
         model[k] = m;
     }
     (void)skeleton;
