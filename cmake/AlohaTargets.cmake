@@ -40,15 +40,24 @@ function(aloha_interface_defaults target short)
   set(ALOHA_LAYER_TARGETS ${ALOHA_LAYER_TARGETS} ${target} CACHE INTERNAL "")
 endfunction()
 
+# aloha_test_asset_defaults(<target>): what tests and benchmarks share. ALOHA_SOURCE_DIR is the repository;
+# ALOHA_DEFAULT_TEST_ASSETS the folder of third-party test assets (CMU BVH, Khronos glTF samples), which
+# are never in the repository (tests/common/test_assets.hpp; $ALOHA_TEST_ASSETS overrides it at run time).
+# The repository root is on the include path for "tests/common/..." helpers.
+function(aloha_test_asset_defaults target)
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_compile_definitions(${target} PRIVATE
+    ALOHA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    ALOHA_DEFAULT_TEST_ASSETS="${PROJECT_SOURCE_DIR}/../shared/assets")
+endfunction()
+
 # aloha_test(<name> SOURCES ... LIBS ...): a GoogleTest executable registered with CTest.
 function(aloha_test name)
   cmake_parse_arguments(T "" "" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${T_SOURCES})
   target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
   aloha_warnings(${name})
-  target_compile_definitions(${name} PRIVATE
-    ALOHA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/data/characters")
+  aloha_test_asset_defaults(${name})
   include(GoogleTest)
   # One label per test binary: gtest_discover_tests cannot pass a list through PROPERTIES.
   set(label "")
@@ -64,7 +73,5 @@ function(aloha_bench name)
   add_executable(${name} ${B_SOURCES})
   target_link_libraries(${name} PRIVATE ${B_LIBS} benchmark::benchmark)
   aloha_warnings(${name})
-  target_compile_definitions(${name} PRIVATE
-    ALOHA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    ALOHA_SHARED_ASSETS_DIR="${PROJECT_SOURCE_DIR}/data/characters")
+  aloha_test_asset_defaults(${name})
 endfunction()

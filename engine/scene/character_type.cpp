@@ -2,10 +2,12 @@
 
 #include "engine/assets/bvh_loader.hpp"
 #include "engine/assets/gltf_loader.hpp"
+#include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
 #include "systems/geometry/muscle/muscle_fit.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
+#include "systems/motion/library/motion_library.hpp"
 
 #include <algorithm>
 #include <cfloat>
@@ -84,16 +86,66 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
     return {};
 }
 
+// The project's humanoid: skeleton built for the type's height and build, its muscle layout scaled
+// to that body, its joint limits, and the generated motion library (clips named by clip_prefix).
+Status load_from_humanoid(const CharacterTypeDesc& desc, CharacterType& type) {
+    auto def = load_humanoid_definition(desc.humanoid);
+    if (!def.ok()) return def.error();
+    const HumanoidBody body{desc.height, desc.build};
+    if (Status s = validate_humanoid_body(body, desc.humanoid, "type '" + desc.name + "'"); !s.ok()) return s;
+    auto skeleton = build_skeleton(humanoid_skeleton(def.value(), body), desc.humanoid);
+    if (!skeleton.ok()) return skeleton.error();
+    type.skeleton = std::move(skeleton.value());
+    const std::string limits = desc.limits.empty() ? def.value().limits : desc.limits;
+    if (!limits.empty()) {
+        auto table = load_joint_limits(limits);
+        if (!table.ok()) return table.error();
+        if (Status s = apply_joint_limits(type.skeleton, table.value()); !s.ok()) return s.error();
+    }
+    const std::string muscles = desc.muscles.empty() ? def.value().muscles : desc.muscles;
+    if (muscles.empty()) return make_error(desc.humanoid, "the humanoid definition names no muscle layout", 0, 0, "/muscles");
+    auto defs = load_muscle_defs(muscles);
+    if (!defs.ok()) return defs.error();
+    // Girth 0.9-1.1 and fat 0.4-1.6 times the layout's from slim to heavy; lengths follow height.
+    scale_muscle_defs(defs.value(), desc.height / def.value().reference_height, 0.9f + 0.2f * desc.build,
+                      0.4f + 1.2f * desc.build);
+    auto set = resolve_muscles(defs.value(), type.skeleton, muscles);
+    if (!set.ok()) return set.error();
+    type.muscles = std::move(set.value());
+    auto rig = resolve_walk_rig(type.skeleton, desc.humanoid);
+    if (!rig.ok()) return rig.error();
+    stand_rig_on_rest_ground(rig.value(), type.skeleton);
+    type.rig = std::move(rig.value());
+    const std::string prefix = desc.clip_prefix.empty() ? desc.name : desc.clip_prefix;
+    const MotionLibrary lib = make_motion_library(type.skeleton, *type.rig, prefix);
+    for (const RawAnimation& gait : lib.gaits) {
+        auto id = type.clips.add(gait, type.skeleton);
+        if (!id.ok()) return id.error();
+        type.gait_clips.push_back(id.value());
+    }
+    for (const RawAnimation* clip : {&lib.idle, &lib.turn, &lib.wave}) {
+        auto id = type.clips.add(*clip, type.skeleton);
+        if (!id.ok()) return id.error();
+        if (clip == &lib.idle) type.idle_clip = id.value();
+    }
+    return {};
+}
+
 }  // namespace
 
 int find_clip(const CharacterType& type, const std::string& name) {
-    if (name.empty()) return type.inplace_clip;
+    if (name.empty()) return type.idle_clip >= 0 ? type.idle_clip : type.inplace_clip;
     return type.clips.find(name);
 }
 
 Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     CharacterType type;
     type.name = desc.name;
+    if (!desc.humanoid.empty()) {
+        if (Status s = load_from_humanoid(desc, type); !s.ok()) return s.error();
+        measure(type);
+        return type;
+    }
     Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
     if (!loaded.ok()) return loaded.error();
     if (!desc.limits.empty()) {

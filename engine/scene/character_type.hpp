@@ -23,6 +23,8 @@ struct CharacterType {
     ClipLibrary clips;
     int mocap_clip = -1;            ///< the file's own motion ("<name>.mocap"), -1 when none
     int inplace_clip = -1;          ///< the same with horizontal root travel removed ("<name>.inplace")
+    int idle_clip = -1;             ///< generated idle ("<prefix>.idle"), -1 when the type has no library
+    std::vector<ClipId> gait_clips; ///< generated walk/run cycles, slowest first (the walk's clips)
     std::optional<WalkRig> rig;     ///< leg rig for kinematic walking (none when legs are not found)
     MuscleSet muscles;
     std::optional<CharacterMesh> mesh;  ///< glTF skin, when the type has one
@@ -34,7 +36,7 @@ struct CharacterType {
 /// Loads a character type. Errors name the file and the problem (BVH/glTF/muscles/limits).
 Result<CharacterType> load_character_type(const CharacterTypeDesc& desc);
 
-/// Id of clip `name` in `type` ("" = the type's in-place mocap clip), or -1.
+/// Id of clip `name` in `type` ("" = the type's idle clip, else its in-place mocap clip), or -1.
 int find_clip(const CharacterType& type, const std::string& name);
 
 }  // namespace aloha

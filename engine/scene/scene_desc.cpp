@@ -56,6 +56,8 @@ std::vector<CharacterDesc> expand_characters(const SceneDesc& scene, uint64_t se
         for (uint32_t i = 0; i < crowd.count; ++i) {
             CharacterDesc c;
             c.type = crowd.type;
+            if (!crowd.variant_types.empty())
+                c.type = crowd.variant_types[static_cast<size_t>(rng.next() % crowd.variant_types.size())];
             if (crowd.layout == CrowdDesc::Layout::Grid) {
                 const float x = (static_cast<float>(i % side) - 0.5f * static_cast<float>(side - 1)) * crowd.spacing;
                 const float z = (static_cast<float>(i / side) - 0.5f * static_cast<float>(side - 1)) * crowd.spacing;

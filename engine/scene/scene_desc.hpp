@@ -27,13 +27,18 @@ struct CameraDesc {
     float far_plane = 1000.0f;
 };
 
-/// A character type: the built-in humanoid (skeleton from BVH, muscles from data) or a glTF file.
+/// A character type: a humanoid definition (the project's own humanoid, built for a height and
+/// build, with its generated motion library), a BVH skeleton or a glTF file.
 struct CharacterTypeDesc {
     std::string name;
+    std::string humanoid;  ///< absolute path of a humanoid definition (data/characters/humanoid.json)
     std::string bvh;       ///< absolute path of a BVH skeleton (+ its motion as clip "<name>.mocap")
     std::string gltf;      ///< absolute path of a glTF character
-    std::string muscles;   ///< absolute path of a muscle layout ("" = fit per bone)
-    std::string limits;    ///< absolute path of joint limits ("" = free joints)
+    std::string muscles;   ///< absolute path of a muscle layout ("" = the definition's, or fit per bone)
+    std::string limits;    ///< absolute path of joint limits ("" = the definition's, or free joints)
+    float height = 1.75f;  ///< humanoid: standing height (m)
+    float build = 0.5f;    ///< humanoid: 0 slim, 0.5 average, 1 heavy
+    std::string clip_prefix;  ///< prefix of the type's clip names ("" = name); body variants share their base's
 };
 
 /// A named walk path: waypoints on the ground (y ignored), optionally looping.
@@ -79,7 +84,11 @@ struct CrowdDesc {
     CrowdMix mix;
     float importance_min = 0.1f, importance_max = 0.6f;
     float speed_min = 0.8f, speed_max = 1.6f;  ///< walking speed range (m/s)
-    std::string clip;              ///< clip idle characters play ("" = the type's mocap clip)
+    std::string clip;              ///< clip idle characters play ("" = the type's idle clip)
+    float height_min = 0.0f, height_max = 0.0f;  ///< standing height range (m); 0 = the type's own
+    float build_min = -1.0f, build_max = -1.0f;  ///< build range in [0, 1]; -1 = the type's own
+    uint32_t variants = 0;         ///< body variants drawn from the ranges (0 = none: one body)
+    std::vector<int> variant_types;  ///< types of the body variants (filled at load); each character picks one
 };
 
 /// A whole scene.

@@ -1,8 +1,9 @@
 #include "engine/scene/scene_loader.hpp"
 
-#include "engine/scene/json_reader.hpp"
+#include "engine/core/json_reader.hpp"
 #include "engine/scene/scene_requests.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -27,10 +28,9 @@ namespace {
 // Built-in names and the files they stand for, relative to the data folder.
 const std::map<std::string, std::string>& builtin_files() {
     static const std::map<std::string, std::string> files = {
-        {"humanoid", "characters/131_01.bvh"},
+        {"humanoid", "characters/humanoid.json"},
         {"humanoid_muscles", "characters/humanoid_muscles.json"},
         {"humanoid_limits", "characters/humanoid_limits.json"},
-        {"cesium_man", "characters/CesiumMan.glb"},
         {"default", "rules/default.json"},
     };
     return files;
@@ -109,9 +109,9 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
     if (!types) {  // default: the built-in humanoid
         CharacterTypeDesc t;
         t.name = "humanoid";
-        t.bvh = data_directory() + "/" + builtin_files().at("humanoid");
-        t.muscles = data_directory() + "/" + builtin_files().at("humanoid_muscles");
-        t.limits = data_directory() + "/" + builtin_files().at("humanoid_limits");
+        auto def = resolve_scene_path(scene.file, "builtin:humanoid", "/character_types");
+        if (!def.ok()) errors.push_back(def.error());
+        else t.humanoid = def.value();
         scene.types.push_back(t);
         return;
     }
@@ -134,12 +134,19 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
             }
             return res.value();
         };
+        t.humanoid = resolve("humanoid");
         t.bvh = resolve("bvh");
         t.gltf = resolve("gltf");
         t.muscles = resolve("muscles");
         t.limits = resolve("limits");
-        if (t.bvh.empty() == t.gltf.empty() && r.is_object())
-            r.error("", "give exactly one of 'bvh' or 'gltf'");
+        t.height = static_cast<float>(r.number("height", 1.75, 0.5, 2.5));
+        t.build = static_cast<float>(r.number("build", 0.5, 0.0, 1.0));
+        const int sources = !t.humanoid.empty() + !t.bvh.empty() + !t.gltf.empty();
+        if (sources != 1 && r.is_object()) r.error("", "give exactly one of 'humanoid', 'bvh' or 'gltf'");
+        if (t.humanoid.empty() && (r.has("height") || r.has("build")))
+            r.error("height", "'height' and 'build' apply to 'humanoid' types only");
+        if (t.bvh.size() > 5 && t.bvh.compare(t.bvh.size() - 5, 5, ".json") == 0)
+            r.error("bvh", "this is a JSON file, not a BVH skeleton; the project's humanoid is \"humanoid\": \"builtin:humanoid\"");
         r.reject_unknown_keys();
         for (const auto& other : scene.types)
             if (other.name == t.name) r.error("name", "duplicate character type '" + t.name + "'");
@@ -175,6 +182,33 @@ void read_paths(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
         }
         r.reject_unknown_keys();
         scene.paths.push_back(path);
+    }
+}
+
+// Gives every crowd with a height or build range its own body variants: types that copy the
+// crowd's humanoid type with heights spread evenly over the range and builds spread by the golden
+// ratio (so height and build are not correlated). Their clips keep the base type's names.
+void add_body_variants(SceneDesc& scene, std::vector<Error>& errors) {
+    for (size_t ci = 0; ci < scene.crowds.size(); ++ci) {
+        CrowdDesc& crowd = scene.crowds[ci];
+        if (crowd.variants == 0 || scene.types.empty()) continue;
+        const CharacterTypeDesc base = scene.types[static_cast<size_t>(crowd.type)];
+        if (base.humanoid.empty()) {
+            errors.push_back(make_error(scene.file, "height and build variety needs a 'humanoid' character type; '" +
+                                                        base.name + "' is not one", 0, 0, "/crowds/" + std::to_string(ci)));
+            continue;
+        }
+        for (uint32_t v = 0; v < crowd.variants; ++v) {
+            CharacterTypeDesc t = base;
+            const float u = (static_cast<float>(v) + 0.5f) / static_cast<float>(crowd.variants);
+            const float g = std::fmod(0.5f + 0.6180340f * static_cast<float>(v), 1.0f);
+            if (crowd.height_max > 0.0f) t.height = crowd.height_min + (crowd.height_max - crowd.height_min) * u;
+            if (crowd.build_max >= 0.0f) t.build = crowd.build_min + (crowd.build_max - crowd.build_min) * g;
+            t.name = base.name + "~" + std::to_string(ci) + "." + std::to_string(v);
+            t.clip_prefix = base.clip_prefix.empty() ? base.name : base.clip_prefix;
+            crowd.variant_types.push_back(static_cast<int>(scene.types.size()));
+            scene.types.push_back(std::move(t));
+        }
     }
 }
 
@@ -241,6 +275,7 @@ Result<SceneDesc> parse_scene(const std::string& text, const std::string& file) 
     read_paths(root, scene, errors);
     read_characters(root, scene, errors);
     read_crowds(root, scene, errors);
+    add_body_variants(scene, errors);
     root.reject_unknown_keys();
     if (errors.empty() && character_count(scene) == 0)
         errors.push_back(make_error(scene.file, "scene has no characters (add 'characters' or 'crowds')", 0, 0, "/"));

@@ -154,6 +154,12 @@ void read_crowds(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& e
         };
         range("importance", c.importance_min, c.importance_max, 0.0, 1.0);
         range("speed", c.speed_min, c.speed_max, 0.0, 10.0);
+        range("height", c.height_min, c.height_max, 0.5, 2.5);
+        range("build", c.build_min, c.build_max, 0.0, 1.0);
+        const bool varied = r.has("height") || r.has("build");
+        c.variants = static_cast<uint32_t>(r.integer("variants", varied ? 6 : 0, 0, 64));
+        if (c.variants > 0 && !varied) r.error("variants", "body variants need a 'height' or 'build' range");
+        if (varied && c.variants == 0) r.error("variants", "a 'height' or 'build' range needs at least one variant");
         r.reject_unknown_keys();
         scene.crowds.push_back(c);
     }

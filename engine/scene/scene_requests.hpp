@@ -2,7 +2,7 @@
 // (the part of the scene loader that deals with who is in the scene and what they do).
 #pragma once
 
-#include "engine/scene/json_reader.hpp"
+#include "engine/core/json_reader.hpp"
 #include "engine/scene/scene_desc.hpp"
 
 #include <string>

@@ -48,7 +48,30 @@ void MotionController::set_walk_rig(WalkRig rig, GaitParams gait) {
     gait_ = gait;
 }
 
-void MotionController::set_walk_clip(ClipId clip) { walk_clip_ = clips_->find(clip) ? clip : -1; }
+void MotionController::set_walk_clip(ClipId clip) { set_walk_clips(std::span<const ClipId>(&clip, 1)); }
+
+void MotionController::set_walk_clips(std::span<const ClipId> clips) {
+    walk_clips_.clear();
+    walk_clip_speeds_.clear();
+    for (ClipId id : clips) {
+        const AnimationClip* clip = clips_->find(id);
+        if (!clip) continue;
+        walk_clips_.push_back(id);
+        walk_clip_speeds_.push_back(clip->root_speed());
+    }
+}
+
+int32_t MotionController::pick_walk_clip(float speed) const {
+    int32_t best = -1;
+    float best_error = 0.0f;
+    for (size_t i = 0; i < walk_clips_.size(); ++i) {
+        // Compare speeds by ratio: warping 0.5 m/s to 0.8 is as far as 1.6 to 2.56.
+        const float natural = walk_clip_speeds_[i];
+        const float error = natural > 1e-4f && speed > 1e-4f ? std::abs(std::log(speed / natural)) : 1e9f;
+        if (best < 0 || error < best_error) best = static_cast<int32_t>(walk_clips_[i]), best_error = error;
+    }
+    return best;
+}
 
 void MotionController::set_method_hook(MethodSlot slot, MethodHook hook, void* user, MethodRelease release) {
     hooks_[static_cast<size_t>(slot)] = hook;
@@ -128,12 +151,13 @@ void MotionController::start_next(uint32_t c, Character& ch) {
     Channel started;
     started.req = next;
     if (next.kind == RequestKind::PlayClip) started.time = next.start_time;
+    if (next.kind == RequestKind::Walk) started.walk_clip = pick_walk_clip(next.speed);
     if (next.kind == RequestKind::Walk && ch.cur.req.kind == RequestKind::Walk) started.walk = ch.cur.walk;  // keep feet planted
     ch.cur = started;
 }
 
 WalkMethod MotionController::walk_method(const AnimLod& lod) const {
-    const bool clip = walk_clip_ >= 0;
+    const bool clip = !walk_clips_.empty();
     const bool kin = rig_.has_value();
     switch (lod.walk) {
         case WalkMethod::Dynamic:
@@ -155,8 +179,8 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
     } else if (r.kind == RequestKind::Walk) {
         const float speed = std::max(r.speed, 0.0f);
         const WalkMethod m = walk_method(lod);
-        if (m == WalkMethod::ClipPlayback && walk_clip_ >= 0) {
-            const AnimationClip* clip = clips_->find(static_cast<ClipId>(walk_clip_));
+        if (m == WalkMethod::ClipPlayback && ch.walk_clip >= 0) {
+            const AnimationClip* clip = clips_->find(static_cast<ClipId>(ch.walk_clip));
             const float natural = clip->root_speed();
             ch.time += dt * (natural > 1e-4f ? speed / natural : 1.0f);
         } else if (rig_) {

@@ -69,6 +69,11 @@ public:
     void set_walk_rig(WalkRig rig, GaitParams gait = {});
     /// Enables WalkMethod::ClipPlayback with this looping walk clip (its root motion sets the natural speed).
     void set_walk_clip(ClipId clip);
+    /// Enables WalkMethod::ClipPlayback with several looping gait cycles (e.g. a walk and run ladder):
+    /// each walk request plays the clip whose natural speed (root travel per second) is nearest its
+    /// speed, at the rate that matches the speed exactly (stride kept, cadence warped), so stance
+    /// feet stay planted. Unknown ids and clips without travel are left out.
+    void set_walk_clips(std::span<const ClipId> clips);
     /// Registers the implementation of a method (nullptr removes it) and optionally its release
     /// callback. Not during an update.
     void set_method_hook(MethodSlot slot, MethodHook hook, void* user, MethodRelease release = nullptr);
@@ -139,6 +144,7 @@ private:
         float time = 0.0f;          // clip time (PlayClip / ClipPlayback walk)
         float request_time = 0.0f;  // seconds since start
         uint32_t path_cursor = 0;
+        int32_t walk_clip = -1;     // gait cycle a Walk request plays at the ClipPlayback level
         uint8_t done = 0;
         SamplingCache cache;
         KinematicWalkState walk;
@@ -176,7 +182,9 @@ private:
     const ClipLibrary* clips_;
     std::optional<WalkRig> rig_;
     GaitParams gait_;
-    int walk_clip_ = -1;
+    std::vector<ClipId> walk_clips_;       // gait cycles, any order
+    std::vector<float> walk_clip_speeds_;  // their natural speeds (m/s)
+    [[nodiscard]] int32_t pick_walk_clip(float speed) const;
     std::array<MethodHook, 3> hooks_{};
     std::array<void*, 3> hook_users_{};
     std::array<MethodRelease, 3> releases_{};

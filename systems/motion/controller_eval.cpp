@@ -19,7 +19,7 @@ glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
 }  // namespace
 
 void MotionController::sample_walk_clip(Channel& ch, const PoseView& out) const {
-    const AnimationClip& clip = *clips_->find(static_cast<ClipId>(walk_clip_));
+    const AnimationClip& clip = *clips_->find(static_cast<ClipId>(ch.walk_clip));
     const float t = wrap_clip_time(ch.time, clip.duration(), true);
     int k = 0;
     float alpha = 0.0f;
@@ -63,7 +63,7 @@ void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, con
         case RequestKind::Walk: {
             const WalkMethod m = walk_method(lod);
             const float speed = std::max(ch.req.speed, 0.0f);
-            if (m == WalkMethod::ClipPlayback && walk_clip_ >= 0) {
+            if (m == WalkMethod::ClipPlayback && ch.walk_clip >= 0) {
                 sample_walk_clip(ch, out);
                 l2m();
             } else if (rig_) {

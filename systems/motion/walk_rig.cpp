@@ -87,6 +87,14 @@ Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& so
     return rig;
 }
 
+void stand_rig_on_rest_ground(WalkRig& rig, const Skeleton& skeleton) {
+    const size_t n = static_cast<size_t>(skeleton.joint_count());
+    std::vector<glm::mat4> model(n);
+    local_to_model(skeleton.parents().data(), skeleton.rest_translations().data(), skeleton.rest_rotations().data(),
+                   skeleton.rest_scales().data(), nullptr, model.data(), n);
+    rig.ankle_height = 0.5f * (model[static_cast<size_t>(rig.ankle[0])][3].y + model[static_cast<size_t>(rig.ankle[1])][3].y);
+}
+
 float solve_leg_ik(const WalkRig& rig, const Skeleton& skeleton, int side, const glm::vec3& target,
                    const glm::vec3& pole, const PoseView& pose) {
     const size_t h = static_cast<size_t>(rig.hip[side]);

@@ -50,6 +50,11 @@ struct WalkRig {
 Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& source,
                                  const LegNameTable& table = default_leg_names());
 
+/// For skeletons whose rest pose stands with its soles on y = 0 (the project's humanoid): measures
+/// the ankle height from that ground instead of from the lowest foot joint. Requires the rig of
+/// `skeleton` and rest ankles above y = 0.
+void stand_rig_on_rest_ground(WalkRig& rig, const Skeleton& skeleton);
+
 /// Shortest rotation taking unit vector `from` onto unit vector `to`.
 [[nodiscard]] glm::quat rotation_between(const glm::vec3& from, const glm::vec3& to);
 

@@ -1,13 +1,16 @@
-// GeometryController::update per character for every method on the built-in humanoid (31 joints,
-// 53 muscles), with 1 and 64 characters per call. Poses alternate between two clip frames so the
-// fat springs do work. Run: build-geomctl/tests/bench/geomctl_bench (items/s = characters/s).
-#include "engine/assets/bvh_loader.hpp"
+// GeometryController::update per character for every method on the project's humanoid
+// (data/characters/humanoid.json, 31 joints, humanoid_muscles.json), with 1 and 64 characters per
+// call. Poses alternate between two sets of joint rotations so the fat springs do work.
+// Run: build-geomctl/tests/bench/geomctl_bench (items/s = characters/s).
+#include "engine/assets/humanoid_definition.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
 
 #include <benchmark/benchmark.h>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -19,17 +22,21 @@ using namespace aloha;
 
 struct Setup {
     std::unique_ptr<CharacterGeometry> geometry;
-    std::vector<glm::mat4> poses[2];  // two frames of the clip, 64 characters each
+    std::vector<glm::mat4> poses[2];  // two poses per character, 64 characters each
 };
 
-std::vector<glm::mat4> frame_pose(const Skeleton& s, const RawAnimation& clip, size_t key) {
+// Model matrices of `s` with every non-root joint turned from its rest rotation by up to 0.3 rad
+// about an axis and angle that vary with the joint and with `phase` (deterministic, walk-sized).
+std::vector<glm::mat4> phase_pose(const Skeleton& s, float phase) {
     std::vector<glm::mat4> model(static_cast<size_t>(s.joint_count()));
     for (size_t j = 0; j < model.size(); ++j) {
-        glm::vec3 t = s.rest_translations()[j];
+        const glm::vec3 t = s.rest_translations()[j];
         glm::quat r = s.rest_rotations()[j];
-        const auto& tr = clip.tracks[j];
-        if (!tr.translations.values.empty()) t = tr.translations.values[std::min(key, tr.translations.values.size() - 1)];
-        if (!tr.rotations.values.empty()) r = tr.rotations.values[std::min(key, tr.rotations.values.size() - 1)];
+        if (s.parents()[j] >= 0) {
+            const float a = static_cast<float>(j) * 0.7f + phase;
+            const glm::vec3 axis = glm::normalize(glm::vec3(1.0f, 0.5f * std::sin(a), 0.5f * std::cos(a)));
+            r = r * glm::angleAxis(0.3f * std::sin(a), axis);
+        }
         const glm::mat4 local = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r);
         model[j] = s.parents()[j] < 0 ? local : model[static_cast<size_t>(s.parents()[j])] * local;
     }
@@ -40,15 +47,16 @@ const Setup& setup() {
     static const Setup st = [] {
         Setup out;
         const std::string dir = std::string(ALOHA_SOURCE_DIR) + "/data/characters/";
-        auto bvh = load_bvh(dir + "131_01.bvh");
-        if (!bvh.ok()) return out;
-        auto skeleton = build_skeleton(bvh.value().skeleton, "131_01.bvh");
+        auto def = load_humanoid_definition(dir + "humanoid.json");
+        if (!def.ok()) return out;
+        auto skeleton = build_skeleton(humanoid_skeleton(def.value(), HumanoidBody{}), "humanoid.json");
         if (!skeleton.ok()) return out;
         auto muscles = load_muscle_set(dir + "humanoid_muscles.json", skeleton.value());
         if (!muscles.ok()) return out;
         for (int f = 0; f < 2; ++f)
             for (size_t c = 0; c < 64; ++c) {
-                const auto p = frame_pose(skeleton.value(), bvh.value().animation, 100 + 7 * c + 4 * static_cast<size_t>(f));
+                const float phase = 0.37f * static_cast<float>(c) + 0.25f * static_cast<float>(f);
+                const auto p = phase_pose(skeleton.value(), phase);
                 out.poses[f].insert(out.poses[f].end(), p.begin(), p.end());
             }
         CharacterGeometryDesc desc;

@@ -1,5 +1,7 @@
-# Regenerates the seed corpora under tests/fuzz/corpus/ from the shipped data files (python3 make_seeds.py).
-import struct, json, base64, os, sys
+# Regenerates the seed corpora under tests/fuzz/corpus/ (python3 make_seeds.py). Every seed is written from
+# this script's own data or from the project's data files (rules, scenes, joint limits); none is cut from a
+# third-party asset (no motion-capture BVH or sample glTF model is read).
+import struct, json, base64, math, os, sys
 root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
 C = root + '/tests/fuzz/corpus'
 def w(target, name, data):
@@ -59,22 +61,131 @@ w('fuzz_gltf', 'huge_count.gltf', json.dumps(mm))
 mm = model(True); mm['nodes'][0]['matrix'] = [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,1,0,1]; mm['nodes'][0]['scale'] = [2,2,2]
 w('fuzz_gltf', 'matrix_and_scale.gltf', json.dumps(mm))
 w('fuzz_gltf', 'empty.gltf', '{"asset": {"version": "2.0"}}')
-# CesiumMan's JSON chunk with only 1 KiB of its binary chunk (every accessor past the end).
-cm = open(root + '/data/characters/CesiumMan.glb', 'rb').read()
-jlen = struct.unpack('<I', cm[12:16])[0]
-cj = json.loads(cm[20:20 + jlen])
-cj.get('images', []).clear(); cj.pop('textures', None); cj.pop('samplers', None)
-for mat in cj.get('materials', []): mat.pop('pbrMetallicRoughness', None)
-w('fuzz_gltf', 'cesium_json_short_bin.glb', glb(cj, cm[28 + jlen:28 + jlen + 1024]))
+
+# ---------- glTF: a skinned chain character, the shape of an exported game character ----------
+# A Z-up matrix node over an armature node over a chain of 8 joints listed in a skin order that is not
+# depth-first; a 12-sided tube of 9 rings skinned to them (positions, normals, JOINTS_0, WEIGHTS_0,
+# indices), a material, and one LINEAR clip of 24 keys with rotation, translation and scale channels on
+# every joint. chain_skinned.glb is the whole model; chain_json_short_bin.glb keeps its JSON chunk
+# (7.4 KiB) with only the first 1 KiB of its 14 KiB binary chunk, so every later accessor points past
+# the end of the data.
+def chain_character():
+    joints, sides, rings, keys = 8, 12, 9, 24
+    seg = 0.2
+    bv, acc, blob = [], [], bytearray()
+    def add(data, ctype, count, typ, target=None, minmax=None):
+        while len(blob) % 4: blob.append(0)
+        view = {"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)}
+        if target: view["target"] = target
+        bv.append(view); blob.extend(data)
+        a = {"bufferView": len(bv) - 1, "componentType": ctype, "count": count, "type": typ}
+        if minmax: a["min"], a["max"] = minmax
+        acc.append(a)
+        return len(acc) - 1
+    pos, nrm, jnt, wgt = [], [], [], []
+    for r in range(rings):
+        y = r * seg * (joints - 1) / (rings - 1)
+        k = min(int(y / seg), joints - 2)
+        f = y / seg - k
+        for s_ in range(sides):
+            a = 2 * math.pi * s_ / sides
+            pos += [0.08 * math.cos(a), y, 0.08 * math.sin(a)]
+            nrm += [math.cos(a), 0.0, math.sin(a)]
+            jnt += [k, k + 1, 0, 0]
+            wgt += [1 - f, f, 0.0, 0.0]
+    idx = []
+    for r in range(rings - 1):
+        for s_ in range(sides):
+            a0, a1 = r * sides + s_, r * sides + (s_ + 1) % sides
+            b0, b1 = a0 + sides, a1 + sides
+            idx += [a0, b0, a1, a1, b0, b1]
+    nv = rings * sides
+    p_acc = add(struct.pack(f'<{len(pos)}f', *pos), 5126, nv, 'VEC3', 34962,
+                ([-0.08, 0.0, -0.08], [0.08, seg * (joints - 1), 0.08]))
+    n_acc = add(struct.pack(f'<{len(nrm)}f', *nrm), 5126, nv, 'VEC3', 34962)
+    j_acc = add(struct.pack(f'<{len(jnt)}H', *jnt), 5123, nv, 'VEC4', 34962)
+    w_acc = add(struct.pack(f'<{len(wgt)}f', *wgt), 5126, nv, 'VEC4', 34962)
+    i_acc = add(struct.pack(f'<{len(idx)}H', *idx), 5123, len(idx), 'SCALAR', 34963)
+    # Skin order (not depth-first): joint k of the chain is skin slot order[k].
+    order = [0, 2, 4, 6, 1, 3, 5, 7]
+    ibm = []
+    for slot in range(joints):
+        k = order.index(slot)
+        ibm += [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -seg * k, 0, 1]
+    ibm_acc = add(struct.pack('<128f', *ibm), 5126, joints, 'MAT4')
+    times = [(t + 1) / keys for t in range(keys)]
+    t_acc = add(struct.pack(f'<{keys}f', *times), 5126, keys, 'SCALAR', None, ([times[0]], [times[-1]]))
+    samplers, channels = [], []
+    for k in range(joints):
+        rot, tr, sc = [], [], []
+        for t in range(keys):
+            ang = 0.3 * math.sin(2 * math.pi * t / keys + 0.5 * k)
+            ax = [1.0, 0.0, 0.0] if k % 2 else [0.0, 0.0, 1.0]
+            rot += [math.sin(ang / 2) * ax[0], math.sin(ang / 2) * ax[1], math.sin(ang / 2) * ax[2], math.cos(ang / 2)]
+            tr += [0.0, seg if k else 0.01 * math.sin(2 * math.pi * t / keys), 0.0]
+            sc += [1.0, 1.0 + 0.02 * math.sin(2 * math.pi * t / keys), 1.0]
+        for path, data, typ in (('rotation', rot, 'VEC4'), ('translation', tr, 'VEC3'), ('scale', sc, 'VEC3')):
+            out = add(struct.pack(f'<{len(data)}f', *data), 5126, keys, typ)
+            samplers.append({"input": t_acc, "output": out, "interpolation": "LINEAR"})
+            channels.append({"sampler": len(samplers) - 1, "target": {"node": 3 + k, "path": path}})
+    nodes = [{"name": "Z_UP", "children": [1], "matrix": [1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1]},
+             {"name": "Armature", "children": [3, 2], "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]},
+             {"name": "tube", "mesh": 0, "skin": 0}]
+    for k in range(joints):
+        n = {"name": f"chain_joint_{k}", "translation": [0.0, seg if k else 0.0, 0.0], "rotation": [0, 0, 0, 1]}
+        if k + 1 < joints: n["children"] = [4 + k]
+        nodes.append(n)
+    js = {"asset": {"version": "2.0", "generator": "tests/fuzz/make_seeds.py"}, "scene": 0,
+          "scenes": [{"nodes": [0]}], "nodes": nodes,
+          "skins": [{"name": "chain", "inverseBindMatrices": ibm_acc, "skeleton": 3,
+                     "joints": [3 + order.index(slot) for slot in range(joints)]}],
+          "materials": [{"name": "skin", "pbrMetallicRoughness": {"baseColorFactor": [0.86, 0.68, 0.56, 1.0],
+                                                                  "metallicFactor": 0.0, "roughnessFactor": 0.8}}],
+          "meshes": [{"name": "tube", "primitives": [{
+              "attributes": {"POSITION": p_acc, "NORMAL": n_acc, "JOINTS_0": j_acc, "WEIGHTS_0": w_acc},
+              "indices": i_acc, "material": 0, "mode": 4}]}],
+          "animations": [{"name": "sway", "samplers": samplers, "channels": channels}],
+          "buffers": [{"byteLength": len(blob)}], "bufferViews": bv, "accessors": acc}
+    return js, bytes(blob)
+cj, cb = chain_character()
+w('fuzz_gltf', 'chain_skinned.glb', glb(cj, cb))
+w('fuzz_gltf', 'chain_json_short_bin.glb', glb(cj, cb[:1024]))
 
 # ---------- BVH ----------
-bvh = open(root + '/data/characters/131_01.bvh').read().split('\n')
-mi = bvh.index('MOTION')
-head = bvh[:mi + 1]
-frames = bvh[mi + 3: mi + 6]
-w('fuzz_bvh', 'cmu_3frames.bvh', '\n'.join(head + ['Frames: 3', 'Frame Time: .0083333'] + frames) + '\n')
-w('fuzz_bvh', 'cmu_hierarchy_cut.bvh', '\n'.join(bvh[:60]) + '\n')
-w('fuzz_bvh', 'cmu_frame_cut.bvh', '\n'.join(head + ['Frames: 3', 'Frame Time: .0083333'] + frames[:2]) + '\n' + frames[2][:100])
+# A 12-joint body written here (offsets in centimetres, tab indents, CR LF lines like exported mocap), with
+# a different rotation order on each limb, a zero-length joint, End Sites, and 3 frames of values; then the
+# same file cut inside the hierarchy and inside the last motion row.
+body = [  # name, parent, offset (cm), rotation order
+    ('Hips', None, (0, 0, 0), 'ZYX'),
+    ('LeftUpLeg', 'Hips', (9, -6, 0), 'ZXY'), ('LeftLeg', 'LeftUpLeg', (0, -42, 0), 'XYZ'),
+    ('LeftFoot', 'LeftLeg', (0, -41, 0), 'YXZ'),
+    ('RightUpLeg', 'Hips', (-9, -6, 0), 'ZYX'), ('RightLeg', 'RightUpLeg', (0, -42, 0), 'XZY'),
+    ('RightFoot', 'RightLeg', (0, -41, 0), 'YZX'),
+    ('Spine', 'Hips', (0, 10, 0), 'ZXY'), ('SpineRoot', 'Spine', (0, 0, 0), 'ZXY'),
+    ('Chest', 'SpineRoot', (0, 25, 2), 'ZXY'), ('Neck', 'Chest', (0, 20, 0), 'ZXY'), ('Head', 'Neck', (0, 9, 1), 'ZXY')]
+ends = {'LeftFoot': (0, -5, 14), 'RightFoot': (0, -5, 14), 'Head': (0, 18, 0)}
+def bvh_joint(i, depth):
+    name, _, off, order = body[i]
+    t = '\t' * depth
+    out = [t + ('ROOT ' if depth == 0 else 'JOINT ') + name, t + '{', t + '\tOFFSET %.5f %.5f %.5f' % off]
+    rot = ' '.join(a + 'rotation' for a in order)
+    out.append(t + '\tCHANNELS ' + ('6 Xposition Yposition Zposition ' if depth == 0 else '3 ') + rot)
+    for k, j in enumerate(body):
+        if j[1] == name: out += bvh_joint(k, depth + 1)
+    if name in ends: out += [t + '\tEnd Site', t + '\t{', t + '\t\tOFFSET %.5f %.5f %.5f' % ends[name], t + '\t}']
+    return out + [t + '}']
+hier = ['HIERARCHY'] + bvh_joint(0, 0)
+rows = []
+for f in range(3):
+    v = [1.5 * f, 94.0 + 0.5 * f, 12.0 * f]
+    for k in range(len(body)):
+        v += [round(20 * math.sin(0.9 * k + 0.4 * f + a), 4) for a in (0.0, 1.3, 2.6)]
+    rows.append(' '.join('%.4f' % x for x in v))
+motion = ['MOTION', 'Frames: 3', 'Frame Time: .0333333']
+crlf = lambda lines: '\r\n'.join(lines) + '\r\n'
+w('fuzz_bvh', 'body_3frames.bvh', crlf(hier + motion + rows))
+w('fuzz_bvh', 'body_hierarchy_cut.bvh', crlf(hier[:len(hier) * 3 // 5]))
+w('fuzz_bvh', 'body_frame_cut.bvh', crlf(hier + motion + rows[:2]) + rows[2][:100])
 small = """HIERARCHY
 ROOT Hips
 {
@@ -121,11 +232,12 @@ for f in sorted(os.listdir(root + '/data/scenes')):
 w('fuzz_scene', 'keys_types.json', json.dumps({
   "name": "t", "frames": 10, "camera": {"keys": [{"time": 0, "position": [0, 2, 10], "target": [0, 1, 0]},
                                                  {"time": 1, "position": [1, 2, 10], "target": [0, 1, 0]}]},
-  "character_types": [{"name": "man", "gltf": "builtin:cesium_man"},
-                      {"name": "humanoid", "bvh": "builtin:humanoid", "muscles": "builtin:humanoid_muscles", "limits": "builtin:humanoid_limits"}],
+  "character_types": [{"name": "humanoid", "humanoid": "builtin:humanoid"},
+                      {"name": "h2", "humanoid": "builtin:humanoid", "height": 1.6, "build": 0.2}],
   "paths": [{"name": "p", "points": [[0, 0, 0], [1, 0, 1]]}],
-  "characters": [{"type": "man", "requests": [{"type": "look_at", "target": [0, 1, 5]}, {"type": "rest"}]}],
-  "crowds": [{"type": "humanoid", "count": 5, "layout": "disc", "radius": 3, "clip": "humanoid.mocap"}]}))
+  "characters": [{"type": "h2", "requests": [{"type": "look_at", "target": [0, 1, 5]}, {"type": "rest"}]}],
+  "crowds": [{"type": "humanoid", "count": 5, "layout": "disc", "radius": 3, "clip": "humanoid.idle",
+              "height": [1.55, 1.95], "build": [0.0, 1.0], "variants": 4}]}))
 w('fuzz_scene', 'escape.json', '{"camera": {"position": [0,2,10], "target": [0,1,0]}, "characters": [{}], "rules": "../../../etc/passwd"}')
 
 # ---------- joint limits ----------

@@ -5,7 +5,7 @@
 #include "bad_input.hpp"
 
 #include "engine/anim/skeleton.hpp"
-#include "engine/assets/bvh_loader.hpp"
+#include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
 #include "systems/lod/rule_table.hpp"
@@ -22,6 +22,13 @@ using robustness::refused;
 using robustness::TempDir;
 
 const std::string kData = std::string(ALOHA_SOURCE_DIR) + "/data/";
+
+// The project's humanoid skeleton (data/characters/humanoid.json, CMU joint names) for the default body.
+Result<Skeleton> humanoid() {
+    Result<HumanoidDefinition> def = load_humanoid_definition(kData + "characters/humanoid.json");
+    if (!def.ok()) return def.error();
+    return build_skeleton(humanoid_skeleton(def.value(), HumanoidBody{}), "humanoid.json");
+}
 
 // `text` with the first occurrence of `from` replaced by `to`.
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -94,10 +101,8 @@ TEST(RulesBadInput, FolderIsNamedAsAFolder) {
     TempDir dir("folders");
     std::filesystem::create_directories(dir.file("folder.json"));
     EXPECT_TRUE(refused(load_rules(dir.file("folder.json")), "R11 rule path is a folder", "folder.json", {"regular file"}));
-    Result<BvhData> bvh = load_bvh(kData + "characters/131_01.bvh");
-    ASSERT_TRUE(bvh.ok());
-    Result<Skeleton> skeleton = build_skeleton(bvh.value().skeleton, "131_01.bvh");
-    ASSERT_TRUE(skeleton.ok());
+    Result<Skeleton> skeleton = humanoid();
+    ASSERT_TRUE(skeleton.ok()) << skeleton.error().to_string();
     EXPECT_TRUE(refused(load_muscle_set(dir.file("folder.json"), skeleton.value()), "M7 layout path is a folder",
                         "folder.json", {"regular file"}));
 }
@@ -129,10 +134,8 @@ TEST(JointLimitsBadInput, BadTables) {
                         "L5 two angles", "limits.json", {"/joints/A/min"}));
     EXPECT_TRUE(refused(parse_joint_limits(R"({"units": "grads", "joints": {}})", "limits.json"), "L6 unknown units",
                         "limits.json", {"/units"}));
-    Result<BvhData> bvh = load_bvh(kData + "characters/131_01.bvh");
-    ASSERT_TRUE(bvh.ok());
-    Result<Skeleton> skeleton = build_skeleton(bvh.value().skeleton, "131_01.bvh");
-    ASSERT_TRUE(skeleton.ok());
+    Result<Skeleton> skeleton = humanoid();
+    ASSERT_TRUE(skeleton.ok()) << skeleton.error().to_string();
     auto unknown = parse_joint_limits(R"({"joints": {"Tail": {"min": [0, 0, 0], "max": [1, 1, 1]}}})", "limits.json");
     ASSERT_TRUE(unknown.ok());
     EXPECT_TRUE(refused(apply_joint_limits(skeleton.value(), unknown.value()), "L7 joint not in the skeleton",
@@ -155,13 +158,11 @@ TEST(JointLimitsBadInput, NumberOverflowIsAnError) {
 class MusclesBadInput : public ::testing::Test {
 protected:
     void SetUp() override {
-        Result<BvhData> bvh = load_bvh(kData + "characters/131_01.bvh");
-        ASSERT_TRUE(bvh.ok());
-        Result<Skeleton> s = build_skeleton(bvh.value().skeleton, "131_01.bvh");
-        ASSERT_TRUE(s.ok());
+        Result<Skeleton> s = humanoid();
+        ASSERT_TRUE(s.ok()) << s.error().to_string();
         skeleton_ = std::move(s.value());
     }
-    // Writes `text` as muscles.json and loads it against the CMU skeleton.
+    // Writes `text` as muscles.json and loads it against the humanoid skeleton.
     Result<MuscleSet> load(const std::string& text) { return load_muscle_set(dir_.write("muscles.json", text), skeleton_); }
 
     TempDir dir_{"muscles"};

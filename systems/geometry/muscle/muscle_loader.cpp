@@ -206,6 +206,16 @@ Result<std::vector<MuscleDef>> load_muscle_defs(const std::string& path) {
     return parse_muscle_defs(doc, path);
 }
 
+void scale_muscle_defs(std::vector<MuscleDef>& defs, float length, float girth, float fat) {
+    for (MuscleDef& d : defs) {
+        d.origin.offset *= length;
+        d.insertion.offset *= length;
+        d.rest_radii *= length * girth;
+        d.volume *= length * length * length * girth * girth;
+        d.fat_thickness *= fat;
+    }
+}
+
 Result<MuscleSet> load_muscle_set(const std::string& path, const Skeleton& skeleton) {
     auto defs = load_muscle_defs(path);
     if (!defs.ok()) return defs.error();

@@ -31,6 +31,11 @@ Result<std::vector<MuscleDef>> parse_muscle_defs(const nlohmann::json& doc, cons
 /// Reads and parses `path` (syntax errors carry line and column).
 Result<std::vector<MuscleDef>> load_muscle_defs(const std::string& path);
 
+/// Scales a muscle layout written for one body to another: anchor offsets by `length` (height
+/// ratio), rest radii by `length * girth` (volumes by length^3 * girth^2) and fat by `fat`.
+/// Requires positive factors.
+void scale_muscle_defs(std::vector<MuscleDef>& defs, float length, float girth, float fat);
+
 /// Reads `path` and resolves it against `skeleton` at its rest pose (unknown joints, bad radii,
 /// bad exponents etc. are errors naming the file and JSON path).
 Result<MuscleSet> load_muscle_set(const std::string& path, const Skeleton& skeleton);

@@ -1,6 +1,8 @@
-// BVH loader on the shared CMU file 131_01.bvh and on small hand-written files.
+// BVH loader on the CMU motion-capture file 131_01.bvh (a shared test asset, not in the repository;
+// tests/common/test_assets.hpp; the BvhCmu tests skip without it) and on small hand-written files.
 #include "engine/anim/skeleton.hpp"
 #include "engine/assets/bvh_loader.hpp"
+#include "tests/common/test_assets.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,21 +12,32 @@
 namespace aloha {
 namespace {
 
-const std::string kCmuFile = std::string(ALOHA_SHARED_ASSETS_DIR) + "/131_01.bvh";
 constexpr float kScale = 0.056444f;  // CMU unit in metres (BvhOptions default)
 
 // float has a 24-bit mantissa: relative error of one rounding is 2^-24 ~ 6e-8; values here are
 // products of at most a few roundings of numbers below 3 m, so 1e-6 m is a safe bound.
 constexpr float kFloatTol = 1e-6f;
 
-const BvhData& cmu() {
-    static const BvhData data = [] {
-        Result<BvhData> r = load_bvh(kCmuFile);
+// The file at `path`, loaded once per test binary.
+const BvhData& load_cmu(const std::string& path) {
+    static const BvhData data = [&] {
+        Result<BvhData> r = load_bvh(path);
         EXPECT_TRUE(r.ok()) << r.error().to_string();
         return r.ok() ? std::move(r).value() : BvhData{};
     }();
     return data;
 }
+
+// Every BvhCmu test needs 131_01.bvh: SetUp skips the test when it is absent.
+class BvhCmu : public ::testing::Test {
+protected:
+    void SetUp() override {
+        ALOHA_REQUIRE_TEST_ASSET(path, "131_01.bvh");
+        file_ = path;
+    }
+    const BvhData& cmu() const { return load_cmu(file_); }
+    std::string file_;
+};
 
 int find_raw(const RawSkeleton& s, const std::string& name) {
     for (size_t i = 0; i < s.joints.size(); ++i)
@@ -32,7 +45,7 @@ int find_raw(const RawSkeleton& s, const std::string& name) {
     return -1;
 }
 
-TEST(BvhCmu, JointsNamesAndRoot) {
+TEST_F(BvhCmu, JointsNamesAndRoot) {
     const BvhData& d = cmu();
     const std::vector<std::string> expected = {
         "Hips", "LHipJoint", "LeftHip", "LeftKnee", "LeftAnkle", "LeftToe", "RHipJoint", "RightHip",
@@ -48,13 +61,13 @@ TEST(BvhCmu, JointsNamesAndRoot) {
         << "zero-length joint keeps OFFSET 0 0 0";
 }
 
-TEST(BvhCmu, RuntimeOrderEqualsFileOrder) {
-    Result<Skeleton> s = build_skeleton(cmu().skeleton, kCmuFile);
+TEST_F(BvhCmu, RuntimeOrderEqualsFileOrder) {
+    Result<Skeleton> s = build_skeleton(cmu().skeleton, file_);
     ASSERT_TRUE(s.ok()) << s.error().to_string();
     for (int i = 0; i < s.value().joint_count(); ++i) EXPECT_EQ(s.value().source_index()[static_cast<size_t>(i)], i);
 }
 
-TEST(BvhCmu, OffsetsInMetres) {
+TEST_F(BvhCmu, OffsetsInMetres) {
     const BvhData& d = cmu();
     // "OFFSET 2.49329 -6.85026 0.00000" for LeftKnee in the file.
     const double len_units = std::sqrt(2.49329 * 2.49329 + 6.85026 * 6.85026);
@@ -68,7 +81,7 @@ TEST(BvhCmu, OffsetsInMetres) {
     EXPECT_NEAR(drop, 15.4f * kScale, 0.05f * kScale);
 }
 
-TEST(BvhCmu, MotionHeaderAndTracks) {
+TEST_F(BvhCmu, MotionHeaderAndTracks) {
     const BvhData& d = cmu();
     EXPECT_EQ(d.frame_count, 994);
     EXPECT_NEAR(d.frame_time, 0.0083333f, 1e-9f);  // ".0083333" without a leading zero
@@ -86,7 +99,7 @@ TEST(BvhCmu, MotionHeaderAndTracks) {
     }
 }
 
-TEST(BvhCmu, FirstFrameRootPositionAndHipHeight) {
+TEST_F(BvhCmu, FirstFrameRootPositionAndHipHeight) {
     const BvhData& d = cmu();
     // First motion row starts "5.2300 16.9002 -33.8986".
     const glm::vec3 p = d.animation.tracks[0].translations.values[0];
@@ -97,7 +110,7 @@ TEST(BvhCmu, FirstFrameRootPositionAndHipHeight) {
     EXPECT_NEAR(p.y, 0.96f, 0.5f * kScale);
 }
 
-TEST(BvhCmu, FirstFrameHipsRotationIsZyxIntrinsic) {
+TEST_F(BvhCmu, FirstFrameHipsRotationIsZyxIntrinsic) {
     const BvhData& d = cmu();
     // Hips: "Zrotation Yrotation Xrotation" = -5.4029 9.8098 10.4956 in the first row.
     const glm::quat q = glm::angleAxis(glm::radians(-5.4029f), glm::vec3(0, 0, 1)) *
@@ -106,10 +119,10 @@ TEST(BvhCmu, FirstFrameHipsRotationIsZyxIntrinsic) {
     EXPECT_NEAR(std::abs(glm::dot(q, d.animation.tracks[0].rotations.values[0])), 1.0f, 1e-6f);
 }
 
-TEST(BvhCmu, KeepEndSites) {
+TEST_F(BvhCmu, KeepEndSites) {
     BvhOptions o;
     o.keep_end_sites = true;
-    Result<BvhData> r = load_bvh(kCmuFile, o);
+    Result<BvhData> r = load_bvh(file_, o);
     ASSERT_TRUE(r.ok()) << r.error().to_string();
     ASSERT_EQ(r.value().skeleton.joints.size(), 38u);
     const int end = find_raw(r.value().skeleton, "LeftToe_End");

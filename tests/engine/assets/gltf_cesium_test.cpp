@@ -1,6 +1,8 @@
-// glTF loader on the shared CesiumMan.glb: counts, bind pose, Y-up folding, clip values.
+// glTF loader on the Khronos sample CesiumMan.glb (a shared test asset, not in the repository;
+// tests/common/test_assets.hpp): counts, bind pose, Y-up folding, clip values. Skips without it.
 #include "engine/anim/skeleton.hpp"
 #include "engine/assets/gltf_loader.hpp"
+#include "tests/common/test_assets.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -12,21 +14,20 @@
 namespace aloha {
 namespace {
 
-const std::string kFile = std::string(ALOHA_SHARED_ASSETS_DIR) + "/CesiumMan.glb";
-
 struct Loaded {
     GltfCharacter character;
     Skeleton skeleton;
 };
 
-const Loaded& cesium() {
-    static const Loaded loaded = [] {
+// The character at `file`, loaded once per test binary.
+const Loaded& load_cesium(const std::string& file) {
+    static const Loaded loaded = [&] {
         Loaded l;
-        Result<GltfCharacter> r = load_gltf_character(kFile);
+        Result<GltfCharacter> r = load_gltf_character(file);
         EXPECT_TRUE(r.ok()) << r.error().to_string();
         if (!r.ok()) return l;
         l.character = std::move(r).value();
-        Result<Skeleton> s = build_skeleton(l.character.skeleton, kFile);
+        Result<Skeleton> s = build_skeleton(l.character.skeleton, file);
         EXPECT_TRUE(s.ok()) << s.error().to_string();
         if (s.ok()) l.skeleton = std::move(s).value();
         return l;
@@ -55,8 +56,8 @@ struct Glb {
     std::vector<unsigned char> bin;
 };
 
-Glb read_glb() {
-    std::ifstream in(kFile, std::ios::binary);
+Glb read_glb_file(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
     std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     uint32_t json_len = 0;
     std::memcpy(&json_len, b.data() + 12, 4);
@@ -82,7 +83,19 @@ glm::quat first_rotation_key(const Glb& g, int node) {
     return {};
 }
 
-TEST(GltfCesium, Counts) {
+// Every test needs CesiumMan.glb: SetUp skips the test when it is absent.
+class GltfCesium : public ::testing::Test {
+protected:
+    void SetUp() override {
+        ALOHA_REQUIRE_TEST_ASSET(path, "CesiumMan.glb");
+        file_ = path;
+    }
+    const Loaded& cesium() const { return load_cesium(file_); }
+    Glb read_glb() const { return read_glb_file(file_); }
+    std::string file_;
+};
+
+TEST_F(GltfCesium, Counts) {
     const GltfCharacter& c = cesium().character;
     ASSERT_EQ(c.skeleton.joints.size(), 19u);
     EXPECT_EQ(c.skeleton.joints[0].name, "Skeleton_torso_joint_1");
@@ -105,7 +118,7 @@ TEST(GltfCesium, Counts) {
     EXPECT_TRUE(c.notes.empty());
 }
 
-TEST(GltfCesium, ClipShiftedToZero) {
+TEST_F(GltfCesium, ClipShiftedToZero) {
     const GltfCharacter& c = cesium().character;
     ASSERT_EQ(c.clips.size(), 1u);
     EXPECT_EQ(c.clip_names[0], "clip0");
@@ -122,14 +135,14 @@ TEST(GltfCesium, ClipShiftedToZero) {
     }
 }
 
-TEST(GltfCesium, RuntimeOrderDiffersFromSkinOrderAndMeshJointsFollowIt) {
+TEST_F(GltfCesium, RuntimeOrderDiffersFromSkinOrderAndMeshJointsFollowIt) {
     const Loaded& l = cesium();
     bool identity = true;
     for (int r = 0; r < l.skeleton.joint_count(); ++r) identity = identity && l.skeleton.source_index()[static_cast<size_t>(r)] == r;
     EXPECT_FALSE(identity) << "CesiumMan's skin order is not depth-first, so remapping is exercised";
 }
 
-TEST(GltfCesium, BindPoseSkinningReproducesMesh) {
+TEST_F(GltfCesium, BindPoseSkinningReproducesMesh) {
     const Loaded& l = cesium();
     const std::vector<glm::mat4> model = rest_model(l.skeleton);
     // The mesh node hangs under Z_UP and Armature; per the spec its transform is not applied to
@@ -169,7 +182,7 @@ TEST(GltfCesium, BindPoseSkinningReproducesMesh) {
     EXPECT_GT(model[static_cast<size_t>(head)][3].y - model[static_cast<size_t>(foot)][3].y, 1.0f) << "head above feet along +Y";
 }
 
-TEST(GltfCesium, FirstKeyEqualsFileValues) {
+TEST_F(GltfCesium, FirstKeyEqualsFileValues) {
     const Loaded& l = cesium();
     const Glb g = read_glb();
     // Non-root joint: no folding, the key is the file's value (quaternion sign may differ).

@@ -1,5 +1,6 @@
-// Joint-limit table: the shipped humanoid file applied to the CMU BVH skeleton, and bad inputs.
-#include "engine/assets/bvh_loader.hpp"
+// Joint-limit table: the shipped humanoid file applied to the project's humanoid skeleton (CMU joint
+// names, data/characters/humanoid.json), and bad inputs.
+#include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
 
 #include <gtest/gtest.h>
@@ -10,17 +11,17 @@ namespace aloha {
 namespace {
 
 const std::string kLimits = std::string(ALOHA_SOURCE_DIR) + "/data/characters/humanoid_limits.json";
-const std::string kBvh = std::string(ALOHA_SHARED_ASSETS_DIR) + "/131_01.bvh";
+const std::string kHumanoid = std::string(ALOHA_SOURCE_DIR) + "/data/characters/humanoid.json";
 // Degrees -> radians in float: one rounding of a value below pi, < 1e-6.
 constexpr float kRadTol = 1e-6f;
 
-TEST(JointLimits, HumanoidFileAppliesToCmuSkeleton) {
+TEST(JointLimits, HumanoidFileAppliesToHumanoidSkeleton) {
     Result<JointLimitTable> table = load_joint_limits(kLimits);
     ASSERT_TRUE(table.ok()) << table.error().to_string();
-    Result<BvhData> bvh = load_bvh(kBvh);
-    ASSERT_TRUE(bvh.ok()) << bvh.error().to_string();
-    Result<Skeleton> sk = build_skeleton(bvh.value().skeleton, kBvh);
-    ASSERT_TRUE(sk.ok());
+    Result<HumanoidDefinition> def = load_humanoid_definition(kHumanoid);
+    ASSERT_TRUE(def.ok()) << def.error().to_string();
+    Result<Skeleton> sk = build_skeleton(humanoid_skeleton(def.value(), HumanoidBody{}), "humanoid.json");
+    ASSERT_TRUE(sk.ok()) << sk.error().to_string();
     Skeleton& s = sk.value();
     const Status applied = apply_joint_limits(s, table.value());
     ASSERT_TRUE(applied.ok()) << applied.error().to_string();
@@ -42,8 +43,8 @@ TEST(JointLimits, HumanoidFileAppliesToCmuSkeleton) {
             EXPECT_GE(limit(spine).min_angles[a], glm::radians(-45.0f)) << spine;
         }
     EXPECT_FALSE(limit("Hips").limited) << "the root is free";
-    // The captured walk keeps the knee's first (Z-Y-X order) X angle in [0, 136.2] degrees,
-    // inside the +X flexion range: the sign convention matches the data.
+    // The CMU captured walk 131_01 keeps the knee's first (Z-Y-X order) X angle in [0, 136.2] degrees,
+    // inside the +X flexion range: the sign convention matches motion capture in that convention.
     EXPECT_GE(limit("RightKnee").max_angles.x, glm::radians(136.2f));
 }
 

@@ -9,7 +9,10 @@ namespace {
 
 SceneDesc crowd_scene(CrowdDesc::Layout layout, uint32_t count) {
     SceneDesc s;
-    s.types.push_back({"humanoid", "x.bvh", "", "", ""});
+    CharacterTypeDesc type;
+    type.name = "humanoid";
+    type.bvh = "x.bvh";
+    s.types.push_back(type);
     s.camera.keys.push_back({});
     CrowdDesc c;
     c.count = count;

@@ -4,7 +4,7 @@
 #include "components/motion.hpp"
 #include "components/transform.hpp"
 #include "engine/anim/skeleton.hpp"
-#include "engine/assets/bvh_loader.hpp"
+#include "engine/assets/humanoid_definition.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/offscreen_target.hpp"
 #include "engine/gpu/png.hpp"
@@ -15,6 +15,8 @@
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
 #include "systems/motion/controller.hpp"
+#include "systems/motion/library/motion_library.hpp"
+#include "systems/motion/walk_rig.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -54,15 +56,20 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string data = MINI_GAME_DATA_DIR;
-    // 1. Data: the knowledge base, the humanoid's skeleton + mocap clip, its muscle layout.
+    // 1. Data: the knowledge base, the project's humanoid (skeleton for a body, generated idle clip),
+    // its muscle layout.
     auto rules = load_rules(data + "/rules/default.json");
     if (!rules.ok()) return fail(rules.error());
-    auto bvh = load_bvh(data + "/characters/131_01.bvh");
-    if (!bvh.ok()) return fail(bvh.error());
-    auto skeleton = build_skeleton(bvh.value().skeleton, "131_01.bvh");
+    auto humanoid = load_humanoid_definition(data + "/characters/humanoid.json");
+    if (!humanoid.ok()) return fail(humanoid.error());
+    auto skeleton = build_skeleton(humanoid_skeleton(humanoid.value(), HumanoidBody{1.75f, 0.5f}), "humanoid.json");
     if (!skeleton.ok()) return fail(skeleton.error());
+    auto rig = resolve_walk_rig(skeleton.value(), "humanoid.json");
+    if (!rig.ok()) return fail(rig.error());
+    stand_rig_on_rest_ground(rig.value(), skeleton.value());
+    const MotionLibrary library = make_motion_library(skeleton.value(), rig.value(), "humanoid");
     ClipLibrary clips;
-    auto clip = clips.add(bvh.value().animation, skeleton.value());
+    auto clip = clips.add(library.idle, skeleton.value());
     if (!clip.ok()) return fail(clip.error());
     auto muscles = load_muscle_set(data + "/characters/humanoid_muscles.json", skeleton.value());
     if (!muscles.ok()) return fail(muscles.error());
@@ -80,7 +87,7 @@ int main(int argc, char** argv) {
     for (size_t l = 0; l < rules.value().geom_levels.size(); ++l) levels.push_back(rules.value().geom_lod(static_cast<uint8_t>(l)));
     GeometryController shapes(*geometry.value(), levels, n);
 
-    // 3. The game's entities: a 6x6 block in front of the camera, each playing the clip.
+    // 3. The game's entities: a 6x6 block in front of the camera, each playing the idle clip.
     GameEntities g;
     for (uint32_t i = 0; i < n; ++i) {
         Transform t;

@@ -1,27 +1,28 @@
 // The CMU walk (131_01.bvh) through the motion system: clip build, clip playback, ClipPlayback
-// walk root motion, and the kinematic walk on the real CMU skeleton.
+// walk root motion, and the kinematic walk on the real CMU skeleton. 131_01.bvh is a shared test
+// asset, not in the repository (tests/common/test_assets.hpp): every test skips without it.
 #include "engine/assets/bvh_loader.hpp"
 #include "systems/motion/controller.hpp"
 #include "systems/motion/kinematic_walk.hpp"
+#include "tests/common/test_assets.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 namespace aloha {
 namespace {
 
+// The CMU file, its skeleton and its walk clip.
 struct Cmu {
     BvhData data;
     Skeleton sk;
     ClipLibrary clips;
     ClipId walk = 0;
-    Cmu() {
-        auto loaded = load_bvh(std::string(ALOHA_SHARED_ASSETS_DIR) + "/131_01.bvh");
-        EXPECT_TRUE(loaded.ok()) << loaded.error().to_string();
-        data = std::move(loaded).value();
+    explicit Cmu(BvhData loaded) : data(std::move(loaded)) {
         sk = build_skeleton(data.skeleton, "131_01.bvh").value();
         auto id = clips.add(data.animation, sk);
         EXPECT_TRUE(id.ok()) << id.error().to_string();
@@ -29,8 +30,20 @@ struct Cmu {
     }
 };
 
-TEST(BvhWalk, ClipBuildsUniformWithEveryFrame) {
-    Cmu cmu;
+// Every test needs 131_01.bvh: SetUp skips the test when it is absent, else loads it.
+class BvhWalk : public ::testing::Test {
+protected:
+    void SetUp() override {
+        ALOHA_REQUIRE_TEST_ASSET(path, "131_01.bvh");
+        auto bvh = load_bvh(path);
+        ASSERT_TRUE(bvh.ok()) << bvh.error().to_string();
+        loaded_ = std::make_unique<Cmu>(std::move(bvh).value());
+    }
+    std::unique_ptr<Cmu> loaded_;
+};
+
+TEST_F(BvhWalk, ClipBuildsUniformWithEveryFrame) {
+    Cmu& cmu = *loaded_;
     const AnimationClip& clip = *cmu.clips.find(cmu.walk);
     EXPECT_EQ(cmu.sk.joint_count(), 31);
     EXPECT_EQ(clip.key_count(), 994);
@@ -40,8 +53,8 @@ TEST(BvhWalk, ClipBuildsUniformWithEveryFrame) {
     EXPECT_NEAR(clip.root_speed() * clip.duration(), 2.6f, 0.3f);
 }
 
-TEST(BvhWalk, ClipPlaybackWalkMovesAtRequestedSpeed) {
-    Cmu cmu;
+TEST_F(BvhWalk, ClipPlaybackWalkMovesAtRequestedSpeed) {
+    Cmu& cmu = *loaded_;
     MotionController mc(cmu.sk, cmu.clips, 1);
     mc.set_walk_clip(cmu.walk);
     std::vector<AnimLod> lods(1);
@@ -70,8 +83,8 @@ TEST(BvhWalk, ClipPlaybackWalkMovesAtRequestedSpeed) {
     EXPECT_LT(max_root_xz, 2.0f);
 }
 
-TEST(BvhWalk, KinematicWalkOnCmuSkeletonKeepsFeetPlanted) {
-    Cmu cmu;
+TEST_F(BvhWalk, KinematicWalkOnCmuSkeletonKeepsFeetPlanted) {
+    Cmu& cmu = *loaded_;
     auto rig = resolve_walk_rig(cmu.sk, "131_01.bvh");
     ASSERT_TRUE(rig.ok()) << rig.error().to_string();
     const int ankle = rig.value().ankle[0];

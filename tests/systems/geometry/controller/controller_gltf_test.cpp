@@ -1,7 +1,9 @@
-// A glTF character (CesiumMan, muscles fitted per bone) at every geometric level.
+// A glTF character (CesiumMan, muscles fitted per bone) at every geometric level. CesiumMan.glb is a
+// shared test asset, not in the repository (tests/common/test_assets.hpp): the test skips without it.
 #include "engine/assets/gltf_loader.hpp"
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
 #include "systems/geometry/muscle/muscle_fit.hpp"
+#include "tests/common/test_assets.hpp"
 #include "tests/systems/geometry/controller/test_humanoid.hpp"
 
 #include <gtest/gtest.h>
@@ -9,16 +11,17 @@
 namespace aloha {
 namespace {
 
+// CesiumMan's geometry type and first clip, or the error that stopped building them.
 struct Cesium {
     std::unique_ptr<CharacterGeometry> geometry;
     RawAnimation clip;
     std::string error;
 };
 
-const Cesium& cesium() {
-    static const Cesium c = [] {
+// The character at `path` with its first clip, built once per test binary.
+const Cesium& load_cesium(const std::string& path) {
+    static const Cesium c = [&] {
         Cesium out;
-        const std::string path = std::string(ALOHA_SHARED_ASSETS_DIR) + "/CesiumMan.glb";
         auto loaded = load_gltf_character(path);
         if (!loaded.ok()) {
             out.error = loaded.error().to_string();
@@ -59,8 +62,10 @@ const Cesium& cesium() {
 }
 
 TEST(GeometryControllerGltf, CesiumManWorksAtEveryLevel) {
-    ASSERT_NE(cesium().geometry, nullptr) << cesium().error;
-    const CharacterGeometry& g = *cesium().geometry;
+    ALOHA_REQUIRE_TEST_ASSET(path, "CesiumMan.glb");
+    const Cesium& cesium = load_cesium(path);
+    ASSERT_NE(cesium.geometry, nullptr) << cesium.error;
+    const CharacterGeometry& g = *cesium.geometry;
     const uint32_t n = static_cast<uint32_t>(g.mesh().positions.size());
     EXPECT_EQ(n, 3273u);
     const auto levels = test::test_levels();
@@ -81,7 +86,7 @@ TEST(GeometryControllerGltf, CesiumManWorksAtEveryLevel) {
 
     // Animated frames: every level gives finite output of its size, unit normals.
     for (size_t key = 0; key < 40; key += 8) {
-        const auto pose = test::clip_pose(g.skeleton(), cesium().clip, key);
+        const auto pose = test::clip_pose(g.skeleton(), cesium.clip, key);
         for (uint32_t c = 0; c < levels.size(); ++c) ctl.update(static_cast<uint8_t>(c), std::span(&c, 1), PoseSource{pose.data(), 0}, 1.0f / 30.0f);
         for (uint8_t l = 0; l <= 3; ++l) {
             SCOPED_TRACE(static_cast<int>(l));
@@ -101,7 +106,7 @@ TEST(GeometryControllerGltf, CesiumManWorksAtEveryLevel) {
 
     // Morphing between mesh levels of a real mesh is vertex to vertex: the first frame moves each
     // vertex by |old - new| / N.
-    const auto pose = test::clip_pose(g.skeleton(), cesium().clip, 20);
+    const auto pose = test::clip_pose(g.skeleton(), cesium.clip, 20);
     const PoseSource src{pose.data(), 0};
     const std::vector<glm::vec3> old(ctl.surface(1).positions.begin(), ctl.surface(1).positions.end());
     ctl.begin_level(1, 3, 1, 4);

@@ -1,10 +1,11 @@
-// Test helpers for the geometric controller: the built-in humanoid (131_01.bvh skeleton +
-// humanoid_muscles.json), poses from the BVH clip, a level table covering every method, and small
-// comparison helpers.
+// Test helpers for the geometric controller: the built-in humanoid (data/characters/humanoid.json
+// skeleton + humanoid_muscles.json), poses from its generated walk, a level table covering every
+// method, and small comparison helpers.
 #pragma once
 
 #include "components/lod.hpp"
-#include "engine/assets/bvh_loader.hpp"
+#include "engine/assets/humanoid_definition.hpp"
+#include "systems/motion/library/gait_clip.hpp"
 #include "systems/geometry/controller/character_geometry.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
@@ -21,7 +22,8 @@
 
 namespace aloha::test {
 
-/// The humanoid type and the BVH clip it comes with (loaded once per test binary).
+/// The humanoid type and a long walk for it: 1.4 m/s gait cycles repeated to at least 600 keys
+/// (loaded once per test binary).
 struct Humanoid {
     std::unique_ptr<CharacterGeometry> geometry;
     RawAnimation clip;
@@ -31,14 +33,28 @@ struct Humanoid {
 inline const Humanoid& humanoid() {
     static const Humanoid h = [] {
         Humanoid out;
-        const std::string bvh_path = std::string(ALOHA_SOURCE_DIR) + "/data/characters/131_01.bvh";
+        const std::string def_path = std::string(ALOHA_SOURCE_DIR) + "/data/characters/humanoid.json";
         const std::string muscle_path = std::string(ALOHA_SOURCE_DIR) + "/data/characters/humanoid_muscles.json";
-        auto bvh = load_bvh(bvh_path);
-        if (!bvh.ok()) return out;
-        auto skeleton = build_skeleton(bvh.value().skeleton, bvh_path);
+        auto def = load_humanoid_definition(def_path);
+        if (!def.ok()) return out;
+        auto skeleton = build_skeleton(humanoid_skeleton(def.value(), HumanoidBody{}), def_path);
         if (!skeleton.ok()) return out;
         auto muscles = load_muscle_set(muscle_path, skeleton.value());
         if (!muscles.ok()) return out;
+        auto rig = resolve_walk_rig(skeleton.value(), def_path);
+        if (!rig.ok()) return out;
+        stand_rig_on_rest_ground(rig.value(), skeleton.value());
+        const RawAnimation cycle =
+            make_gait_clip(skeleton.value(), rig.value(), find_humanoid_joints(skeleton.value()), 1.4f, "walk").clip;
+        out.clip = cycle;
+        while (out.clip.tracks[0].rotations.values.size() < 600)
+            for (size_t j = 0; j < cycle.tracks.size(); ++j) {
+                auto& dst = out.clip.tracks[j];
+                const auto& src = cycle.tracks[j];
+                for (size_t k = 1; k < src.rotations.values.size(); ++k) dst.rotations.values.push_back(src.rotations.values[k]);
+                for (size_t k = 1; k < src.translations.values.size(); ++k)
+                    dst.translations.values.push_back(src.translations.values[k]);
+            }
         CharacterGeometryDesc desc;
         desc.type = 3;
         desc.name = "humanoid";
@@ -47,7 +63,6 @@ inline const Humanoid& humanoid() {
         auto geometry = CharacterGeometry::create(std::move(desc));
         if (!geometry.ok()) return out;
         out.geometry = std::move(geometry).value();
-        out.clip = std::move(bvh.value().animation);
         return out;
     }();
     return h;

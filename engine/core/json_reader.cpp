@@ -1,4 +1,4 @@
-#include "engine/scene/json_reader.hpp"
+#include "engine/core/json_reader.hpp"
 
 #include "engine/core/json_depth.hpp"
 

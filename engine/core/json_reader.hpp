@@ -1,4 +1,4 @@
-// Typed, path-tracking access to JSON objects for data files (scenes). Every problem is recorded as an
+// Typed, path-tracking access to JSON objects for data files (scenes, humanoid definitions). Every problem is recorded as an
 // Error naming the file and the JSON path; unknown keys are errors (they are usually typos).
 #pragma once
 

@@ -1,0 +1,106 @@
+#include "systems/motion/library/pose_builder.hpp"
+
+#include "systems/motion/local_to_model.hpp"
+#include "systems/motion/walk_rig.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+
+HumanoidJoints find_humanoid_joints(const Skeleton& s) {
+    HumanoidJoints j;
+    for (int i = 0; i < s.joint_count(); ++i)
+        if (s.parents()[static_cast<size_t>(i)] < 0) { j.root = i; break; }
+    const char* spine[3] = {"lowerback", "Chest", "Chest2"};
+    for (int i = 0; i < 3; ++i) j.spine[i] = s.find(spine[i]);
+    j.neck[0] = s.find("lowerneck");
+    j.neck[1] = s.find("Neck");
+    j.head = s.find("Head");
+    const char* side[2] = {"Left", "Right"};
+    for (int k = 0; k < 2; ++k) {
+        const std::string p = side[k];
+        j.collar[k] = s.find(p + "Collar");
+        j.shoulder[k] = s.find(p + "Shoulder");
+        j.elbow[k] = s.find(p + "Elbow");
+        j.wrist[k] = s.find(p + "Wrist");
+    }
+    return j;
+}
+
+PoseBuilder::PoseBuilder(const Skeleton& skeleton) : skeleton_(&skeleton) {
+    const size_t n = static_cast<size_t>(skeleton.joint_count());
+    model_.resize(n);
+    scales_.assign(skeleton.rest_scales().begin(), skeleton.rest_scales().end());
+    reset();
+    rest_model_.resize(n);
+    rest_pos_.resize(n);
+    for (size_t j = 0; j < n; ++j) {
+        rest_model_[j] = matrix_rotation(model_[j]);
+        rest_pos_[j] = glm::vec3(model_[j][3]);
+    }
+}
+
+void PoseBuilder::reset() {
+    translations.assign(skeleton_->rest_translations().begin(), skeleton_->rest_translations().end());
+    rotations.assign(skeleton_->rest_rotations().begin(), skeleton_->rest_rotations().end());
+    update();
+}
+
+void PoseBuilder::update() {
+    local_to_model(skeleton_->parents().data(), translations.data(), rotations.data(), scales_.data(), nullptr,
+                   model_.data(), model_.size());
+}
+
+glm::quat PoseBuilder::model_rotation(int j) const { return matrix_rotation(model_[static_cast<size_t>(j)]); }
+
+void PoseBuilder::set_model_rotation(int j, const glm::quat& model_rotation) {
+    const int p = skeleton_->parents()[static_cast<size_t>(j)];
+    const glm::quat parent = p >= 0 ? matrix_rotation(model_[static_cast<size_t>(p)]) : glm::quat(1, 0, 0, 0);
+    rotations[static_cast<size_t>(j)] = glm::normalize(glm::inverse(parent) * model_rotation);
+    update();
+}
+
+void PoseBuilder::two_bone(int upper, int middle, int end, const glm::vec3& target, const glm::vec3& pole) {
+    const glm::vec3 H = model_position(upper), K = model_position(middle), A = model_position(end);
+    const float la = glm::length(K - H), lb = glm::length(A - K);
+    const glm::vec3 to = target - H;
+    const float dist = glm::length(to);
+    const glm::vec3 u = dist > 1e-6f ? to / dist : glm::vec3(0, -1, 0);
+    const float d = std::clamp(dist, std::abs(la - lb) + 1e-4f, la + lb - 1e-4f);
+    const float cos_h = std::clamp((la * la + d * d - lb * lb) / (2.0f * la * d), -1.0f, 1.0f);
+    const float sin_h = std::sqrt(std::max(0.0f, 1.0f - cos_h * cos_h));
+    glm::vec3 p = pole - glm::dot(pole, u) * u;
+    if (glm::dot(p, p) < 1e-10f) p = glm::vec3(0, 0, 1) - u.z * u;
+    p = glm::normalize(p);
+    const glm::vec3 Kd = H + la * (cos_h * u + sin_h * p);
+    const glm::quat q1 = rotation_between(glm::normalize(K - H), glm::normalize(Kd - H));
+    set_model_rotation(upper, glm::normalize(q1 * model_rotation(upper)));
+    const glm::vec3 A1 = model_position(end), K1 = model_position(middle);
+    const glm::quat q2 = rotation_between(glm::normalize(A1 - K1), glm::normalize(H + u * d - K1));
+    set_model_rotation(middle, glm::normalize(q2 * model_rotation(middle)));
+}
+
+ClipRecorder::ClipRecorder(const Skeleton& skeleton, std::string name) {
+    clip_.name = std::move(name);
+    clip_.tracks.resize(static_cast<size_t>(skeleton.joint_count()));
+    for (int i = 0; i < skeleton.joint_count(); ++i)
+        if (skeleton.parents()[static_cast<size_t>(i)] < 0) { root_ = i; break; }
+}
+
+void ClipRecorder::add_key(float time, const PoseBuilder& pose) {
+    for (size_t j = 0; j < clip_.tracks.size(); ++j) {
+        RawJointTracks& t = clip_.tracks[j];
+        t.rotations.times.push_back(time);
+        t.rotations.values.push_back(pose.rotations[j]);
+        if (static_cast<int>(j) == root_) {
+            t.translations.times.push_back(time);
+            t.translations.values.push_back(pose.translations[j]);
+        }
+    }
+    clip_.duration = time;
+}
+
+RawAnimation ClipRecorder::finish() && { return std::move(clip_); }
+
+}  // namespace aloha
