@@ -87,6 +87,22 @@ Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& so
     return rig;
 }
 
+TwoBoneSolution solve_two_bone(const glm::vec3& H, const glm::vec3& K, const glm::vec3& A, const glm::vec3& target,
+                               const glm::vec3& pole) {
+    const float la = glm::length(K - H), lb = glm::length(A - K);
+    const glm::vec3 to = target - H;
+    const float dist = glm::length(to);
+    const glm::vec3 u = dist > 1e-6f ? to / dist : glm::vec3(0, -1, 0);
+    // Keep a 1e-4 m margin from full extension/folding so the middle angle stays well defined.
+    const float d = std::clamp(dist, std::abs(la - lb) + 1e-4f, la + lb - 1e-4f);
+    const float cos_h = std::clamp((la * la + d * d - lb * lb) / (2.0f * la * d), -1.0f, 1.0f);
+    const float sin_h = std::sqrt(std::max(0.0f, 1.0f - cos_h * cos_h));
+    glm::vec3 p = pole - glm::dot(pole, u) * u;
+    if (glm::dot(p, p) < 1e-10f) p = glm::vec3(0, 0, 1) - u.z * u;
+    p = glm::normalize(p);
+    return TwoBoneSolution{H + la * (cos_h * u + sin_h * p), H + u * d};
+}
+
 void stand_rig_on_rest_ground(WalkRig& rig, const Skeleton& skeleton) {
     const size_t n = static_cast<size_t>(skeleton.joint_count());
     std::vector<glm::mat4> model(n);
@@ -101,19 +117,9 @@ float solve_leg_ik(const WalkRig& rig, const Skeleton& skeleton, int side, const
     const size_t k = static_cast<size_t>(rig.knee[side]);
     const size_t a = static_cast<size_t>(rig.ankle[side]);
     const glm::vec3 H(pose.model[h][3]), K(pose.model[k][3]), A(pose.model[a][3]);
-    const float la = glm::length(K - H), lb = glm::length(A - K);
-    glm::vec3 to = target - H;
-    const float dist = glm::length(to);
-    const glm::vec3 u = dist > 1e-6f ? to / dist : glm::vec3(0, -1, 0);
-    // Keep a 1e-4 m margin from full extension/folding so the knee angle stays well defined.
-    const float d = std::clamp(dist, std::abs(la - lb) + 1e-4f, la + lb - 1e-4f);
-    const float cos_h = std::clamp((la * la + d * d - lb * lb) / (2.0f * la * d), -1.0f, 1.0f);
-    const float sin_h = std::sqrt(std::max(0.0f, 1.0f - cos_h * cos_h));
-    glm::vec3 p = pole - glm::dot(pole, u) * u;
-    if (glm::dot(p, p) < 1e-10f) p = glm::vec3(0, 0, 1) - u.z * u;
-    p = glm::normalize(p);
-    const glm::vec3 Kd = H + la * (cos_h * u + sin_h * p);
-    const glm::vec3 Td = H + u * d;
+    const TwoBoneSolution sol = solve_two_bone(H, K, A, target, pole);
+    const glm::vec3 Kd = sol.middle, Td = sol.end;
+    const float dist = glm::length(target - H), d = glm::length(Td - H);
     const glm::quat q1 = rotation_between(glm::normalize(K - H), glm::normalize(Kd - H));
     const glm::vec3 A1 = H + q1 * (A - H);
     const glm::quat q2 = rotation_between(glm::normalize(A1 - Kd), glm::normalize(Td - Kd));

@@ -50,6 +50,17 @@ struct WalkRig {
 Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& source,
                                  const LegNameTable& table = default_leg_names());
 
+/// Where a two-bone chain's middle and end joints go to reach a target.
+struct TwoBoneSolution {
+    glm::vec3 middle;  ///< new middle joint (knee, elbow) position
+    glm::vec3 end;     ///< new end joint position: the target, clamped to the reachable range
+};
+
+/// Analytic two-bone IK in positions: chain H (upper) - K (middle) - A (end) reaching `target`, the
+/// middle joint bending towards `pole`; keeps 1e-4 m from full extension or folding.
+[[nodiscard]] TwoBoneSolution solve_two_bone(const glm::vec3& H, const glm::vec3& K, const glm::vec3& A,
+                                             const glm::vec3& target, const glm::vec3& pole);
+
 /// For skeletons whose rest pose stands with its soles on y = 0 (the project's humanoid): measures
 /// the ankle height from that ground instead of from the lowest foot joint. Requires the rig of
 /// `skeleton` and rest ankles above y = 0.

@@ -63,21 +63,12 @@ void PoseBuilder::set_model_rotation(int j, const glm::quat& model_rotation) {
 
 void PoseBuilder::two_bone(int upper, int middle, int end, const glm::vec3& target, const glm::vec3& pole) {
     const glm::vec3 H = model_position(upper), K = model_position(middle), A = model_position(end);
-    const float la = glm::length(K - H), lb = glm::length(A - K);
-    const glm::vec3 to = target - H;
-    const float dist = glm::length(to);
-    const glm::vec3 u = dist > 1e-6f ? to / dist : glm::vec3(0, -1, 0);
-    const float d = std::clamp(dist, std::abs(la - lb) + 1e-4f, la + lb - 1e-4f);
-    const float cos_h = std::clamp((la * la + d * d - lb * lb) / (2.0f * la * d), -1.0f, 1.0f);
-    const float sin_h = std::sqrt(std::max(0.0f, 1.0f - cos_h * cos_h));
-    glm::vec3 p = pole - glm::dot(pole, u) * u;
-    if (glm::dot(p, p) < 1e-10f) p = glm::vec3(0, 0, 1) - u.z * u;
-    p = glm::normalize(p);
-    const glm::vec3 Kd = H + la * (cos_h * u + sin_h * p);
+    const TwoBoneSolution sol = solve_two_bone(H, K, A, target, pole);
+    const glm::vec3 Kd = sol.middle;
     const glm::quat q1 = rotation_between(glm::normalize(K - H), glm::normalize(Kd - H));
     set_model_rotation(upper, glm::normalize(q1 * model_rotation(upper)));
     const glm::vec3 A1 = model_position(end), K1 = model_position(middle);
-    const glm::quat q2 = rotation_between(glm::normalize(A1 - K1), glm::normalize(H + u * d - K1));
+    const glm::quat q2 = rotation_between(glm::normalize(A1 - K1), glm::normalize(sol.end - K1));
     set_model_rotation(middle, glm::normalize(q2 * model_rotation(middle)));
 }
 
