@@ -14,29 +14,8 @@
 
 namespace aloha {
 
-namespace {
-glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
-}  // namespace
-
 void MotionController::sample_walk_clip(Channel& ch, const PoseView& out) const {
-    const AnimationClip& clip = *clips_->find(static_cast<ClipId>(ch.walk_clip));
-    const float t = wrap_clip_time(ch.time, clip.duration(), true);
-    int k = 0;
-    float alpha = 0.0f;
-    find_key(clip, t, &ch.cache, &k, &alpha);
-    sample_blocks(clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
-    // Root motion: remove the clip's average horizontal travel (the Transform moves instead) and
-    // turn the clip so it travels along +Z.
-    const glm::vec3 d = horizontal(clip.root_end() - clip.root_start());
-    const float frac = clip.duration() > 0.0f ? t / clip.duration() : 0.0f;
-    glm::vec3& rt = out.translations[0];
-    rt.x -= clip.root_start().x + d.x * frac;
-    rt.z -= clip.root_start().z + d.z * frac;
-    if (glm::length(d) > 1e-6f) {
-        const glm::quat q = glm::angleAxis(-std::atan2(d.x, d.z), glm::vec3(0, 1, 0));
-        rt = q * rt;
-        out.rotations[0] = glm::normalize(q * out.rotations[0]);
-    }
+    sample_walk_cycle(*clips_->find(static_cast<ClipId>(ch.walk_clip)), ch.time, &ch.cache, out);
 }
 
 void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
@@ -67,7 +46,8 @@ void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, con
                 sample_walk_clip(ch, out);
                 l2m();
             } else if (rig_) {
-                kinematic_walk_pose(*rig_, *skeleton_, ch.walk, speed, placement, out, gait_);
+                const AnimationClip* body = ch.walk_clip >= 0 ? clips_->find(static_cast<ClipId>(ch.walk_clip)) : nullptr;
+                kinematic_walk_pose(*rig_, *skeleton_, ch.walk, speed, placement, out, gait_, body);
                 if (m == WalkMethod::Dynamic && primary) {
                     hook(MethodSlot::DynamicWalk);
                     l2m();

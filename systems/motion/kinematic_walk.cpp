@@ -1,5 +1,6 @@
 #include "systems/motion/kinematic_walk.hpp"
 
+#include "systems/motion/library/gait_model.hpp"
 #include "systems/motion/local_to_model.hpp"
 
 #include <algorithm>
@@ -17,8 +18,28 @@ glm::vec3 to_model(const Transform& x, const glm::vec3& world) {
 }  // namespace
 
 float walk_stride(const WalkRig& rig, float speed, const GaitParams& gait) {
-    const float s = std::max(speed, 0.0f);
-    return rig.leg_length * std::min(gait.min_stride + gait.stride_gain * s, gait.max_stride);
+    return std::min(gait_cycle(std::max(speed, 0.0f), rig.ankle_height + rig.leg_length).stride,
+                    gait.max_stride * rig.leg_length);
+}
+
+void sample_walk_cycle(const AnimationClip& clip, float time, SamplingCache* cache, const PoseView& out) {
+    const float t = wrap_clip_time(time, clip.duration(), true);
+    int k = 0;
+    float alpha = 0.0f;
+    find_key(clip, t, cache, &k, &alpha);
+    sample_blocks(clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
+    // Remove the clip's average horizontal travel (the transform moves instead) and turn the clip
+    // so it travels along +Z.
+    const glm::vec3 d(clip.root_end().x - clip.root_start().x, 0.0f, clip.root_end().z - clip.root_start().z);
+    const float frac = clip.duration() > 0.0f ? t / clip.duration() : 0.0f;
+    glm::vec3& rt = out.translations[0];
+    rt.x -= clip.root_start().x + d.x * frac;
+    rt.z -= clip.root_start().z + d.z * frac;
+    if (glm::length(d) > 1e-6f) {
+        const glm::quat q = glm::angleAxis(-std::atan2(d.x, d.z), glm::vec3(0, 1, 0));
+        rt = q * rt;
+        out.rotations[0] = glm::normalize(q * out.rotations[0]);
+    }
 }
 
 void advance_walk_phase(KinematicWalkState& state, const WalkRig& rig, float speed, float dt, const GaitParams& gait) {
@@ -33,15 +54,20 @@ glm::vec3 joint_world_position(std::span<const glm::mat4> model, int joint, cons
 }
 
 void kinematic_walk_pose(const WalkRig& rig, const Skeleton& skeleton, KinematicWalkState& state, float speed,
-                         const Transform& placement, const PoseView& pose, const GaitParams& gait) {
+                         const Transform& placement, const PoseView& pose, const GaitParams& gait,
+                         const AnimationClip* body) {
     const size_t n = static_cast<size_t>(skeleton.joint_count());
-    const auto rt = skeleton.rest_translations();
-    const auto rr = skeleton.rest_rotations();
-    const auto rs = skeleton.rest_scales();
-    for (size_t j = 0; j < n; ++j) {
-        pose.translations[j] = rt[j];
-        pose.rotations[j] = rr[j];
-        pose.scales[j] = rs[j];
+    if (body) {
+        sample_walk_cycle(*body, state.phase * body->duration(), nullptr, pose);
+    } else {
+        const auto rt = skeleton.rest_translations();
+        const auto rr = skeleton.rest_rotations();
+        const auto rs = skeleton.rest_scales();
+        for (size_t j = 0; j < n; ++j) {
+            pose.translations[j] = rt[j];
+            pose.rotations[j] = rr[j];
+            pose.scales[j] = rs[j];
+        }
     }
     const float stride = walk_stride(rig, speed, gait) / placement.scale;  // model units
     const float half_stance = 0.5f * gait.duty * stride;
@@ -50,7 +76,10 @@ void kinematic_walk_pose(const WalkRig& rig, const Skeleton& skeleton, Kinematic
     const float rest_leg_vertical = std::min(rig.thigh[0] + rig.shin[0], rig.thigh[1] + rig.shin[1]);
     const float vertical = std::min(rest_leg_vertical, std::sqrt(std::max(reach * reach - half_stance * half_stance, 0.0f)));
     const float hip_height = rig.ankle_height + vertical;
-    pose.translations[static_cast<size_t>(rig.root)] = glm::vec3(0.0f, hip_height + rig.hip_drop, 0.0f);
+    glm::vec3& root = pose.translations[static_cast<size_t>(rig.root)];
+    // The gait's pelvis sway and bob ride on top, never higher than the planted legs reach.
+    root = body ? glm::vec3(root.x, std::min(root.y, hip_height + rig.hip_drop), 0.0f)
+                : glm::vec3(0.0f, hip_height + rig.hip_drop, 0.0f);
     local_to_model(skeleton.parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),
                    nullptr, pose.model.data(), n);
 

@@ -25,9 +25,10 @@ struct FootPlan {
 
 class GaitPlanner {
 public:
-    GaitPlanner(const GaitCycle& g, const WalkRig& rig, const PoseBuilder& rest) : g_(g) {
+    // `under_hip`: the fraction of stance at which the flat foot's ankle passes under its hip.
+    GaitPlanner(const GaitCycle& g, const WalkRig& rig, const PoseBuilder& rest, float under_hip) : g_(g) {
         rockers_ = g.running ? Rockers{0.08f, 0.35f} : Rockers{0.12f, 0.5f};
-        const float t_flatmid = 0.5f * (rockers_.s1 + rockers_.s2) * g.duty * g.period;
+        const float t_flatmid = under_hip * g.duty * g.period;
         for (int k = 0; k < 2; ++k) {
             contacts_[k] = foot_contacts(rig, rest, k);
             const float t0 = k == 0 ? 0.0f : 0.5f * g.period;
@@ -125,25 +126,36 @@ GaitClip make_gait_clip(const Skeleton& skeleton, const WalkRig& rig, const Huma
     GaitClip out;
     out.cycle = gait_cycle(speed, hip_height);
     const GaitCycle& g = out.cycle;
-    const GaitPlanner planner(g, rig, pose);
+    const glm::vec3 rest_root = pose.rest_position(rig.root);
     const int keys = std::max(8, static_cast<int>(std::lround(g.period * kGeneratedKeyRate)));
 
-    // The highest root that keeps every planned ankle within reach (knees never lock straight).
-    const glm::vec3 rest_root = pose.rest_position(rig.root);
-    float root_height = rest_root.y;
-    for (int i = 0; i <= 4 * keys; ++i) {
-        const float t = g.period * static_cast<float>(i) / static_cast<float>(4 * keys);
-        const BodyPlan b = body_at(g, t / g.period);
-        const glm::vec3 root(b.root_offset.x, b.root_offset.y, g.speed * t);
-        for (int k = 0; k < 2; ++k) {
-            const glm::vec3 hip = root + b.pelvis * rig.hip_offset[k];
-            const glm::vec3 ankle = planner.foot(k, t).ankle;
-            const float reach = 0.985f * (rig.thigh[k] + rig.shin[k]);
-            const glm::vec2 d(ankle.x - hip.x, ankle.z - hip.z);
-            const float vertical = std::sqrt(std::max(reach * reach - glm::dot(d, d), 0.0f));
-            root_height = std::min(root_height, ankle.y + vertical - (hip.y - root.y) - b.root_offset.y);
+    // The highest root that keeps every planned ankle within reach (knees never lock straight) for a
+    // foot placement: where in stance the ankle passes under the hip.
+    auto highest_root = [&](const GaitPlanner& plan) {
+        float height = rest_root.y;
+        for (int i = 0; i <= 4 * keys; ++i) {
+            const float t = g.period * static_cast<float>(i) / static_cast<float>(4 * keys);
+            const BodyPlan b = body_at(g, t / g.period);
+            const glm::vec3 root(b.root_offset.x, b.root_offset.y, g.speed * t);
+            for (int k = 0; k < 2; ++k) {
+                const glm::vec3 hip = root + b.pelvis * rig.hip_offset[k];
+                const glm::vec3 ankle = plan.foot(k, t).ankle;
+                const float reach = 0.985f * (rig.thigh[k] + rig.shin[k]);
+                const glm::vec2 d(ankle.x - hip.x, ankle.z - hip.z);
+                const float vertical = std::sqrt(std::max(reach * reach - glm::dot(d, d), 0.0f));
+                height = std::min(height, ankle.y + vertical - (hip.y - root.y) - b.root_offset.y);
+            }
         }
+        return height;
+    };
+    // Place the feet so the hips can stand as tall as the stride allows: the stance is balanced
+    // between the reach at heel strike and at toe-off.
+    float under_hip = 0.3f, root_height = -1e9f;
+    for (float f = 0.1f; f <= 0.9f; f += 0.01f) {
+        const float h = highest_root(GaitPlanner(g, rig, pose, f));
+        if (h > root_height) root_height = h, under_hip = f;
     }
+    const GaitPlanner planner(g, rig, pose, under_hip);
 
     ClipRecorder rec(skeleton, name);
     for (int i = 0; i <= keys; ++i) {

@@ -13,7 +13,7 @@
 namespace aloha {
 namespace {
 
-// The CMU 131_01 leg hierarchy in metres (offsets from the BVH times 0.0564 m/unit, rounded).
+// A hand-written CMU-named leg hierarchy with adult proportions (metres).
 RawSkeleton cmu_legs() {
     RawSkeleton raw;
     auto add = [&](const char* name, int parent, glm::vec3 t) {

@@ -1,0 +1,100 @@
+// The motion library inside the motion controller: walk requests at the clip level play the
+// nearest gait and warp its cadence (feet stay planted in the world at any requested speed), and the
+// kinematic walk carries the gait's upper body (arms swing) over its IK-planted legs.
+#include "systems/motion/controller.hpp"
+#include "systems/motion/library/gait_clip.hpp"
+#include "systems/motion/library/motion_library.hpp"
+#include "tests/common/test_humanoid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace aloha {
+namespace {
+
+class LibraryWalk : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const MotionLibrary lib = make_motion_library(sk, rig, "h");
+        for (const RawAnimation& g : lib.gaits) gaits.push_back(clips.add(g, sk).value());
+    }
+    // Walks one character for `seconds` at `speed` with `method`; calls probe(model, transform) each frame.
+    template <class Probe>
+    void walk(float speed, WalkMethod method, float seconds, Probe probe) {
+        MotionController mc(sk, clips, 1);
+        mc.set_walk_rig(rig);
+        mc.set_walk_clips(gaits);
+        std::vector<AnimLod> lods(1);
+        lods[0].walk = method;
+        lods[0].update_interval = 1;
+        std::vector<MotionState> states(1);
+        std::vector<Transform> xs(1);
+        std::vector<Velocity> vs(1);
+        MotionRequest r;
+        r.kind = RequestKind::Walk;
+        r.speed = speed;
+        r.target = glm::vec3(0, 0, 1);
+        r.crossfade_s = 0.0f;
+        ASSERT_TRUE(mc.push_request(0, r));
+        const float dt = 1.0f / 120.0f;
+        for (int f = 0; f < static_cast<int>(seconds / dt); ++f) {
+            mc.update(dt, lods, states, xs, vs);
+            probe(mc.poses().view(0).model, xs[0]);
+        }
+    }
+    Skeleton sk = test::humanoid_skeleton_for();
+    WalkRig rig = test::humanoid_rig(sk);
+    ClipLibrary clips;
+    std::vector<ClipId> gaits;
+};
+
+// Contact as in gait_clip_test (within 5 mm of the ground and of the foot's lower point); travel per
+// contact is the largest distance from touchdown; the bound is 2 mm per metre walked.
+TEST_F(LibraryWalk, ClipLevelFeetStayPlantedAtAnySpeed) {
+    PoseBuilder rest(sk);
+    for (float speed : {0.8f, 1.0f, 1.4f, 2.0f, 2.5f}) {
+        glm::vec3 start[4];
+        float excursion[4] = {0, 0, 0, 0}, skate = 0.0f;
+        bool down[4] = {false, false, false, false};
+        int contacts = 0;
+        walk(speed, WalkMethod::ClipPlayback, 4.0f, [&](std::span<const glm::mat4> model, const Transform& x) {
+            for (int side = 0; side < 2; ++side) {
+                const FootContacts c = foot_contacts(rig, rest, side);
+                const glm::mat4 ankle = model[static_cast<size_t>(rig.ankle[side])];
+                glm::vec3 pts[2] = {glm::vec3(ankle * glm::vec4(c.heel, 1.0f)),
+                                    glm::vec3(model[static_cast<size_t>(rig.toe[side])][3]) -
+                                        glm::vec3(0.0f, rest.rest_position(rig.toe[side]).y, 0.0f)};
+                for (glm::vec3& p : pts) p = x.position + x.rotation * p;
+                const float lowest = std::min(pts[0].y, pts[1].y);
+                for (int k = 0; k < 2; ++k) {
+                    const int i = 2 * side + k;
+                    const bool on = pts[k].y < 0.005f && pts[k].y < lowest + 0.001f;
+                    if (on && !down[i]) start[i] = pts[k], excursion[i] = 0.0f, ++contacts;
+                    if (on) excursion[i] = std::max(excursion[i], glm::length(glm::vec2(pts[k].x - start[i].x, pts[k].z - start[i].z)));
+                    if (!on && down[i]) skate += excursion[i];
+                    down[i] = on;
+                }
+            }
+        });
+        const float walked = speed * 4.0f;
+        EXPECT_GE(contacts, 8) << speed;
+        EXPECT_LE(1000.0f * skate / walked, 2.0f) << "mm per metre at " << speed << " m/s";
+        std::printf("clip level %.1f m/s: %.3f mm per metre\n", speed, 1000.0f * skate / walked);
+    }
+}
+
+TEST_F(LibraryWalk, KinematicWalkSwingsTheArms) {
+    const HumanoidJoints j = find_humanoid_joints(sk);
+    float lo = 1e9f, hi = -1e9f;
+    walk(1.4f, WalkMethod::Kinematic, 2.0f, [&](std::span<const glm::mat4> model, const Transform&) {
+        // Left wrist forward of the pelvis, in the character's frame.
+        const float z = model[static_cast<size_t>(j.wrist[0])][3].z - model[0][3].z;
+        lo = std::min(lo, z), hi = std::max(hi, z);
+    });
+    EXPECT_GT(hi - lo, 0.1f) << "the arm swings forward and back over the cycle";
+}
+
+}  // namespace
+}  // namespace aloha
