@@ -7,10 +7,12 @@
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
 #include "systems/geometry/muscle/muscle_fit.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
+#include "systems/motion/library/loop_cut.hpp"
 #include "systems/motion/library/motion_library.hpp"
 
 #include <algorithm>
 #include <cfloat>
+#include <cstdio>
 
 namespace aloha {
 
@@ -49,6 +51,27 @@ Status add_clip(CharacterType& type, const RawAnimation& raw, const std::string&
     return {};
 }
 
+// A file's take used as the walk: cut to its best loop (a walk of at least 0.5 m/s), or left out of
+// walking with a note when it does not loop (the kinematic walk then walks the type).
+void add_walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file) {
+    auto cut = find_best_loop(take, type.skeleton, 0.6f, 0.5f, file);
+    if (!cut.ok()) {
+        type.notes.push_back("no clip walk: " + cut.error().message);
+        return;
+    }
+    auto id = type.clips.add(cut_loop(take, type.skeleton, cut.value(), type.name + ".loop"), type.skeleton);
+    if (!id.ok()) {
+        type.notes.push_back("no clip walk: " + id.error().message);
+        return;
+    }
+    type.gait_clips.push_back(id.value());
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "walk loop cut from '%s' at %.2f-%.2f s (seam %.1f cm, %.2f m/s)", take.name.c_str(),
+                  static_cast<double>(cut.value().start), static_cast<double>(cut.value().end),
+                  static_cast<double>(100.0f * cut.value().pose_error), static_cast<double>(cut.value().velocity_error));
+    type.notes.push_back(buf);
+}
+
 Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
     auto bvh = load_bvh(desc.bvh);
     if (!bvh.ok()) return bvh.error();
@@ -61,6 +84,7 @@ Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
     if (Status s = add_clip(type, in_place(mocap, desc.name + ".inplace"), desc.bvh); !s.ok()) return s;
     type.mocap_clip = 0;
     type.inplace_clip = 1;
+    add_walk_loop(type, mocap, desc.bvh);
     return {};
 }
 
@@ -80,6 +104,7 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
             type.mocap_clip = 0;
             if (Status s2 = add_clip(type, in_place(clip, desc.name + ".inplace"), desc.gltf); !s2.ok()) return s2;
             type.inplace_clip = 1;
+            add_walk_loop(type, clip, desc.gltf);
         }
     }
     if (!g.meshes.empty()) type.mesh = character_mesh_from_gltf(g, type.skeleton);
@@ -148,6 +173,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     }
     Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
     if (!loaded.ok()) return loaded.error();
+
     if (!desc.limits.empty()) {
         auto limits = load_joint_limits(desc.limits);
         if (!limits.ok()) return limits.error();

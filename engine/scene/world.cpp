@@ -18,8 +18,9 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
     dynamics = std::make_unique<DynamicHookContext>();
     motion = std::make_unique<MotionController>(type.skeleton, type.clips, n);
     if (type.rig) motion->set_walk_rig(*type.rig);
-    if (!type.gait_clips.empty()) motion->set_walk_clips(type.gait_clips);
-    else if (type.mocap_clip >= 0) motion->set_walk_clip(static_cast<ClipId>(type.mocap_clip));
+    // The walk's clips: the generated gaits, or a file's take cut to its best loop (none when it does
+    // not loop: the walk is then kinematic at every level).
+    motion->set_walk_clips(type.gait_clips);
     register_ik_hooks(*motion, *ik);
     register_dynamic_walk_hook(*motion, *dynamics);
     element_of_character.assign(n, 0);

@@ -33,7 +33,8 @@ glm::quat turn_towards(const glm::quat& rotation, const glm::vec3& dir, float ma
 
 MotionController::MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity)
     : skeleton_(&skeleton), clips_(&clips), chars_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
-      snapshot_(skeleton.joint_count(), capacity, nullptr), scratch_(skeleton.joint_count(), 1, nullptr) {
+      snapshot_(skeleton.joint_count(), capacity, nullptr), scratch_(skeleton.joint_count(), 1, nullptr),
+      keys_(skeleton.joint_count()) {
     active_.reserve(capacity);
     due_.reserve(capacity);
 }
@@ -169,20 +170,33 @@ WalkMethod MotionController::walk_method(const AnimLod& lod) const {
     return WalkMethod::ClipPlayback;
 }
 
+bool MotionController::clip_driven(const Character& ch, const AnimLod& lod) const {
+    const RequestKind k = ch.cur.req.kind;
+    return k == RequestKind::PlayClip ||
+           (k == RequestKind::Walk && ch.cur.walk_clip >= 0 && walk_method(lod) == WalkMethod::ClipPlayback);
+}
+
+void MotionController::advance_clock(Channel& ch, float seconds) const {
+    if (ch.req.kind == RequestKind::PlayClip) {
+        ch.time += seconds * ch.req.speed;
+    } else if (ch.req.kind == RequestKind::Walk && ch.walk_clip >= 0) {
+        const float natural = clips_->find(static_cast<ClipId>(ch.walk_clip))->root_speed();
+        ch.time += seconds * (natural > 1e-4f ? std::max(ch.req.speed, 0.0f) / natural : 1.0f);
+    }
+}
+
 void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transform* placement, Velocity* velocity) {
     ch.request_time += dt;
     const MotionRequest& r = ch.req;
     if (r.kind == RequestKind::PlayClip) {
-        ch.time += dt * r.speed;
+        advance_clock(ch, dt);
         const AnimationClip* clip = clips_->find(r.clip);
         if (!r.loop && (!clip || (r.speed >= 0.0f ? ch.time >= clip->duration() : ch.time <= 0.0f))) ch.done = 1;
     } else if (r.kind == RequestKind::Walk) {
         const float speed = std::max(r.speed, 0.0f);
         const WalkMethod m = walk_method(lod);
         if (m == WalkMethod::ClipPlayback && ch.walk_clip >= 0) {
-            const AnimationClip* clip = clips_->find(static_cast<ClipId>(ch.walk_clip));
-            const float natural = clip->root_speed();
-            ch.time += dt * (natural > 1e-4f ? speed / natural : 1.0f);
+            advance_clock(ch, dt);
         } else if (rig_) {
             advance_walk_phase(ch.walk, *rig_, speed, dt, gait_);
         }
@@ -235,6 +249,7 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
                                       std::span<Transform> transforms, std::span<Velocity> velocities,
                                       std::span<const uint32_t> element_of_character) {
     due_.clear();
+    between_.clear();
     lods_ = lods;
     transforms_ = transforms;
     velocities_ = velocities;
@@ -291,6 +306,13 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
             due_.push_back(Due{c, e, ch.since_posed, switched});
             st.frames_since_update = 0;
             ch.since_posed = 0.0f;
+            // Throttled clip playback is shown interpolated between this update and the next.
+            const bool interpolate = interval > 1 && clip_driven(ch, lod) && ch.fade_left <= 0.0f;
+            if (interpolate && ch.keys_slot < 0) ch.keys_slot = static_cast<int32_t>(keys_.acquire());
+            if (!interpolate && ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
+            ch.keys_span = static_cast<float>(interval) * dt;
+        } else if (ch.keys_slot >= 0 && ch.cur.req.kind != RequestKind::Rest) {
+            between_.push_back(Due{c, e, ch.since_posed, false});
         }
 
         st.active = ch.cur.req.kind;
@@ -303,6 +325,7 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
         st.at_rest = resting ? 1 : 0;
         if (resting) {
             v.linear = glm::vec3(0.0f);
+            if (ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
             const uint32_t moved = active_.back();
             active_[k] = moved;
             chars_[moved].active_index = static_cast<int32_t>(k);

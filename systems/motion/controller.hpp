@@ -13,6 +13,7 @@
 #include "systems/motion/kinematic_walk.hpp"
 #include "systems/motion/pose_pool.hpp"
 #include "systems/motion/sampling.hpp"
+#include "systems/motion/throttle_keys.hpp"
 
 #include <array>
 #include <functional>
@@ -113,7 +114,7 @@ public:
     size_t begin_update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
                         std::span<Transform> transforms, std::span<Velocity> velocities,
                         std::span<const uint32_t> element_of_character = {});
-    /// Phase 2: poses due characters [begin, end) of the last begin_update using scratch slot
+    /// Phase 2: work items [begin, end) of the last begin_update (see work_count()) using scratch slot
     /// `worker` (< worker_slots()). Disjoint ranges with distinct workers may run concurrently.
     void evaluate_due(size_t begin, size_t end, size_t worker = 0);
     /// Sets the number of scratch slots for concurrent evaluate_due calls (at least 1). Not during an update.
@@ -122,6 +123,11 @@ public:
     [[nodiscard]] size_t worker_slots() const { return workers_; }
     /// Characters due in the last begin_update, in evaluation order.
     [[nodiscard]] size_t due_count() const { return due_.size(); }
+    /// Work items of the last begin_update for evaluate_due: the due characters, then the throttled
+    /// characters shown interpolated between their updates.
+    [[nodiscard]] size_t work_count() const { return due_.size() + between_.size(); }
+    /// Characters currently interpolating between throttled updates.
+    [[nodiscard]] size_t interpolating() const { return keys_.in_use(); }
 
     /// Characters in motion, packed (characters at rest are not in it).
     [[nodiscard]] std::span<const uint32_t> active() const { return active_; }
@@ -160,6 +166,8 @@ private:
         uint8_t head = 0, count = 0;
         int32_t active_index = -1;
         uint8_t slots_in_use = 0;    // bit per MethodSlot used by the current request
+        int32_t keys_slot = -1;      // ThrottleKeys slot while interpolating between throttled updates
+        float keys_span = 0.0f;      // seconds from the start to the end key pose
     };
     struct Due {
         uint32_t character;
@@ -177,6 +185,8 @@ private:
     void pose_one(const Due& d, size_t worker);
     void update_slots(uint32_t c, Character& ch);
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
+    bool clip_driven(const Character& ch, const AnimLod& lod) const;
+    void advance_clock(Channel& ch, float seconds) const;
 
     const Skeleton* skeleton_;
     const ClipLibrary* clips_;
@@ -197,6 +207,8 @@ private:
     size_t workers_ = 1;
     uint64_t frame_ = 0;  // updates so far (phase of throttled characters)
     std::vector<Due> due_;
+    std::vector<Due> between_;  // throttled characters shown interpolated this frame
+    ThrottleKeys keys_;
     // Spans of the update in progress (set by begin_update, read by evaluate_due).
     std::span<const AnimLod> lods_;
     std::span<Transform> transforms_;

@@ -87,6 +87,16 @@ void MotionController::pose_one(const Due& d, size_t worker) {
         std::copy(shown.model.begin(), shown.model.end(), scratch.model.begin());
     }
     evaluate(c, ch.cur, lod, out, x, v, d.posed_dt, true, d.started);
+    if (ch.keys_slot >= 0) {
+        // Key poses for the frames until the next update: now, and one interval ahead.
+        const uint32_t slot = static_cast<uint32_t>(ch.keys_slot);
+        keys_.capture(slot, false, out.model);
+        Channel ahead = ch.cur;
+        advance_clock(ahead, ch.keys_span);
+        evaluate(c, ahead, lod, scratch, x, v, ch.keys_span, false, false);
+        keys_.capture(slot, true, std::as_const(scratch_).view(worker).model);
+        return;
+    }
     if (ch.fade_left > 0.0f) {
         const float w = ch.fade_left / ch.fade_total;  // weight of the pose faded from
         if (ch.fade_snapshot) {
@@ -101,15 +111,23 @@ void MotionController::pose_one(const Due& d, size_t worker) {
 }
 
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
-    end = std::min(end, due_.size());
-    for (size_t i = begin; i < end; ++i) pose_one(due_[i], worker);
+    end = std::min(end, work_count());
+    for (size_t i = begin; i < end; ++i) {
+        if (i < due_.size()) {
+            pose_one(due_[i], worker);
+            continue;
+        }
+        const Due& d = between_[i - due_.size()];
+        const Character& ch = chars_[d.character];
+        keys_.interpolate(static_cast<uint32_t>(ch.keys_slot), d.posed_dt / ch.keys_span, pool_.view(d.character).model);
+    }
 }
 
 size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
                                 std::span<Transform> transforms, std::span<Velocity> velocities,
                                 std::span<const uint32_t> element_of_character) {
     const size_t due = begin_update(dt, lods, states, transforms, velocities, element_of_character);
-    evaluate_due(0, due, 0);
+    evaluate_due(0, work_count(), 0);
     return due;
 }
 
@@ -118,9 +136,10 @@ size_t MotionController::update_parallel(float dt, std::span<const AnimLod> lods
                                          std::span<const uint32_t> element_of_character, size_t grain,
                                          const ChunkRunner& run_chunks) {
     const size_t due = begin_update(dt, lods, states, transforms, velocities, element_of_character);
+    const size_t work = work_count();
     if (grain == 0) grain = 64;
-    if (due <= grain) {
-        evaluate_due(0, due, 0);
+    if (work <= grain) {
+        evaluate_due(0, work, 0);
         return due;
     }
     // One scratch slot per thread of the arena; results do not depend on which thread runs a chunk.
@@ -132,10 +151,10 @@ size_t MotionController::update_parallel(float dt, std::span<const AnimLod> lods
         evaluate_due(begin, end, worker);
     };
     if (run_chunks) {
-        run_chunks(due, grain, chunk);
+        run_chunks(work, grain, chunk);
         return due;
     }
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, due, grain),
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, work, grain),
                       [&](const tbb::blocked_range<size_t>& r) { chunk(r.begin(), r.end()); });
     return due;
 }

@@ -109,3 +109,46 @@ TEST(SceneLoader, CameraPathInterpolates) {
 
 }  // namespace
 }  // namespace aloha
+
+namespace aloha {
+namespace {
+
+// Crowd body variety: a height/build range makes `variants` humanoid types with heights spread
+// evenly over the range and builds inside theirs; each character is one of them; clip names stay
+// the base type's. Misuse is refused with the JSON path.
+TEST(SceneLoader, CrowdBodyVariants) {
+    const std::string base = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, )";
+    auto r = parse(base + R"("crowds": [{"count": 200, "height": [1.6, 1.9], "build": [0.2, 0.8], "variants": 4}]})");
+    ASSERT_TRUE(r.ok()) << message_of(r);
+    const SceneDesc& s = r.value();
+    ASSERT_EQ(s.types.size(), 5u);  // the default humanoid and its four variants
+    for (size_t v = 1; v < 5; ++v) {
+        EXPECT_FALSE(s.types[v].humanoid.empty());
+        EXPECT_NEAR(s.types[v].height, 1.6f + 0.3f * (static_cast<float>(v) - 0.5f) / 4.0f, 1e-5f);
+        EXPECT_GE(s.types[v].build, 0.2f);
+        EXPECT_LE(s.types[v].build, 0.8f);
+        EXPECT_EQ(s.types[v].clip_prefix, "humanoid");
+    }
+    std::vector<int> used(5, 0);
+    for (const CharacterDesc& c : expand_characters(s)) used[static_cast<size_t>(c.type)]++;
+    EXPECT_EQ(used[0], 0);
+    for (size_t v = 1; v < 5; ++v) EXPECT_GT(used[v], 20) << "every variant is drawn";
+
+    auto no_range = parse(base + R"("crowds": [{"count": 5, "variants": 3}]})");
+    ASSERT_FALSE(no_range.ok());
+    EXPECT_NE(message_of(no_range).find("/crowds/0/variants"), std::string::npos) << message_of(no_range);
+    auto bad_height = parse(base + R"("crowds": [{"count": 5, "height": [1.9, 1.6]}]})");
+    ASSERT_FALSE(bad_height.ok());
+    EXPECT_NE(message_of(bad_height).find("/crowds/0/height"), std::string::npos) << message_of(bad_height);
+    auto not_humanoid = parse(base + R"("character_types": [{"name": "b", "bvh": "closeup.json"}],
+                                         "crowds": [{"type": "b", "count": 5, "height": [1.6, 1.9]}]})");
+    ASSERT_FALSE(not_humanoid.ok());
+    EXPECT_NE(message_of(not_humanoid).find("needs a 'humanoid' character type"), std::string::npos) << message_of(not_humanoid);
+    auto height_on_bvh = parse(base + R"("character_types": [{"name": "b", "bvh": "closeup.json", "height": 1.7}],
+                                          "crowds": [{"type": "b", "count": 5}]})");
+    ASSERT_FALSE(height_on_bvh.ok());
+    EXPECT_NE(message_of(height_on_bvh).find("apply to 'humanoid' types only"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aloha

@@ -1,0 +1,40 @@
+// Best-loop cutting for takes that were not captured as cycles (a motion-capture "start, walk,
+// stop" used as a walk loop): finds the pair of frames whose poses and joint velocities match best
+// (in the root's own heading frame), cuts the take there, and spreads the heading drift over the
+// loop so the seam does not turn the body. A take with no good loop is refused with a note.
+#pragma once
+
+#include "engine/anim/raw_animation.hpp"
+#include "engine/anim/skeleton.hpp"
+#include "engine/core/result.hpp"
+
+#include <string>
+
+namespace aloha {
+
+/// Where the best loop of a take is and how well its ends match.
+struct LoopCut {
+    float start = 0.0f;          ///< seconds into the take
+    float end = 0.0f;            ///< seconds into the take (end > start)
+    float pose_error = 0.0f;     ///< mean joint distance between the end poses (m, root-relative)
+    float velocity_error = 0.0f; ///< mean joint velocity difference between the ends (m/s)
+};
+
+/// Largest mean joint distance (m) and velocity difference (m/s) accepted at a loop's seam.
+inline constexpr float kMaxLoopPoseError = 0.03f;
+inline constexpr float kMaxLoopVelocityError = 0.25f;
+
+/// Finds the best loop of `take` (built for `skeleton`) at least `min_seconds` long whose root keeps
+/// travelling at `min_speed` m/s or more throughout (a walk loop must walk; 0 for any loop), comparing poses sampled
+/// every `step` seconds. Errors (naming `source`) when the take is too short or no loop is within
+/// kMaxLoopPoseError / kMaxLoopVelocityError (the message gives the best found).
+Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleton, float min_seconds, float min_speed,
+                               const std::string& source, float step = 1.0f / 30.0f);
+
+/// The keys of `take` between cut.start and cut.end (sampled at the take's own key times, ends
+/// interpolated), re-timed from 0, with the root's heading drift over the loop spread evenly so the
+/// last key faces like the first. Named `name`.
+[[nodiscard]] RawAnimation cut_loop(const RawAnimation& take, const Skeleton& skeleton, const LoopCut& cut,
+                                    const std::string& name);
+
+}  // namespace aloha
