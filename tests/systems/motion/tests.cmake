@@ -3,6 +3,7 @@ if(TARGET aloha_motion)
   aloha_test(motion_tests
     SOURCES
       ${CMAKE_CURRENT_LIST_DIR}/sampling_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/clip_quant_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/pose_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/controller_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/walk_test.cpp
