@@ -117,4 +117,32 @@ Status apply_joint_limits(Skeleton& skeleton, const JointLimitTable& table) {
     return set_joint_limits(skeleton, table.names, table.limits, table.source);
 }
 
+Status apply_mapped_joint_limits(Skeleton& skeleton, const JointLimitTable& table, const HumanoidMap& map,
+                                 const CanonicalFit& fit, std::vector<std::string>* skipped) {
+    constexpr float kMaxTurn = 0.5235988f;  // 30 degrees
+    std::vector<std::string> names;
+    std::vector<JointLimit> limits;
+    for (size_t i = 0; i < table.names.size(); ++i) {
+        const int c = canonical_index(table.names[i]);
+        if (c < 0) {
+            if (skeleton.find(table.names[i]) < 0)
+                return make_error(table.source, "joint limit for unknown joint '" + table.names[i] + "' (neither canonical nor in the skeleton)", 0, 0, "/joints/" + table.names[i]);
+            names.push_back(table.names[i]);
+            limits.push_back(table.limits[i]);
+            continue;
+        }
+        const int j = map.joint[static_cast<size_t>(c)];
+        const float turn = fit.bone_angle[static_cast<size_t>(c)];
+        if (j < 0) {
+            if (skipped) skipped->push_back(table.names[i] + ": not in the skeleton");
+        } else if (turn > kMaxTurn) {
+            if (skipped) skipped->push_back(table.names[i] + ": rest bone turned " + std::to_string(static_cast<int>(std::lround(turn * 57.29578f))) + " degrees from the reference");
+        } else {
+            names.push_back(skeleton.names()[static_cast<size_t>(j)]);
+            limits.push_back(table.limits[i]);
+        }
+    }
+    return set_joint_limits(skeleton, names, limits, table.source);
+}
+
 }  // namespace aloha

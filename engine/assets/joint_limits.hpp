@@ -7,6 +7,8 @@
 // rotation relative to its rest pose (JointLimit's convention), |angle| <= 180 degrees, min <= max.
 #pragma once
 
+#include "engine/anim/humanoid_fit.hpp"
+#include "engine/anim/humanoid_map.hpp"
 #include "engine/anim/raw_skeleton.hpp"
 #include "engine/anim/skeleton.hpp"
 #include "engine/core/result.hpp"
@@ -34,5 +36,14 @@ Result<JointLimitTable> parse_joint_limits(std::string_view text, const std::str
 /// Sets the table's limits on `skeleton` (via set_joint_limits). Every name must be a joint of the
 /// skeleton: an unknown name is an error naming it and its JSON path; nothing is changed then.
 Status apply_joint_limits(Skeleton& skeleton, const JointLimitTable& table);
+
+/// Sets the table's limits on a skeleton mapped to the canonical humanoid: a canonical name applies
+/// to the joint `map` gives it (skipped when the skeleton lacks it, or when its rest bone is turned
+/// more than 30 degrees from the reference humanoid's, e.g. a T-pose arm against the reference's
+/// hanging arm, since the limits are relative to the rest pose); any other name must be a joint of
+/// the skeleton. Requires a skeleton with model-aligned rest frames (normalise_rig) and `fit` from
+/// fit_canonical. `skipped` receives "<canonical>: why" for every canonical entry left out.
+Status apply_mapped_joint_limits(Skeleton& skeleton, const JointLimitTable& table, const HumanoidMap& map,
+                                 const CanonicalFit& fit, std::vector<std::string>* skipped);
 
 }  // namespace aloha

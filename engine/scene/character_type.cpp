@@ -4,6 +4,7 @@
 #include "engine/assets/gltf_loader.hpp"
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
+#include "engine/scene/character_rig.hpp"
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
 #include "systems/geometry/muscle/muscle_fit.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
@@ -72,13 +73,29 @@ void add_walk_loop(CharacterType& type, const RawAnimation& take, const std::str
     type.notes.push_back(buf);
 }
 
+// The file's skeleton mapped and normalised into `type`; `change` says how (for its clips and mesh).
+Status adopt_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format, const std::string& file,
+                 CharacterType& type, RigNormalisation& change) {
+    auto rig = normalise_file_rig(original, desc, format, file);
+    if (!rig.ok()) return rig.error();
+    type.skeleton = std::move(rig.value().skeleton);
+    type.map = std::move(rig.value().map);
+    type.frame = std::move(rig.value().frame);
+    change = std::move(rig.value().change);
+    return {};
+}
+
 Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
-    auto bvh = load_bvh(desc.bvh);
+    BvhOptions options;
+    options.unit_scale = 1.0f;  // file units: the rig's units are detected from its height
+    auto bvh = load_bvh(desc.bvh, options);
     if (!bvh.ok()) return bvh.error();
-    auto skeleton = build_skeleton(bvh.value().skeleton, desc.bvh);
-    if (!skeleton.ok()) return skeleton.error();
-    type.skeleton = std::move(skeleton.value());
+    auto original = build_skeleton(bvh.value().skeleton, desc.bvh);
+    if (!original.ok()) return original.error();
+    RigNormalisation change;
+    if (Status s = adopt_rig(original.value(), desc, RigFormat::Bvh, desc.bvh, type, change); !s.ok()) return s;
     RawAnimation mocap = bvh.value().animation;
+    normalise_clip(mocap, original.value(), change);
     mocap.name = desc.name + ".mocap";
     if (Status s = add_clip(type, mocap, desc.bvh); !s.ok()) return s;
     if (Status s = add_clip(type, in_place(mocap, desc.name + ".inplace"), desc.bvh); !s.ok()) return s;
@@ -92,12 +109,14 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
     auto gltf = load_gltf_character(desc.gltf);
     if (!gltf.ok()) return gltf.error();
     GltfCharacter& g = gltf.value();
-    auto skeleton = build_skeleton(g.skeleton, desc.gltf);
-    if (!skeleton.ok()) return skeleton.error();
-    type.skeleton = std::move(skeleton.value());
+    auto original = build_skeleton(g.skeleton, desc.gltf);
+    if (!original.ok()) return original.error();
+    RigNormalisation change;
+    if (Status s = adopt_rig(original.value(), desc, RigFormat::Gltf, desc.gltf, type, change); !s.ok()) return s;
     type.notes = g.notes;
     for (size_t i = 0; i < g.clips.size(); ++i) {
         RawAnimation clip = g.clips[i];
+        normalise_clip(clip, original.value(), change);
         clip.name = g.clip_names[i];
         if (Status s = add_clip(type, clip, desc.gltf); !s.ok()) return s;
         if (i == 0) {
@@ -107,7 +126,10 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
             add_walk_loop(type, clip, desc.gltf);
         }
     }
-    if (!g.meshes.empty()) type.mesh = character_mesh_from_gltf(g, type.skeleton);
+    if (!g.meshes.empty()) {
+        type.mesh = character_mesh_from_gltf(g, original.value());
+        normalise_mesh(*type.mesh, change);
+    }
     return {};
 }
 
@@ -168,25 +190,39 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     type.name = desc.name;
     if (!desc.humanoid.empty()) {
         if (Status s = load_from_humanoid(desc, type); !s.ok()) return s.error();
+        auto map = map_humanoid(type.skeleton);
+        if (!map.ok()) return map.error();
+        type.map = std::move(map.value());
+        type.frame.units = "metres (built-in humanoid)";
+        type.frame.height = desc.height;
         measure(type);
         return type;
     }
     Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
     if (!loaded.ok()) return loaded.error();
-
-    if (!desc.limits.empty()) {
-        auto limits = load_joint_limits(desc.limits);
-        if (!limits.ok()) return limits.error();
-        if (Status s = apply_joint_limits(type.skeleton, limits.value()); !s.ok()) return s.error();
+    const std::string& file = desc.bvh.empty() ? desc.gltf : desc.bvh;
+    for (const std::string& note : type.frame.notes) type.notes.push_back(note);
+    if (type.map.humanoid) {
+        if (Status s = add_canonical_layers(type, desc, file); !s.ok()) return s.error();
+    } else {
+        if (!desc.limits.empty()) {
+            auto limits = load_joint_limits(desc.limits);
+            if (!limits.ok()) return limits.error();
+            if (Status s = apply_joint_limits(type.skeleton, limits.value()); !s.ok()) return s.error();
+        }
+        std::string missing;
+        for (const std::string& m : type.map.missing) missing += (missing.empty() ? "" : ", ") + m;
+        type.notes.push_back("not a humanoid (no " + missing + "): no canonical muscles, limits or reach; add a 'humanoid_map' if it is one");
+        if (!desc.muscles.empty()) {
+            auto muscles = load_muscle_set(desc.muscles, type.skeleton);
+            if (!muscles.ok()) return muscles.error();
+            type.muscles = std::move(muscles.value());
+        }
     }
-    auto rig = resolve_walk_rig(type.skeleton, desc.bvh.empty() ? desc.gltf : desc.bvh);
+    auto rig = resolve_walk_rig(type.skeleton, type.map, file);
     if (rig.ok()) type.rig = std::move(rig.value());
     else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
-    if (!desc.muscles.empty()) {
-        auto muscles = load_muscle_set(desc.muscles, type.skeleton);
-        if (!muscles.ok()) return muscles.error();
-        type.muscles = std::move(muscles.value());
-    } else if (type.mesh) {
+    if (type.muscles.size() == 0 && type.mesh) {
         std::vector<glm::mat4> bind_model;
         for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));
         const std::vector<glm::ivec4> joints = widen_joints(type.mesh->joints);
@@ -195,8 +231,8 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         auto muscles = fit_muscles_per_bone(type.skeleton, bind_model, type.mesh->positions, joints, type.mesh->weights, options);
         if (!muscles.ok()) return muscles.error();
         type.muscles = std::move(muscles.value());
-    } else {
-        return make_error(desc.bvh, "character type '" + desc.name + "' has neither a muscle layout nor a skinned mesh to fit muscles to");
+    } else if (type.muscles.size() == 0) {
+        type.notes.push_back("layered levels refused: no muscle layout (not a humanoid) and no skinned mesh to fit muscles to; drawn as rigid proxies");
     }
     measure(type);
     return type;

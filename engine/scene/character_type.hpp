@@ -2,7 +2,9 @@
 // optional skinned mesh. Loaded once per scene from a CharacterTypeDesc; shared by all its characters.
 #pragma once
 
+#include "engine/anim/humanoid_map.hpp"
 #include "engine/anim/skeleton.hpp"
+#include "engine/assets/rig_normalise.hpp"
 #include "engine/core/result.hpp"
 #include "engine/scene/scene_desc.hpp"
 #include "systems/geometry/controller/character_geometry.hpp"
@@ -31,9 +33,15 @@ struct CharacterType {
     float height = 1.8f;            ///< standing height (m), for bounds
     float radius = 0.4f;            ///< horizontal radius (m), for bounds
     std::vector<std::string> notes; ///< what was skipped or assumed while loading
+    HumanoidMap map;                ///< canonical humanoid joints in `skeleton` (map.humanoid: all required found)
+    RigFrame frame;                 ///< axes and units the file was found in (or given)
 };
 
-/// Loads a character type. Errors name the file and the problem (BVH/glTF/muscles/limits).
+
+/// Loads a character type. BVH and glTF skeletons are mapped to the canonical humanoid and
+/// normalised (axes, units, rest frames); a mapped humanoid gets the canonical joint limits, muscle
+/// layout (or muscles fitted to its mesh) and walk rig; a non-humanoid without a mesh or muscle
+/// layout gets no muscles (proxy level only, noted). Errors name the file and the problem.
 Result<CharacterType> load_character_type(const CharacterTypeDesc& desc);
 
 /// Id of clip `name` in `type` ("" = the type's idle clip, else its in-place mocap clip), or -1.

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,11 @@ struct CharacterTypeDesc {
     float height = 1.75f;  ///< humanoid: standing height (m)
     float build = 0.5f;    ///< humanoid: 0 slim, 0.5 average, 1 heavy
     std::string clip_prefix;  ///< prefix of the type's clip names ("" = name); body variants share their base's
+    std::map<std::string, std::string> humanoid_map;  ///< bvh/gltf: canonical joint -> file joint name (explicit map)
+    float scale = 0.0f;       ///< bvh/gltf: metres per file unit (0 = detected from the skeleton's height)
+    std::string canonical;    ///< bvh/gltf: the built-in humanoid definition, reference for mapped skeletons
+    std::string scene_file;   ///< the scene file the type is written in (for errors)
+    std::string pointer;      ///< JSON pointer of the type in that file ("/character_types/0")
 };
 
 /// A named walk path: waypoints on the ground (y ignored), optionally looping.

@@ -139,12 +139,33 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
         t.gltf = resolve("gltf");
         t.muscles = resolve("muscles");
         t.limits = resolve("limits");
+        t.scene_file = scene.file;
+        t.pointer = p;
+        t.scale = static_cast<float>(r.number("scale", 0.0, 1e-6, 1e6));
+        if (const nlohmann::json* map = r.child("humanoid_map")) {
+            if (!map->is_object() || map->size() > 1024) {
+                r.error("humanoid_map", "expected an object of canonical joint name -> joint name in the file");
+            } else {
+                for (const auto& [canonical, file_name] : map->items()) {
+                    if (!file_name.is_string() || file_name.get_ref<const std::string&>().empty())
+                        r.error("humanoid_map/" + canonical, "expected the name of a joint in the file");
+                    else t.humanoid_map[canonical] = file_name.get<std::string>();
+                }
+            }
+        }
+        if (!t.bvh.empty() || !t.gltf.empty()) {
+            auto canonical = resolve_scene_path(scene.file, "builtin:humanoid", p);
+            if (canonical.ok()) t.canonical = canonical.value();
+            else errors.push_back(canonical.error());
+        }
         t.height = static_cast<float>(r.number("height", 1.75, 0.5, 2.5));
         t.build = static_cast<float>(r.number("build", 0.5, 0.0, 1.0));
         const int sources = !t.humanoid.empty() + !t.bvh.empty() + !t.gltf.empty();
         if (sources != 1 && r.is_object()) r.error("", "give exactly one of 'humanoid', 'bvh' or 'gltf'");
         if (t.humanoid.empty() && (r.has("height") || r.has("build")))
             r.error("height", "'height' and 'build' apply to 'humanoid' types only");
+        if (!t.humanoid.empty() && (r.has("scale") || r.has("humanoid_map")))
+            r.error(r.has("scale") ? "scale" : "humanoid_map", "'scale' and 'humanoid_map' apply to 'bvh' and 'gltf' types only");
         if (t.bvh.size() > 5 && t.bvh.compare(t.bvh.size() - 5, 5, ".json") == 0)
             r.error("bvh", "this is a JSON file, not a BVH skeleton; the project's humanoid is \"humanoid\": \"builtin:humanoid\"");
         r.reject_unknown_keys();

@@ -21,6 +21,7 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
     // The walk's clips: the generated gaits, or a file's take cut to its best loop (none when it does
     // not loop: the walk is then kinematic at every level).
     motion->set_walk_clips(type.gait_clips);
+    ik->map = &type.map;
     register_ik_hooks(*motion, *ik);
     register_dynamic_walk_hook(*motion, *dynamics);
     element_of_character.assign(n, 0);
@@ -32,7 +33,19 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
         if (parents[j] < 0 || glm::length(rest_t[j]) >= 0.05f) proxy_joints.push_back(static_cast<uint16_t>(j));
 }
 
-Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const GeomLod> levels, bool keep_refined_surfaces) {
+std::vector<GeomLod> CharacterRuntime::usable_levels(std::span<const GeomLod> levels) const {
+    std::vector<GeomLod> out(levels.begin(), levels.end());
+    if (type.muscles.size() > 0) return out;
+    for (GeomLod& l : out)
+        if (l.method != GeomMethod::Hidden) {
+            l.method = GeomMethod::RigidProxy;
+            l.layers = kLayerSkeleton;
+        }
+    return out;
+}
+
+Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const GeomLod> all_levels, bool keep_refined_surfaces) {
+    const std::vector<GeomLod> levels = usable_levels(all_levels);
     CharacterGeometryDesc desc;
     desc.type = type_index;
     desc.name = type.name;
@@ -182,7 +195,7 @@ Status World::spawn_characters() {
                 const auto it = std::find(rt.path_names.begin(), rt.path_names.end(), rd.path);
                 req.path = static_cast<uint16_t>(it - rt.path_names.begin());
             } else if (req.kind == RequestKind::Reach || req.kind == RequestKind::LookAt) {
-                const int joint = rt.type.skeleton.find(rd.effector);
+                const int joint = find_joint(rt.type.skeleton, rt.type.map, rd.effector);
                 if (joint < 0) return make_error(scene_.file, where + ": unknown effector joint '" + rd.effector + "' for type '" + rt.type.name + "'");
                 req.effector = static_cast<int16_t>(joint);
             }
@@ -191,7 +204,7 @@ Status World::spawn_characters() {
         }
         if (c.overlay) {
             MotionRequest req = c.overlay->request;
-            const int joint = rt.type.skeleton.find(c.overlay->effector);
+            const int joint = find_joint(rt.type.skeleton, rt.type.map, c.overlay->effector);
             if (joint < 0)
                 return make_error(scene_.file, "character " + std::to_string(i) + " overlay: unknown effector joint '" +
                                                    c.overlay->effector + "' for type '" + rt.type.name + "'");
@@ -239,7 +252,7 @@ void World::step() {
             const RuleTable& table = rules_.table();
             std::vector<GeomLod> levels;
             for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
-            for (auto& rt : types_) rt->geometry->set_levels(levels);
+            for (auto& rt : types_) rt->geometry->set_levels(rt->usable_levels(levels));
             topologies_.clear();  // level topologies may have changed: register again on demand
         }
     }

@@ -1,4 +1,5 @@
 // `aloha render` and `aloha validate`.
+#include "engine/scene/character_report.hpp"
 #include "engine/scene/character_type.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "engine/tool/commands.hpp"
@@ -61,7 +62,9 @@ int run_validate(const CliOptions& options) {
             std::cerr << type.error().to_string() << "\n";
             ++problems;
         } else {
-            for (const auto& note : type.value().notes) std::cerr << "note: " << t.name << ": " << note << "\n";
+            std::cout << "character type '" << t.name << "' ("
+                      << (t.humanoid.empty() ? (t.bvh.empty() ? t.gltf : t.bvh) : t.humanoid) << "):\n";
+            for (const std::string& line : character_report(type.value())) std::cout << "  " << line << "\n";
         }
     }
     if (problems) {

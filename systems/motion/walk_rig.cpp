@@ -7,62 +7,51 @@
 
 namespace aloha {
 
-const LegNameTable& default_leg_names() {
-    static const LegNameTable table = [] {
-        LegNameTable t;
-        const char* sides[2][2] = {{"Left", "L"}, {"Right", "R"}};
-        for (int s = 0; s < 2; ++s) {
-            const std::string L = sides[s][0], l = sides[s][1], lc = s == 0 ? "l" : "r";
-            t.names[s][0] = {L + "Hip", L + "UpLeg", "mixamorig:" + L + "UpLeg", "leg_joint_" + l + "_1", "thigh_" + lc, l + "_Thigh"};
-            t.names[s][1] = {L + "Knee", L + "Leg", "mixamorig:" + L + "Leg", "leg_joint_" + l + "_2", "calf_" + lc, l + "_Calf"};
-            t.names[s][2] = {L + "Ankle", L + "Foot", "mixamorig:" + L + "Foot", "leg_joint_" + l + "_3", "foot_" + lc, l + "_Foot"};
-            t.names[s][3] = {L + "Toe", L + "ToeBase", "mixamorig:" + L + "ToeBase", "leg_joint_" + l + "_5", "ball_" + lc, l + "_Toe"};
-        }
-        return t;
-    }();
-    return table;
-}
-
-glm::quat rotation_between(const glm::vec3& from, const glm::vec3& to) {
-    const float d = glm::dot(from, to);
-    if (d < -0.999999f) {
-        glm::vec3 axis = glm::cross(glm::vec3(1, 0, 0), from);
-        if (glm::dot(axis, axis) < 1e-8f) axis = glm::cross(glm::vec3(0, 1, 0), from);
-        return glm::angleAxis(3.14159265f, glm::normalize(axis));
-    }
-    const glm::vec3 c = glm::cross(from, to);
-    return glm::normalize(glm::quat(1.0f + d, c.x, c.y, c.z));
-}
-
 glm::quat matrix_rotation(const glm::mat4& m) {
     const glm::mat3 r(glm::normalize(glm::vec3(m[0])), glm::normalize(glm::vec3(m[1])), glm::normalize(glm::vec3(m[2])));
     return glm::normalize(glm::quat_cast(r));
 }
 
-Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& source, const LegNameTable& table) {
+namespace {
+
+bool descends_from(const Skeleton& skeleton, int joint, int ancestor) {
+    for (int j = skeleton.parents()[static_cast<size_t>(joint)]; j >= 0; j = skeleton.parents()[static_cast<size_t>(j)])
+        if (j == ancestor) return true;
+    return false;
+}
+
+}  // namespace
+
+Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& source) {
+    auto map = map_humanoid(skeleton);
+    if (!map.ok()) return map.error();
+    return resolve_walk_rig(skeleton, map.value(), source);
+}
+
+Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const HumanoidMap& map, const std::string& source) {
     WalkRig rig;
-    const char* side_names[2] = {"left", "right"};
-    const char* role_names[4] = {"hip", "knee", "ankle", "toe"};
+    const char* side_names[2] = {"Left", "Right"};
+    const char* roles[4] = {"Hip", "Knee", "Ankle", "Toe"};
+    rig.root = map.find("Hips");
+    if (rig.root < 0) return make_error(source, "walk rig: no pelvis (canonical 'Hips') in the humanoid map");
     for (int s = 0; s < 2; ++s)
         for (int r = 0; r < 4; ++r) {
-            int found = -1;
-            for (const std::string& n : table.names[s][r])
-                if ((found = skeleton.find(n)) >= 0) break;
-            if (found < 0 && r < 3) {
-                std::string tried;
-                for (const std::string& n : table.names[s][r]) tried += (tried.empty() ? "" : ", ") + n;
-                return make_error(source, std::string("walk rig: no ") + side_names[s] + " " + role_names[r] +
-                                              " joint (tried " + tried + ")");
-            }
+            const std::string canonical = std::string(side_names[s]) + roles[r];
+            const int found = map.find(canonical);
+            if (found < 0 && r < 3)
+                return make_error(source, "walk rig: no joint for canonical '" + canonical + "' in the humanoid map" +
+                                              (map.convention.empty() ? std::string(" (no naming convention matched)")
+                                                                      : " (convention " + map.convention + ")"));
             int* slot[4] = {&rig.hip[s], &rig.knee[s], &rig.ankle[s], &rig.toe[s]};
             *slot[r] = found;
         }
     const auto parents = skeleton.parents();
     for (int s = 0; s < 2; ++s) {
-        if (parents[static_cast<size_t>(rig.knee[s])] != rig.hip[s])
-            return make_error(source, std::string("walk rig: ") + side_names[s] + " knee '" + skeleton.names()[static_cast<size_t>(rig.knee[s])] + "' is not a child of the hip");
-        if (parents[static_cast<size_t>(rig.ankle[s])] != rig.knee[s])
-            return make_error(source, std::string("walk rig: ") + side_names[s] + " ankle '" + skeleton.names()[static_cast<size_t>(rig.ankle[s])] + "' is not a child of the knee");
+        if (!descends_from(skeleton, rig.knee[s], rig.hip[s]))
+            return make_error(source, std::string("walk rig: ") + side_names[s] + " knee '" + skeleton.names()[static_cast<size_t>(rig.knee[s])] + "' is not below the hip in the hierarchy");
+        if (!descends_from(skeleton, rig.ankle[s], rig.knee[s]))
+            return make_error(source, std::string("walk rig: ") + side_names[s] + " ankle '" + skeleton.names()[static_cast<size_t>(rig.ankle[s])] + "' is not below the knee in the hierarchy");
+        if (rig.toe[s] >= 0 && !descends_from(skeleton, rig.toe[s], rig.ankle[s])) rig.toe[s] = -1;
     }
     const size_t n = static_cast<size_t>(skeleton.joint_count());
     std::vector<glm::mat4> model(n);
@@ -123,13 +112,17 @@ float solve_leg_ik(const WalkRig& rig, const Skeleton& skeleton, int side, const
     const glm::quat q1 = rotation_between(glm::normalize(K - H), glm::normalize(Kd - H));
     const glm::vec3 A1 = H + q1 * (A - H);
     const glm::quat q2 = rotation_between(glm::normalize(A1 - Kd), glm::normalize(Td - Kd));
-    const int hp = skeleton.parents()[h];
-    const glm::quat parent_w = hp >= 0 ? matrix_rotation(pose.model[static_cast<size_t>(hp)]) : glm::quat(1, 0, 0, 0);
+    // World rotations of each joint's parent after the change: the hip's parent is not moved, the
+    // knee's parent (the hip or a twist joint below it) turns by q1, the ankle's by q2 q1.
+    auto model_rotation = [&](int j) { return j >= 0 ? matrix_rotation(pose.model[static_cast<size_t>(j)]) : glm::quat(1, 0, 0, 0); };
+    const glm::quat hip_parent_w = model_rotation(skeleton.parents()[h]);
+    const glm::quat knee_parent_w = glm::normalize(q1 * model_rotation(skeleton.parents()[k]));
+    const glm::quat ankle_parent_w = glm::normalize(q2 * q1 * model_rotation(skeleton.parents()[a]));
     const glm::quat hip_w = glm::normalize(q1 * matrix_rotation(pose.model[h]));
     const glm::quat knee_w = glm::normalize(q2 * q1 * matrix_rotation(pose.model[k]));
-    pose.rotations[h] = glm::normalize(glm::inverse(parent_w) * hip_w);
-    pose.rotations[k] = glm::normalize(glm::inverse(hip_w) * knee_w);
-    pose.rotations[a] = glm::normalize(glm::inverse(knee_w) * rig.rest_model_rotations[a]);
+    pose.rotations[h] = glm::normalize(glm::inverse(hip_parent_w) * hip_w);
+    pose.rotations[k] = glm::normalize(glm::inverse(knee_parent_w) * knee_w);
+    pose.rotations[a] = glm::normalize(glm::inverse(ankle_parent_w) * rig.rest_model_rotations[a]);
     return std::max(0.0f, dist - d);
 }
 

@@ -1,9 +1,11 @@
-// Leg rig for walking: which joints are the hips, knees, ankles and toes of a skeleton (found by
-// name through a mapping table with fallbacks), their rest measurements, and the analytic
-// two-bone leg IK used to plant feet.
+// Leg rig for walking: which joints are the hips, knees, ankles and toes of a skeleton (the
+// canonical humanoid's LeftHip, LeftKnee, LeftAnkle, LeftToe and Right*, found through the humanoid
+// map), their rest measurements, and the analytic two-bone leg IK used to plant feet.
 #pragma once
 
+#include "engine/anim/humanoid_map.hpp"
 #include "engine/anim/pose.hpp"
+#include "engine/anim/rest_pose.hpp"
 #include "engine/anim/skeleton.hpp"
 #include "engine/core/result.hpp"
 
@@ -16,24 +18,13 @@ namespace aloha {
 /// Leg joint roles, per side (0 = left, 1 = right).
 enum class LegRole : uint8_t { Hip = 0, Knee = 1, Ankle = 2, Toe = 3 };
 
-/// Candidate joint names per side and role, tried in order. The default table covers the CMU BVH
-/// skeleton (LeftHip, LeftKnee, LeftAnkle, LeftToe, Right...), Mixamo / HumanIK (LeftUpLeg,
-/// LeftLeg, LeftFoot, LeftToeBase, with or without a "mixamorig:" prefix), Unreal (thigh_l,
-/// calf_l, foot_l, ball_l) and CesiumMan (leg_joint_L_1, _2, _3, _5). Add rows for other skeletons.
-struct LegNameTable {
-    std::array<std::array<std::vector<std::string>, 4>, 2> names;  ///< [side][role] candidates
-};
-
-/// The built-in table described above.
-[[nodiscard]] const LegNameTable& default_leg_names();
-
 /// Joint indices and rest measurements of a two-legged skeleton. Model space: Y up, the character
 /// faces +Z (CMU convention), ground at y = 0 once the walk places the root.
 struct WalkRig {
-    int root = 0;                    ///< the root joint (pelvis), joint 0
+    int root = 0;                    ///< the pelvis (canonical Hips)
     std::array<int, 2> hip{};        ///< thigh joints (rotate the thigh)
-    std::array<int, 2> knee{};       ///< knee joints; parent is the hip
-    std::array<int, 2> ankle{};      ///< ankle joints; parent is the knee
+    std::array<int, 2> knee{};       ///< knee joints; descendants of the hips (twist joints may sit between)
+    std::array<int, 2> ankle{};      ///< ankle joints; descendants of the knees
     std::array<int, 2> toe{-1, -1};  ///< toe joints or -1
     std::array<float, 2> thigh{};    ///< hip-to-knee length (m)
     std::array<float, 2> shin{};     ///< knee-to-ankle length (m)
@@ -44,11 +35,13 @@ struct WalkRig {
     std::vector<glm::quat> rest_model_rotations;  ///< rest pose model rotation of every joint
 };
 
-/// Finds the leg joints of `skeleton` with `table` and measures them. Errors name the missing role
-/// and the candidates tried, or a knee/ankle whose parent is not the hip/knee. `source` names the
-/// skeleton for errors.
-Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& source,
-                                 const LegNameTable& table = default_leg_names());
+/// Takes the leg joints of `skeleton` from `map` and measures them. Errors (naming `source`): a
+/// missing hip, knee or ankle, a knee not below its hip or an ankle not below its knee in the
+/// hierarchy, a zero-length bone.
+Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const HumanoidMap& map, const std::string& source);
+
+/// The same with the skeleton's own humanoid map (map_humanoid without an explicit map).
+Result<WalkRig> resolve_walk_rig(const Skeleton& skeleton, const std::string& source);
 
 /// Where a two-bone chain's middle and end joints go to reach a target.
 struct TwoBoneSolution {
@@ -66,15 +59,13 @@ struct TwoBoneSolution {
 /// `skeleton` and rest ankles above y = 0.
 void stand_rig_on_rest_ground(WalkRig& rig, const Skeleton& skeleton);
 
-/// Shortest rotation taking unit vector `from` onto unit vector `to`.
-[[nodiscard]] glm::quat rotation_between(const glm::vec3& from, const glm::vec3& to);
-
 /// Rotation part of an affine model matrix (columns normalised to remove scale).
 [[nodiscard]] glm::quat matrix_rotation(const glm::mat4& m);
 
 /// Analytic two-bone IK on one leg of `pose`: rewrites the local rotations of hip and knee so the
 /// ankle reaches `target` (model space; clamped to the reachable range), the knee bending towards
-/// `pole` (model direction), and of the ankle so the foot keeps its rest model orientation.
+/// `pole` (model direction), and of the ankle so the foot keeps its rest model orientation. Joints
+/// between hip and knee or knee and ankle (twist bones) keep their local rotations.
 /// Requires pose.model to hold the model matrices of the current local pose; leaves them stale
 /// (run local-to-model again). Returns the distance left between ankle and target (0 when reachable).
 float solve_leg_ik(const WalkRig& rig, const Skeleton& skeleton, int side, const glm::vec3& target,

@@ -193,7 +193,9 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     const uint32_t J = static_cast<uint32_t>(desc.skeleton.joint_count());
     std::vector<std::string> problems;
     if (J == 0) problems.push_back("skeleton has no joints");
-    if (desc.muscles.size() == 0) problems.push_back("muscle set is empty");
+    // A type without muscles (a non-humanoid with no mesh) is drawn as rigid proxies only.
+    if (desc.muscles.size() == 0 && desc.mesh) problems.push_back("muscle set is empty (a mesh is bound to muscles)");
+    if (desc.muscles.size() == 0) desc.muscles.joint_count = static_cast<int>(J);
     if (desc.muscles.joint_count != static_cast<int>(J))
         problems.push_back("muscle set was resolved for " + std::to_string(desc.muscles.joint_count) +
                            " joints, the skeleton has " + std::to_string(J));

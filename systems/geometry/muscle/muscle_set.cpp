@@ -1,5 +1,6 @@
 #include "systems/geometry/muscle/muscle_set.hpp"
 
+#include "engine/anim/rest_pose.hpp"
 #include "systems/geometry/muscle/superellipsoid.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -45,19 +46,7 @@ void MuscleSet::push_back(const std::string& name, int origin, glm::vec3 origin_
     rest_length.push_back(length);
 }
 
-std::vector<glm::mat4> rest_model_matrices(const Skeleton& skeleton) {
-    const int n = skeleton.joint_count();
-    std::vector<glm::mat4> model(static_cast<size_t>(n));
-    const auto parents = skeleton.parents();
-    for (int j = 0; j < n; ++j) {
-        const size_t u = static_cast<size_t>(j);
-        const glm::mat4 local = glm::translate(glm::mat4(1.0f), skeleton.rest_translations()[u]) *
-                                glm::mat4_cast(skeleton.rest_rotations()[u]) *
-                                glm::scale(glm::mat4(1.0f), skeleton.rest_scales()[u]);
-        model[u] = parents[u] < 0 ? local : model[static_cast<size_t>(parents[u])] * local;
-    }
-    return model;
-}
+std::vector<glm::mat4> rest_model_matrices(const Skeleton& skeleton) { return skeleton_rest_model(skeleton); }
 
 glm::vec3 bone_vector(const Skeleton& skeleton, int joint) {
     const auto parents = skeleton.parents();

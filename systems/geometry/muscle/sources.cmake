@@ -7,4 +7,5 @@ list(APPEND ALOHA_GEOMETRY_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/superellipsoid_tables.cpp
   ${CMAKE_CURRENT_LIST_DIR}/muscle_tessellate_job.cpp
   ${CMAKE_CURRENT_LIST_DIR}/muscle_loader.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/muscle_fit.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/muscle_fit.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/muscle_retarget.cpp)

@@ -1,5 +1,7 @@
 #include "systems/motion/ik/chain_fk.hpp"
 
+#include "engine/anim/rest_pose.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -29,18 +31,7 @@ glm::quat shortest_arc(const glm::vec3& from, const glm::vec3& to) {
     const float lf = glm::length(from);
     const float lt = glm::length(to);
     if (lf < 1e-9f || lt < 1e-9f) return {1.0f, 0.0f, 0.0f, 0.0f};
-    const glm::vec3 a = from / lf;
-    const glm::vec3 b = to / lt;
-    const float d = glm::dot(a, b);
-    if (d < -0.999999f) {
-        // Opposite: rotate pi about any axis perpendicular to a.
-        glm::vec3 axis = glm::cross(glm::vec3(1, 0, 0), a);
-        if (glm::dot(axis, axis) < 1e-6f) axis = glm::cross(glm::vec3(0, 1, 0), a);
-        return glm::angleAxis(3.14159265f, glm::normalize(axis));
-    }
-    // q = (1 + d, a x b) normalised: half-angle construction, accurate for small angles.
-    const glm::vec3 c = glm::cross(a, b);
-    return glm::normalize(glm::quat(1.0f + d, c.x, c.y, c.z));
+    return rotation_between(from / lf, to / lt);
 }
 
 glm::vec3 rotation_vector(const glm::quat& q_in) {

@@ -15,12 +15,6 @@ using namespace ik;  // NOLINT: IK helper namespace
 
 namespace {
 
-std::string_view strip_prefix(std::string_view name) {
-    constexpr std::string_view kMixamo = "mixamorig:";
-    if (name.substr(0, kMixamo.size()) == kMixamo) name.remove_prefix(kMixamo.size());
-    return name;
-}
-
 bool contains_nocase(std::string_view hay, std::string_view needle) {
     if (needle.size() > hay.size()) return false;
     for (size_t i = 0; i + needle.size() <= hay.size(); ++i) {
@@ -45,10 +39,10 @@ int climb(const Skeleton& sk, int effector, int length) {
     return base;
 }
 
-int find_first(const Skeleton& sk, std::initializer_list<const char*> names) {
-    for (const char* n : names)
-        if (const int j = sk.find(n); j >= 0) return j;
-    return -1;
+bool is_ancestor(const Skeleton& sk, int ancestor, int joint) {
+    for (int j = sk.parents()[static_cast<size_t>(joint)]; j >= 0; j = sk.parents()[static_cast<size_t>(j)])
+        if (j == ancestor) return true;
+    return false;
 }
 
 // Chain base..effector into `chain` (stack storage); returns its length.
@@ -231,19 +225,30 @@ void release_hook(void* user, uint32_t character) {
 
 const std::vector<IkChainRule>& default_ik_chain_rules() {
     static const std::vector<IkChainRule> rules = {
-        {"LeftWrist", 3}, {"RightWrist", 3}, {"lhand", 4},     {"rhand", 4},     {"LeftAnkle", 3},
-        {"RightAnkle", 3}, {"LeftToe", 4},   {"RightToe", 4},  {"LeftHand", 3},  {"RightHand", 3},
-        {"LeftFoot", 3},  {"RightFoot", 3},  {"hand_l", 3},    {"hand_r", 3},    {"foot_l", 3},
-        {"foot_r", 3},
+        {"LeftWrist", "LeftShoulder"}, {"RightWrist", "RightShoulder"}, {"lhand", "LeftShoulder"},
+        {"rhand", "RightShoulder"},    {"LeftAnkle", "LeftHip"},        {"RightAnkle", "RightHip"},
+        {"LeftToe", "LeftHip"},        {"RightToe", "RightHip"},
     };
     return rules;
 }
 
-int ik_chain_base(const Skeleton& sk, const IkHookContext& cx, int effector, bool look_at) {
+int ik_chain_base(const Skeleton& sk, const HumanoidMap& map, const IkHookContext& cx, int effector, bool look_at) {
     if (effector < 0 || effector >= sk.joint_count()) return -1;
-    const std::string_view name = strip_prefix(sk.names()[static_cast<size_t>(effector)]);
+    const int canonical = map.canonical_of(effector);
+    const std::string_view canonical_name = canonical >= 0 ? canonical_humanoid()[static_cast<size_t>(canonical)].name : "";
     if (look_at) {
-        // Head/neck chain: the effector plus its ancestors named like a neck or head.
+        if (canonical_name == "Head") {
+            // The mapped neck joints above the head, lowest first.
+            for (const char* neck : {"lowerneck", "Neck"}) {
+                const int base = map.find(neck);
+                if (base >= 0 && is_ancestor(sk, base, effector) && sk.parents()[static_cast<size_t>(base)] >= 0) {
+                    int length = 1;
+                    for (int j = effector; j != base; j = sk.parents()[static_cast<size_t>(j)]) ++length;
+                    if (length <= kMaxIkChain) return base;
+                }
+            }
+        }
+        // Other effectors: the effector plus its ancestors named like a neck or head.
         int base = effector;
         int length = 1;
         for (int p = sk.parents()[static_cast<size_t>(effector)]; p >= 0 && length < kMaxIkChain;
@@ -255,23 +260,35 @@ int ik_chain_base(const Skeleton& sk, const IkHookContext& cx, int effector, boo
         }
         return length > 1 ? base : climb(sk, effector, cx.look_fallback_length);
     }
-    for (const IkChainRule& rule : cx.rules)
-        if (strip_prefix(rule.effector) == name) return climb(sk, effector, rule.length);
+    for (const IkChainRule& rule : cx.rules) {
+        if (rule.effector != canonical_name) continue;
+        const int base = map.find(rule.base);
+        if (base < 0 || !is_ancestor(sk, base, effector)) break;
+        int length = 1;
+        for (int j = effector; j != base; j = sk.parents()[static_cast<size_t>(j)]) ++length;
+        if (length <= kMaxIkChain) return base;
+        break;
+    }
     return climb(sk, effector, cx.reach_fallback_length);
 }
 
 void register_ik_hooks(MotionController& controller, IkHookContext& cx) {
     const Skeleton& sk = controller.skeleton();
     cx.skeleton = &sk;
+    if (!cx.map) {
+        auto own = map_humanoid(sk);  // cannot fail without an explicit map
+        cx.own_map = own.ok() ? std::move(own.value()) : HumanoidMap{};
+    }
+    const HumanoidMap& map = cx.map ? *cx.map : cx.own_map;
     const auto n = static_cast<size_t>(sk.joint_count());
     cx.reach_base.assign(n, -1);
     cx.look_base.assign(n, -1);
     for (size_t j = 0; j < n; ++j) {
-        cx.reach_base[j] = static_cast<int16_t>(ik_chain_base(sk, cx, static_cast<int>(j), false));
-        cx.look_base[j] = static_cast<int16_t>(ik_chain_base(sk, cx, static_cast<int>(j), true));
+        cx.reach_base[j] = static_cast<int16_t>(ik_chain_base(sk, map, cx, static_cast<int>(j), false));
+        cx.look_base[j] = static_cast<int16_t>(ik_chain_base(sk, map, cx, static_cast<int>(j), true));
     }
-    cx.default_reach_effector = find_first(sk, {"RightWrist", "RightHand", "mixamorig:RightHand", "hand_r", "rhand"});
-    cx.default_look_effector = find_first(sk, {"Head", "mixamorig:Head", "head"});
+    cx.default_reach_effector = map.find("RightWrist");
+    cx.default_look_effector = map.find("Head");
     cx.characters.assign(controller.capacity(), IkCharacterState{});
     cx.overlays.assign(controller.capacity(), IkCharacterState{});
     controller.set_method_hook(MethodSlot::Reach, &reach_hook, &cx, &release_hook);

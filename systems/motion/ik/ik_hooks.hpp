@@ -5,6 +5,7 @@
 // cross-fade time so a reach does not pop.
 #pragma once
 
+#include "engine/anim/humanoid_map.hpp"
 #include "systems/motion/controller.hpp"
 #include "systems/motion/ik/ik_types.hpp"
 
@@ -15,15 +16,15 @@
 
 namespace aloha {
 
-/// Chain length for an effector named `effector` (an optional "mixamorig:" prefix is ignored):
-/// the chain is the effector and its `length - 1` nearest ancestors.
+/// Reach chain of a canonical humanoid effector: from the canonical `base` joint down to it (twist
+/// joints between them included).
 struct IkChainRule {
-    std::string effector;  ///< joint name
-    int length = 3;        ///< joints in the chain, effector included (1..kMaxIkChain)
+    std::string effector;  ///< canonical joint name (engine/anim/humanoid_map.hpp)
+    std::string base;      ///< canonical joint name of the chain's base, an ancestor of the effector
 };
 
-/// Built-in reach rules: CMU BVH (LeftWrist -> LeftShoulder 3, lhand 4, LeftAnkle -> LeftHip 3,
-/// LeftToe 4, and right), Mixamo/HumanIK (LeftHand 3, LeftFoot 3) and Unreal (hand_l 3, foot_l 3).
+/// Built-in reach rules: wrists and hands (lhand) from the shoulder (upper arm), ankles and toes
+/// from the hip (thigh), each side.
 [[nodiscard]] const std::vector<IkChainRule>& default_ik_chain_rules();
 
 /// Per-character IK state kept across frames by the hooks.
@@ -41,7 +42,8 @@ struct IkCharacterState {
 /// Settings and state of the reach/look-at hooks. Must outlive the controller it is registered
 /// with; tables are filled by register_ik_hooks (change settings before registering).
 struct IkHookContext {
-    std::vector<IkChainRule> rules = default_ik_chain_rules();  ///< reach chain lengths by effector name
+    std::vector<IkChainRule> rules = default_ik_chain_rules();  ///< reach chains of canonical effectors
+    const HumanoidMap* map = nullptr;     ///< the type's humanoid map; nullptr = map_humanoid(skeleton)
     int reach_fallback_length = 3;        ///< reach chain length for effectors not in `rules`
     int look_fallback_length = 2;         ///< look-at chain length when the effector has no neck ancestors
     glm::vec3 look_axis{0.0f, 0.0f, 1.0f};///< forward axis of the look-at effector in its joint frame
@@ -50,6 +52,7 @@ struct IkHookContext {
 
     // Filled by register_ik_hooks.
     const Skeleton* skeleton = nullptr;   ///< the controller's skeleton
+    HumanoidMap own_map;                  ///< the map used when `map` is nullptr
     std::vector<int16_t> reach_base;      ///< per joint: base of the reach chain ending there
     std::vector<int16_t> look_base;       ///< per joint: base of the look-at chain ending there
     int default_reach_effector = -1;      ///< effector when MotionRequest::effector < 0 (right wrist/hand)
@@ -65,9 +68,12 @@ struct IkHookContext {
 /// IkSolver::None holds the base pose.
 void register_ik_hooks(MotionController& controller, IkHookContext& context);
 
-/// Base joint of the chain ending at `effector` (reach: rule table then fallback; look-at: the
-/// effector plus its ancestors named *neck* / *head*, else the fallback). Skips the skeleton root
-/// unless the effector is the root. Returns -1 for an out-of-range effector.
-[[nodiscard]] int ik_chain_base(const Skeleton& skeleton, const IkHookContext& context, int effector, bool look_at);
+/// Base joint of the chain ending at `effector` (reach: the rule of the effector's canonical joint,
+/// else the fallback length; look-at: for the canonical Head, the mapped neck joints above it, else
+/// the effector plus its ancestors named *neck* / *head*, else the fallback). Skips the skeleton
+/// root unless the effector is the root. Returns -1 for an out-of-range effector. `map` is the
+/// skeleton's humanoid map.
+[[nodiscard]] int ik_chain_base(const Skeleton& skeleton, const HumanoidMap& map, const IkHookContext& context,
+                                int effector, bool look_at);
 
 }  // namespace aloha

@@ -1,4 +1,6 @@
 // Runs the built `aloha` program end to end (headless, lavapipe) and checks its outputs and errors.
+#include "tests/common/rig_fixtures.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -115,6 +117,32 @@ TEST(Tool, ValidateReportsBadScenesAndPassesGoodOnes) {
     EXPECT_NE(bad.output.find("/crowds/0/count"), std::string::npos) << bad.output;
     const RunResult usage = run("profile --frames x");
     EXPECT_EQ(usage.code, 2);
+    fs::remove_all(out);
+}
+
+TEST(Tool, ValidatePrintsTheHumanoidMapping) {
+    const fs::path out = temp_dir("validate_map");
+    const auto names = aloha::test::sided(
+        {{"Hips", "hip"}, {"lowerback", "abdomen"}, {"Chest2", "chest"}, {"lowerneck", "neck"}, {"Head", "head"}},
+        {{"LeftHip", "%Thigh"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"}, {"LeftCollar", "%Collar"},
+         {"LeftShoulder", "%Shldr"}, {"LeftElbow", "%ForeArm"}, {"LeftWrist", "%Hand"}},
+        "l", "r");
+    aloha::test::RigStyle cm;
+    cm.units_per_metre = 100.0f;
+    const aloha::RawSkeleton raw =
+        aloha::test::styled(aloha::test::renamed_humanoid(names, {{"lIndex1", "lHand", {0, -0.09f, 0.02f}}}), cm);
+    aloha::test::write_text((out / "poser.bvh").string(), aloha::test::bvh_text(raw, 20, glm::vec3(0, 0, 1), 4.0f));
+    aloha::test::write_text((out / "scene.json").string(), R"({"camera": {"position": [0, 1.5, 4], "target": [0, 1, 0]},
+        "character_types": [{"name": "poser", "bvh": "poser.bvh"}],
+        "characters": [{"type": "poser", "position": [0, 0, 0]}]})");
+    const RunResult r = run("validate " + (out / "scene.json").string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    for (const char* line : {"character type 'poser'", "  convention Poser / DAZ: humanoid",
+                             "  mapping (canonical <- file, 21 of 31): Hips <- hip, LeftHip <- lThigh, RightHip <- rThigh",
+                             "  joints ignored by the layers (1): lIndex1",
+                             "  units: centimetres; file axes: up +Y, forward +Z; standing height 1.68 m",
+                             "  kinematic and dynamic walk: yes", "  geometric levels layered and subdivided: yes"})
+        EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
     fs::remove_all(out);
 }
 

@@ -47,11 +47,11 @@ TEST(WalkRig, ResolvesCmuNamesAndReportsMissingRoles) {
     EXPECT_NEAR(rig.value().leg_length, 0.85f, 1e-6f);
     EXPECT_NEAR(rig.value().ankle_height, 0.05f, 1e-6f);  // toe 5 cm below the ankle
     RawSkeleton raw = cmu_legs();
-    raw.joints[3].name = "LeftShin";  // no knee name any table row knows
+    raw.joints[3].name = "LeftShinBone";  // no knee name any convention knows
     const Skeleton bad = build_skeleton(raw, "cmu").value();
     const auto missing = resolve_walk_rig(bad, "cmu.bvh");
     ASSERT_FALSE(missing.ok());
-    EXPECT_NE(missing.error().to_string().find("cmu.bvh: walk rig: no left knee joint (tried LeftKnee"), std::string::npos);
+    EXPECT_NE(missing.error().to_string().find("cmu.bvh: walk rig: no joint for canonical 'LeftKnee' in the humanoid map (convention CMU BVH)"), std::string::npos);
 }
 
 TEST(WalkRig, TwoBoneIkReachesTarget) {

@@ -1,0 +1,223 @@
+// Test helper: project-written humanoid rigs in other tools' conventions, generated from the
+// built-in humanoid's proportions (data/characters/humanoid.json): renamed joints (a canonical
+// joint left out of the table is dropped, its children re-parented), extra joints, a T-pose,
+// units, a Z-up or turned frame, per-joint rest rotations (bones along local +Y as Blender and most
+// glTF exporters write them), and writers for BVH and glTF text files with a short clip.
+#pragma once
+
+#include "engine/anim/raw_skeleton.hpp"
+#include "engine/anim/rest_pose.hpp"
+#include "engine/assets/humanoid_definition.hpp"
+#include "tests/common/test_humanoid.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace aloha::test {
+
+/// A joint added to a fixture: `parent` names a joint of the fixture (file name).
+struct ExtraJoint {
+    std::string name;
+    std::string parent;
+    glm::vec3 offset;  ///< metres, canonical axes (+X left, +Y up, +Z forward)
+};
+
+/// How a fixture is written.
+struct RigStyle {
+    float units_per_metre = 1.0f;              ///< 100 = centimetres
+    glm::quat axes{1, 0, 0, 0};                ///< file model = axes * canonical model (rotate to Z-up etc.)
+    bool t_pose = false;                       ///< arms straight out sideways
+    bool bone_frames = false;                  ///< rest rotations turning local +Y along each bone
+};
+
+/// A model-space skeleton (canonical axes, metres) renamed by `names` (canonical -> file name);
+/// canonical joints not in `names` are dropped; `extras` are added.
+inline RawSkeleton renamed_humanoid(const std::map<std::string, std::string>& names, const std::vector<ExtraJoint>& extras = {},
+                                    bool t_pose = false) {
+    const Skeleton h = humanoid_skeleton_for(HumanoidBody{1.75f, 0.5f});
+    std::vector<glm::mat4> model = skeleton_rest_model(h);
+    std::vector<glm::vec3> pos(model.size());
+    for (size_t j = 0; j < model.size(); ++j) pos[j] = glm::vec3(model[j][3]);
+    if (t_pose)
+        for (const char* side : {"Left", "Right"}) {
+            const int sh = h.find(std::string(side) + "Shoulder");
+            const glm::vec3 s = pos[static_cast<size_t>(sh)];
+            // Every joint below the shoulder: turn the arm (hanging along -Y) out to +-X.
+            const glm::quat up = glm::angleAxis(side[0] == 'L' ? 1.5707963f : -1.5707963f, glm::vec3(0, 0, 1));
+            for (int j = 0; j < h.joint_count(); ++j) {
+                bool below = false;
+                for (int p = h.parents()[static_cast<size_t>(j)]; p >= 0; p = h.parents()[static_cast<size_t>(p)]) below |= p == sh;
+                if (below) pos[static_cast<size_t>(j)] = s + up * (pos[static_cast<size_t>(j)] - s);
+            }
+        }
+    RawSkeleton raw;
+    std::vector<int> index_of(static_cast<size_t>(h.joint_count()), -1);
+    std::vector<glm::vec3> model_pos;
+    for (int j = 0; j < h.joint_count(); ++j) {
+        const std::string canonical = h.names()[static_cast<size_t>(j)];
+        const auto it = names.find(canonical);
+        if (it == names.end()) continue;
+        int p = h.parents()[static_cast<size_t>(j)];
+        while (p >= 0 && index_of[static_cast<size_t>(p)] < 0) p = h.parents()[static_cast<size_t>(p)];
+        RawJoint rj;
+        rj.name = it->second;
+        rj.parent = p < 0 ? -1 : index_of[static_cast<size_t>(p)];
+        rj.translation = pos[static_cast<size_t>(j)] - (p < 0 ? glm::vec3(0.0f) : pos[static_cast<size_t>(p)]);
+        index_of[static_cast<size_t>(j)] = static_cast<int>(raw.joints.size());
+        raw.joints.push_back(rj);
+        model_pos.push_back(pos[static_cast<size_t>(j)]);
+    }
+    for (const ExtraJoint& e : extras) {
+        RawJoint rj;
+        rj.name = e.name;
+        for (size_t k = 0; k < raw.joints.size(); ++k)
+            if (raw.joints[k].name == e.parent) rj.parent = static_cast<int>(k);
+        EXPECT_GE(rj.parent, 0) << "extra joint parent " << e.parent;
+        rj.translation = e.offset;
+        raw.joints.push_back(rj);
+    }
+    return raw;
+}
+
+/// `raw` (model-aligned, metres, canonical axes) written in `style`: positions scaled and turned
+/// by the axes, and with bone_frames local rest rotations (translations re-expressed in them).
+inline RawSkeleton styled(const RawSkeleton& raw, const RigStyle& style) {
+    const size_t n = raw.joints.size();
+    // Without bone frames every joint frame is the file's model frame (BVH-like): offsets are
+    // simply turned by the axes.
+    std::vector<glm::quat> frame(n, style.bone_frames ? style.axes : glm::quat(1, 0, 0, 0));
+    if (style.bone_frames)
+        for (size_t j = 0; j < n; ++j)
+            for (size_t c = j + 1; c < n; ++c)
+                if (raw.joints[c].parent == static_cast<int>(j) && glm::length(raw.joints[c].translation) > 1e-4f) {
+                    frame[j] = style.axes * rotation_between(glm::vec3(0, 1, 0), glm::normalize(raw.joints[c].translation));
+                    break;
+                }
+    RawSkeleton out = raw;
+    for (size_t j = 0; j < n; ++j) {
+        const int p = raw.joints[j].parent;
+        const glm::quat parent_frame = p < 0 ? glm::quat(1, 0, 0, 0) : frame[static_cast<size_t>(p)];
+        const glm::vec3 file_offset = style.units_per_metre * (style.axes * raw.joints[j].translation);
+        out.joints[j].translation = glm::inverse(parent_frame) * file_offset;
+        out.joints[j].rotation = glm::normalize(glm::inverse(parent_frame) * frame[j]);
+    }
+    return out;
+}
+
+/// BVH text of a model-aligned `raw` (no rest rotations): every joint ZXY rotation channels, the
+/// root also positions; leaves get an End Site. The clip: `frames` frames at 30 fps, the root
+/// moving `step` file units per frame along `forward` (file axes) and every joint at rest.
+inline std::string bvh_text(const RawSkeleton& raw, int frames, glm::vec3 forward, float step) {
+    std::ostringstream s;
+    s << "HIERARCHY\n";
+    std::vector<std::vector<int>> children(raw.joints.size());
+    for (size_t j = 1; j < raw.joints.size(); ++j) children[static_cast<size_t>(raw.joints[j].parent)].push_back(static_cast<int>(j));
+    std::vector<int> order;
+    auto write = [&](auto&& self, int j, int depth) -> void {
+        const std::string pad(static_cast<size_t>(depth), '\t');
+        const RawJoint& rj = raw.joints[static_cast<size_t>(j)];
+        order.push_back(j);
+        s << pad << (depth == 0 ? "ROOT " : "JOINT ") << rj.name << "\n" << pad << "{\n";
+        s << pad << "\tOFFSET " << rj.translation.x << " " << rj.translation.y << " " << rj.translation.z << "\n";
+        s << pad << "\tCHANNELS " << (depth == 0 ? "6 Xposition Yposition Zposition " : "3 ") << "Zrotation Xrotation Yrotation\n";
+        for (int c : children[static_cast<size_t>(j)]) self(self, c, depth + 1);
+        if (children[static_cast<size_t>(j)].empty()) s << pad << "\tEnd Site\n" << pad << "\t{\n" << pad << "\t\tOFFSET 0 0 0\n" << pad << "\t}\n";
+        s << pad << "}\n";
+    };
+    write(write, 0, 0);
+    s << "MOTION\nFrames: " << frames << "\nFrame Time: 0.0333333\n";
+    for (int f = 0; f < frames; ++f) {
+        const glm::vec3 root = raw.joints[0].translation + forward * (step * static_cast<float>(f));
+        s << root.x << " " << root.y << " " << root.z;
+        for (size_t k = 0; k < order.size(); ++k) s << " 0 0 0";
+        s << "\n";
+    }
+    return s.str();
+}
+
+/// glTF JSON text of `raw` (rest rotations kept as node rotations): one node per joint, a skin
+/// over all of them without inverse bind matrices or meshes, and a clip "sway" of two keys
+/// turning joint `animated` by `angle` radians about its local X.
+inline std::string gltf_text(const RawSkeleton& raw, int animated, float angle) {
+    using nlohmann::json;
+    json j;
+    j["asset"] = {{"version", "2.0"}, {"generator", "aloha tests/common/rig_fixtures.hpp"}};
+    j["scene"] = 0;
+    j["scenes"] = json::array({{{"nodes", {0}}}});
+    json nodes = json::array();
+    for (size_t k = 0; k < raw.joints.size(); ++k) {
+        const RawJoint& rj = raw.joints[k];
+        json node = {{"name", rj.name},
+                     {"translation", {rj.translation.x, rj.translation.y, rj.translation.z}},
+                     {"rotation", {rj.rotation.x, rj.rotation.y, rj.rotation.z, rj.rotation.w}}};
+        json kids = json::array();
+        for (size_t c = 0; c < raw.joints.size(); ++c)
+            if (raw.joints[c].parent == static_cast<int>(k)) kids.push_back(c);
+        if (!kids.empty()) node["children"] = kids;
+        nodes.push_back(node);
+    }
+    j["nodes"] = nodes;
+    json joints = json::array();
+    for (size_t k = 0; k < raw.joints.size(); ++k) joints.push_back(k);
+    j["skins"] = json::array({{{"joints", joints}}});
+    const glm::quat rest = raw.joints[static_cast<size_t>(animated)].rotation;
+    const glm::quat turned = glm::normalize(rest * glm::angleAxis(angle, glm::vec3(1, 0, 0)));
+    const float data[10] = {0.0f, 1.0f, rest.x, rest.y, rest.z, rest.w, turned.x, turned.y, turned.z, turned.w};
+    std::string bytes(sizeof data, '\0');
+    std::memcpy(bytes.data(), data, sizeof data);
+    static const char* k64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string b64;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        const auto at = [&](size_t q) { return q < bytes.size() ? static_cast<uint32_t>(static_cast<unsigned char>(bytes[q])) : 0u; };
+        const uint32_t v = (at(i) << 16) | (at(i + 1) << 8) | at(i + 2);
+        b64 += k64[(v >> 18) & 63];
+        b64 += k64[(v >> 12) & 63];
+        b64 += i + 1 < bytes.size() ? k64[(v >> 6) & 63] : '=';
+        b64 += i + 2 < bytes.size() ? k64[v & 63] : '=';
+    }
+    j["buffers"] = json::array({{{"byteLength", sizeof data}, {"uri", "data:application/octet-stream;base64," + b64}}});
+    j["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 8}},
+                                    {{"buffer", 0}, {"byteOffset", 8}, {"byteLength", 32}}});
+    j["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", 2}, {"type", "SCALAR"}, {"min", {0.0}}, {"max", {1.0}}},
+                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", 2}, {"type", "VEC4"}}});
+    j["animations"] = json::array({{{"name", "sway"},
+                                    {"samplers", json::array({{{"input", 0}, {"output", 1}, {"interpolation", "LINEAR"}}})},
+                                    {"channels", json::array({{{"sampler", 0}, {"target", {{"node", animated}, {"path", "rotation"}}}}})}}});
+    return j.dump(1);
+}
+
+/// Writes `text` to `path` (a test failure when it cannot).
+inline void write_text(const std::string& path, const std::string& text) {
+    std::ofstream f(path, std::ios::binary);
+    EXPECT_TRUE(static_cast<bool>(f)) << path;
+    f << text;
+}
+
+/// Canonical -> file name tables of the conventions, for the canonical joints each one has.
+inline std::map<std::string, std::string> sided(const std::map<std::string, std::string>& centre,
+                                                const std::map<std::string, std::string>& left_right_pattern,
+                                                const std::string& left, const std::string& right) {
+    // left_right_pattern: canonical left name -> file name with "%" for the side marker.
+    std::map<std::string, std::string> out = centre;
+    for (const auto& [canonical, pattern] : left_right_pattern) {
+        std::string l = pattern, r = pattern;
+        const size_t at = pattern.find('%');
+        l.replace(at, 1, left);
+        r.replace(at, 1, right);
+        out[canonical] = l;
+        std::string rc = canonical;
+        if (rc.rfind("Left", 0) == 0) rc = "Right" + rc.substr(4);
+        else if (rc == "lhand") rc = "rhand";
+        else if (rc[0] == 'L') rc[0] = 'R';
+        out[rc] = r;
+    }
+    return out;
+}
+
+}  // namespace aloha::test

@@ -1,0 +1,166 @@
+// Characters users bring, as project-written fixtures: a Poser-named BVH in centimetres and a
+// Blender (Rigify) glTF with bone-aligned rest frames in a T-pose get the canonical muscles, joint
+// limits, a kinematic walk and a reach; a Z-up Unity-named glTF walks upright; a quadruped BVH
+// loads, plays its clip and is drawn as proxies with the layered levels refused in one note.
+#include "engine/scene/character_report.hpp"
+#include "engine/scene/scene_loader.hpp"
+#include "engine/scene/world.hpp"
+#include "tests/common/rig_fixtures.hpp"
+#include "tests/engine/scene/character_checks.hpp"
+
+#include <gtest/gtest.h>
+
+namespace aloha {
+namespace {
+
+namespace fs = std::filesystem;
+using test::sided;
+using namespace test;  // NOLINT: the character checks
+
+constexpr float kPi = 3.14159265f;
+
+std::map<std::string, std::string> poser_names() {
+    return sided({{"Hips", "hip"}, {"lowerback", "abdomen"}, {"Chest2", "chest"}, {"lowerneck", "neck"}, {"Head", "head"}},
+                 {{"LeftHip", "%Thigh"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
+                  {"LeftCollar", "%Collar"}, {"LeftShoulder", "%Shldr"}, {"LeftElbow", "%ForeArm"}, {"LeftWrist", "%Hand"}},
+                 "l", "r");
+}
+
+TEST(CharacterRig, PoserBvhInCentimetresGetsEveryLayer) {
+    const fs::path dir = temp_dir("poser");
+    test::RigStyle cm;
+    cm.units_per_metre = 100.0f;
+    const RawSkeleton raw = test::styled(test::renamed_humanoid(poser_names(), {{"lIndex1", "lHand", {0, -0.09f, 0.02f}}}), cm);
+    test::write_text((dir / "poser.bvh").string(), test::bvh_text(raw, 40, glm::vec3(0, 0, 1), 4.0f));
+    const CharacterType t = load_or_fail(desc_for("poser", (dir / "poser.bvh").string()));
+    EXPECT_EQ(t.frame.units, "centimetres");
+    expect_layers(t, "Poser / DAZ", "lShin");
+    expect_walks(t);
+    expect_reaches(t);
+    fs::remove_all(dir);
+}
+
+TEST(CharacterRig, BlenderGltfInTPoseGetsEveryLayer) {
+    const fs::path dir = temp_dir("blender");
+    const auto names = sided({{"Hips", "spine"}, {"lowerback", "spine.001"}, {"Chest", "spine.002"}, {"Chest2", "spine.003"},
+                              {"lowerneck", "spine.004"}, {"Neck", "spine.005"}, {"Head", "spine.006"}},
+                             {{"LeftHip", "thigh.%"}, {"LeftKnee", "shin.%"}, {"LeftAnkle", "foot.%"}, {"LeftToe", "toe.%"},
+                              {"LeftCollar", "shoulder.%"}, {"LeftShoulder", "upper_arm.%"}, {"LeftElbow", "forearm.%"},
+                              {"LeftWrist", "hand.%"}},
+                             "L", "R");
+    test::RigStyle blender;
+    blender.bone_frames = true;
+    const RawSkeleton raw = test::styled(test::renamed_humanoid(names, {{"breast.L", "spine.003", {0.1f, 0.0f, 0.1f}}}, true), blender);
+    test::write_text((dir / "blender.gltf").string(), test::gltf_text(raw, 1, 0.3f));
+    const CharacterType t = load_or_fail(desc_for("blender", (dir / "blender.gltf").string()));
+    EXPECT_EQ(t.frame.units, "metres");
+    expect_layers(t, "Blender Rigify", "shin.L");
+    // The T-pose arms stand 90 degrees from the reference's hanging arms: their limits stay free.
+    EXPECT_FALSE(t.skeleton.limits()[static_cast<size_t>(t.skeleton.find("upper_arm.R"))].limited);
+    bool noted = false;
+    for (const std::string& n : t.notes) noted |= n.find("joint limits left free") != std::string::npos && n.find("RightShoulder") != std::string::npos;
+    EXPECT_TRUE(noted);
+    expect_walks(t);
+    expect_reaches(t);
+    fs::remove_all(dir);
+}
+
+TEST(CharacterRig, ZUpGltfWalksUpright) {
+    const fs::path dir = temp_dir("zup");
+    const auto names = sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Chest", "Chest"}, {"lowerneck", "Neck"}, {"Head", "Head"}},
+                             {{"LeftHip", "%UpperLeg"}, {"LeftKnee", "%LowerLeg"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toes"},
+                              {"LeftCollar", "%Shoulder"}, {"LeftShoulder", "%UpperArm"}, {"LeftElbow", "%LowerArm"},
+                              {"LeftWrist", "%Hand"}},
+                             "Left", "Right");
+    test::RigStyle z_up;
+    z_up.axes = glm::angleAxis(kPi / 2, glm::vec3(1, 0, 0));
+    z_up.bone_frames = true;
+    test::write_text((dir / "zup.gltf").string(), test::gltf_text(test::styled(test::renamed_humanoid(names), z_up), 3, 0.2f));
+    const CharacterType t = load_or_fail(desc_for("zup", (dir / "zup.gltf").string()));
+    EXPECT_EQ(t.frame.up, "+Z");
+    EXPECT_EQ(t.frame.forward, "-Y");
+    expect_layers(t, "Unity Humanoid / VRM", "LeftLowerLeg");
+    expect_walks(t);
+    fs::remove_all(dir);
+}
+
+RawSkeleton quadruped() {
+    RawSkeleton raw;
+    auto add = [&](const char* name, int parent, glm::vec3 t) {
+        raw.joints.push_back(RawJoint{name, parent, t});
+        return static_cast<int>(raw.joints.size()) - 1;
+    };
+    const int pelvis = add("pelvis", -1, {0, 60, -40});  // centimetres
+    const int chest = add("spine", pelvis, {0, 5, 80});
+    add("skull", chest, {0, 20, 25});
+    for (const char* s : {"l", "r"}) {
+        const float x = s[0] == 'l' ? 12.0f : -12.0f;
+        const int back = add((std::string("back_thigh_") + s).c_str(), pelvis, {x, -5, 0});
+        add((std::string("back_paw_") + s).c_str(), back, {0, -50, 0});
+        const int front = add((std::string("front_thigh_") + s).c_str(), chest, {x, -5, 0});
+        add((std::string("front_paw_") + s).c_str(), front, {0, -55, 0});
+    }
+    add("tail", pelvis, {0, 5, -30});
+    return raw;
+}
+
+TEST(CharacterRig, QuadrupedLoadsPlaysAndIsDrawnAsProxies) {
+    const fs::path dir = temp_dir("dog");
+    test::write_text((dir / "dog.bvh").string(), test::bvh_text(quadruped(), 30, glm::vec3(0, 0, 1), 3.0f));
+    const CharacterType t = load_or_fail(desc_for("dog", (dir / "dog.bvh").string()));
+    EXPECT_FALSE(t.map.humanoid);
+    EXPECT_EQ(t.muscles.size(), 0);
+    EXPECT_FALSE(t.rig.has_value());
+    EXPECT_GE(find_clip(t, "dog.mocap"), 0);
+    int refusals = 0;
+    for (const std::string& n : t.notes) refusals += n.find("layered levels refused") != std::string::npos;
+    EXPECT_EQ(refusals, 1);
+    const std::vector<std::string> report = character_report(t);
+    bool refused = false;
+    for (const std::string& line : report) refused |= line == "geometric levels layered and subdivided: refused (no muscles)";
+    EXPECT_TRUE(refused);
+    // A scene with it: it plays its clip at every level, drawn as rigid proxies.
+    test::write_text((dir / "scene.json").string(), R"({"rules": "builtin:default", "frames": 10,
+        "camera": {"position": [0, 1.5, 4], "target": [0, 0.5, 0]},
+        "character_types": [{"name": "dog", "bvh": "dog.bvh"}],
+        "characters": [{"type": "dog", "position": [0, 0, 0], "requests": [{"type": "play", "clip": "dog.mocap", "loop": true}]}]})");
+    auto scene = load_scene((dir / "scene.json").string());
+    ASSERT_TRUE(scene.ok()) << scene.error().to_string();
+    auto world = World::create(scene.value(), WorldOptions{});
+    ASSERT_TRUE(world.ok()) << world.error().to_string();
+    for (int f = 0; f < 10; ++f) world.value()->step();
+    EXPECT_EQ(world.value()->character_count(), 1u);
+    fs::remove_all(dir);
+}
+
+TEST(CharacterRig, SceneHumanoidMapAndScaleReachTheType) {
+    const fs::path dir = temp_dir("scene_map");
+    const auto names = sided({{"Hips", "torso_1"}, {"Chest2", "torso_3"}, {"lowerneck", "neck_1"}, {"Head", "neck_2"}},
+                             {{"LeftHip", "leg_%_1"}, {"LeftKnee", "leg_%_2"}, {"LeftAnkle", "leg_%_3"}, {"LeftToe", "leg_%_5"},
+                              {"LeftShoulder", "arm_%_4"}, {"LeftElbow", "arm_%_3"}, {"LeftWrist", "arm_%_2"}},
+                             "L", "R");
+    test::write_text((dir / "odd.bvh").string(), test::bvh_text(test::renamed_humanoid(names), 20, glm::vec3(0, 0, 1), 0.04f));
+    nlohmann::json map;
+    for (const auto& [canonical, file] : names) map[canonical] = file;
+    nlohmann::json scene = {{"rules", "builtin:default"},
+                            {"camera", {{"position", {0, 1.5, 4}}, {"target", {0, 1, 0}}}},
+                            {"character_types", {{{"name", "odd"}, {"bvh", "odd.bvh"}, {"scale", 1.0}, {"humanoid_map", map}}}},
+                            {"characters", {{{"type", "odd"}, {"position", {0, 0, 0}}}}}};
+    test::write_text((dir / "scene.json").string(), scene.dump());
+    auto loaded = load_scene((dir / "scene.json").string());
+    ASSERT_TRUE(loaded.ok()) << loaded.error().to_string();
+    const CharacterType t = load_or_fail(loaded.value().types[0]);
+    EXPECT_EQ(t.frame.units, "scale 1 m per unit (given)");
+    expect_layers(t, "Mixamo / HumanIK + humanoid_map", "leg_L_2");
+    // A wrong file name in the map: the scene file and JSON pointer are named.
+    scene["character_types"][0]["humanoid_map"]["LeftKnee"] = "knee_that_is_not_there";
+    test::write_text((dir / "scene.json").string(), scene.dump());
+    auto bad = load_character_type(load_scene((dir / "scene.json").string()).value().types[0]);
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().file.find("scene.json"), std::string::npos);
+    EXPECT_EQ(bad.error().path, "/character_types/0/humanoid_map/LeftKnee");
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace aloha
