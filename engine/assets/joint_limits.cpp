@@ -133,10 +133,9 @@ Status apply_mapped_joint_limits(Skeleton& skeleton, const JointLimitTable& tabl
         }
         const int j = map.joint[static_cast<size_t>(c)];
         const float turn = fit.bone_angle[static_cast<size_t>(c)];
-        if (j < 0) {
-            if (skipped) skipped->push_back(table.names[i] + ": not in the skeleton");
-        } else if (turn > kMaxTurn) {
-            if (skipped) skipped->push_back(table.names[i] + ": rest bone turned " + std::to_string(static_cast<int>(std::lround(turn * 57.29578f))) + " degrees from the reference");
+        if (j < 0) continue;  // the skeleton has no such joint
+        if (turn > kMaxTurn) {
+            if (skipped) skipped->push_back(table.names[i] + " (" + std::to_string(static_cast<int>(std::lround(turn * 57.29578f))) + " degrees)");
         } else {
             names.push_back(skeleton.names()[static_cast<size_t>(j)]);
             limits.push_back(table.limits[i]);

@@ -42,7 +42,8 @@ Status apply_joint_limits(Skeleton& skeleton, const JointLimitTable& table);
 /// more than 30 degrees from the reference humanoid's, e.g. a T-pose arm against the reference's
 /// hanging arm, since the limits are relative to the rest pose); any other name must be a joint of
 /// the skeleton. Requires a skeleton with model-aligned rest frames (normalise_rig) and `fit` from
-/// fit_canonical. `skipped` receives "<canonical>: why" for every canonical entry left out.
+/// fit_canonical. `skipped` receives "<canonical> (<angle> degrees)" for every entry left out for
+/// its turned rest bone.
 Status apply_mapped_joint_limits(Skeleton& skeleton, const JointLimitTable& table, const HumanoidMap& map,
                                  const CanonicalFit& fit, std::vector<std::string>* skipped);
 

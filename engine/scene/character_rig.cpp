@@ -55,8 +55,8 @@ Status add_canonical_layers(CharacterType& type, const CharacterTypeDesc& desc, 
         if (Status s = apply_mapped_joint_limits(type.skeleton, table.value(), type.map, fit, &skipped); !s.ok()) return s;
         if (!skipped.empty()) {
             std::string list;
-            for (const std::string& s : skipped) list += (list.empty() ? "" : "; ") + s;
-            type.notes.push_back("joint limits left free: " + list);
+            for (const std::string& s : skipped) list += (list.empty() ? "" : ", ") + s;
+            type.notes.push_back("joint limits left free where the rest bone is turned more than 30 degrees from the reference humanoid's: " + list);
         }
     }
     if (desc.muscles.empty() && type.mesh) return {};  // muscles are fitted to the mesh instead

@@ -12,18 +12,22 @@ HumanoidJoints find_humanoid_joints(const Skeleton& s) {
     HumanoidJoints j;
     for (int i = 0; i < s.joint_count(); ++i)
         if (s.parents()[static_cast<size_t>(i)] < 0) { j.root = i; break; }
+    auto mapped = map_humanoid(s);  // cannot fail without an explicit map
+    if (!mapped.ok()) return j;
+    const HumanoidMap& map = mapped.value();
+    if (map.find("Hips") >= 0) j.root = map.find("Hips");
     const char* spine[3] = {"lowerback", "Chest", "Chest2"};
-    for (int i = 0; i < 3; ++i) j.spine[i] = s.find(spine[i]);
-    j.neck[0] = s.find("lowerneck");
-    j.neck[1] = s.find("Neck");
-    j.head = s.find("Head");
+    for (int i = 0; i < 3; ++i) j.spine[i] = map.find(spine[i]);
+    j.neck[0] = map.find("lowerneck");
+    j.neck[1] = map.find("Neck");
+    j.head = map.find("Head");
     const char* side[2] = {"Left", "Right"};
     for (int k = 0; k < 2; ++k) {
         const std::string p = side[k];
-        j.collar[k] = s.find(p + "Collar");
-        j.shoulder[k] = s.find(p + "Shoulder");
-        j.elbow[k] = s.find(p + "Elbow");
-        j.wrist[k] = s.find(p + "Wrist");
+        j.collar[k] = map.find(p + "Collar");
+        j.shoulder[k] = map.find(p + "Shoulder");
+        j.elbow[k] = map.find(p + "Elbow");
+        j.wrist[k] = map.find(p + "Wrist");
     }
     return j;
 }

@@ -26,7 +26,7 @@ struct HumanoidJoints {
     int wrist[2] = {-1, -1};
 };
 
-/// Finds the joints above by the canonical humanoid names (BVH/CMU convention).
+/// Finds the joints above through the skeleton's humanoid map (engine/anim/humanoid_map.hpp).
 [[nodiscard]] HumanoidJoints find_humanoid_joints(const Skeleton& skeleton);
 
 /// One editable pose of `skeleton`, reset to rest, with model matrices kept up to date on demand.
