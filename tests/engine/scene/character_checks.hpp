@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/scene/character_type.hpp"
+#include "systems/motion/dynamic/dynamic_hook.hpp"
 #include "systems/motion/ik/chain_fk.hpp"
 #include "systems/motion/ik/ik_hooks.hpp"
 #include "tests/common/test_humanoid.hpp"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -101,10 +103,50 @@ inline void expect_walks(const CharacterType& t) {
             in_stance[side] = st;
         }
     }
+    std::printf("[figure] %s kinematic walk: planted ankle drift %.2g m, root %.4f m, lowest head %.3f m\n",
+                t.name.c_str(), static_cast<double>(worst), static_cast<double>(xs[0].position.z), static_cast<double>(lowest_head));
     EXPECT_GE(stances, 8);
     EXPECT_LT(worst, 0.01f);
     EXPECT_NEAR(xs[0].position.z, 1.2f * 300 * kDt, 1e-3f);
     EXPECT_GT(lowest_head, 0.8f * t.frame.height);
+}
+
+// Dynamic walk for 5 s at 1.2 m/s: simulated, finite, upright (the head stays above the pelvis by
+// more than cos 45 degrees of its rest height over it: a torso leaning less than 45 degrees), the
+// pelvis within 0.15 m of the kinematic gait's it tracks, the root at 1.2 m/s (as in
+// tests/systems/motion/dynamic/dynamic_hook_test.cpp).
+inline void expect_dynamic_walks(const CharacterType& t) {
+    ASSERT_TRUE(t.rig.has_value());
+    MotionController mc(t.skeleton, t.clips, 2);
+    mc.set_walk_rig(*t.rig);
+    DynamicHookContext dyn;
+    register_dynamic_walk_hook(mc, dyn);
+    std::vector<AnimLod> lods(2);
+    lods[0].walk = WalkMethod::Dynamic;
+    lods[1].walk = WalkMethod::Kinematic;
+    std::vector<MotionState> states(2);
+    std::vector<Transform> xs(2);
+    std::vector<Velocity> vs(2);
+    ASSERT_TRUE(mc.push_request(0, straight_walk(1.2f)));
+    ASSERT_TRUE(mc.push_request(1, straight_walk(1.2f)));
+    const auto hips = static_cast<size_t>(t.rig->root), head = static_cast<size_t>(t.map.find("Head"));
+    const auto rest = skeleton_rest_model(t.skeleton);
+    const float rest_rise = rest[head][3].y - rest[hips][3].y;
+    float min_rise = 1e9f, worst_track = 0.0f;
+    for (int frame = 0; frame < 300; ++frame) {
+        mc.update(kDt, lods, states, xs, vs);
+        const ConstPoseView d = mc.poses().view(0), k = mc.poses().view(1);
+        ASSERT_EQ(dyn.simulated(), 1u);
+        ASSERT_TRUE(std::isfinite(d.model[head][3].y)) << "frame " << frame;
+        min_rise = std::min(min_rise, d.model[head][3].y - d.model[hips][3].y);
+        worst_track = std::max(worst_track, glm::length(glm::vec3(d.model[hips][3]) - glm::vec3(k.model[hips][3])));
+    }
+    std::printf("[figure] %s dynamic walk: head over pelvis >= %.3f m (rest %.3f), pelvis tracking <= %.3f m, root %.3f m\n",
+                t.name.c_str(), static_cast<double>(min_rise), static_cast<double>(rest_rise), static_cast<double>(worst_track),
+                static_cast<double>(xs[0].position.z));
+    EXPECT_GT(min_rise, 0.7071f * rest_rise);
+    EXPECT_LT(worst_track, 0.15f);
+    EXPECT_NEAR(xs[0].position.z, 6.0f, 0.05f);
 }
 
 // Reach with the right wrist (the canonical RightWrist) to a point forward-down of the right
@@ -135,7 +177,10 @@ inline void expect_reaches(const CharacterType& t) {
     r.crossfade_s = 0.2f;
     ASSERT_TRUE(mc.push_request(0, r));
     for (int frame = 0; frame < 60; ++frame) mc.update(kDt, lods, states, xs, vs);
-    EXPECT_LE(glm::length(world_of(mc, xs[0], r.effector) - r.target), 1e-3f + 1e-4f);
+    const float miss = glm::length(world_of(mc, xs[0], r.effector) - r.target);
+    std::printf("[figure] %s reach: %.3f m from the shoulder, wrist %.2g m from the target\n", t.name.c_str(),
+                static_cast<double>(glm::length(r.target - shoulder)), static_cast<double>(miss));
+    EXPECT_LE(miss, 1e-3f + 1e-4f);
 }
 
 }  // namespace aloha::test

@@ -16,6 +16,7 @@ TEST(CharacterReal, Cmu131BvhMapsByName) {
     EXPECT_EQ(t.frame.up, "+Y");
     expect_layers(t, "CMU BVH", "LeftKnee");
     expect_walks(t);
+    expect_dynamic_walks(t);
     expect_reaches(t);
 }
 

@@ -3,6 +3,7 @@
 // limits, a kinematic walk and a reach; a Z-up Unity-named glTF walks upright; a quadruped BVH
 // loads, plays its clip and is drawn as proxies with the layered levels refused in one note.
 #include "engine/scene/character_report.hpp"
+#include "engine/scene/character_rig.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "engine/scene/world.hpp"
 #include "tests/common/rig_fixtures.hpp"
@@ -36,6 +37,7 @@ TEST(CharacterRig, PoserBvhInCentimetresGetsEveryLayer) {
     EXPECT_EQ(t.frame.units, "centimetres");
     expect_layers(t, "Poser / DAZ", "lShin");
     expect_walks(t);
+    expect_dynamic_walks(t);
     expect_reaches(t);
     fs::remove_all(dir);
 }
@@ -55,6 +57,7 @@ TEST(CharacterRig, BlenderGltfInTPoseGetsEveryLayer) {
     const CharacterType t = load_or_fail(desc_for("blender", (dir / "blender.gltf").string()));
     EXPECT_EQ(t.frame.units, "metres");
     expect_layers(t, "Blender Rigify", "shin.L");
+    expect_dynamic_walks(t);
     // The T-pose arms stand 90 degrees from the reference's hanging arms: their limits stay free.
     EXPECT_FALSE(t.skeleton.limits()[static_cast<size_t>(t.skeleton.find("upper_arm.R"))].limited);
     bool noted = false;
@@ -81,7 +84,46 @@ TEST(CharacterRig, ZUpGltfWalksUpright) {
     EXPECT_EQ(t.frame.forward, "-Y");
     expect_layers(t, "Unity Humanoid / VRM", "LeftLowerLeg");
     expect_walks(t);
+    expect_dynamic_walks(t);
     fs::remove_all(dir);
+}
+
+TEST(CharacterRig, SkinnedMeshesFollowTheNormalisation) {
+    // A mesh bound at the rest pose of a Z-up, centimetre rig with bone-aligned frames: skinned at
+    // any pose of the normalised rig it lands where the file's rig put it, moved by G = units x axes.
+    test::RigStyle s;
+    s.units_per_metre = 100.0f;
+    s.axes = glm::angleAxis(kPi / 2, glm::vec3(1, 0, 0));
+    s.bone_frames = true;
+    std::map<std::string, std::string> names;
+    for (const CanonicalJoint& c : canonical_humanoid()) names[c.name] = c.name;
+    const Skeleton original = build_skeleton(test::styled(test::renamed_humanoid(names), s), "fixture").value();
+    CharacterTypeDesc d;
+    auto rig = normalise_file_rig(original, d, RigFormat::Gltf, "fixture");
+    ASSERT_TRUE(rig.ok()) << rig.error().to_string();
+    const auto rest = skeleton_rest_model(original);
+    CharacterMesh mesh;
+    for (size_t j = 0; j < rest.size(); ++j) {
+        mesh.positions.push_back(glm::vec3(rest[j][3]) + glm::vec3(3.0f, -2.0f, 1.0f));  // near joint j, cm
+        mesh.normals.push_back(glm::normalize(glm::vec3(1, 1, 0)));
+        mesh.joints.push_back(glm::u16vec4(static_cast<uint16_t>(j), 0, 0, 0));
+        mesh.weights.push_back(glm::vec4(1, 0, 0, 0));
+        mesh.inverse_bind.push_back(glm::inverse(rest[j]));
+    }
+    const CharacterMesh before = mesh;
+    normalise_mesh(mesh, rig.value().change);
+    // The normalised rest pose (identity rest rotations) skins every vertex to G v.
+    const auto rest2 = skeleton_rest_model(rig.value().skeleton);
+    const glm::mat4 g = rig.value().change.global();
+    float worst = 0.0f;
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        const size_t j = mesh.joints[i][0];
+        const glm::vec3 skinned(rest2[j] * mesh.inverse_bind[j] * glm::vec4(mesh.positions[i], 1.0f));
+        worst = std::max(worst, glm::length(skinned - glm::vec3(g * glm::vec4(before.positions[i], 1.0f))));
+        EXPECT_LT(glm::length(mesh.normals[i] - glm::mat3_cast(rig.value().change.axes) * before.normals[i]), 1e-6f);
+    }
+    // Float products of a 31-joint chain: 1e-5 m.
+    EXPECT_LT(worst, 1e-5f);
 }
 
 RawSkeleton quadruped() {

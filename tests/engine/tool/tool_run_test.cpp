@@ -137,6 +137,7 @@ TEST(Tool, ValidatePrintsTheHumanoidMapping) {
         "characters": [{"type": "poser", "position": [0, 0, 0]}]})");
     const RunResult r = run("validate " + (out / "scene.json").string());
     EXPECT_EQ(r.code, 0) << r.output;
+    std::printf("%s", r.output.c_str());  // the report docs/CHARACTERS.md shows
     for (const char* line : {"character type 'poser'", "  convention Poser / DAZ: humanoid",
                              "  mapping (canonical <- file, 21 of 31): Hips <- hip, LeftHip <- lThigh, RightHip <- rThigh",
                              "  joints ignored by the layers (1): lIndex1",
