@@ -175,3 +175,32 @@ TEST(SceneLoader, CharacterOverlayIsReadWithItsWeight) {
 
 }  // namespace
 }  // namespace aloha
+
+namespace aloha {
+namespace {
+
+TEST(SceneLoader, HumanoidMapAndScaleOfFileCharacterTypes) {
+    const std::string head = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [{"type": "b"}], )";
+    auto good = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "scale": 0.01,
+        "humanoid_map": {"LeftKnee": "knee_l"}}]})");
+    ASSERT_TRUE(good.ok()) << message_of(good);
+    EXPECT_FLOAT_EQ(good.value().types.at(0).scale, 0.01f);
+    EXPECT_EQ(good.value().types.at(0).humanoid_map.at("LeftKnee"), "knee_l");
+    EXPECT_EQ(good.value().types.at(0).pointer, "/character_types/0");
+    EXPECT_NE(good.value().types.at(0).canonical.find("humanoid.json"), std::string::npos);
+    auto not_object = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "humanoid_map": ["x"]}]})");
+    ASSERT_FALSE(not_object.ok());
+    EXPECT_NE(message_of(not_object).find("/character_types/0/humanoid_map"), std::string::npos) << message_of(not_object);
+    auto not_string = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "humanoid_map": {"Hips": 3}}]})");
+    ASSERT_FALSE(not_string.ok());
+    EXPECT_NE(message_of(not_string).find("/character_types/0/humanoid_map/Hips"), std::string::npos) << message_of(not_string);
+    auto bad_scale = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "scale": -1}]})");
+    ASSERT_FALSE(bad_scale.ok());
+    EXPECT_NE(message_of(bad_scale).find("/character_types/0/scale"), std::string::npos) << message_of(bad_scale);
+    auto on_humanoid = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "scale": 2}]})");
+    ASSERT_FALSE(on_humanoid.ok());
+    EXPECT_NE(message_of(on_humanoid).find("apply to 'bvh' and 'gltf' types only"), std::string::npos) << message_of(on_humanoid);
+}
+
+}  // namespace
+}  // namespace aloha
