@@ -85,6 +85,23 @@ inline RawSkeleton renamed_humanoid(const std::map<std::string, std::string>& na
     return raw;
 }
 
+/// Inserts joint `name` between `child` and its parent, `fraction` of the way along the bone
+/// (a twist bone: DAZ's lThighTwist between lThighBend and lShin). Requires model-aligned `raw`.
+inline void insert_between(RawSkeleton& raw, const std::string& child, const std::string& name, float fraction) {
+    for (size_t c = 0; c < raw.joints.size(); ++c) {
+        if (raw.joints[c].name != child) continue;
+        RawJoint twist;
+        twist.name = name;
+        twist.parent = raw.joints[c].parent;
+        twist.translation = fraction * raw.joints[c].translation;
+        raw.joints[c].translation -= twist.translation;
+        raw.joints[c].parent = static_cast<int>(raw.joints.size());
+        raw.joints.push_back(twist);  // after its children in file order: build_skeleton reorders
+        return;
+    }
+    ADD_FAILURE() << "no joint " << child;
+}
+
 /// `raw` (model-aligned, metres, canonical axes) written in `style`: positions scaled and turned
 /// by the axes, and with bone_frames local rest rotations (translations re-expressed in them).
 inline RawSkeleton styled(const RawSkeleton& raw, const RigStyle& style) {

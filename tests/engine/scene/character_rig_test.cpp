@@ -68,6 +68,38 @@ TEST(CharacterRig, BlenderGltfInTPoseGetsEveryLayer) {
     fs::remove_all(dir);
 }
 
+TEST(CharacterRig, DazBvhWithTwistBonesWalksAndReaches) {
+    // DAZ Genesis names with twist bones inside the leg and arm chains: the leg IK turns the hip and
+    // knee past the thigh twist, the reach chain runs from the shoulder bend through both twists.
+    const fs::path dir = temp_dir("daz");
+    const auto names = sided({{"Hips", "hip"}, {"lowerback", "abdomenLower"}, {"Chest", "abdomenUpper"}, {"Chest2", "chestUpper"},
+                              {"lowerneck", "neckLower"}, {"Neck", "neckUpper"}, {"Head", "head"}},
+                             {{"LeftHip", "%ThighBend"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
+                              {"LeftCollar", "%Collar"}, {"LeftShoulder", "%ShldrBend"}, {"LeftElbow", "%ForearmBend"},
+                              {"LeftWrist", "%Hand"}},
+                             "l", "r");
+    RawSkeleton raw = test::renamed_humanoid(names);
+    for (const char* side : {"l", "r"}) {
+        const std::string s = side;
+        test::insert_between(raw, s + "Shin", s + "ThighTwist", 0.5f);
+        test::insert_between(raw, s + "ForearmBend", s + "ShldrTwist", 0.5f);
+        test::insert_between(raw, s + "Hand", s + "ForearmTwist", 0.5f);
+    }
+    // BVH lists parents before children: rebuild in depth-first order.
+    const Skeleton ordered = build_skeleton(raw, "daz").value();
+    RawSkeleton depth_first;
+    for (int j = 0; j < ordered.joint_count(); ++j)
+        depth_first.joints.push_back(RawJoint{ordered.names()[static_cast<size_t>(j)], ordered.parents()[static_cast<size_t>(j)],
+                                              ordered.rest_translations()[static_cast<size_t>(j)]});
+    test::write_text((dir / "daz.bvh").string(), test::bvh_text(depth_first, 30, glm::vec3(0, 0, 1), 0.04f));
+    const CharacterType t = load_or_fail(desc_for("daz", (dir / "daz.bvh").string()));
+    expect_layers(t, "Poser / DAZ", "lShin");
+    EXPECT_EQ(t.skeleton.names()[static_cast<size_t>(t.skeleton.parents()[static_cast<size_t>(t.rig->knee[0])])], "lThighTwist");
+    expect_walks(t);
+    expect_reaches(t);
+    fs::remove_all(dir);
+}
+
 TEST(CharacterRig, ZUpGltfWalksUpright) {
     const fs::path dir = temp_dir("zup");
     const auto names = sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Chest", "Chest"}, {"lowerneck", "Neck"}, {"Head", "Head"}},
