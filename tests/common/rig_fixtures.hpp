@@ -237,4 +237,54 @@ inline std::map<std::string, std::string> sided(const std::map<std::string, std:
     return out;
 }
 
+/// Poser (classic) names: hip, abdomen, chest, neck, head, lThigh, lShin, lFoot, lToe, lCollar,
+/// lShldr, lForeArm, lHand and the right side.
+inline std::map<std::string, std::string> poser_names() {
+    return sided({{"Hips", "hip"}, {"lowerback", "abdomen"}, {"Chest2", "chest"}, {"lowerneck", "neck"}, {"Head", "head"}},
+                 {{"LeftHip", "%Thigh"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
+                  {"LeftCollar", "%Collar"}, {"LeftShoulder", "%Shldr"}, {"LeftElbow", "%ForeArm"}, {"LeftWrist", "%Hand"}},
+                 "l", "r");
+}
+
+/// DAZ Genesis names: hip, abdomenLower/Upper, chestUpper, neckLower/Upper, head, lThighBend, lShin,
+/// lFoot, lToe, lCollar, lShldrBend, lForearmBend, lHand and the right side.
+inline std::map<std::string, std::string> daz_names() {
+    return sided({{"Hips", "hip"}, {"lowerback", "abdomenLower"}, {"Chest", "abdomenUpper"}, {"Chest2", "chestUpper"},
+                  {"lowerneck", "neckLower"}, {"Neck", "neckUpper"}, {"Head", "head"}},
+                 {{"LeftHip", "%ThighBend"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
+                  {"LeftCollar", "%Collar"}, {"LeftShoulder", "%ShldrBend"}, {"LeftElbow", "%ForearmBend"},
+                  {"LeftWrist", "%Hand"}},
+                 "l", "r");
+}
+
+/// Blender Rigify names (spine ... spine.006, thigh.L, shin.L, ...), each with `prefix` ("DEF-" or "").
+inline std::map<std::string, std::string> rigify_names(const std::string& prefix) {
+    const std::string p = prefix;
+    return sided({{"Hips", p + "spine"}, {"lowerback", p + "spine.001"}, {"Chest", p + "spine.002"}, {"Chest2", p + "spine.003"},
+                  {"lowerneck", p + "spine.004"}, {"Neck", p + "spine.005"}, {"Head", p + "spine.006"}},
+                 {{"LeftHip", p + "thigh.%"}, {"LeftKnee", p + "shin.%"}, {"LeftAnkle", p + "foot.%"}, {"LeftToe", p + "toe.%"},
+                  {"LeftCollar", p + "shoulder.%"}, {"LeftShoulder", p + "upper_arm.%"}, {"LeftElbow", p + "forearm.%"},
+                  {"LeftWrist", p + "hand.%"}},
+                 "L", "R");
+}
+
+/// Unity Humanoid bone names without UpperChest, the side written by `pattern` around "%" (e.g.
+/// "Left%" gives LeftUpperLeg, "%.L" gives UpperLeg.L with `left`/`right` filling the "%").
+inline std::map<std::string, std::string> unity_names(const std::string& left, const std::string& right, bool prefix) {
+    auto at = [&](const char* base) { return prefix ? std::string("%") + base : std::string(base) + "%"; };
+    return sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Chest", "Chest"}, {"lowerneck", "Neck"}, {"Head", "Head"}},
+                 {{"LeftHip", at("UpperLeg")}, {"LeftKnee", at("LowerLeg")}, {"LeftAnkle", at("Foot")}, {"LeftToe", at("Toes")},
+                  {"LeftCollar", at("Shoulder")}, {"LeftShoulder", at("UpperArm")}, {"LeftElbow", at("LowerArm")},
+                  {"LeftWrist", at("Hand")}},
+                 left, right);
+}
+
+/// Names no convention knows (CesiumMan-like: torso_1, leg_L_1, arm_R_2 ...).
+inline std::map<std::string, std::string> odd_names() {
+    return sided({{"Hips", "torso_1"}, {"Chest2", "torso_3"}, {"lowerneck", "neck_1"}, {"Head", "neck_2"}},
+                 {{"LeftHip", "leg_%_1"}, {"LeftKnee", "leg_%_2"}, {"LeftAnkle", "leg_%_3"}, {"LeftToe", "leg_%_5"},
+                  {"LeftShoulder", "arm_%_4"}, {"LeftElbow", "arm_%_3"}, {"LeftWrist", "arm_%_2"}},
+                 "L", "R");
+}
+
 }  // namespace aloha::test

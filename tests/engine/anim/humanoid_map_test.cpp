@@ -105,43 +105,28 @@ TEST(HumanoidMap, UnrealMannequin) {
 }
 
 TEST(HumanoidMap, PoserBvh) {
-    const auto names = sided({{"Hips", "hip"}, {"lowerback", "abdomen"}, {"Chest2", "chest"}, {"lowerneck", "neck"}, {"Head", "head"}},
-                             {{"LeftHip", "%Thigh"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
-                              {"LeftCollar", "%Collar"}, {"LeftShoulder", "%Shldr"}, {"LeftElbow", "%ForeArm"}, {"LeftWrist", "%Hand"},
-                              {"LFingers", "%Mid1"}, {"LThumb", "%Thumb1"}},
-                             "l", "r");
+    auto names = test::poser_names();
+    names["LFingers"] = "lMid1";
+    names["RFingers"] = "rMid1";
+    names["LThumb"] = "lThumb1";
+    names["RThumb"] = "rThumb1";
     expect_maps(names, "Poser / DAZ", {{"lIndex1", "lHand", {0.01f, -0.09f, 0.02f}}, {"lButtock", "hip", {0.06f, -0.08f, -0.08f}}});
 }
 
 TEST(HumanoidMap, DazGenesis) {
-    const auto names = sided({{"Hips", "hip"}, {"lowerback", "abdomenLower"}, {"Chest", "abdomenUpper"}, {"Chest2", "chestUpper"},
-                              {"lowerneck", "neckLower"}, {"Neck", "neckUpper"}, {"Head", "head"}},
-                             {{"LeftHip", "%ThighBend"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
-                              {"LeftCollar", "%Collar"}, {"LeftShoulder", "%ShldrBend"}, {"LeftElbow", "%ForearmBend"},
-                              {"LeftWrist", "%Hand"}},
-                             "l", "r");
+    const auto names = test::daz_names();
     expect_maps(names, "Poser / DAZ", {{"lThighTwist", "lThighBend", {0, -0.2f, 0}}});
 }
 
 TEST(HumanoidMap, BlenderRigifyWithDefPrefix) {
-    const auto names = sided({{"Hips", "DEF-spine"}, {"lowerback", "DEF-spine.001"}, {"Chest", "DEF-spine.002"},
-                              {"Chest2", "DEF-spine.003"}, {"lowerneck", "DEF-spine.004"}, {"Neck", "DEF-spine.005"},
-                              {"Head", "DEF-spine.006"}},
-                             {{"LeftHip", "DEF-thigh.%"}, {"LeftKnee", "DEF-shin.%"}, {"LeftAnkle", "DEF-foot.%"},
-                              {"LeftToe", "DEF-toe.%"}, {"LeftCollar", "DEF-shoulder.%"}, {"LeftShoulder", "DEF-upper_arm.%"},
-                              {"LeftElbow", "DEF-forearm.%"}, {"LeftWrist", "DEF-hand.%"}},
-                             "L", "R");
+    const auto names = test::rigify_names("DEF-");
     // "thigh.L.001" is a twist segment of the thigh, not the thigh.
     expect_maps(names, "Blender Rigify", {{"DEF-thigh.L.001", "DEF-thigh.L", {0, -0.2f, 0}}});
 }
 
 TEST(HumanoidMap, BlenderSuffixAndPrefixSides) {
     for (const auto& [left, right] : {std::pair<std::string, std::string>{".L", ".R"}, {"_L", "_R"}, {"_l", "_r"}}) {
-        auto names = sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Chest", "Chest"}, {"lowerneck", "Neck"}, {"Head", "Head"}},
-                           {{"LeftHip", "UpperLeg%"}, {"LeftKnee", "LowerLeg%"}, {"LeftAnkle", "Foot%"}, {"LeftToe", "Toes%"},
-                            {"LeftCollar", "Shoulder%"}, {"LeftShoulder", "UpperArm%"}, {"LeftElbow", "LowerArm%"},
-                            {"LeftWrist", "Hand%"}},
-                           left, right);
+        auto names = test::unity_names(left, right, false);
         expect_maps(names, "Unity Humanoid / VRM");
     }
     auto prefixed = sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Head", "Head"}},
@@ -153,10 +138,7 @@ TEST(HumanoidMap, BlenderSuffixAndPrefixSides) {
 
 TEST(HumanoidMap, ExplicitMapCompletesAnUnknownRig) {
     // CesiumMan-like names no convention knows.
-    const auto names = sided({{"Hips", "torso_1"}, {"Chest2", "torso_3"}, {"lowerneck", "neck_1"}, {"Head", "neck_2"}},
-                             {{"LeftHip", "leg_%_1"}, {"LeftKnee", "leg_%_2"}, {"LeftAnkle", "leg_%_3"}, {"LeftToe", "leg_%_5"},
-                              {"LeftShoulder", "arm_%_4"}, {"LeftElbow", "arm_%_3"}, {"LeftWrist", "arm_%_2"}},
-                             "L", "R");
+    const auto names = test::odd_names();
     const Skeleton sk = build_skeleton(test::renamed_humanoid(names), "fixture").value();
     auto bare = map_humanoid(sk);
     ASSERT_TRUE(bare.ok());

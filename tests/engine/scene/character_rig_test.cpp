@@ -20,18 +20,12 @@ using namespace test;  // NOLINT: the character checks
 
 constexpr float kPi = 3.14159265f;
 
-std::map<std::string, std::string> poser_names() {
-    return sided({{"Hips", "hip"}, {"lowerback", "abdomen"}, {"Chest2", "chest"}, {"lowerneck", "neck"}, {"Head", "head"}},
-                 {{"LeftHip", "%Thigh"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
-                  {"LeftCollar", "%Collar"}, {"LeftShoulder", "%Shldr"}, {"LeftElbow", "%ForeArm"}, {"LeftWrist", "%Hand"}},
-                 "l", "r");
-}
 
 TEST(CharacterRig, PoserBvhInCentimetresGetsEveryLayer) {
     const fs::path dir = temp_dir("poser");
     test::RigStyle cm;
     cm.units_per_metre = 100.0f;
-    const RawSkeleton raw = test::styled(test::renamed_humanoid(poser_names(), {{"lIndex1", "lHand", {0, -0.09f, 0.02f}}}), cm);
+    const RawSkeleton raw = test::styled(test::renamed_humanoid(test::poser_names(), {{"lIndex1", "lHand", {0, -0.09f, 0.02f}}}), cm);
     test::write_text((dir / "poser.bvh").string(), test::bvh_text(raw, 40, glm::vec3(0, 0, 1), 4.0f));
     const CharacterType t = load_or_fail(desc_for("poser", (dir / "poser.bvh").string()));
     EXPECT_EQ(t.frame.units, "centimetres");
@@ -44,12 +38,7 @@ TEST(CharacterRig, PoserBvhInCentimetresGetsEveryLayer) {
 
 TEST(CharacterRig, BlenderGltfInTPoseGetsEveryLayer) {
     const fs::path dir = temp_dir("blender");
-    const auto names = sided({{"Hips", "spine"}, {"lowerback", "spine.001"}, {"Chest", "spine.002"}, {"Chest2", "spine.003"},
-                              {"lowerneck", "spine.004"}, {"Neck", "spine.005"}, {"Head", "spine.006"}},
-                             {{"LeftHip", "thigh.%"}, {"LeftKnee", "shin.%"}, {"LeftAnkle", "foot.%"}, {"LeftToe", "toe.%"},
-                              {"LeftCollar", "shoulder.%"}, {"LeftShoulder", "upper_arm.%"}, {"LeftElbow", "forearm.%"},
-                              {"LeftWrist", "hand.%"}},
-                             "L", "R");
+    const auto names = test::rigify_names("");
     test::RigStyle blender;
     blender.bone_frames = true;
     const RawSkeleton raw = test::styled(test::renamed_humanoid(names, {{"breast.L", "spine.003", {0.1f, 0.0f, 0.1f}}}, true), blender);
@@ -72,12 +61,7 @@ TEST(CharacterRig, DazBvhWithTwistBonesWalksAndReaches) {
     // DAZ Genesis names with twist bones inside the leg and arm chains: the leg IK turns the hip and
     // knee past the thigh twist, the reach chain runs from the shoulder bend through both twists.
     const fs::path dir = temp_dir("daz");
-    const auto names = sided({{"Hips", "hip"}, {"lowerback", "abdomenLower"}, {"Chest", "abdomenUpper"}, {"Chest2", "chestUpper"},
-                              {"lowerneck", "neckLower"}, {"Neck", "neckUpper"}, {"Head", "head"}},
-                             {{"LeftHip", "%ThighBend"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"},
-                              {"LeftCollar", "%Collar"}, {"LeftShoulder", "%ShldrBend"}, {"LeftElbow", "%ForearmBend"},
-                              {"LeftWrist", "%Hand"}},
-                             "l", "r");
+    const auto names = test::daz_names();
     RawSkeleton raw = test::renamed_humanoid(names);
     for (const char* side : {"l", "r"}) {
         const std::string s = side;
@@ -102,11 +86,7 @@ TEST(CharacterRig, DazBvhWithTwistBonesWalksAndReaches) {
 
 TEST(CharacterRig, ZUpGltfWalksUpright) {
     const fs::path dir = temp_dir("zup");
-    const auto names = sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Chest", "Chest"}, {"lowerneck", "Neck"}, {"Head", "Head"}},
-                             {{"LeftHip", "%UpperLeg"}, {"LeftKnee", "%LowerLeg"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toes"},
-                              {"LeftCollar", "%Shoulder"}, {"LeftShoulder", "%UpperArm"}, {"LeftElbow", "%LowerArm"},
-                              {"LeftWrist", "%Hand"}},
-                             "Left", "Right");
+    const auto names = test::unity_names("Left", "Right", true);
     test::RigStyle z_up;
     z_up.axes = glm::angleAxis(kPi / 2, glm::vec3(1, 0, 0));
     z_up.bone_frames = true;
@@ -209,10 +189,7 @@ TEST(CharacterRig, QuadrupedLoadsPlaysAndIsDrawnAsProxies) {
 
 TEST(CharacterRig, SceneHumanoidMapAndScaleReachTheType) {
     const fs::path dir = temp_dir("scene_map");
-    const auto names = sided({{"Hips", "torso_1"}, {"Chest2", "torso_3"}, {"lowerneck", "neck_1"}, {"Head", "neck_2"}},
-                             {{"LeftHip", "leg_%_1"}, {"LeftKnee", "leg_%_2"}, {"LeftAnkle", "leg_%_3"}, {"LeftToe", "leg_%_5"},
-                              {"LeftShoulder", "arm_%_4"}, {"LeftElbow", "arm_%_3"}, {"LeftWrist", "arm_%_2"}},
-                             "L", "R");
+    const auto names = test::odd_names();
     test::write_text((dir / "odd.bvh").string(), test::bvh_text(test::renamed_humanoid(names), 20, glm::vec3(0, 0, 1), 0.04f));
     nlohmann::json map;
     for (const auto& [canonical, file] : names) map[canonical] = file;

@@ -122,11 +122,7 @@ TEST(Tool, ValidateReportsBadScenesAndPassesGoodOnes) {
 
 TEST(Tool, ValidatePrintsTheHumanoidMapping) {
     const fs::path out = temp_dir("validate_map");
-    const auto names = aloha::test::sided(
-        {{"Hips", "hip"}, {"lowerback", "abdomen"}, {"Chest2", "chest"}, {"lowerneck", "neck"}, {"Head", "head"}},
-        {{"LeftHip", "%Thigh"}, {"LeftKnee", "%Shin"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toe"}, {"LeftCollar", "%Collar"},
-         {"LeftShoulder", "%Shldr"}, {"LeftElbow", "%ForeArm"}, {"LeftWrist", "%Hand"}},
-        "l", "r");
+    const auto names = aloha::test::poser_names();
     aloha::test::RigStyle cm;
     cm.units_per_metre = 100.0f;
     const aloha::RawSkeleton raw =
