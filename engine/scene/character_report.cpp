@@ -17,7 +17,8 @@ std::vector<std::string> character_capabilities(const CharacterType& type) {
                             : muscles ? "geometric level skinned mesh: yes (generated from the muscles)"
                                       : "geometric level skinned mesh: no (no mesh and no muscles)");
     out.push_back(muscles ? "geometric levels layered and subdivided: yes (" + std::to_string(type.muscles.size()) + " muscles)"
-                          : "geometric levels layered and subdivided: refused (no muscles)");
+                          : std::string("geometric levels layered and subdivided: refused (no muscles; drawn ") +
+                                (type.mesh ? "with the skinned mesh)" : "as rigid proxies)"));
     return out;
 }
 

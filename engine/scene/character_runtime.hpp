@@ -30,8 +30,9 @@ public:
     /// Builds the type's geometry and its geometric controller for `levels` (refined surfaces kept
     /// per character when `keep_refined_surfaces`). Errors name the type.
     Status init_geometry(uint16_t type_index, std::span<const GeomLod> levels, bool keep_refined_surfaces);
-    /// `levels` as this type can draw them: a type without muscles (and so without a mesh) draws
-    /// every skinned-mesh, layered and subdivided level as rigid proxies.
+    /// `levels` as this type can draw them: a type without muscles (a non-humanoid) draws every
+    /// skinned-mesh, layered and subdivided level with its own skinned mesh, or as rigid proxies
+    /// when it has none.
     [[nodiscard]] std::vector<GeomLod> usable_levels(std::span<const GeomLod> levels) const;
     /// Where this type's pose matrices live, for GeometryController::update.
     [[nodiscard]] PoseSource poses() const;

@@ -222,7 +222,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     auto rig = resolve_walk_rig(type.skeleton, type.map, file);
     if (rig.ok()) type.rig = std::move(rig.value());
     else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
-    if (type.muscles.size() == 0 && type.mesh) {
+    if (type.muscles.size() == 0 && type.mesh && type.map.humanoid) {
         std::vector<glm::mat4> bind_model;
         for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));
         const std::vector<glm::ivec4> joints = widen_joints(type.mesh->joints);
@@ -232,7 +232,8 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         if (!muscles.ok()) return muscles.error();
         type.muscles = std::move(muscles.value());
     } else if (type.muscles.size() == 0) {
-        type.notes.push_back("layered levels refused: no muscle layout (not a humanoid) and no skinned mesh to fit muscles to; drawn as rigid proxies");
+        type.notes.push_back(std::string("layered levels refused: muscles are laid out for humanoids and this type is none; ") +
+                             (type.mesh ? "drawn with its skinned mesh at those levels" : "drawn as rigid proxies (it has no mesh)"));
     }
     measure(type);
     return type;

@@ -40,8 +40,8 @@ struct CharacterType {
 
 /// Loads a character type. BVH and glTF skeletons are mapped to the canonical humanoid and
 /// normalised (axes, units, rest frames); a mapped humanoid gets the canonical joint limits, muscle
-/// layout (or muscles fitted to its mesh) and walk rig; a non-humanoid without a mesh or muscle
-/// layout gets no muscles (proxy level only, noted). Errors name the file and the problem.
+/// layout (or muscles fitted to its mesh) and walk rig; a non-humanoid gets no muscles unless the
+/// type names a layout (its mesh and rigid proxies only, noted). Errors name the file and the problem.
 Result<CharacterType> load_character_type(const CharacterTypeDesc& desc);
 
 /// Id of clip `name` in `type` ("" = the type's idle clip, else its in-place mocap clip), or -1.

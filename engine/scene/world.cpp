@@ -36,11 +36,11 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
 std::vector<GeomLod> CharacterRuntime::usable_levels(std::span<const GeomLod> levels) const {
     std::vector<GeomLod> out(levels.begin(), levels.end());
     if (type.muscles.size() > 0) return out;
-    for (GeomLod& l : out)
-        if (l.method != GeomMethod::Hidden) {
-            l.method = GeomMethod::RigidProxy;
-            l.layers = kLayerSkeleton;
-        }
+    for (GeomLod& l : out) {
+        if (l.method == GeomMethod::Hidden || l.method == GeomMethod::RigidProxy) continue;
+        l.method = type.mesh ? GeomMethod::SkinnedMesh : GeomMethod::RigidProxy;
+        l.layers = type.mesh ? kLayerSkeleton | kLayerSkin : kLayerSkeleton;
+    }
     return out;
 }
 

@@ -44,10 +44,11 @@ void World::gather_render_lists() {
     auto anims = g.span<AnimLod>();
     auto transforms = g.span<Transform>();
     for (const KeyRange& r : ranges_) {
-        const GeomMethod method = geom[r.begin].method;
-        if (method == GeomMethod::Hidden) continue;
         CharacterRuntime& rt = *types_[refs[r.begin].type];
         const GeometryController& gc = *rt.geometry;
+        // The method as this type draws the level (a non-humanoid has no layered levels).
+        const GeomMethod method = gc.level(geom[r.begin].level).method;
+        if (method == GeomMethod::Hidden) continue;
         if (method == GeomMethod::RigidProxy) {
             for (size_t i = r.begin; i < r.end; ++i) {
                 const std::span<const glm::mat4> boxes = gc.proxy_boxes(refs[i].id);

@@ -143,9 +143,9 @@ void World::register_systems() {
                         auto refs = g.span<CharacterRef>();
                         auto geom = g.span<GeomLod>();
                         for (const KeyRange& r : ranges_) {
-                            const GeomMethod method = geom[r.begin].method;
-                            if (method != GeomMethod::Layered && method != GeomMethod::Subdivided) continue;
                             CharacterRuntime& rt = *types_[refs[r.begin].type];
+                            const GeomMethod method = rt.geometry->level(geom[r.begin].level).method;  // as the type draws it
+                            if (method != GeomMethod::Layered && method != GeomMethod::Subdivided) continue;
                             const PoseSource poses = rt.poses();
                             const uint8_t level = geom[r.begin].level;
                             const std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
@@ -168,9 +168,9 @@ void World::register_systems() {
                         auto states = g.span<LodState>();
                         due_ids_.resize(g.size());
                         for (const KeyRange& r : ranges_) {
-                            const GeomMethod method = geom[r.begin].method;
-                            if (method == GeomMethod::Hidden) continue;
                             CharacterRuntime& rt = *types_[refs[r.begin].type];
+                            const GeomMethod method = rt.geometry->level(geom[r.begin].level).method;  // as the type draws it
+                            if (method == GeomMethod::Hidden) continue;
                             const PoseSource poses = rt.poses();
                             const uint8_t level = geom[r.begin].level;
                             // Proxies and linear-blend skins depend on the pose alone: only characters posed

@@ -10,6 +10,7 @@
 #include "engine/assets/humanoid_definition.hpp"
 #include "tests/common/test_humanoid.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cstring>
@@ -159,14 +160,26 @@ inline std::string bvh_text(const RawSkeleton& raw, int frames, glm::vec3 forwar
 }
 
 /// glTF JSON text of `raw` (rest rotations kept as node rotations): one node per joint, a skin
-/// over all of them without inverse bind matrices or meshes, and a clip "sway" of two keys
-/// turning joint `animated` by `angle` radians about its local X.
-inline std::string gltf_text(const RawSkeleton& raw, int animated, float angle) {
+/// over all of them, and a clip "sway" of two keys turning joint `animated` by `angle` radians about
+/// its local X. With `mesh`: a skinned triangle at every joint (each vertex bound to that joint,
+/// inverse bind matrices from the rest pose) on a mesh node; without: no meshes and no inverse
+/// bind matrices.
+inline std::string gltf_text(const RawSkeleton& raw, int animated, float angle, bool mesh = false) {
     using nlohmann::json;
+    std::string bytes;
+    json views = json::array(), accessors = json::array();
+    auto add = [&](const void* data, size_t size, int component, const char* type, size_t count, json extra = json::object()) {
+        while (bytes.size() % 4) bytes += '\0';
+        views.push_back({{"buffer", 0}, {"byteOffset", bytes.size()}, {"byteLength", size}});
+        bytes.append(static_cast<const char*>(data), size);
+        json a = {{"bufferView", views.size() - 1}, {"componentType", component}, {"count", count}, {"type", type}};
+        a.update(extra);
+        accessors.push_back(a);
+        return static_cast<int>(accessors.size()) - 1;
+    };
     json j;
     j["asset"] = {{"version", "2.0"}, {"generator", "aloha tests/common/rig_fixtures.hpp"}};
     j["scene"] = 0;
-    j["scenes"] = json::array({{{"nodes", {0}}}});
     json nodes = json::array();
     for (size_t k = 0; k < raw.joints.size(); ++k) {
         const RawJoint& rj = raw.joints[k];
@@ -179,15 +192,55 @@ inline std::string gltf_text(const RawSkeleton& raw, int animated, float angle) 
         if (!kids.empty()) node["children"] = kids;
         nodes.push_back(node);
     }
-    j["nodes"] = nodes;
     json joints = json::array();
     for (size_t k = 0; k < raw.joints.size(); ++k) joints.push_back(k);
-    j["skins"] = json::array({{{"joints", joints}}});
+    json skin = {{"joints", joints}};
     const glm::quat rest = raw.joints[static_cast<size_t>(animated)].rotation;
     const glm::quat turned = glm::normalize(rest * glm::angleAxis(angle, glm::vec3(1, 0, 0)));
-    const float data[10] = {0.0f, 1.0f, rest.x, rest.y, rest.z, rest.w, turned.x, turned.y, turned.z, turned.w};
-    std::string bytes(sizeof data, '\0');
-    std::memcpy(bytes.data(), data, sizeof data);
+    const float times[2] = {0.0f, 1.0f};
+    const float rotations[8] = {rest.x, rest.y, rest.z, rest.w, turned.x, turned.y, turned.z, turned.w};
+    const int t_acc = add(times, sizeof times, 5126, "SCALAR", 2, {{"min", {0.0}}, {"max", {1.0}}});
+    const int r_acc = add(rotations, sizeof rotations, 5126, "VEC4", 2);
+    json scene_nodes = {0};
+    if (mesh) {
+        const size_t n = raw.joints.size();
+        std::vector<glm::mat4> model(n);
+        for (size_t k = 0; k < n; ++k) {
+            const glm::mat4 local = glm::translate(glm::mat4(1.0f), raw.joints[k].translation) * glm::mat4_cast(raw.joints[k].rotation);
+            model[k] = raw.joints[k].parent < 0 ? local : model[static_cast<size_t>(raw.joints[k].parent)] * local;
+        }
+        std::vector<glm::vec3> positions;
+        std::vector<uint16_t> vertex_joints, indices;
+        std::vector<float> weights;
+        std::vector<glm::mat4> inverse_bind;
+        for (size_t k = 0; k < n; ++k) {
+            const glm::vec3 c(model[k][3]);
+            const float r = 0.03f * glm::length(glm::vec3(model[k][0]));  // 3 cm in the file's units
+            for (const glm::vec3& o : {glm::vec3(r, 0, 0), glm::vec3(0, r, 0), glm::vec3(0, 0, r)}) {
+                indices.push_back(static_cast<uint16_t>(positions.size()));
+                positions.push_back(c + o);
+                vertex_joints.insert(vertex_joints.end(), {static_cast<uint16_t>(k), 0, 0, 0});
+                weights.insert(weights.end(), {1.0f, 0.0f, 0.0f, 0.0f});
+            }
+            inverse_bind.push_back(glm::inverse(model[k]));
+        }
+        glm::vec3 lo(1e30f), hi(-1e30f);
+        for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        const int p_acc = add(positions.data(), positions.size() * sizeof(glm::vec3), 5126, "VEC3", positions.size(),
+                              {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}});
+        const int j_acc = add(vertex_joints.data(), vertex_joints.size() * 2, 5123, "VEC4", positions.size());
+        const int w_acc = add(weights.data(), weights.size() * 4, 5126, "VEC4", positions.size());
+        const int i_acc = add(indices.data(), indices.size() * 2, 5123, "SCALAR", indices.size());
+        const int b_acc = add(inverse_bind.data(), n * sizeof(glm::mat4), 5126, "MAT4", n);
+        skin["inverseBindMatrices"] = b_acc;
+        j["meshes"] = json::array({{{"primitives", json::array({{{"attributes", {{"POSITION", p_acc}, {"JOINTS_0", j_acc}, {"WEIGHTS_0", w_acc}}},
+                                                               {"indices", i_acc}}})}}});
+        nodes.push_back({{"name", "body"}, {"mesh", 0}, {"skin", 0}});
+        scene_nodes.push_back(nodes.size() - 1);
+    }
+    j["nodes"] = nodes;
+    j["scenes"] = json::array({{{"nodes", scene_nodes}}});
+    j["skins"] = json::array({skin});
     static const char* k64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string b64;
     for (size_t i = 0; i < bytes.size(); i += 3) {
@@ -198,13 +251,11 @@ inline std::string gltf_text(const RawSkeleton& raw, int animated, float angle) 
         b64 += i + 1 < bytes.size() ? k64[(v >> 6) & 63] : '=';
         b64 += i + 2 < bytes.size() ? k64[v & 63] : '=';
     }
-    j["buffers"] = json::array({{{"byteLength", sizeof data}, {"uri", "data:application/octet-stream;base64," + b64}}});
-    j["bufferViews"] = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 8}},
-                                    {{"buffer", 0}, {"byteOffset", 8}, {"byteLength", 32}}});
-    j["accessors"] = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", 2}, {"type", "SCALAR"}, {"min", {0.0}}, {"max", {1.0}}},
-                                  {{"bufferView", 1}, {"componentType", 5126}, {"count", 2}, {"type", "VEC4"}}});
+    j["buffers"] = json::array({{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + b64}}});
+    j["bufferViews"] = views;
+    j["accessors"] = accessors;
     j["animations"] = json::array({{{"name", "sway"},
-                                    {"samplers", json::array({{{"input", 0}, {"output", 1}, {"interpolation", "LINEAR"}}})},
+                                    {"samplers", json::array({{{"input", t_acc}, {"output", r_acc}, {"interpolation", "LINEAR"}}})},
                                     {"channels", json::array({{{"sampler", 0}, {"target", {{"node", animated}, {"path", "rotation"}}}}})}}});
     return j.dump(1);
 }

@@ -193,8 +193,7 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     const uint32_t J = static_cast<uint32_t>(desc.skeleton.joint_count());
     std::vector<std::string> problems;
     if (J == 0) problems.push_back("skeleton has no joints");
-    // A type without muscles (a non-humanoid with no mesh) is drawn as rigid proxies only.
-    if (desc.muscles.size() == 0 && desc.mesh) problems.push_back("muscle set is empty (a mesh is bound to muscles)");
+    // A type without muscles (a non-humanoid) may only use rigid-proxy and, with a mesh, skinned-mesh levels.
     if (desc.muscles.size() == 0) desc.muscles.joint_count = static_cast<int>(J);
     if (desc.muscles.joint_count != static_cast<int>(J))
         problems.push_back("muscle set was resolved for " + std::to_string(desc.muscles.joint_count) +
@@ -226,8 +225,8 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     g->proxy_radii_ = proxy_radii_of(g->skeleton_, g->muscles_);
     g->table_cache_ = std::make_unique<SuperEllipsoidTableCache>(g->muscles_);
     g->mesh_ = std::move(desc.mesh);
-    if (g->mesh_) {
-        g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
+    if (g->mesh_) g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
+    if (g->mesh_ && g->muscles_.size() > 0) {
         // Bind every mesh vertex to the nearest rest-pose muscle point at the bind tessellation.
         const SuperEllipsoidTables& tab = g->tables(desc.bind_theta_steps, desc.bind_phi_steps);
         const size_t M = static_cast<size_t>(g->muscles_.size()), V = tab.vertices_per_muscle();

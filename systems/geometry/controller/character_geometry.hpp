@@ -58,8 +58,8 @@ struct CharacterGeometryDesc {
     uint16_t type = 0;                       ///< the type id (CharacterRef::type), part of topology keys
     std::string name;                        ///< names the type in errors
     Skeleton skeleton;                       ///< runtime skeleton
-    MuscleSet muscles;                       ///< resolved against `skeleton`; empty only without a mesh
-                                             ///< (then only rigid-proxy levels may be used)
+    MuscleSet muscles;                       ///< resolved against `skeleton`; when empty only rigid-proxy
+                                             ///< and (with a mesh) skinned-mesh levels may be used
     std::vector<glm::mat4> rest_model;       ///< rest-pose model matrix per joint (muscles rest here)
     std::optional<CharacterMesh> mesh;       ///< real skinned mesh, or none (generated peeled mesh)
     uint32_t bind_theta_steps = 16;          ///< tessellation the mesh is bound to the muscles at

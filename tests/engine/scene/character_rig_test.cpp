@@ -1,13 +1,17 @@
 // Characters users bring, as project-written fixtures: a Poser-named BVH in centimetres and a
 // Blender (Rigify) glTF with bone-aligned rest frames in a T-pose get the canonical muscles, joint
 // limits, a kinematic walk and a reach; a Z-up Unity-named glTF walks upright; a quadruped BVH
-// loads, plays its clip and is drawn as proxies with the layered levels refused in one note.
+// loads, plays its clip and is drawn as proxies, a quadruped glTF with its skinned mesh, the layered
+// levels refused for both in one note.
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/offscreen_target.hpp"
 #include "engine/scene/character_report.hpp"
 #include "engine/scene/character_rig.hpp"
 #include "engine/scene/scene_loader.hpp"
 #include "engine/scene/world.hpp"
 #include "tests/common/rig_fixtures.hpp"
 #include "tests/engine/scene/character_checks.hpp"
+#include "systems/render/crowd_renderer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -138,6 +142,51 @@ TEST(CharacterRig, SkinnedMeshesFollowTheNormalisation) {
     EXPECT_LT(worst, 1e-5f);
 }
 
+// What a rendered run of one character draws in its last frame, copied out of the world.
+struct Drawn {
+    std::vector<std::vector<glm::vec3>> meshes;  ///< world-space vertices per mesh
+    size_t proxies = 0;
+    std::array<uint32_t, 5> methods{};           ///< characters per GeomMethod (as the rules chose)
+};
+
+// Loads the scene at `path`, runs `frames` frames with a lavapipe renderer attached (validation on)
+// and returns what the last frame drew.
+Drawn run_rendered(const fs::path& path, int frames) {
+    Drawn out;
+    auto scene = load_scene(path.string());
+    EXPECT_TRUE(scene.ok()) << scene.error().to_string();
+    if (!scene.ok()) return out;
+    gpu::ContextOptions co;
+    co.validation = true;
+    co.device = "lavapipe";
+    auto ctx = gpu::Context::create(co);
+    EXPECT_TRUE(ctx.ok()) << (ctx.ok() ? "" : ctx.error().to_string());
+    if (!ctx.ok()) return out;
+    auto renderer = CrowdRenderer::create(*ctx.value());
+    EXPECT_TRUE(renderer.ok());
+    auto target = gpu::OffscreenTarget::create(*ctx.value(), 160, 120);
+    EXPECT_TRUE(target.ok());
+    if (!renderer.ok() || !target.ok()) return out;
+    {
+        auto world = World::create(scene.value(), WorldOptions{});
+        EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().to_string());
+        if (!world.ok()) return out;
+        EXPECT_TRUE(world.value()->attach_renderer(renderer.value().get(), &target.value()).ok());
+        for (int f = 0; f < frames; ++f) world.value()->step();
+        EXPECT_TRUE(world.value()->render_status().ok()) << world.value()->render_status().error().to_string();
+        EXPECT_EQ(world.value()->character_count(), 1u);
+        for (const DeformableMesh& m : world.value()->render_lists().meshes) {
+            out.meshes.emplace_back();
+            for (const glm::vec3& p : m.positions) out.meshes.back().push_back(glm::vec3(m.model * glm::vec4(p, 1.0f)));
+        }
+        out.proxies = world.value()->render_lists().proxies.size();
+        out.methods = world.value()->lod_stats().per_geom_method;
+    }
+    renderer.value().reset();
+    EXPECT_EQ(ctx.value()->validation_message_count(), 0u);
+    return out;
+}
+
 RawSkeleton quadruped() {
     RawSkeleton raw;
     auto add = [&](const char* name, int parent, glm::vec3 t) {
@@ -171,19 +220,58 @@ TEST(CharacterRig, QuadrupedLoadsPlaysAndIsDrawnAsProxies) {
     EXPECT_EQ(refusals, 1);
     const std::vector<std::string> report = character_report(t);
     bool refused = false;
-    for (const std::string& line : report) refused |= line == "geometric levels layered and subdivided: refused (no muscles)";
+    for (const std::string& line : report) refused |= line == "geometric levels layered and subdivided: refused (no muscles; drawn as rigid proxies)";
     EXPECT_TRUE(refused);
-    // A scene with it: it plays its clip at every level, drawn as rigid proxies.
+    // A scene with it, close up (the rules choose a layered level): it plays its clip, drawn as
+    // rigid proxies, one per bone.
     test::write_text((dir / "scene.json").string(), R"({"rules": "builtin:default", "frames": 10,
         "camera": {"position": [0, 1.5, 4], "target": [0, 0.5, 0]},
         "character_types": [{"name": "dog", "bvh": "dog.bvh"}],
         "characters": [{"type": "dog", "position": [0, 0, 0], "requests": [{"type": "play", "clip": "dog.mocap", "loop": true}]}]})");
-    auto scene = load_scene((dir / "scene.json").string());
-    ASSERT_TRUE(scene.ok()) << scene.error().to_string();
-    auto world = World::create(scene.value(), WorldOptions{});
-    ASSERT_TRUE(world.ok()) << world.error().to_string();
-    for (int f = 0; f < 10; ++f) world.value()->step();
-    EXPECT_EQ(world.value()->character_count(), 1u);
+    const Drawn drawn = run_rendered(dir / "scene.json", 10);
+    EXPECT_TRUE(drawn.meshes.empty());
+    EXPECT_GE(drawn.proxies, 8u);
+    EXPECT_EQ(drawn.methods[static_cast<size_t>(GeomMethod::Layered)] + drawn.methods[static_cast<size_t>(GeomMethod::Subdivided)], 1u);
+    fs::remove_all(dir);
+}
+
+TEST(CharacterRig, QuadrupedGltfIsDrawnWithItsMesh) {
+    // A four-legged glTF with a skinned mesh: no muscles (layered levels refused in one note), its
+    // mesh at every level that would have been layered, its clip played.
+    const fs::path dir = temp_dir("dog_gltf");
+    RawSkeleton raw = quadruped();
+    for (RawJoint& j : raw.joints) j.translation *= 0.01f;  // metres, as glTF is
+    test::write_text((dir / "dog.gltf").string(), test::gltf_text(raw, 1, 0.3f, /*mesh=*/true));
+    const CharacterType t = load_or_fail(desc_for("dog", (dir / "dog.gltf").string()));
+    EXPECT_FALSE(t.map.humanoid);
+    ASSERT_TRUE(t.mesh.has_value());
+    EXPECT_EQ(t.mesh->positions.size(), 3u * raw.joints.size());
+    EXPECT_EQ(t.muscles.size(), 0);
+    int refusals = 0;
+    for (const std::string& n : t.notes) refusals += n.find("layered levels refused") != std::string::npos;
+    EXPECT_EQ(refusals, 1);
+    const std::vector<std::string> report = character_report(t);
+    bool with_mesh = false;
+    for (const std::string& line : report)
+        with_mesh |= line == "geometric levels layered and subdivided: refused (no muscles; drawn with the skinned mesh)";
+    EXPECT_TRUE(with_mesh);
+    // Close up (the rules choose a layered level): its own mesh is drawn, every vertex of it, and no
+    // proxies. Each triangle sits on its joint (3 cm legs), so the mesh spans the dog's height, paws
+    // (5 cm) to skull (85 cm), within the 3 cm legs.
+    test::write_text((dir / "scene.json").string(), R"({"rules": "builtin:default", "frames": 10,
+        "camera": {"position": [0, 1.0, 2.5], "target": [0, 0.5, 0]},
+        "character_types": [{"name": "dog", "gltf": "dog.gltf"}],
+        "characters": [{"type": "dog", "position": [0, 0, 0], "requests": [{"type": "play", "clip": "sway", "loop": true}]}]})");
+    const Drawn drawn = run_rendered(dir / "scene.json", 10);
+    EXPECT_EQ(drawn.proxies, 0u);
+    EXPECT_EQ(drawn.methods[static_cast<size_t>(GeomMethod::Layered)] + drawn.methods[static_cast<size_t>(GeomMethod::Subdivided)], 1u);
+    ASSERT_EQ(drawn.meshes.size(), 1u);
+    EXPECT_EQ(drawn.meshes[0].size(), 3u * raw.joints.size());
+    float lo = 1e30f, hi = -1e30f;
+    for (const glm::vec3& p : drawn.meshes[0]) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+    std::printf("[figure] dog glTF mesh drawn at a layered level: %zu vertices, height %.3f..%.3f m\n", drawn.meshes[0].size(), lo, hi);
+    EXPECT_GT(hi - lo, 0.8f - 0.06f);
+    EXPECT_LT(hi - lo, 0.8f + 0.06f);
     fs::remove_all(dir);
 }
 
