@@ -4,6 +4,7 @@
 #include "engine/assets/gltf_loader.hpp"
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
+#include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
 #include "systems/geometry/muscle/muscle_fit.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
@@ -107,7 +108,11 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
             add_walk_loop(type, clip, desc.gltf);
         }
     }
-    if (!g.meshes.empty()) type.mesh = character_mesh_from_gltf(g, type.skeleton);
+    if (!g.meshes.empty()) {
+        type.mesh = character_mesh_from_gltf(g, type.skeleton);
+        type.materials = gltf_surface_materials(g);
+        type.textures = std::move(g.textures);
+    }
     return {};
 }
 
@@ -156,6 +161,14 @@ Status load_from_humanoid(const CharacterTypeDesc& desc, CharacterType& type) {
     return {};
 }
 
+// A type without an authored mesh shows the skin generated from its muscles, with the generated
+// body texture (skin, shirt, trousers, shoes; see body_texture.hpp).
+void use_generated_look(CharacterType& type) {
+    if (type.mesh) return;
+    type.materials = {body_material()};
+    type.textures = {make_body_texture()};
+}
+
 }  // namespace
 
 int find_clip(const CharacterType& type, const std::string& name) {
@@ -169,6 +182,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     if (!desc.humanoid.empty()) {
         if (Status s = load_from_humanoid(desc, type); !s.ok()) return s.error();
         measure(type);
+        use_generated_look(type);
         return type;
     }
     Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
@@ -199,6 +213,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         return make_error(desc.bvh, "character type '" + desc.name + "' has neither a muscle layout nor a skinned mesh to fit muscles to");
     }
     measure(type);
+    use_generated_look(type);
     return type;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/anim/skeleton.hpp"
+#include "engine/assets/surface_material.hpp"
 #include "engine/core/result.hpp"
 #include "engine/scene/scene_desc.hpp"
 #include "systems/geometry/controller/character_geometry.hpp"
@@ -28,6 +29,9 @@ struct CharacterType {
     std::optional<WalkRig> rig;     ///< leg rig for kinematic walking (none when legs are not found)
     MuscleSet muscles;
     std::optional<CharacterMesh> mesh;  ///< glTF skin, when the type has one
+    std::vector<SurfaceMaterial> materials; ///< indexed by the mesh's vertex_material (the generated body's
+                                            ///< one material for a type without a mesh)
+    std::vector<TextureImage> textures;     ///< indexed by SurfaceMaterial::texture
     float height = 1.8f;            ///< standing height (m), for bounds
     float radius = 0.4f;            ///< horizontal radius (m), for bounds
     std::vector<std::string> notes; ///< what was skipped or assumed while loading

@@ -123,6 +123,9 @@ public:
     /// Camera used by the last frame (LOD view) and its render matrices.
     [[nodiscard]] const LodCamera& camera() const { return camera_; }
     [[nodiscard]] RenderCamera render_camera() const;
+    /// Sets `frame`'s camera (render_camera()), character lighting (set_character_lighting) and whether
+    /// materials are drawn (in the shaded colouring; debug colourings show their palette alone).
+    void frame_settings(FrameInput& frame) const;
     /// The last frame's draw lists.
     [[nodiscard]] const RenderLists& render_lists() const { return lists_; }
     /// Per-frame statistics of the last Render phase (GPU ms; -1 without a renderer).
@@ -160,7 +163,7 @@ private:
     void gather_render_lists();
     void gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::mat4& world);
     static constexpr uint32_t kNoTopology = 0xFFFFFFFFu;
-    uint32_t topology_id(const CharacterRuntime& rt, const SurfaceView& surface);
+    uint32_t topology_id(CharacterRuntime& rt, const SurfaceView& surface);
 
     SceneDesc scene_;
     WorldOptions options_;

@@ -79,7 +79,8 @@ Status World::reference_frame(ReferenceFrame& out) {
         view.positions = pos;
         const uint32_t topology = topology_id(rt, view);
         if (topology == kNoTopology) return render_status_;
-        out.meshes.push_back({topology, pos, nrm, world, glm::vec4(0.86f, 0.68f, 0.56f, 1.0f)});
+        // The shaded colouring's instance colour: white over the type's materials, skin tone without.
+        out.meshes.push_back({topology, pos, nrm, world, rt.render_materials.empty() ? glm::vec4(0.86f, 0.68f, 0.56f, 1.0f) : glm::vec4(1.0f)});
         ++used;
     }
     return {};

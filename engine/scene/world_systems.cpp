@@ -204,7 +204,7 @@ void World::register_systems() {
                     [this](SystemContext&) {
                         if (!renderer_ || !target_) return;
                         FrameInput input;
-                        input.camera = render_camera();
+                        frame_settings(input);
                         input.meshes = lists_.meshes;
                         input.proxies = lists_.proxies;
                         input.lines = lists_.lines;
