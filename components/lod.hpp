@@ -13,6 +13,7 @@ struct LodAttributes {
     float speed = 0.0f;               ///< m/s
     float importance = 0.0f;          ///< copied from Importance
     uint8_t visible = 0;              ///< 1 when the bounds intersect the view frustum
+    float occluded = 0.0f;            ///< 0..1: fraction of the on-screen bounds behind nearer characters
 };
 
 /// Bits of GeomLod::layers: which of the four layers are simulated/drawn.
@@ -82,7 +83,11 @@ struct LodState {
     uint16_t geomorph_left = 0;     ///< frames of geomorph remaining
     uint16_t crossfade_left = 0;    ///< frames of pose cross-fade remaining
     uint16_t rule_id = 0;           ///< rule that produced the current levels
-    uint8_t budget_demotion = 0;    ///< levels removed by the frame budget (0 = none)
+    uint8_t budget_demotion = 0;    ///< geometric levels removed by the frame budget (0 = none)
+    uint8_t anim_demotion = 0;      ///< animation levels removed by the frame budget (0 = none)
+    uint8_t cap_geom_level = 0;     ///< richest geometric level the level caps allow this frame (0 = any)
+    uint8_t cap_anim_level = 0;     ///< richest animation level the level caps allow this frame (0 = any)
+    uint8_t always_full = 0;        ///< 1: set by the scene; the frame budget never demotes this character
 };
 
 }  // namespace aloha

@@ -5,6 +5,7 @@
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
 
+#include <chrono>
 #include <functional>
 
 namespace aloha {
@@ -21,6 +22,11 @@ struct GpuResource {};
 
 // Characters per parallel chunk for the cheap per-character LOD loops.
 constexpr size_t kLodGrain = 2048;
+
+uint64_t now_ns() {
+    return static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
+}
 }  // namespace
 
 void World::register_systems() {
@@ -44,12 +50,19 @@ void World::register_systems() {
                         });
                     }});
 
-    if (budget_on_) {
-        scheduler_.add({"lod_budget", Phase::Rules, reads<LodAttributes, RuleResource>(), writes<LodState>(),
+    // Occlusion by the crowd itself: a coarse depth grid of nearer characters' cores (systems/lod/occlusion.hpp).
+    if (options_.occlusion) {
+        scheduler_.add({"lod_occlusion", Phase::Rules, reads<Transform, Bounds, GeomLod, CameraResource>(), writes<LodAttributes>(),
                         [this](SystemContext&) {
                             auto g = character_group(registry_);
-                            budget_.update(static_cast<float>(last_cpu_ms_), g.span<LodAttributes>(),
-                                           g.span<LodState>(), rules_.table());
+                            OcclusionJob job;
+                            job.transforms = g.span<Transform>();
+                            job.bounds = g.span<Bounds>();
+                            job.geom = g.span<GeomLod>();
+                            job.camera = camera_;
+                            job.grid = &occlusion_grid_;
+                            job.attributes = g.span<LodAttributes>();
+                            job.Run();
                         }});
     }
 
@@ -66,7 +79,7 @@ void World::register_systems() {
                             job.table = &table;
                             job.attributes = g.span<LodAttributes>().subspan(b, e - b);
                             job.states = g.span<LodState>().subspan(b, e - b);
-                            job.tier = table.default_tier;
+                            job.tier = tier_.tier;
                             job.output = g.span<LodRequest>().subspan(b, e - b);
                             job.Run();
                         });
@@ -79,6 +92,27 @@ void World::register_systems() {
             auto g = character_group(registry_);
             const RuleTable& table = rules_.table();
             changed_.resize(g.size());
+            // The frame budget (off, one total, or separate animation and geometry parts: LodBudget) steers
+            // on the last frame's measured times and this frame's requests (to predict pending switches).
+            if (budget_.active()) {
+                BudgetMeasurement m;
+                m.total_ms = static_cast<float>(last_cpu_ms_);
+                m.animation_ms = static_cast<float>(last_animation_ms_);
+                m.geometry_ms = static_cast<float>(last_geometry_ms_);
+                if (geom_level_ms_.size() == table.geom_levels.size()) m.geometry_level_ms = geom_level_ms_;
+                if (anim_level_ms_.size() == table.anim_levels.size()) m.animation_level_ms = anim_level_ms_;
+                budget_.update(m, g.span<LodAttributes>(), g.span<LodRequest>(), g.span<LodState>(), table);
+            }
+            // Level caps (at most N characters at a level or richer, by significance) before the resolver.
+            LevelCapJob caps;
+            caps.table = &table;
+            caps.requests = g.span<LodRequest>();
+            caps.attributes = g.span<LodAttributes>();
+            caps.states = g.span<LodState>();
+            caps.snap = first_frame_;
+            caps.keep_bonus = table.hysteresis.band;
+            caps.scratch = &caps_scratch_;
+            if (options_.lod) caps.Run();
             LodResolveJob job;
             job.table = &table;
             job.requests = g.span<LodRequest>();
@@ -87,6 +121,7 @@ void World::register_systems() {
             job.anim = g.span<AnimLod>();
             job.changed_indices = changed_;
             job.snap = first_frame_;
+            job.switch_counts = switches_;
             const size_t changed = job.Run();
             // Marshal level switches to the geometric controller (geomorph from the old surface).
             auto refs = g.span<CharacterRef>();
@@ -119,6 +154,7 @@ void World::register_systems() {
                     writes<MotionState, Transform, Velocity, PoseResource>(), [this](SystemContext& ctx) {
                         auto g = character_group(registry_);
                         for (auto& rt : types_) {
+                            rt->motion->set_level_timing(anim_level_ns_);  // per-level time for the animation budget
                             MotionUpdateJob job;
                             job.controller = rt->motion.get();
                             job.dt = ctx.dt();
@@ -149,9 +185,11 @@ void World::register_systems() {
                             const PoseSource poses = rt.poses();
                             const uint8_t level = geom[r.begin].level;
                             const std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
+                            const uint64_t start = now_ns();  // per-level time for the geometry budget
                             ctx.parallel_for(ids.size(), 1, [&](size_t b, size_t e) {
                                 rt.geometry->update_muscles(level, ids.subspan(b, e - b), poses);
                             });
+                            if (level < geom_level_ns_.size()) geom_level_ns_[level] += now_ns() - start;
                         }
                     }});
 
@@ -188,9 +226,11 @@ void World::register_systems() {
                             }
                             // Grain: cheap methods in big chunks, rich ones one or a few characters each.
                             const size_t grain = method == GeomMethod::RigidProxy ? 256 : method == GeomMethod::SkinnedMesh ? 16 : 1;
+                            const uint64_t start = now_ns();  // per-level time for the geometry budget
                             ctx.parallel_for(ids.size(), grain, [&](size_t b, size_t e) {
                                 rt.geometry->update_skin(level, ids.subspan(b, e - b), poses, ctx.dt());
                             });
+                            if (level < geom_level_ns_.size()) geom_level_ns_[level] += now_ns() - start;
                         }
                     }});
 

@@ -41,15 +41,7 @@ float threshold_value(const RuleTable& table, const RuleThreshold& t) {
 }
 
 void recompute_widened_bounds(RuleTable& table, uint32_t box) {
-    ConditionBox& cb = table.boxes[box];
-    const float band = table.hysteresis.band;
-    cb.lo_wide = cb.lo;
-    cb.hi_wide = cb.hi;
-    for (int k = 0; k < kLodAttributeCount; ++k) {
-        if (!is_continuous(static_cast<LodAttribute>(k))) continue;
-        if (std::isfinite(cb.lo[k])) cb.lo_wide[k] = cb.lo[k] - band * std::fabs(cb.lo[k]);
-        if (std::isfinite(cb.hi[k])) cb.hi_wide[k] = cb.hi[k] + band * std::fabs(cb.hi[k]);
-    }
+    widen_box(table.boxes[box], table.hysteresis.band);  // the parser's own formula
 }
 
 void recompute_widened_bounds(RuleTable& table) {

@@ -18,12 +18,28 @@ namespace aloha {
 /// Animation level for request `requested` after removing `demotion` levels (clamped to the last).
 [[nodiscard]] uint8_t demoted_anim_level(const RuleTable& table, uint8_t requested, uint8_t demotion);
 
+/// The levels the resolver aims a character at this frame: the request demoted by the budget
+/// (budget_demotion, anim_demotion), then no richer than the caps allow (cap_geom_level,
+/// cap_anim_level; a Hidden request is never raised). Levels are clamped into the table.
+struct LodTargets {
+    uint8_t geom = 0;   ///< target geometric level
+    uint8_t anim = 0;   ///< target animation level
+};
+/// See LodTargets. Requires a non-empty table.
+[[nodiscard]] LodTargets lod_targets(const RuleTable& table, const LodRequest& request, const LodState& state);
+
+/// The levels a character will have after this frame's resolve if the caps allowed everything: the
+/// uncapped target where the resolver may switch (held min_frames, Hidden, or `snap`), else the current.
+[[nodiscard]] LodTargets uncapped_outcome(const RuleTable& table, const LodRequest& request, const LodState& state,
+                                          bool snap);
+
 /// LodRequest + LodState -> LodState, GeomLod, AnimLod for a contiguous range of characters.
 ///
 /// Per character and frame: timers advance (frames_at_* +1 saturating, geomorph_left and
-/// crossfade_left -1 down to 0); the target is the request demoted by state.budget_demotion; a level
+/// crossfade_left -1 down to 0); the target is lod_targets() (budget demotion and level caps); a level
 /// switches to its target only when it has been held for hysteresis.min_frames frames (or the current
-/// geometric level is Hidden, so a character coming into view is never held invisible). A geometric
+/// geometric level is Hidden, so a character coming into view is never held invisible), except that a
+/// level richer than its cap allows is left at once (caps are never exceeded). A geometric
 /// switch keeps the old level in prev_geom_level and sets geomorph_left to the entered level's
 /// geomorph_frames (morph progress = 1 - geomorph_left / geomorph_frames); an animation switch sets
 /// prev_anim_level and crossfade_left likewise. state.rule_id takes the request's rule once both
@@ -38,6 +54,7 @@ struct LodResolveJob {
     std::span<uint32_t> changed_indices;        ///< n entries of room (first Run() filled) or empty
     uint32_t index_base = 0;                    ///< added to indices written to changed_indices
     bool snap = false;                          ///< first frame / teleport: take targets at once, no transitions
+    uint32_t* switch_counts = nullptr;          ///< optional [2]: geometric, animation switches (added to)
 
     /// Checks table and sizes; appends one message per failure to `errors` when given.
     bool Validate(std::vector<std::string>* errors = nullptr) const;

@@ -1,6 +1,7 @@
 #include "systems/lod/rule_table.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,7 @@ std::string_view attribute_name(LodAttribute a) {
         case LodAttribute::Visible: return "visible";
         case LodAttribute::Importance: return "importance";
         case LodAttribute::Tier: return "tier";
+        case LodAttribute::Occluded: return "occluded";
     }
     return "?";
 }
@@ -41,6 +43,28 @@ int RuleTable::find_tier(std::string_view name) const {
         if (tiers[i] == name) return static_cast<int>(i);
     }
     return -1;
+}
+
+bool gets_value_band(LodAttribute a) {
+    return a != LodAttribute::Visible && a != LodAttribute::Tier && a != LodAttribute::Occluded;
+}
+
+void widen_box(ConditionBox& box, float band) {
+    box.lo_wide = box.lo;
+    box.hi_wide = box.hi;
+    for (int k = 0; k < kLodAttributeCount; ++k) {
+        if (!gets_value_band(static_cast<LodAttribute>(k))) continue;
+        if (std::isfinite(box.lo[k])) box.lo_wide[k] = box.lo[k] - band * std::fabs(box.lo[k]);
+        if (std::isfinite(box.hi[k])) box.hi_wide[k] = box.hi[k] + band * std::fabs(box.hi[k]);
+    }
+}
+
+bool RuleTable::has_caps() const {
+    for (const auto& l : geom_levels)
+        if (l.max_characters != kNoCap) return true;
+    for (const auto& l : anim_levels)
+        if (l.max_characters != kNoCap) return true;
+    return false;
 }
 
 GeomLod RuleTable::geom_lod(uint8_t level) const {

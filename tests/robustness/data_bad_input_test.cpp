@@ -89,7 +89,7 @@ TEST(RulesBadInput, HostileConditionsAndFiles) {
 TEST(RulesBadInput, ThresholdThatOverflowsFloat) {
     const std::string rules = robustness::slurp(kData + "rules/default.json");
     EXPECT_TRUE(refused(parse_rules(replaced(rules, "\"ge\": 0.8", "\"ge\": 1e39"), "rules.json"),
-                        "R7 threshold 1e39 (float overflow)", "rules.json", {"/rules/1/when/importance"}));
+                        "R7 threshold 1e39 (float overflow)", "rules.json", {"/rules/2/when/importance"}));
 }
 
 // Regression (found while fuzzing, fixed): a folder given as the rule file or muscle layout reads as an empty file, so the user sees

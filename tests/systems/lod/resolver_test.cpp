@@ -89,7 +89,8 @@ TEST(Resolver, BudgetDemotionNeverHidesAVisibleCharacter) {
     EXPECT_EQ(demoted_geom_level(t, 3, 1), 3);   // hidden stays hidden
     EXPECT_EQ(demoted_anim_level(t, 1, 9), 2);
     Frame f(1);
-    f.states[0].budget_demotion = 1;
+    f.states[0].budget_demotion = 1;  // geometric levels removed
+    f.states[0].anim_demotion = 1;    // animation levels removed (separate since the part budgets)
     f.resolve(t, {request(0, 0, 1)}, true);
     EXPECT_EQ(f.states[0].geom_level, 1);
     EXPECT_EQ(f.states[0].anim_level, 1);

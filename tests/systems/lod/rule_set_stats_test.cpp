@@ -135,6 +135,7 @@ TEST(LodStats, ExplainOneCharacter) {
     const RuleTable t = must_parse(small_rules());
     Pipeline p({at_distance(15.0f)});
     p.states[0].budget_demotion = 1;
+    p.states[0].anim_demotion = 1;
     p.frame(t, true);
     const LodExplanation e = explain(t, 0, p.attrs, p.states);
     EXPECT_EQ(e.rule_name, "mid");
@@ -149,6 +150,7 @@ TEST(LodStats, ExplainOneCharacter) {
     EXPECT_EQ(j["geometry"]["method"], "rigid_proxy");
     EXPECT_EQ(j["animation"]["walk"], "clip");
     EXPECT_EQ(j["budget_demotion"], 1);
+    EXPECT_EQ(j["anim_budget_demotion"], 1);
     EXPECT_EQ(j["attributes"]["visible"], true);
 }
 
