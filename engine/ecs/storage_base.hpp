@@ -1,7 +1,8 @@
 // The type-erased face of a component storage: a sparse set of entities (paged sparse array ->
-// dense index, dense entity array) that the registry and groups drive without knowing T.
+// dense index and generation, dense entity array) that the registry and groups drive without knowing T.
 #pragma once
 
+#include <array>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -22,13 +23,65 @@ struct SwapPair {
     uint32_t b;
 };
 
+/// Sparse entry of one entity index: where its component sits in the dense arrays and which generation
+/// of the index owns it. Absent indices hold {kAbsent, kAbsent}; a present one equals {p, dense[p].generation}.
+struct SparseEntry {
+    uint32_t dense;       ///< dense position, or kAbsent
+    uint32_t generation;  ///< generation of the entity at `dense` (kAbsent when absent)
+};
+
+namespace detail {
+
+/// Entries per sparse page (a power of two).
+inline constexpr uint32_t kSparsePageSize = 4096;
+
+/// A sparse page whose entries are all absent.
+constexpr std::array<SparseEntry, kSparsePageSize> make_absent_page() {
+    std::array<SparseEntry, kSparsePageSize> page{};
+    for (SparseEntry& s : page) s = SparseEntry{UINT32_MAX, UINT32_MAX};
+    return page;
+}
+
+/// The shared, never-written page that stands in for sparse pages not allocated yet.
+inline constexpr std::array<SparseEntry, kSparsePageSize> kAbsentPage = make_absent_page();
+
+}  // namespace detail
+
+/// Read-only handle on a storage's sparse pages for tight loops: one load answers "does this exact
+/// handle have the component, and where". Valid until the storage gains a sparse page (an emplace).
+class SparseIndex {
+public:
+    /// Entries per sparse page (a power of two).
+    static constexpr uint32_t kPageSize = detail::kSparsePageSize;
+    /// Dense value (and generation) of an absent entry.
+    static constexpr uint32_t kAbsent = UINT32_MAX;
+
+    /// Wraps `count` page pointers (every one non-null: missing pages point at detail::kAbsentPage).
+    SparseIndex(const SparseEntry* const* pages, size_t count) : pages_(pages), count_(count) {}
+
+    /// The entry of entity index `index` (an absent entry when its page does not exist).
+    [[nodiscard]] const SparseEntry& entry(uint32_t index) const {
+        const uint32_t page = index / kPageSize;
+        return page < count_ ? pages_[page][index % kPageSize] : detail::kAbsentPage[0];
+    }
+    /// Dense position of exactly this handle (index and generation), or kAbsent. Touches only the
+    /// sparse page: an absent entry's dense value is kAbsent whatever generation it is asked for.
+    [[nodiscard]] uint32_t find(Entity e) const {
+        const SparseEntry& s = entry(e.index);
+        return s.generation == e.generation ? s.dense : kAbsent;
+    }
+private:
+    const SparseEntry* const* pages_;
+    size_t count_;
+};
+
 /// Sparse set of entities plus virtual hooks for the component array held by Storage<T>.
 class StorageBase {
 public:
     /// Entries per sparse page (a power of two).
-    static constexpr uint32_t kPageSize = 4096;
+    static constexpr uint32_t kPageSize = SparseIndex::kPageSize;
     /// Sparse value of an absent entity.
-    static constexpr uint32_t kAbsent = UINT32_MAX;
+    static constexpr uint32_t kAbsent = SparseIndex::kAbsent;
 
     /// Creates an empty set for component type `type`.
     explicit StorageBase(ComponentTypeId type) : type_(type) {}
@@ -45,22 +98,22 @@ public:
     /// The dense entity array; element i owns component i.
     [[nodiscard]] std::span<const Entity> entities() const { return dense_; }
 
-    /// True when exactly this handle (index and generation) has the component.
-    [[nodiscard]] bool contains(Entity e) const {
-        const uint32_t page = e.index / kPageSize;
-        if (page >= sparse_.size() || !sparse_[page]) return false;
-        const uint32_t slot = sparse_[page][e.index % kPageSize];
-        return slot != kAbsent && dense_[slot] == e;
-    }
+    /// True when exactly this handle (index and generation) has the component. Reads one sparse
+    /// entry (which stores the generation), never the dense array.
+    [[nodiscard]] bool contains(Entity e) const { return find(e) != kAbsent; }
     /// Dense position of `e`; requires contains(e).
     [[nodiscard]] size_t index_of(Entity e) const {
         assert(contains(e));
-        return sparse_[e.index / kPageSize][e.index % kPageSize];
+        return sparse().entry(e.index).dense;
     }
     /// Dense position of `e`, or kAbsent when it lacks the component.
-    [[nodiscard]] uint32_t find(Entity e) const {
-        return contains(e) ? sparse_[e.index / kPageSize][e.index % kPageSize] : kAbsent;
-    }
+    [[nodiscard]] uint32_t find(Entity e) const { return sparse().find(e); }
+    /// The sparse pages, for loops that look many entities up (see View).
+    [[nodiscard]] SparseIndex sparse() const { return SparseIndex(sparse_.data(), sparse_.size()); }
+    /// Checks every sparse/dense invariant (O(size + pages)): each dense position p has
+    /// sparse[dense[p].index] == {p, dense[p].generation}, no two positions share an index, and
+    /// every other entry is absent. For tests and debugging.
+    [[nodiscard]] bool consistent() const;
 
     /// Removes `e`'s component (swap-and-pop); returns false when it had none.
     bool remove(Entity e);
@@ -94,10 +147,14 @@ protected:
     virtual void clear_components() = 0;
 
 private:
-    uint32_t& sparse_slot(uint32_t index);
+    // The writable entry of `index`, allocating its page on first use.
+    SparseEntry& sparse_slot(uint32_t index);
+    // The writable entry of `index`; its page must exist (the entity is in the dense array).
+    SparseEntry& entry_of(uint32_t index) { return owned_pages_[index / kPageSize][index % kPageSize]; }
 
     ComponentTypeId type_;
-    std::vector<std::unique_ptr<uint32_t[]>> sparse_;
+    std::vector<const SparseEntry*> sparse_;                   // read side; kAbsentPage where none
+    std::vector<std::unique_ptr<SparseEntry[]>> owned_pages_;  // write side, same indexing; null where none
     std::vector<Entity> dense_;
     GroupData* owner_ = nullptr;
 };

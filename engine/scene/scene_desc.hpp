@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,8 @@ struct CharacterDesc {
     float importance = 0.5f;
     bool always_full = false;  ///< the frame budget never demotes this character
     std::vector<RequestDesc> requests;
+    std::optional<RequestDesc> overlay;  ///< reach / look-at layered over the requests (MotionController::set_overlay)
+    float overlay_weight = 1.0f;         ///< its weight in [0, 1]
 };
 
 /// Mix of behaviours in a generated crowd (fractions, normalised at load).

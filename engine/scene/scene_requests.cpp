@@ -24,9 +24,10 @@ int read_type_ref(JsonObjectReader& r, const SceneDesc& scene) {
 }  // namespace
 
 RequestDesc read_request(const nlohmann::json& value, const std::string& path, const SceneDesc& scene,
-                         std::vector<Error>& errors) {
+                         std::vector<Error>& errors, float* weight) {
     RequestDesc out;
     JsonObjectReader r(value, path, scene.file, errors);
+    if (weight) *weight = static_cast<float>(r.number("weight", 1.0, 0.0, 1.0));
     const std::string type = r.string("type", "", true);
     MotionRequest& m = out.request;
     m.duration = static_cast<float>(r.number("duration", -1.0, -1.0, 1e6));
@@ -94,6 +95,13 @@ void read_characters(JsonObjectReader& root, SceneDesc& scene, std::vector<Error
                 for (size_t k = 0; k < reqs->size(); ++k)
                     c.requests.push_back(read_request((*reqs)[k], p + "/requests/" + std::to_string(k), scene, errors));
             }
+        }
+        if (const nlohmann::json* o = r.child("overlay")) {
+            // A reach or look-at layered over the requests: the same keys as those requests, plus a weight.
+            RequestDesc d = read_request(*o, p + "/overlay", scene, errors, &c.overlay_weight);
+            if (d.request.kind != RequestKind::Reach && d.request.kind != RequestKind::LookAt)
+                r.error("overlay", "an overlay is a reach or a look_at");
+            c.overlay = std::move(d);
         }
         r.reject_unknown_keys();
         scene.characters.push_back(std::move(c));

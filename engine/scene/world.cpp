@@ -213,6 +213,15 @@ Status World::spawn_characters() {
             if (!rt.motion->push_request(id, req))
                 return make_error(scene_.file, where + ": more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued");
         }
+        if (c.overlay) {
+            MotionRequest req = c.overlay->request;
+            const int joint = rt.type.skeleton.find(c.overlay->effector);
+            if (joint < 0)
+                return make_error(scene_.file, "character " + std::to_string(i) + " overlay: unknown effector joint '" +
+                                                   c.overlay->effector + "' for type '" + rt.type.name + "'");
+            req.effector = static_cast<int16_t>(joint);
+            rt.motion->set_overlay(id, req, c.overlay_weight);
+        }
     }
     regroup();
     return {};

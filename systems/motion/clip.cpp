@@ -1,5 +1,8 @@
 #include "systems/motion/clip.hpp"
 
+#include "systems/motion/clip_quant.hpp"
+#include "systems/motion/sampling.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -72,7 +75,121 @@ float AnimationClip::root_speed() const {
     return glm::length(d) / duration_;
 }
 
-Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton) {
+size_t AnimationClip::byte_size() const {
+    return times_.size() * sizeof(float) + qkeys_.size() * sizeof(uint16_t) + fkeys_.size() * sizeof(float) +
+           (base_.size() + step_.size()) * sizeof(float) + (const_t_.size() + const_s_.size()) * sizeof(glm::vec3) +
+           const_r_.size() * sizeof(glm::quat);
+}
+
+/// Turns dense float key values into an AnimationClip's key blocks (friend of AnimationClip).
+struct ClipEncoder {
+    /// Every joint's value at every key of the union timeline, index k * joints + j.
+    struct Keys {
+        size_t joints = 0;
+        size_t count = 0;
+        std::vector<glm::vec3> t;
+        std::vector<glm::quat> r;
+        std::vector<glm::vec3> s;
+    };
+
+    // Component c of a value (x, y, z[, w]).
+    static float comp(const glm::vec3& v, size_t c) { return v[static_cast<glm::length_t>(c)]; }
+    static float comp(const glm::quat& q, size_t c) { return c == 0 ? q.x : c == 1 ? q.y : c == 2 ? q.z : q.w; }
+
+    // The joints [first, last] whose value changes over the keys, as a section (count 0 if none).
+    template <class T>
+    static ClipSection animated(const std::vector<T>& v, const Keys& keys) {
+        int first = -1, last = -1;
+        for (size_t j = 0; j < keys.joints; ++j)
+            for (size_t k = 1; k < keys.count; ++k)
+                if (v[k * keys.joints + j] != v[j]) {
+                    if (first < 0) first = static_cast<int>(j);
+                    last = static_cast<int>(j);
+                    break;
+                }
+        ClipSection sec;
+        if (first >= 0) { sec.first = first; sec.count = last - first + 1; }
+        return sec;
+    }
+
+    // Element e of a block for joint j, component c: packed (3 per joint) or planar (`planes` planes).
+    static size_t element(const ClipSection& sec, size_t j, size_t c, size_t dims) {
+        const size_t local = j - static_cast<size_t>(sec.first);
+        return sec.offset + (dims == 3 ? 3 * local + c : c * static_cast<size_t>(sec.count) + local);
+    }
+
+    // Stores section `sec` of values `v` (dims components) into every block; returns the largest
+    // channel bound per joint component in `bounds` (joint-major, dims per joint).
+    template <class T>
+    static void store(AnimationClip& clip, const Keys& keys, const std::vector<T>& v, const ClipSection& sec,
+                      size_t dims, std::vector<float>* bounds) {
+        const bool quant = clip.encoding_ == ClipEncoding::Quantized16;
+        for (size_t jj = 0; jj < static_cast<size_t>(sec.count); ++jj) {
+            const size_t j = static_cast<size_t>(sec.first) + jj;
+            for (size_t c = 0; c < dims; ++c) {
+                float lo = comp(v[j], c), hi = lo;
+                for (size_t k = 1; k < keys.count; ++k) {
+                    lo = std::min(lo, comp(v[k * keys.joints + j], c));
+                    hi = std::max(hi, comp(v[k * keys.joints + j], c));
+                }
+                const size_t e = element(sec, j, c, dims);
+                const QuantChannel q = quant ? fit_channel(lo, hi) : QuantChannel{};
+                if (quant) {
+                    clip.base_[e] = q.base;
+                    clip.step_[e] = q.step;
+                }
+                float bound = channel_error_bound(lo, hi, q.step);
+                if (quant && q.step == 0.0f && hi > lo) bound += hi - lo;  // underflowed step: codes all 0
+                (*bounds)[j * dims + c] = bound;
+                for (size_t k = 0; k < keys.count; ++k) {
+                    const float x = comp(v[k * keys.joints + j], c);
+                    if (quant) clip.qkeys_[k * clip.block_ + e] = quantize(x, q);
+                    else clip.fkeys_[k * clip.block_ + e] = x;
+                }
+            }
+        }
+    }
+
+    // Fills `clip` (timeline, joint count and encoding already set) from `keys`.
+    static void encode(AnimationClip& clip, const Keys& keys) {
+        const size_t n = keys.joints;
+        ClipSection& st = clip.sections_[AnimationClip::kTranslations];
+        ClipSection& sr = clip.sections_[AnimationClip::kRotations];
+        ClipSection& ss = clip.sections_[AnimationClip::kScales];
+        st = animated(keys.t, keys);
+        sr = animated(keys.r, keys);
+        ss = animated(keys.s, keys);
+        sr.offset = 3 * static_cast<size_t>(st.count);
+        ss.offset = sr.offset + 4 * static_cast<size_t>(sr.count);
+        clip.block_ = ss.offset + 3 * static_cast<size_t>(ss.count);
+        // Joints outside a section hold their (constant) first-key value, rotations as sampling returns them.
+        if (static_cast<size_t>(st.count) < n) clip.const_t_.assign(keys.t.begin(), keys.t.begin() + static_cast<long>(n));
+        if (static_cast<size_t>(ss.count) < n) clip.const_s_.assign(keys.s.begin(), keys.s.begin() + static_cast<long>(n));
+        if (static_cast<size_t>(sr.count) < n) {
+            clip.const_r_.resize(n);
+            for (size_t j = 0; j < n; ++j) clip.const_r_[j] = normalize_like_sampling(keys.r[j]);
+        }
+        const size_t total = keys.count * clip.block_;
+        if (clip.encoding_ == ClipEncoding::Quantized16) {
+            clip.qkeys_.assign(total, 0);
+            clip.base_.assign(clip.block_, 0.0f);
+            clip.step_.assign(clip.block_, 0.0f);
+        } else {
+            clip.fkeys_.assign(total, 0.0f);
+        }
+        std::vector<float> bt(3 * n, 0.0f), br(4 * n, 0.0f), bs(3 * n, 0.0f);
+        store(clip, keys, keys.t, st, 3, &bt);
+        store(clip, keys, keys.r, sr, 4, &br);
+        store(clip, keys, keys.s, ss, 3, &bs);
+        clip.bound_ = ClipErrorBound{};
+        for (float b : bt) clip.bound_.translation = std::max(clip.bound_.translation, b);
+        for (float b : bs) clip.bound_.scale = std::max(clip.bound_.scale, b);
+        for (size_t j = static_cast<size_t>(sr.first); j < static_cast<size_t>(sr.first + sr.count); ++j)
+            clip.bound_.rotation = std::max(clip.bound_.rotation, rotation_error_bound(&br[4 * j]));
+    }
+};
+
+Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton, ClipEncoding encoding) {
     const size_t n = static_cast<size_t>(skeleton.joint_count());
     const std::string& clip_name = raw.name.empty() ? std::string("<unnamed clip>") : raw.name;
     if (n == 0) return make_error(clip_name, "skeleton has no joints");
@@ -103,6 +220,7 @@ Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skelet
     clip.name_ = raw.name;
     clip.joints_ = static_cast<int>(n);
     clip.duration_ = times.back();
+    clip.encoding_ = encoding;
     // Uniform when every key lies within 1e-4 of a spacing of k * spacing (float capture times such as
     // k/120 s carry relative errors ~1e-7 of the clip time, far below this).
     if (times.size() >= 2) {
@@ -132,43 +250,35 @@ Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skelet
         }
     }
 
-    const size_t stride = clip.block_floats();
-    clip.times_ = times;
-    clip.keys_.assign(times.size() * stride, 0.0f);
+    // Every joint's value at every key time, then encoded into key blocks.
+    ClipEncoder::Keys keys;
+    keys.joints = n;
+    keys.count = times.size();
+    keys.t.resize(n * times.size());
+    keys.r.resize(n * times.size());
+    keys.s.resize(n * times.size());
     const auto rest_t = skeleton.rest_translations();
     const auto rest_r = skeleton.rest_rotations();
     const auto rest_s = skeleton.rest_scales();
     for (size_t k = 0; k < times.size(); ++k) {
-        float* b = clip.keys_.data() + k * stride;
-        float* bt = b;
-        float* bqx = b + 3 * n;
-        float* bqy = bqx + n;
-        float* bqz = bqy + n;
-        float* bqw = bqz + n;
-        float* bs = b + 7 * n;
         const float t = times[k];
         for (size_t j = 0; j < n; ++j) {
             const bool has = j < raw.tracks.size();
-            const glm::vec3 tv = has ? eval_vec(raw.tracks[j].translations, t, rest_t[j]) : rest_t[j];
-            const glm::vec3 sv = has ? eval_vec(raw.tracks[j].scales, t, rest_s[j]) : rest_s[j];
-            glm::quat q = rest_r[j];
-            if (has && !aligned[j].empty()) q = eval_rot(raw.tracks[j].rotations.times, aligned[j], t);
-            bt[3 * j + 0] = tv.x;
-            bt[3 * j + 1] = tv.y;
-            bt[3 * j + 2] = tv.z;
-            bqx[j] = q.x;
-            bqy[j] = q.y;
-            bqz[j] = q.z;
-            bqw[j] = q.w;
-            bs[3 * j + 0] = sv.x;
-            bs[3 * j + 1] = sv.y;
-            bs[3 * j + 2] = sv.z;
+            keys.t[k * n + j] = has ? eval_vec(raw.tracks[j].translations, t, rest_t[j]) : rest_t[j];
+            keys.s[k * n + j] = has ? eval_vec(raw.tracks[j].scales, t, rest_s[j]) : rest_s[j];
+            keys.r[k * n + j] = has && !aligned[j].empty() ? eval_rot(raw.tracks[j].rotations.times, aligned[j], t) : rest_r[j];
         }
     }
-    const float* first = clip.keys_.data();
-    const float* last = clip.keys_.data() + (times.size() - 1) * stride;
-    clip.root_start_ = glm::vec3(first[0], first[1], first[2]);
-    clip.root_end_ = glm::vec3(last[0], last[1], last[2]);
+    clip.times_ = std::move(times);
+    ClipEncoder::encode(clip, keys);
+    // Root translation at both ends, as sampling returns it there.
+    std::vector<glm::vec3> t(n), s(n);
+    std::vector<glm::quat> r(n);
+    sample_blocks(clip, 0, 0.0f, t.data(), r.data(), s.data());
+    clip.root_start_ = t[0];
+    const int last = clip.key_count() - 1;
+    sample_blocks(clip, std::max(last - 1, 0), last > 0 ? 1.0f : 0.0f, t.data(), r.data(), s.data());
+    clip.root_end_ = t[0];
     return clip;
 }
 
@@ -191,6 +301,12 @@ int ClipLibrary::find(const std::string& name) const {
     for (size_t i = 0; i < clips_.size(); ++i)
         if (clips_[i].name() == name) return static_cast<int>(i);
     return -1;
+}
+
+size_t ClipLibrary::byte_size() const {
+    size_t bytes = 0;
+    for (const AnimationClip& c : clips_) bytes += c.byte_size();
+    return bytes;
 }
 
 }  // namespace aloha

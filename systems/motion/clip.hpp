@@ -1,6 +1,7 @@
 // Runtime animation clip: RawAnimation tracks decoded onto one shared key timeline and stored
-// keyframe-major, so sampling one time touches two contiguous key blocks. Plus the ClipLibrary
-// (the animation cache's clip store) that owns decoded clips by id.
+// keyframe-major, so sampling one time touches two contiguous key blocks. Keys are 16-bit
+// range-quantised by default (systems/motion/clip_quant.hpp: format and error bound), or floats.
+// Plus the ClipLibrary (the animation cache's clip store) that owns decoded clips by id.
 #pragma once
 
 #include "engine/anim/raw_animation.hpp"
@@ -8,25 +9,54 @@
 #include "engine/core/result.hpp"
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
+#include <array>
 #include <cstdint>
+#include <deque>
 #include <span>
 #include <string>
-#include <deque>
 #include <vector>
 
 namespace aloha {
 
+/// How build_clip stores key values.
+enum class ClipEncoding : uint8_t {
+    Quantized16,  ///< default: one uint16 per value, range-quantised per channel; error <= error_bound()
+    Float32,      ///< lossless floats: exact at keys, float lerp/nlerp between them (2x the key bytes)
+};
+
+/// Worst-case difference between what sampling a clip returns and the float source's lerp / nlerp
+/// at the same time (clip_quant.hpp derives it). A Float32 clip's bound is float rounding only.
+struct ClipErrorBound {
+    float translation = 0.0f;  ///< per component, model units (metres)
+    float rotation = 0.0f;     ///< angle between sampled and source rotation, radians
+    float scale = 0.0f;        ///< per component
+};
+
+/// The joints a key block stores for one part of the pose (translations, rotations or scales):
+/// joints [first, first + count). The others are constant over the clip and stored once.
+struct ClipSection {
+    int first = 0;        ///< first stored joint
+    int count = 0;        ///< stored joints (0: the whole part is constant)
+    size_t offset = 0;    ///< element offset of the section inside a key block
+};
+
 /// An immutable, sampling-ready clip for one skeleton.
 ///
-/// Layout: `key_count()` key blocks of `block_floats()` floats each. A block holds, for all joints,
-/// translations as packed xyz (3n floats), rotations as four planes x[n] y[n] z[n] w[n] (4n floats,
-/// structure-of-arrays so normalisation vectorises) and scales as packed xyz (3n floats).
+/// Layout: `key_count()` key blocks of `block_elements()` values (uint16 or float) each. A block
+/// holds the translation section (packed xyz, 3 values per stored joint), the rotation section (four
+/// planes x[c] y[c] z[c] w[c] for the c stored joints, so normalisation vectorises) and the scale
+/// section (packed xyz). Joints outside a section's range are constant and kept once.
 /// Every track is re-evaluated on the union of all key times; rotation keys are hemisphere-aligned
 /// (consecutive keys have a non-negative dot product) and inserted keys hold the un-normalised
-/// chord value, so lerp + normalise between blocks reproduces the source track's nlerp exactly.
+/// chord value, so lerp + normalise between blocks reproduces the source track's nlerp (exactly for
+/// Float32, within error_bound() for Quantized16).
 class AnimationClip {
 public:
+    /// Section indices for section().
+    enum Part : int { kTranslations = 0, kRotations = 1, kScales = 2 };
+
     AnimationClip() = default;
 
     /// Clip name (from the RawAnimation).
@@ -45,37 +75,57 @@ public:
     [[nodiscard]] float inverse_key_spacing() const { return inv_spacing_; }
     /// Key times (seconds, strictly increasing, first is 0).
     [[nodiscard]] std::span<const float> times() const { return times_; }
-    /// Floats per key block: 10 * joint_count().
-    [[nodiscard]] size_t block_floats() const { return static_cast<size_t>(joints_) * 10u; }
-    /// The key block of key `k` (requires 0 <= k < key_count()).
-    [[nodiscard]] const float* block(int k) const { return keys_.data() + static_cast<size_t>(k) * block_floats(); }
-    /// Root-joint (joint 0) model translation at the first and last key, for root-motion extraction.
+    /// How key values are stored.
+    [[nodiscard]] ClipEncoding encoding() const { return encoding_; }
+    /// Values (uint16 or float) per key block.
+    [[nodiscard]] size_t block_elements() const { return block_; }
+    /// Which joints a key block stores for `part` (kTranslations, kRotations or kScales).
+    [[nodiscard]] const ClipSection& section(Part part) const { return sections_[static_cast<size_t>(part)]; }
+    /// Worst-case sampling error against the float source (see ClipErrorBound).
+    [[nodiscard]] const ClipErrorBound& error_bound() const { return bound_; }
+    /// Root-joint (joint 0) model translation at the first and last key (as sampling returns them),
+    /// for root-motion extraction.
     [[nodiscard]] glm::vec3 root_start() const { return root_start_; }
     [[nodiscard]] glm::vec3 root_end() const { return root_end_; }
     /// Horizontal (XZ) root speed averaged over the clip in m/s (0 for a still or 0-length clip).
     [[nodiscard]] float root_speed() const;
-    /// Bytes of key data held.
-    [[nodiscard]] size_t byte_size() const { return keys_.size() * sizeof(float) + times_.size() * sizeof(float); }
+    /// Bytes of clip data held: key blocks, key times, per-channel ranges and constant values.
+    [[nodiscard]] size_t byte_size() const;
 
 private:
-    friend Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton);
+    friend Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton, ClipEncoding encoding);
+    friend void sample_blocks(const AnimationClip& clip, int k, float alpha, glm::vec3* translations,
+                              glm::quat* rotations, glm::vec3* scales);
+    friend struct ClipEncoder;
+
     std::string name_;
     int joints_ = 0;
     float duration_ = 0.0f;
     bool uniform_ = false;
     float spacing_ = 0.0f;
     float inv_spacing_ = 0.0f;
+    ClipEncoding encoding_ = ClipEncoding::Quantized16;
+    size_t block_ = 0;
+    std::array<ClipSection, 3> sections_{};
     std::vector<float> times_;
-    std::vector<float> keys_;
+    std::vector<uint16_t> qkeys_;         // Quantized16 key blocks
+    std::vector<float> fkeys_;            // Float32 key blocks
+    std::vector<float> base_;             // Quantized16: per block element, value of code 0
+    std::vector<float> step_;             // Quantized16: per block element, value of one code step
+    std::vector<glm::vec3> const_t_;      // every joint's key-0 value when a section leaves joints out
+    std::vector<glm::quat> const_r_;
+    std::vector<glm::vec3> const_s_;
+    ClipErrorBound bound_;
     glm::vec3 root_start_{0.0f};
     glm::vec3 root_end_{0.0f};
 };
 
 /// Validates `raw` against `skeleton` (at most joint_count() tracks, times finite, >= 0 and strictly
-/// increasing, one value per time, finite values, non-zero quaternions) and decodes it. Joints with
-/// no track (or an empty one) keep the skeleton's rest value. Errors name the clip (`raw.name`),
-/// the joint and the track.
-Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton);
+/// increasing, one value per time, finite values, non-zero quaternions) and decodes it into
+/// `encoding` (Quantized16 unless asked). Joints with no track (or an empty one) keep the skeleton's
+/// rest value. Errors name the clip (`raw.name`), the joint and the track.
+Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton,
+                                 ClipEncoding encoding = ClipEncoding::Quantized16);
 
 /// Id of a clip in a ClipLibrary (MotionRequest::clip).
 using ClipId = uint16_t;
@@ -85,7 +135,7 @@ class ClipLibrary {
 public:
     /// Adds a built clip and returns its id. Requires fewer than 65535 clips.
     ClipId add(AnimationClip clip);
-    /// Builds `raw` for `skeleton` and adds it; returns the id or the build error.
+    /// Builds `raw` for `skeleton` (default encoding) and adds it; returns the id or the build error.
     Result<ClipId> add(const RawAnimation& raw, const Skeleton& skeleton);
     /// The clip with id `id`, or nullptr when there is none.
     [[nodiscard]] const AnimationClip* find(ClipId id) const;
@@ -93,6 +143,8 @@ public:
     [[nodiscard]] int find(const std::string& name) const;
     /// Number of clips.
     [[nodiscard]] size_t size() const { return clips_.size(); }
+    /// Bytes held by all clips (sum of byte_size()).
+    [[nodiscard]] size_t byte_size() const;
 
 private:
     std::deque<AnimationClip> clips_;  // deque: clip addresses stay valid as clips are added

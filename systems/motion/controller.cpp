@@ -296,13 +296,15 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
             if (ch.cur.req.kind != RequestKind::Walk && switched) v.linear = glm::vec3(0.0f);
         }
         update_slots(c, ch);
+        advance_overlay(ch.overlay, lod, dt);
 
         ch.since_posed += dt;
         ++st.frames_since_update;
         // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
         const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
         const bool on_phase = (frame_ + c) % interval == 0;
-        if (ch.cur.req.kind != RequestKind::Rest && (switched || on_phase)) {
+        const bool posing = ch.cur.req.kind != RequestKind::Rest || ch.overlay.on;
+        if (posing && (switched || on_phase || (ch.overlay.on && ch.overlay.needs_pose()))) {
             due_.push_back(Due{c, e, ch.since_posed, switched});
             st.frames_since_update = 0;
             ch.since_posed = 0.0f;
@@ -321,7 +323,8 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
         st.request_time = ch.cur.request_time;
         st.pose_slot = c;
         st.path_cursor = ch.cur.path_cursor;
-        const bool resting = ch.cur.req.kind == RequestKind::Rest && ch.cur.req.duration < 0.0f && ch.count == 0;
+        const bool resting =
+            ch.cur.req.kind == RequestKind::Rest && ch.cur.req.duration < 0.0f && ch.count == 0 && !ch.overlay.on;
         st.at_rest = resting ? 1 : 0;
         if (resting) {
             v.linear = glm::vec3(0.0f);

@@ -41,6 +41,9 @@ struct MethodContext {
     float dt = 0.0f;                         ///< seconds since this character was last posed
     float request_time = 0.0f;               ///< seconds since the request started
     bool first = false;                      ///< first evaluation of this request (it started this frame)
+    bool layered = false;                    ///< an overlay (set_overlay) over the pose of the request beneath
+    bool base_is_live = true;                ///< layered: the pose beneath was produced this call (false at rest: it is the pose shown)
+    float layer_weight = 1.0f;               ///< layered: weight of the overlay's result over the pose beneath, in [0, 1]
 };
 
 /// A method implementation: `user` is the pointer given at registration. Must not allocate per call.
@@ -87,6 +90,17 @@ public:
     bool push_request(uint32_t character, const MotionRequest& request);
     /// Drops the queue and makes `request` the next one (cross-faded in at the next update).
     bool interrupt(uint32_t character, const MotionRequest& request);
+    /// Layers a reach or look-at (`request.kind` Reach or LookAt) over whatever `character` does: the
+    /// walk or clip beneath goes on (root motion included) and only the IK chain is overridden, by
+    /// `weight` (clamped to [0, 1]). A new overlay fades in over `request.crossfade_s` seconds; calling
+    /// again with the same kind and effector moves the target (and weight) without restarting. While
+    /// the character's AnimLod has IkSolver::None the overlay fades out and back in when IK returns.
+    /// Returns false for another kind or a character out of range. Wakes a resting character.
+    bool set_overlay(uint32_t character, const MotionRequest& request, float weight = 1.0f);
+    /// Fades the overlay of `character` out over `seconds` (0 = at the next update); no-op without one.
+    void clear_overlay(uint32_t character, float seconds = 0.2f);
+    /// Weight the overlay of `character` is shown with now (0 when it has none).
+    [[nodiscard]] float overlay_weight(uint32_t character) const;
 
     /// Advances every active character by `dt` seconds and poses those due this frame (per
     /// AnimLod::update_interval; a character with interval N is posed when (frame + id) % N == 0,
@@ -159,6 +173,20 @@ private:
         SamplingCache cache;
         KinematicWalkState walk;
     };
+    struct Overlay {
+        MotionRequest req;
+        float time = 0.0f;      // seconds since it was set
+        float presence = 0.0f;  // 0..1, ramps linearly towards 1 (0 once cleared or while the LOD has no IK)
+        float weight = 0.0f;    // the caller's weight; shown as weight * smoothstep(presence)
+        float fade_s = 0.0f;    // seconds for a whole 0 <-> 1 ramp of presence
+        uint8_t on = 0;         // set and not yet faded out
+        uint8_t first = 0;      // not evaluated since it was set
+        uint8_t cleared = 0;    // fading out for good
+        uint8_t shown_zero = 0; // last posed at weight 0
+        /// True when the character must be posed this frame for the overlay (it started, or it has
+        /// faded out and the pose beneath must be shown once exactly).
+        [[nodiscard]] bool needs_pose() const { return first || (cleared && presence <= 0.0f && !shown_zero); }
+    };
     struct Character {
         Channel cur, prev;
         float fade_left = 0.0f, fade_total = 0.0f;
@@ -172,6 +200,7 @@ private:
         uint8_t slots_in_use = 0;    // bit per MethodSlot used by the current request
         int32_t keys_slot = -1;      // ThrottleKeys slot while interpolating between throttled updates
         float keys_span = 0.0f;      // seconds from the start to the end key pose
+        Overlay overlay;             // reach / look-at layered over the current request
     };
     struct Due {
         uint32_t character;
@@ -191,6 +220,9 @@ private:
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
     bool clip_driven(const Character& ch, const AnimLod& lod) const;
     void advance_clock(Channel& ch, float seconds) const;
+    void advance_overlay(Overlay& o, const AnimLod& lod, float dt) const;
+    void apply_overlay(uint32_t c, Character& ch, const AnimLod& lod, const PoseView& pose, Transform& placement,
+                       Velocity& velocity, float posed_dt, bool primary);
 
     const Skeleton* skeleton_;
     const ClipLibrary* clips_;

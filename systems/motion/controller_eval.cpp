@@ -93,10 +93,12 @@ void MotionController::pose_one(const Due& d, size_t worker) {
     if (ch.keys_slot >= 0) {
         // Key poses for the frames until the next update: now, and one interval ahead.
         const uint32_t slot = static_cast<uint32_t>(ch.keys_slot);
+        apply_overlay(c, ch, lod, out, x, v, d.posed_dt, true);
         keys_.capture(slot, false, out.model);
         Channel ahead = ch.cur;
         advance_clock(ahead, ch.keys_span);
         evaluate(c, ahead, lod, scratch, x, v, ch.keys_span, false, false);
+        apply_overlay(c, ch, lod, scratch, x, v, ch.keys_span, false);
         keys_.capture(slot, true, std::as_const(scratch_).view(worker).model);
         return;
     }
@@ -111,6 +113,7 @@ void MotionController::pose_one(const Due& d, size_t worker) {
         local_to_model(skeleton_->parents().data(), out.translations.data(), out.rotations.data(),
                        out.scales.data(), nullptr, out.model.data(), static_cast<size_t>(skeleton_->joint_count()));
     }
+    apply_overlay(c, ch, lod, out, x, v, d.posed_dt, true);  // over the blended pose
 }
 
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {

@@ -1,5 +1,7 @@
 #include "systems/motion/sampling.hpp"
 
+#include "systems/motion/clip_quant.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -55,33 +57,53 @@ void find_key(const AnimationClip& clip, float time, SamplingCache* cache, int* 
     *alpha = std::clamp((time - times[i]) / (times[i + 1] - times[i]), 0.0f, 1.0f);
 }
 
+namespace {
+
+// Copies the constant values of the joints outside `sec` (joints [0, n) less [first, first + count)).
+template <class T>
+void copy_outside(const std::vector<T>& constant, const ClipSection& sec, size_t n, T* out) {
+    if (static_cast<size_t>(sec.count) == n) return;
+    const size_t first = static_cast<size_t>(sec.first), end = first + static_cast<size_t>(sec.count);
+    std::copy(constant.begin(), constant.begin() + static_cast<std::ptrdiff_t>(sec.count > 0 ? first : n), out);
+    if (sec.count > 0) std::copy(constant.begin() + static_cast<std::ptrdiff_t>(end), constant.end(), out + end);
+}
+
+}  // namespace
+
 void sample_blocks(const AnimationClip& clip, int k, float alpha, glm::vec3* translations, glm::quat* rotations,
                    glm::vec3* scales) {
-    const size_t n = static_cast<size_t>(clip.joint_count());
-    const float* __restrict a = clip.block(k);
-    const float* __restrict b = clip.key_count() > 1 ? clip.block(k + 1) : a;
+    const size_t n = static_cast<size_t>(clip.joints_);
+    const size_t ka = static_cast<size_t>(k) * clip.block_;
+    const size_t kb = clip.key_count() > 1 ? ka + clip.block_ : ka;
     const float wa = 1.0f - alpha;
     const float wb = alpha;
-    // Translations and scales: packed xyz, one flat loop each (a*wa + b*wb is exact at alpha 0 and 1).
-    float* __restrict ot = &translations[0].x;
-    for (size_t i = 0; i < 3 * n; ++i) ot[i] = a[i] * wa + b[i] * wb;
-    float* __restrict os = &scales[0].x;
-    const float* __restrict as = a + 7 * n;
-    const float* __restrict bs = b + 7 * n;
-    for (size_t i = 0; i < 3 * n; ++i) os[i] = as[i] * wa + bs[i] * wb;
-    // Rotations: four planes, lerp then normalise (nlerp; keys are hemisphere-aligned at build time).
-    const float* __restrict ax = a + 3 * n;
-    const float* __restrict bx = b + 3 * n;
-    for (size_t j = 0; j < n; ++j) {
-        const float x = ax[j] * wa + bx[j] * wb;
-        const float y = ax[n + j] * wa + bx[n + j] * wb;
-        const float z = ax[2 * n + j] * wa + bx[2 * n + j] * wb;
-        const float w = ax[3 * n + j] * wa + bx[3 * n + j] * wb;
-        const float inv = 1.0f / std::sqrt(x * x + y * y + z * z + w * w);
-        rotations[j].x = x * inv;
-        rotations[j].y = y * inv;
-        rotations[j].z = z * inv;
-        rotations[j].w = w * inv;
+    const ClipSection& st = clip.sections_[AnimationClip::kTranslations];
+    const ClipSection& sr = clip.sections_[AnimationClip::kRotations];
+    const ClipSection& ss = clip.sections_[AnimationClip::kScales];
+    copy_outside(clip.const_t_, st, n, translations);
+    copy_outside(clip.const_r_, sr, n, rotations);
+    copy_outside(clip.const_s_, ss, n, scales);
+    // Stored joints: translations and scales packed xyz (one flat loop each, exact at alpha 0 and 1
+    // for floats); rotations from four planes, lerp then normalise (nlerp; keys hemisphere-aligned).
+    float* ot = &translations[st.first].x;
+    float* os = &scales[ss.first].x;
+    glm::quat* orr = rotations + sr.first;
+    const size_t ct = 3 * static_cast<size_t>(st.count), cr = static_cast<size_t>(sr.count);
+    const size_t cs = 3 * static_cast<size_t>(ss.count);
+    if (clip.encoding_ == ClipEncoding::Quantized16) {
+        const uint16_t* a = clip.qkeys_.data() + ka;
+        const uint16_t* b = clip.qkeys_.data() + kb;
+        const float* base = clip.base_.data();
+        const float* step = clip.step_.data();
+        decode_lerp(a + st.offset, b + st.offset, base + st.offset, step + st.offset, wa, wb, ot, ct);
+        decode_nlerp(a + sr.offset, b + sr.offset, cr, base + sr.offset, step + sr.offset, wa, wb, orr, cr);
+        decode_lerp(a + ss.offset, b + ss.offset, base + ss.offset, step + ss.offset, wa, wb, os, cs);
+    } else {
+        const float* a = clip.fkeys_.data() + ka;
+        const float* b = clip.fkeys_.data() + kb;
+        decode_lerp(a + st.offset, b + st.offset, wa, wb, ot, ct);
+        decode_nlerp(a + sr.offset, b + sr.offset, cr, wa, wb, orr, cr);
+        decode_lerp(a + ss.offset, b + ss.offset, wa, wb, os, cs);
     }
 }
 

@@ -1,6 +1,7 @@
 // Clip sampling: the per-character SamplingCache (key cursor, last time) and the SampleJob that
 // writes one character's local pose at a time. Sampling is a lerp of two contiguous key blocks
-// followed by a quaternion normalisation (nlerp), so it is exact at keys and linear between them.
+// followed by a quaternion normalisation (nlerp): linear between keys, and at keys exact for Float32
+// clips and within AnimationClip::error_bound() for the default 16-bit quantised ones.
 #pragma once
 
 #include "engine/anim/pose.hpp"
@@ -35,7 +36,8 @@ struct SamplingCache {
 void find_key(const AnimationClip& clip, float time, SamplingCache* cache, int* k, float* alpha);
 
 /// Writes the lerp of key blocks k and k+1 at `alpha` into a local pose (translations, rotations
-/// normalised, scales). Requires the output spans to have clip.joint_count() elements.
+/// normalised, scales), dequantising 16-bit keys on the fly (clip_quant.hpp); joints a clip keeps
+/// constant are copied. Requires the outputs to have clip.joint_count() elements and 0 <= k < key_count().
 void sample_blocks(const AnimationClip& clip, int k, float alpha, glm::vec3* translations, glm::quat* rotations,
                    glm::vec3* scales);
 

@@ -2,7 +2,10 @@
 //  * BM_SampleLocalToModel: the ozz-animation comparison workload, exactly: a 64-joint humanoid-like
 //    skeleton, a 2 s clip with 61 keys per joint for translation, rotation and scale, steady forward
 //    playback in 1/60 s steps, 1,000 and 10,000 characters, one thread. The counter `per_joint` is
-//    seconds per joint (sampling + local-to-model); ozz-animation 0.16 measured 33-36 ns here.
+//    seconds per joint (sampling + local-to-model); ozz-animation 0.16 measured 24.8-28.2 ns here
+//    (105,956 bytes per clip). The clip is build_clip's default, 16-bit quantised; `clip_bytes` is
+//    its byte_size(). BM_SampleLocalToModelFloat32: the same with the lossless float clip.
+//  * BM_SampleOnly / BM_SampleOnlyFloat32: the sampling half alone (no local-to-model), 1,000 characters.
 //  * BM_ControllerRestingCrowd / BM_ControllerOneMoving: the motion pass with 10,000 resting + 1
 //    moving character against 1 moving character alone (resting characters must cost ~nothing).
 #include "systems/motion/controller.hpp"
@@ -17,35 +20,80 @@
 namespace aloha {
 namespace {
 
-void BM_SampleLocalToModel(benchmark::State& state) {
+// The comparison workload for `chars` characters: skeleton, clip, pose pool, per-character times
+// spread over the clip and sampling caches.
+struct Workload {
+    Workload(size_t chars, ClipEncoding encoding)
+        : sk(build_skeleton(test::make_humanoid64(), "humanoid64").value()),
+          clip(build_clip(test::make_wave_clip(sk, 61, 2.0f), sk, encoding).value()),
+          pool(sk.joint_count(), chars, &sk), times(chars), caches(chars) {
+        for (size_t i = 0; i < chars; ++i) times[i] = static_cast<float>(i % 120) / 60.0f;
+    }
+    // Character i's time one 1/60 s step on, wrapped into the clip.
+    float advance(size_t i) {
+        float& t = times[i];
+        t += 1.0f / 60.0f;
+        if (t >= clip.duration()) t -= clip.duration();
+        return t;
+    }
+    // Sets the counters: `per_joint` (seconds per joint per iteration), `joints`, `clip_bytes`.
+    void count(benchmark::State& state) const {
+        const double joints = static_cast<double>(times.size()) * sk.joint_count();
+        state.counters["per_joint"] =
+            benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+        state.counters["joints"] = joints;
+        state.counters["clip_bytes"] = static_cast<double>(clip.byte_size());
+    }
+    Skeleton sk;
+    AnimationClip clip;
+    PosePool pool;
+    std::vector<float> times;
+    std::vector<SamplingCache> caches;
+};
+
+void sample_local_to_model(benchmark::State& state, ClipEncoding encoding) {
     const size_t chars = static_cast<size_t>(state.range(0));
-    const Skeleton sk = build_skeleton(test::make_humanoid64(), "humanoid64").value();
-    const AnimationClip clip = build_clip(test::make_wave_clip(sk, 61, 2.0f), sk).value();
-    PosePool pool(sk.joint_count(), chars, &sk);
-    std::vector<float> times(chars);
-    for (size_t i = 0; i < chars; ++i) times[i] = static_cast<float>(i % 120) / 60.0f;  // spread over the clip
+    Workload w(chars, encoding);
     std::vector<uint32_t> slots(chars);
     std::iota(slots.begin(), slots.end(), 0u);
-    std::vector<SamplingCache> caches(chars);
-    AnimateBatchJob job{&clip, &sk, true, times, slots, caches, &pool};
+    AnimateBatchJob job{&w.clip, &w.sk, true, w.times, slots, w.caches, &w.pool};
     if (!job.Validate()) {
         state.SkipWithError("invalid job");
         return;
     }
     for (auto _ : state) {
-        for (float& t : times) {
-            t += 1.0f / 60.0f;
-            if (t >= clip.duration()) t -= clip.duration();
-        }
+        for (size_t i = 0; i < chars; ++i) w.advance(i);
         job.Run();
         benchmark::ClobberMemory();
     }
-    state.counters["per_joint"] = benchmark::Counter(static_cast<double>(chars) * sk.joint_count(),
-                                                     benchmark::Counter::kIsIterationInvariantRate |
-                                                         benchmark::Counter::kInvert);
-    state.counters["joints"] = static_cast<double>(chars) * sk.joint_count();
+    w.count(state);
 }
+void BM_SampleLocalToModel(benchmark::State& state) { sample_local_to_model(state, ClipEncoding::Quantized16); }
+void BM_SampleLocalToModelFloat32(benchmark::State& state) { sample_local_to_model(state, ClipEncoding::Float32); }
 BENCHMARK(BM_SampleLocalToModel)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SampleLocalToModelFloat32)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+
+// Sampling alone: every character's local pose, no local-to-model (same workload).
+void sample_only(benchmark::State& state, ClipEncoding encoding) {
+    const size_t chars = static_cast<size_t>(state.range(0));
+    Workload w(chars, encoding);
+    for (auto _ : state) {
+        for (size_t i = 0; i < chars; ++i) {
+            const float t = w.advance(i);
+            int k = 0;
+            float alpha = 0.0f;
+            find_key(w.clip, wrap_clip_time(t, w.clip.duration(), true), &w.caches[i], &k, &alpha);
+            PoseView v = w.pool.view(i);
+            sample_blocks(w.clip, k, alpha, v.translations.data(), v.rotations.data(), v.scales.data());
+        }
+        benchmark::ClobberMemory();
+    }
+    w.count(state);
+}
+void BM_SampleOnly(benchmark::State& state) { sample_only(state, ClipEncoding::Quantized16); }
+void BM_SampleOnlyFloat32(benchmark::State& state) { sample_only(state, ClipEncoding::Float32); }
+BENCHMARK(BM_SampleOnly)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SampleOnlyFloat32)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
 // Motion pass over `resting` characters at rest plus one playing the clip: resting characters are
 // not in the active list, so this should cost about the same as BM_ControllerOneMoving.

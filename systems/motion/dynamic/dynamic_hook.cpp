@@ -47,6 +47,9 @@ void dynamic_hook(void* user, MethodContext& m) {
         const float a = static_cast<float>(i) / static_cast<float>(steps);
         const glm::vec3 root_world = root_before + (root_now - root_before) * a;
         const glm::vec3 root_local = glm::vec3(to_frame * glm::vec4(root_world, 1.0f));
+        // A push under way acts for whole steps while it lasts (its impulse is force x time).
+        dc.state.pelvis_force = dc.push_left > 0.5f * h ? dc.push_force : glm::vec3(0.0f);
+        dc.push_left = std::max(0.0f, dc.push_left - h);
         step_dynamic_walk(sk, dc.target, root_local, h, dc.state, m.pose, nullptr);
         ++dc.steps;
     }
@@ -59,6 +62,16 @@ void dynamic_release(void* user, uint32_t character) {
 }
 
 }  // namespace
+
+bool push_dynamic_walker(DynamicHookContext& context, uint32_t character, const glm::vec3& impulse) {
+    if (character >= context.characters.size()) return false;
+    DynamicCharacter& dc = context.characters[character];
+    if (!dc.initialised || dc.failed || dc.state.bodies.empty()) return false;
+    if (!std::isfinite(impulse.x + impulse.y + impulse.z)) return false;
+    dc.push_force = impulse / kDynamicPushSeconds;
+    dc.push_left = kDynamicPushSeconds;
+    return true;
+}
 
 size_t DynamicHookContext::simulated() const {
     return static_cast<size_t>(std::count_if(characters.begin(), characters.end(),

@@ -19,6 +19,8 @@ struct DynamicCharacter {
     uint8_t initialised = 0;             ///< 1 while the character is simulated
     uint8_t failed = 0;                  ///< 1 when initialisation failed (the kinematic pose is kept)
     uint32_t steps = 0;                  ///< simulation steps taken since initialisation
+    glm::vec3 push_force{0.0f};          ///< force (N, world) of a push on the pelvis under way
+    float push_left = 0.0f;              ///< seconds the push still lasts
 };
 
 /// Settings and per-character state of the dynamic walk hook. Must outlive the controller it is
@@ -30,6 +32,17 @@ struct DynamicHookContext {
     /// Number of characters simulated now.
     [[nodiscard]] size_t simulated() const;
 };
+
+/// Seconds over which push_dynamic_walker spreads its impulse (a shove, not a bullet: the joint
+/// constraints carry it to the rest of the body).
+inline constexpr float kDynamicPushSeconds = 0.1f;
+
+/// Pushes the pelvis of a dynamically walking `character` with `impulse` (N s, world), as a constant
+/// force over the next kDynamicPushSeconds of simulation; the simulation absorbs it and the balance aid (a critically damped spring on
+/// the pelvis, DynamicWalkSettings::balance_frequency) brings it back to the gait's path. Returns false
+/// (and does nothing) when the character is not simulated now: kinematic and clip walkers have no
+/// body to push. Not during an update.
+bool push_dynamic_walker(DynamicHookContext& context, uint32_t character, const glm::vec3& impulse);
 
 /// Sizes `context` for `controller` and registers the DynamicWalk hook and its release callback.
 /// The controller then runs WalkMethod::Dynamic (it requires a walk rig: set_walk_rig) instead of

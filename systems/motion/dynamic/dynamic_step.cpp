@@ -292,6 +292,7 @@ void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> targ
         // Rows use the pre-gravity velocities for C'; gravity enters through J v* below.
         build_rows(s, h, root_target, root_target_vel, rows, bilateral);
         for (DynamicBody& b : s.bodies) b.v += h * gravity;
+        s.bodies[0].v += (h / s.bodies[0].mass) * s.pelvis_force;
         solve_and_apply(s, rows.count, bilateral);
         for (DynamicBody& b : s.bodies) {
             b.x += h * b.v;

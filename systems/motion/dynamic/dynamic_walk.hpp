@@ -67,6 +67,7 @@ struct DynamicWalkState {
     glm::mat4 root_world{1.0f};              ///< character frame (world); targets are in this frame
     glm::vec3 prev_target_root{0.0f};        ///< last step's root target (for its velocity)
     bool has_prev_target = false;
+    glm::vec3 pelvis_force{0.0f};            ///< external force on the pelvis link (N, world), applied every substep
     float total_mass = 0.0f;                 ///< kg
     float balance_inertia = 0.0f;            ///< composite inertia about the pelvis (kg m^2)
     // Solver scratch, sized at init.

@@ -108,10 +108,21 @@ void swivel(const Skeleton& sk, std::span<const int> chain, const PoseView& pose
     update_chain_model(sk, chain, pose, 0);
 }
 
+// Chain rotations = base -> solution by weight w (nlerp on the shorter arc; 1 = the solution exactly).
+void blend_chain(const IkCharacterState& cs, std::span<const int> chain, const PoseView& pose, float w) {
+    for (size_t k = 0; k < chain.size(); ++k) {
+        const glm::quat a = cs.base[k];
+        glm::quat b = cs.solution[k];
+        if (glm::dot(a, b) < 0.0f) b = -b;
+        pose.rotations[static_cast<size_t>(chain[k])] = glm::normalize(a * (1.0f - w) + b * w);
+    }
+}
+
 void run_ik(IkHookContext& cx, MethodContext& m, bool look_at) {
-    if (m.character >= cx.characters.size() || !m.request || !m.lod || !m.skeleton) return;
+    if (m.character >= cx.characters.size() || m.character >= cx.overlays.size() || !m.request || !m.lod || !m.skeleton)
+        return;
     const Skeleton& sk = *m.skeleton;
-    IkCharacterState& cs = cx.characters[m.character];
+    IkCharacterState& cs = m.layered ? cx.overlays[m.character] : cx.characters[m.character];
     const MotionRequest& r = *m.request;
     const int effector = r.effector >= 0 ? r.effector : (look_at ? cx.default_look_effector : cx.default_reach_effector);
     if (effector < 0 || effector >= sk.joint_count()) return;
@@ -121,8 +132,12 @@ void run_ik(IkHookContext& cx, MethodContext& m, bool look_at) {
     const std::span<const int> chain_span(chain.data(), static_cast<size_t>(n));
 
     // A new request (or a new chain) captures the chain's base rotations and drops the warm start.
-    if (m.first || !cs.has_base || cs.effector != effector || cs.length != n) {
+    // A layered overlay over a live request takes the pose beneath as its base every frame.
+    const bool restart = m.first || !cs.has_base || cs.effector != effector || cs.length != n;
+    if (restart || (m.layered && m.base_is_live)) {
         for (int k = 0; k < n; ++k) cs.base[static_cast<size_t>(k)] = m.pose.rotations[static_cast<size_t>(chain[static_cast<size_t>(k)])];
+    }
+    if (restart) {
         cs.effector = static_cast<int16_t>(effector);
         cs.length = static_cast<uint8_t>(n);
         cs.has_base = 1;
@@ -130,7 +145,12 @@ void run_ik(IkHookContext& cx, MethodContext& m, bool look_at) {
     }
     for (int k = 0; k < n; ++k) m.pose.rotations[static_cast<size_t>(chain[static_cast<size_t>(k)])] = cs.base[static_cast<size_t>(k)];
     update_chain_model(sk, chain_span, m.pose, 0);
-    if (m.lod->ik == IkSolver::None) return;  // hold the base pose
+    if (m.layered && !(m.layer_weight > 0.0f)) return;  // faded out: the pose beneath
+    if (m.lod->ik == IkSolver::None) {
+        // A request holds the base pose; an overlay fading out (its LOD lost IK) blends from its last solution.
+        if (m.layered && cs.warm) blend_chain(cs, chain_span, m.pose, m.layer_weight);
+        return;
+    }
 
     // Target in model space.
     const glm::mat4 to_model = m.transform ? glm::inverse(placement_matrix(*m.transform)) : glm::mat4(1.0f);
@@ -187,16 +207,10 @@ void run_ik(IkHookContext& cx, MethodContext& m, bool look_at) {
     for (int k = 0; k < n; ++k) cs.solution[static_cast<size_t>(k)] = m.pose.rotations[static_cast<size_t>(chain[static_cast<size_t>(k)])];
     cs.warm = 1;
 
-    // Ramp the solution in from the base pose (nlerp on the shorter arc; weight 1 = the solution exactly).
-    const float w = ramp(r, m.request_time);
-    if (w < 1.0f) {
-        for (int k = 0; k < n; ++k) {
-            const glm::quat a = cs.base[static_cast<size_t>(k)];
-            glm::quat b = cs.solution[static_cast<size_t>(k)];
-            if (glm::dot(a, b) < 0.0f) b = -b;
-            m.pose.rotations[static_cast<size_t>(chain[static_cast<size_t>(k)])] = glm::normalize(a * (1.0f - w) + b * w);
-        }
-    }
+    // Ramp the solution in from the base pose: over the request's cross-fade, or by the overlay's
+    // weight (the controller ramps it in seconds).
+    const float w = m.layered ? m.layer_weight : ramp(r, m.request_time);
+    if (w < 1.0f) blend_chain(cs, chain_span, m.pose, w);
     // The controller recomputes every model matrix after the hook.
 }
 
@@ -259,6 +273,7 @@ void register_ik_hooks(MotionController& controller, IkHookContext& cx) {
     cx.default_reach_effector = find_first(sk, {"RightWrist", "RightHand", "mixamorig:RightHand", "hand_r", "rhand"});
     cx.default_look_effector = find_first(sk, {"Head", "mixamorig:Head", "head"});
     cx.characters.assign(controller.capacity(), IkCharacterState{});
+    cx.overlays.assign(controller.capacity(), IkCharacterState{});
     controller.set_method_hook(MethodSlot::Reach, &reach_hook, &cx, &release_hook);
     controller.set_method_hook(MethodSlot::LookAt, &look_hook, &cx, &release_hook);
 }

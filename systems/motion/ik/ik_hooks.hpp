@@ -54,7 +54,8 @@ struct IkHookContext {
     std::vector<int16_t> look_base;       ///< per joint: base of the look-at chain ending there
     int default_reach_effector = -1;      ///< effector when MotionRequest::effector < 0 (right wrist/hand)
     int default_look_effector = -1;       ///< effector when MotionRequest::effector < 0 (head)
-    std::vector<IkCharacterState> characters;  ///< per character (controller capacity)
+    std::vector<IkCharacterState> characters;  ///< per character (controller capacity): reach / look-at requests
+    std::vector<IkCharacterState> overlays;    ///< per character: the overlay (MotionController::set_overlay); `last` is its status
 };
 
 /// Builds the chain tables of `context` for `controller`'s skeleton, sizes its per-character

@@ -57,6 +57,9 @@ TEST(SceneLoader, SemanticErrorsNameTheJsonPath) {
         {R"("characters": [{}], "dt": "fast"})", "/dt", "expected a number"},
         {R"("characters": [{}], "character_types": [{"name": "x"}]})", "/character_types/0", "exactly one"},
         {R"("crowds": []})", "/", "no characters"},
+        {R"("characters": [{"overlay": {"type": "walk"}}]})", "/characters/0/overlay", "reach or a look_at"},
+        {R"("characters": [{"overlay": {"type": "reach", "target": [0, 1, 1], "weight": 2}}]})", "/characters/0/overlay/weight", "outside"},
+        {R"("characters": [{"overlay": {"type": "look_at"}}]})", "/characters/0/overlay/target", "missing"},
     };
     for (const Case& c : cases) {
         auto r = parse(base + c.body);
@@ -148,6 +151,26 @@ TEST(SceneLoader, CrowdBodyVariants) {
                                           "crowds": [{"type": "b", "count": 5}]})");
     ASSERT_FALSE(height_on_bvh.ok());
     EXPECT_NE(message_of(height_on_bvh).find("apply to 'humanoid' types only"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aloha
+
+namespace aloha {
+namespace {
+
+TEST(SceneLoader, CharacterOverlayIsReadWithItsWeight) {
+    auto r = parse(R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [
+        {"requests": [{"type": "walk", "speed": 1.4}],
+         "overlay": {"type": "look_at", "target": [3, 1.6, 6], "weight": 0.8, "crossfade": 0.4}}]})");
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const CharacterDesc& c = r.value().characters.at(0);
+    ASSERT_TRUE(c.overlay.has_value());
+    EXPECT_EQ(c.overlay->request.kind, RequestKind::LookAt);
+    EXPECT_EQ(c.overlay->effector, "Head");
+    EXPECT_FLOAT_EQ(c.overlay_weight, 0.8f);
+    EXPECT_FLOAT_EQ(c.overlay->request.crossfade_s, 0.4f);
+    EXPECT_EQ(c.requests.size(), 1u);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
-// Clip building and sampling: exact at keys, lerp/nlerp between keys, looping, cursor reuse.
+// Clip building and sampling: exact at keys (Float32 clips) or within the clip's derived error bound
+// (the default 16-bit quantised clips, clip_quant.hpp), lerp/nlerp between keys, looping, cursor reuse.
 #include "systems/motion/clip.hpp"
 #include "systems/motion/sampling.hpp"
+#include "tests/systems/motion/clip_reference.hpp"
 #include "tests/systems/motion/motion_test_util.hpp"
 
 #include <gtest/gtest.h>
@@ -44,9 +46,9 @@ void sample(const AnimationClip& clip, float time, Pose& p, SamplingCache* cache
 TEST(Sampling, UniformKeysAreExactAtKeyTimes) {
     const Skeleton sk = chain(3);
     // Spacing 1/32 s is a power of two, so key times are exact floats and t / spacing is an exact
-    // integer: sampling must return the key bits unchanged for T and S (a*1 + b*0).
+    // integer: sampling a Float32 clip must return the key bits unchanged for T and S (a*1 + b*0).
     RawAnimation raw = test::make_wave_clip(sk, 33, 1.0f);
-    const AnimationClip clip = build_clip(raw, sk).value();
+    const AnimationClip clip = build_clip(raw, sk, ClipEncoding::Float32).value();
     ASSERT_TRUE(clip.uniform());
     EXPECT_EQ(clip.key_count(), 33);
     Pose p(3);
@@ -64,10 +66,60 @@ TEST(Sampling, UniformKeysAreExactAtKeyTimes) {
     }
 }
 
-TEST(Sampling, BetweenKeysIsLerpAndNlerp) {
+TEST(Sampling, UniformKeysAreWithinTheBoundAtKeyTimes) {
+    const Skeleton sk = chain(3);
+    // The same keys from the default (quantised) clip: each component within the clip's bound of
+    // the source key, each rotation within its angle bound (clip_quant.hpp derives both).
+    RawAnimation raw = test::make_wave_clip(sk, 33, 1.0f);
+    const AnimationClip clip = build_clip(raw, sk).value();
+    ASSERT_EQ(clip.encoding(), ClipEncoding::Quantized16);
+    const ClipErrorBound& b = clip.error_bound();
+    Pose p(3);
+    for (int k = 0; k < 33; ++k) {
+        sample(clip, static_cast<float>(k) / 32.0f, p, nullptr, false);
+        for (size_t j = 0; j < 3; ++j) {
+            const auto& tr = raw.tracks[j];
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(p.t[j][c], tr.translations.values[static_cast<size_t>(k)][c], b.translation);
+                EXPECT_NEAR(p.s[j][c], tr.scales.values[static_cast<size_t>(k)][c], b.scale);
+            }
+            const glm::dquat q = glm::normalize(glm::dquat(glm::normalize(tr.rotations.values[static_cast<size_t>(k)])));
+            EXPECT_LE(test::rotation_angle(p.r[j], q), b.rotation);
+        }
+    }
+}
+
+TEST(Sampling, BetweenKeysIsLerpAndNlerpWithinTheBound) {
+    // The default clip between keys: the source's lerp / nlerp (in double, at the segment point
+    // sampling used) within the clip's bound; joints without a track are copied exactly.
     const Skeleton sk = chain(2);
     const RawAnimation raw = nonuniform_clip();
     const AnimationClip clip = build_clip(raw, sk).value();
+    const ClipErrorBound& b = clip.error_bound();
+    EXPECT_FALSE(clip.uniform());
+    EXPECT_EQ(clip.key_count(), 6);
+    Pose p(2);
+    for (float t : {0.2f, 0.75f}) {
+        sample(clip, t, p);
+        int k = 0;
+        float alpha = 0.0f;
+        find_key(clip, t, nullptr, &k, &alpha);
+        const double ts = test::segment_time(clip, k, alpha);
+        const glm::dvec3 et = test::ref_vec(raw.tracks[0].translations, ts, glm::vec3(0));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(p.t[0][c], et[c], b.translation);
+        EXPECT_LE(test::rotation_angle(p.r[0], test::ref_rot(raw.tracks[0].rotations, ts, glm::quat(1, 0, 0, 0))),
+                  b.rotation);
+        EXPECT_EQ(p.t[1], sk.rest_translations()[1]);
+        EXPECT_EQ(p.r[1], sk.rest_rotations()[1]);
+    }
+    // nlerp midpoint of 1 and 2 rad about Y is 1.5 rad up to 1e-3 (nlerp is not slerp), plus the bound.
+    EXPECT_NEAR(glm::angle(p.r[0]), 1.5f, 1e-3f + b.rotation);
+}
+
+TEST(Sampling, BetweenKeysIsLerpAndNlerp) {
+    const Skeleton sk = chain(2);
+    const RawAnimation raw = nonuniform_clip();
+    const AnimationClip clip = build_clip(raw, sk, ClipEncoding::Float32).value();
     EXPECT_FALSE(clip.uniform());
     // Union of key times: 0, .1, .35, .4, .5, 1.
     EXPECT_EQ(clip.key_count(), 6);
@@ -101,12 +153,13 @@ TEST(Sampling, LoopingWrapsAndOnceClamps) {
     Pose a(2), b(2);
     sample(clip, 0.2f, a);
     sample(clip, 3.2f, b);  // three periods later
-    // 3.2 mod 1 = 0.2 up to float rounding of fmod (exact) and of 3.2f (~1e-7 s); slope <= 12 units/s.
+    // 3.2 mod 1 = 0.2 up to float rounding of fmod (exact) and of 3.2f (~1e-7 s); slope there is
+    // 8 units/s (+ 2 bounds per 0.25 s segment once quantised): ~1e-6 apart.
     EXPECT_NEAR(glm::length(a.t[0] - b.t[0]), 0.0f, 1e-5f);
     sample(clip, -0.8f, b);
     EXPECT_NEAR(glm::length(a.t[0] - b.t[0]), 0.0f, 1e-5f);
-    sample(clip, 5.0f, b, nullptr, false);
-    EXPECT_EQ(b.t[0], glm::vec3(-1, 0, 0));
+    sample(clip, 5.0f, b, nullptr, false);  // clamped to the last key, within the clip's bound
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.t[0][c], glm::vec3(-1, 0, 0)[c], clip.error_bound().translation);
     EXPECT_FLOAT_EQ(wrap_clip_time(2.5f, 1.0f, true), 0.5f);
     EXPECT_FLOAT_EQ(wrap_clip_time(-0.25f, 1.0f, true), 0.75f);
     EXPECT_FLOAT_EQ(wrap_clip_time(2.5f, 1.0f, false), 1.0f);

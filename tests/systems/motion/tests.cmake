@@ -3,6 +3,7 @@ if(TARGET aloha_motion)
   aloha_test(motion_tests
     SOURCES
       ${CMAKE_CURRENT_LIST_DIR}/sampling_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/clip_quant_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/pose_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/controller_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/walk_test.cpp
@@ -20,6 +21,8 @@ endif()
 if(TARGET aloha_motion AND TARGET aloha_assets)
   aloha_test(motion_bvh_tests
     SOURCES ${CMAKE_CURRENT_LIST_DIR}/bvh_walk_test.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/controller_overlay_test.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/motion_metrics_test.cpp
     LIBS aloha::motion aloha::assets
     LABELS motion)
 endif()
