@@ -46,7 +46,7 @@ Status World::reference_frame(ReferenceFrame& out) {
     size_t used = 0;
     for (size_t i = 0; i < g.size(); ++i) {
         if (!attributes[i].visible) continue;
-        if (states[i].frames_at_geom == 0 && !first_frame_) ++out.switches;
+        if (states[i].seconds_at_geom == 0.0f && !first_frame_) ++out.switches;
         CharacterRuntime& rt = *types_[refs[i].type];
         const PoseSource poses = rt.poses();
         const glm::mat4 world = world_matrix(transforms[i]);

@@ -88,8 +88,9 @@ void World::register_systems() {
     {
         SystemDesc resolve{"lod_resolve", Phase::Resolve, reads<RuleResource>(), everything_in_group, nullptr};
         resolve.writes.push_back(resource_type_id<SurfaceResource>());
-        resolve.run = [this](SystemContext&) {
+        resolve.run = [this](SystemContext& ctx) {
             auto g = character_group(registry_);
+            const float dt = first_frame_ ? 0.0f : ctx.dt();  // the resolver's clocks run in simulated seconds
             const RuleTable& table = rules_.table();
             changed_.resize(g.size());
             // The frame budget (off, one total, or separate animation and geometry parts: LodBudget) steers
@@ -110,6 +111,7 @@ void World::register_systems() {
             caps.attributes = g.span<LodAttributes>();
             caps.states = g.span<LodState>();
             caps.snap = first_frame_;
+            caps.dt = dt;
             caps.keep_bonus = table.hysteresis.band;
             caps.scratch = &caps_scratch_;
             if (options_.lod) caps.Run();
@@ -121,6 +123,7 @@ void World::register_systems() {
             job.anim = g.span<AnimLod>();
             job.changed_indices = changed_;
             job.snap = first_frame_;
+            job.dt = dt;
             job.switch_counts = switches_;
             const size_t changed = job.Run();
             // Marshal level switches to the geometric controller (geomorph from the old surface).
@@ -136,7 +139,7 @@ void World::register_systems() {
                     GeometryController& gc = *types_[refs[i].type]->geometry;
                     if (gc.level_of(refs[i].id) == states[i].geom_level) continue;  // animation level only
                     gc.begin_level(refs[i].id, states[i].geom_level, static_cast<int8_t>(states[i].prev_geom_level),
-                                   geom[i].geomorph_frames);
+                                   transition_frames(geom[i].geomorph_s, ctx.dt()));
                 }
             }
             if (changed > 0 || first_frame_) regroup();  // keep characters grouped by (type, level)
@@ -218,8 +221,8 @@ void World::register_systems() {
                             if (method == GeomMethod::RigidProxy || method == GeomMethod::SkinnedMesh) {
                                 size_t n = 0;
                                 for (size_t i = r.begin; i < r.end; ++i)
-                                    if (motion[i].frames_since_update == 0 || states[i].frames_at_geom == 0 ||
-                                        states[i].geomorph_left > 0 || first_frame_ ||
+                                    if (motion[i].frames_since_update == 0 || states[i].seconds_at_geom == 0.0f ||
+                                        states[i].geomorph_left_s > 0.0f || first_frame_ ||
                                         rt.geometry->geomorph_frames_left(refs[i].id) > 0)
                                         due_ids_[r.begin + n++] = refs[i].id;
                                 ids = std::span<const uint32_t>(due_ids_.data() + r.begin, n);

@@ -70,9 +70,9 @@ void set_rule_levels(RuleTable& table, uint32_t rule, uint8_t geom_level, uint8_
     table.compiled[rule].anim_level = anim_level;
 }
 
-void set_hysteresis(RuleTable& table, float band, uint16_t min_frames) {
+void set_hysteresis(RuleTable& table, float band, float min_seconds) {
     table.hysteresis.band = std::isfinite(band) ? std::clamp(band, 0.0f, 1.0f) : table.hysteresis.band;
-    table.hysteresis.min_frames = min_frames;
+    if (std::isfinite(min_seconds)) table.hysteresis.min_seconds = std::clamp(min_seconds, 0.0f, 600.0f);
     recompute_widened_bounds(table);
 }
 

@@ -36,7 +36,6 @@ BudgetStep FrameBudget::update(float measured_ms, std::span<const LodAttributes>
     const bool room = ema_ < target * (1.0f - params_.deadband);
     if (!over && !room) return step;
 
-    const uint16_t min_frames = table.hysteresis.min_frames;
     const uint8_t last_anim = static_cast<uint8_t>(table.anim_levels.size() - 1);
     ranked_.clear();
     uint32_t active = 0;
@@ -45,7 +44,7 @@ BudgetStep FrameBudget::update(float measured_ms, std::span<const LodAttributes>
         const bool hidden = table.geom_levels[std::min<size_t>(s.geom_level, table.geom_levels.size() - 1)].method ==
                             GeomMethod::Hidden;
         active += hidden ? 0u : 1u;
-        const bool settled = s.frames_at_geom >= min_frames && s.frames_at_anim >= min_frames;
+        const bool settled = held_long_enough(table, s.seconds_at_geom) && held_long_enough(table, s.seconds_at_anim);
         if (!settled || hidden || s.always_full) continue;
         if (over) {
             const bool can_go_lower =

@@ -32,7 +32,7 @@ struct BudgetStep {
 /// Single-total controller. Call update() once per frame before the resolver, with the measured
 /// time of the last frame; it edits LodState::budget_demotion and anim_demotion (always equal here),
 /// which the resolver applies. Only characters whose levels may switch now (held >=
-/// hysteresis.min_frames frames) and not `always_full` are touched, so every change takes effect on
+/// hysteresis.min_seconds) and not `always_full` are touched, so every change takes effect on
 /// the same frame.
 class FrameBudget {
 public:

@@ -19,6 +19,7 @@ bool LevelCapJob::Validate(std::vector<std::string>* errors) const {
     if (attributes.size() != requests.size()) fail("attributes size differs from requests");
     if (states.size() != requests.size()) fail("states size differs from requests");
     if (!(keep_bonus >= 0.0f)) fail("keep_bonus must be >= 0");
+    if (!(dt >= 0.0f) || !std::isfinite(dt)) fail("dt must be finite and >= 0");
     return ok;
 }
 
@@ -65,7 +66,7 @@ size_t LevelCapJob::Run() const {
         // Rank every character whose starting point is a capped level or richer.
         sc.ranked.clear();
         for (size_t i = 0; i < states.size(); ++i) {
-            const LodTargets start = uncapped_outcome(t, requests[i], states[i], snap);
+            const LodTargets start = uncapped_outcome(t, requests[i], states[i], snap, dt);
             const int level = geometric ? start.geom : start.anim;
             if (level > d.last_capped || d.hidden[static_cast<size_t>(level)]) continue;
             float score = t.significance.evaluate(attributes[i]);
@@ -79,7 +80,7 @@ size_t LevelCapJob::Run() const {
         sc.used.assign(d.caps.size(), 0);
         const int levels = static_cast<int>(d.caps.size());
         for (const auto& [neg_score, i] : sc.ranked) {
-            const LodTargets start = uncapped_outcome(t, requests[i], states[i], snap);
+            const LodTargets start = uncapped_outcome(t, requests[i], states[i], snap, dt);
             const int want = geometric ? start.geom : start.anim;
             int level = want;
             for (; level <= d.last_capped; ++level) {

@@ -36,6 +36,7 @@ struct LevelCapJob {
     std::span<const LodAttributes> attributes;     ///< n entries (significance)
     std::span<LodState> states;                    ///< n entries: levels read, cap_* written
     bool snap = false;                             ///< the resolver's snap flag this frame
+    float dt = 0.0f;                               ///< the resolver's dt this frame (seconds, >= 0)
     float keep_bonus = 0.1f;                       ///< relative significance bonus of incumbents, >= 0
     LevelCapScratch* scratch = nullptr;            ///< required
 

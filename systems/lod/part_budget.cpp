@@ -97,7 +97,6 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     // switch is pending may be retargeted. A demotion predicted to save under 1% of the band is not
     // worth a visible switch (a hundred of them would not move the time across the band): passed over.
     const double least_saving = 0.01 * band_ms();
-    const uint16_t min_frames = table.hysteresis.min_frames;
     auto one_poorer = [&](size_t l) -> size_t {
         if (!geometric) return std::min(l + 1, levels - 1);
         return demoted_geom_level(table, static_cast<uint8_t>(l), 1);
@@ -109,7 +108,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
         const LodState& s = states[i];
         const size_t l = headed(i);
         if (s.always_full || (geometric && table.geom_levels[l].method == GeomMethod::Hidden)) continue;
-        if (l == level_of(s) && (geometric ? s.frames_at_geom : s.frames_at_anim) < min_frames) continue;
+        if (l == level_of(s) && !held_long_enough(table, geometric ? s.seconds_at_geom : s.seconds_at_anim)) continue;
         const uint8_t demotion = geometric ? s.budget_demotion : s.anim_demotion;
         if (over ? demotion >= part_.max_demotion || one_poorer(l) == l || saving(l) < least_saving : demotion == 0)
             continue;

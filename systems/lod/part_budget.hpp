@@ -35,7 +35,7 @@ namespace aloha {
 ///    promotes demoted characters, most significance per millisecond first, while the predicted extra
 ///    cost fits (the first that does not fit is still taken when it lands nearer the target than
 ///    leaving it). Then it waits settle_frames.
-/// Only characters not `always_full`, not headed for Hidden, and either held min_frames at their level
+/// Only characters not `always_full`, not headed for Hidden, and either held min_seconds at their level
 /// or with a switch pending are touched; at most max_demotion levels each.
 class PartBudget {
 public:

@@ -25,6 +25,9 @@ struct JsonChecker {
     void err_at(int line, int column, const std::string& path, std::string message);
     /// Reports keys of `obj` not in `allowed` (typos are errors, not silently ignored).
     void check_keys(const nlohmann::json& obj, const std::string& path, std::initializer_list<const char*> allowed);
+    /// Reports `old_key` of `obj` when present: a key of an earlier format replaced by `new_key`
+    /// (list `old_key` among check_keys' allowed keys so it is reported once, by this).
+    void renamed_key(const nlohmann::json& obj, const std::string& path, const char* old_key, const char* new_key);
     /// Reads optional number `key` of `obj` into *out when it lies in [lo, hi] (an integer when
     /// `integer`); a missing key keeps *out; anything else is reported.
     template <class T>

@@ -43,7 +43,8 @@ struct Parser {
         GeomLevelDef d;
         if (!j.is_object()) return err(p, "expected an object describing a geometric level");
         check_keys(j, p, {"name", "description", "method", "theta_steps", "phi_steps", "subdivision", "layers",
-                          "geomorph_frames", "max_characters"});
+                          "geomorph_s", "geomorph_frames", "max_characters"});
+        in.renamed_key(j, p, "geomorph_frames", "geomorph_s");
         d.name = string(j, "name", p);
         d.method = static_cast<GeomMethod>(
             choice(j, "method", p, {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided"}, 1, true));
@@ -54,7 +55,7 @@ struct Parser {
         number(j, "theta_steps", p, 3, 1024, true, &d.theta_steps);
         number(j, "phi_steps", p, 2, 1024, true, &d.phi_steps);
         number(j, "subdivision", p, 0, 4, true, &d.subdiv_level);
-        number(j, "geomorph_frames", p, 0, 600, true, &d.geomorph_frames);
+        number(j, "geomorph_s", p, 0.0, 10.0, false, &d.geomorph_s);
         number(j, "max_characters", p, 0, 1.0e9, true, &d.max_characters);
         if (j.contains("layers")) {
             const json& l = j["layers"];
@@ -81,7 +82,8 @@ struct Parser {
         AnimLevelDef d;
         if (!j.is_object()) return err(p, "expected an object describing an animation level");
         check_keys(j, p, {"name", "description", "walk", "ik", "ik_iterations", "ik_tolerance", "update_interval",
-                          "crossfade_frames", "max_characters"});
+                          "crossfade_s", "crossfade_frames", "max_characters"});
+        in.renamed_key(j, p, "crossfade_frames", "crossfade_s");
         d.name = string(j, "name", p);
         d.walk = static_cast<WalkMethod>(choice(j, "walk", p, {"clip", "kinematic", "dynamic"}, 0, true));
         d.ik = static_cast<IkSolver>(choice(j, "ik", p, {"none", "ccd", "dls"}, 0, false));
@@ -89,7 +91,7 @@ struct Parser {
         number(j, "ik_iterations", p, 0, 255, true, &d.ik_iterations);
         number(j, "ik_tolerance", p, 1e-7, 1.0, false, &d.ik_tolerance);
         number(j, "update_interval", p, 1, 255, true, &d.update_interval);
-        number(j, "crossfade_frames", p, 0, 255, true, &d.crossfade_frames);
+        number(j, "crossfade_s", p, 0.0, 10.0, false, &d.crossfade_s);
         number(j, "max_characters", p, 0, 1.0e9, true, &d.max_characters);
         if (d.ik != IkSolver::None && d.ik_iterations == 0)
             err(p + "/ik_iterations", "an IK solver needs ik_iterations >= 1");

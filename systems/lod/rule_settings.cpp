@@ -29,6 +29,12 @@ void JsonChecker::check_keys(const json& obj, const std::string& path, std::init
     }
 }
 
+void JsonChecker::renamed_key(const json& obj, const std::string& path, const char* old_key, const char* new_key) {
+    if (obj.contains(old_key))
+        err(path + "/" + old_key, std::string("'") + old_key + "' was replaced by '" + new_key +
+                                      "' (seconds of simulated time, so the behaviour does not depend on the frame rate)");
+}
+
 bool JsonChecker::number_value(const json& obj, const char* key, const std::string& path, double lo, double hi,
                                bool integer, double* out) {
     if (!obj.contains(key)) return false;
@@ -182,11 +188,12 @@ void parse_settings(const json& root, std::string_view text, JsonChecker& in, Ru
     parse_tiers(root, in, table);
     if (root.contains("hysteresis")) {
         const json& h = root["hysteresis"];
-        if (!h.is_object()) in.err("/hysteresis", "expected an object {band, min_frames}");
+        if (!h.is_object()) in.err("/hysteresis", "expected an object {band, min_seconds}");
         else {
-            in.check_keys(h, "/hysteresis", {"description", "band", "min_frames"});
+            in.check_keys(h, "/hysteresis", {"description", "band", "min_seconds", "min_frames"});
+            in.renamed_key(h, "/hysteresis", "min_frames", "min_seconds");
             in.number(h, "band", "/hysteresis", 0.0, 0.9, false, &table.hysteresis.band);
-            in.number(h, "min_frames", "/hysteresis", 0, 65535, true, &table.hysteresis.min_frames);
+            in.number(h, "min_seconds", "/hysteresis", 0.0, 600.0, false, &table.hysteresis.min_seconds);
         }
     }
     if (root.contains("budget")) parse_budget(root["budget"], in, table);

@@ -77,7 +77,7 @@ GeomLod RuleTable::geom_lod(uint8_t level) const {
     g.subdiv_level = d.subdiv_level;
     g.theta_steps = d.theta_steps;
     g.phi_steps = d.phi_steps;
-    g.geomorph_frames = d.geomorph_frames;
+    g.geomorph_s = d.geomorph_s;
     return g;
 }
 
@@ -90,7 +90,7 @@ AnimLod RuleTable::anim_lod(uint8_t level) const {
     a.ik = d.ik;
     a.ik_iterations = d.ik_iterations;
     a.update_interval = d.update_interval;
-    a.crossfade_frames = d.crossfade_frames;
+    a.crossfade_s = d.crossfade_s;
     a.ik_tolerance = d.ik_tolerance;
     return a;
 }

@@ -47,7 +47,7 @@ struct GeomLevelDef {
     uint16_t phi_steps = 6;                 ///< super-ellipsoid steps pole to pole
     uint8_t subdiv_level = 0;               ///< Catmull-Clark levels (Subdivided only)
     uint8_t layers = kLayerSkeleton;        ///< LayerBits
-    uint16_t geomorph_frames = 0;           ///< morph frames when this level is entered
+    float geomorph_s = 0.0f;                ///< morph seconds when this level is entered
     uint32_t max_characters = kNoCap;       ///< cap: at most this many characters here or richer
 };
 
@@ -59,14 +59,14 @@ struct AnimLevelDef {
     uint8_t ik_iterations = 0;
     float ik_tolerance = 1e-3f;             ///< metres
     uint8_t update_interval = 1;            ///< animate every N frames
-    uint8_t crossfade_frames = 0;           ///< pose cross-fade frames when this level is entered
+    float crossfade_s = 0.0f;               ///< pose cross-fade seconds when this level is entered
     uint32_t max_characters = kNoCap;       ///< cap: at most this many characters here or richer
 };
 
 /// Value and time hysteresis of the resolver.
 struct HysteresisParams {
     float band = 0.1f;           ///< relative widening of the active rule's bounds (0.1 = 10%)
-    uint16_t min_frames = 10;    ///< frames a character stays at a level before it may switch again
+    float min_seconds = 0.15f;   ///< simulated seconds a character stays at a level before it may switch again
 };
 
 /// One separately budgeted part of the CPU systems (section "budget/animation" or "budget/geometry").

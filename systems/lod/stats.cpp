@@ -64,8 +64,8 @@ void LodStatsJob::Run() const {
             s.occluded += o >= 1.0f;
             ++s.occlusion_histogram[o <= 0.0f ? 0 : o < 0.5f ? 1 : o < 0.9f ? 2 : o < 1.0f ? 3 : 4];
         }
-        s.in_geomorph += st.geomorph_left > 0;
-        s.in_crossfade += st.crossfade_left > 0;
+        s.in_geomorph += st.geomorph_left_s > 0.0f;
+        s.in_crossfade += st.crossfade_left_s > 0.0f;
         if (!attributes.empty()) s.visible += attributes[i].visible != 0;
     }
 }
@@ -94,11 +94,11 @@ LodExplanation explain(const RuleTable& table, uint32_t i, std::span<const LodAt
     e.anim = table.anim_lod(s.anim_level);
     e.anim_level_name = table.anim_levels[e.anim.level].name;
     e.prev_geom_level = s.prev_geom_level;
-    e.geomorph_left = s.geomorph_left;
+    e.geomorph_left_s = s.geomorph_left_s;
     e.prev_anim_level = s.prev_anim_level;
-    e.crossfade_left = s.crossfade_left;
-    e.frames_at_geom = s.frames_at_geom;
-    e.frames_at_anim = s.frames_at_anim;
+    e.crossfade_left_s = s.crossfade_left_s;
+    e.seconds_at_geom = s.seconds_at_geom;
+    e.seconds_at_anim = s.seconds_at_anim;
     return e;
 }
 
@@ -120,13 +120,13 @@ nlohmann::json to_json(const LodExplanation& e) {
         {"geometry", {{"level", e.geom.level}, {"name", e.geom_level_name}, {"method", to_string(e.geom.method)},
                       {"theta_steps", e.geom.theta_steps}, {"phi_steps", e.geom.phi_steps},
                       {"subdivision", e.geom.subdiv_level}, {"layers", e.geom.layers},
-                      {"previous_level", e.prev_geom_level}, {"geomorph_left", e.geomorph_left},
-                      {"frames_at_level", e.frames_at_geom}}},
+                      {"previous_level", e.prev_geom_level}, {"geomorph_left_s", e.geomorph_left_s},
+                      {"seconds_at_level", e.seconds_at_geom}}},
         {"animation", {{"level", e.anim.level}, {"name", e.anim_level_name}, {"walk", to_string(e.anim.walk)},
                        {"ik", to_string(e.anim.ik)}, {"ik_iterations", e.anim.ik_iterations},
                        {"ik_tolerance", e.anim.ik_tolerance}, {"update_interval", e.anim.update_interval},
-                       {"previous_level", e.prev_anim_level}, {"crossfade_left", e.crossfade_left},
-                       {"frames_at_level", e.frames_at_anim}}},
+                       {"previous_level", e.prev_anim_level}, {"crossfade_left_s", e.crossfade_left_s},
+                       {"seconds_at_level", e.seconds_at_anim}}},
     };
 }
 

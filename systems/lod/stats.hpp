@@ -31,8 +31,8 @@ struct LodStats {
     uint32_t demoted = 0;                     ///< with budget_demotion or anim_demotion > 0
     uint32_t occluded = 0;                    ///< visible but fully occluded (attributes.occluded >= 1)
     std::array<uint32_t, 5> occlusion_histogram{};  ///< visible characters by occluded: 0, <0.5, <0.9, <1, 1
-    uint32_t in_geomorph = 0;                 ///< with geomorph_left > 0
-    uint32_t in_crossfade = 0;                ///< with crossfade_left > 0
+    uint32_t in_geomorph = 0;                 ///< with geomorph_left_s > 0
+    uint32_t in_crossfade = 0;                ///< with crossfade_left_s > 0
     std::vector<uint32_t> per_geom_level;     ///< index = geometric level
     std::vector<uint32_t> per_anim_level;     ///< index = animation level
     std::vector<uint32_t> per_rule;           ///< index = rule id (rule that produced the levels)
@@ -71,12 +71,12 @@ struct LodExplanation {
     std::string geom_level_name;
     AnimLod anim;                       ///< marshalled animation parameters of the current level
     std::string anim_level_name;
-    uint8_t prev_geom_level = 0;        ///< level morphed from while geomorph_left > 0
-    uint16_t geomorph_left = 0;
-    uint8_t prev_anim_level = 0;        ///< level cross-faded from while crossfade_left > 0
-    uint16_t crossfade_left = 0;
-    uint16_t frames_at_geom = 0;        ///< frames since the last geometric switch
-    uint16_t frames_at_anim = 0;        ///< frames since the last animation switch
+    uint8_t prev_geom_level = 0;        ///< level morphed from while geomorph_left_s > 0
+    float geomorph_left_s = 0.0f;       ///< seconds of geomorph left
+    uint8_t prev_anim_level = 0;        ///< level cross-faded from while crossfade_left_s > 0
+    float crossfade_left_s = 0.0f;      ///< seconds of pose cross-fade left
+    float seconds_at_geom = 0.0f;       ///< seconds since the last geometric switch
+    float seconds_at_anim = 0.0f;       ///< seconds since the last animation switch
 };
 
 /// Explains character `i` from its attributes and state. Requires i < both sizes.

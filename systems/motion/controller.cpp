@@ -287,8 +287,8 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
         }
         if (ch.cur.req.kind == RequestKind::Walk) {
             const WalkMethod m = walk_method(lod);
-            if (ch.has_walk_method && m != ch.walk_method && lod.crossfade_frames > 0 && ch.fade_left <= 0.0f)
-                begin_fade(c, ch, static_cast<float>(lod.crossfade_frames) * dt, false);
+            if (ch.has_walk_method && m != ch.walk_method && lod.crossfade_s > 0.0f && ch.fade_left <= 0.0f)
+                begin_fade(c, ch, lod.crossfade_s, false);
             ch.walk_method = m;
             ch.has_walk_method = 1;
         } else {

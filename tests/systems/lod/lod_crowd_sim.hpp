@@ -34,6 +34,7 @@ struct CrowdSim {
     std::vector<AnimLod> anim;
     LevelCapScratch caps_scratch;
     bool first = true;                         ///< the next frame snaps (like a host's first frame)
+    float dt = kFrameDt;                       ///< seconds per frame
     uint32_t switches[2] = {0, 0};             ///< geometric / animation level switches so far
 
     /// A sim of `t` with `n` characters of attributes `a` (copied to all).
@@ -51,11 +52,11 @@ struct CrowdSim {
         RuleEvalJob rules{table, attrs, states, table->default_tier, req};
         ASSERT_TRUE(rules.Validate());
         rules.Run();
-        LevelCapJob caps{table, req, attrs, states, first, table->hysteresis.band, &caps_scratch};
+        LevelCapJob caps{table, req, attrs, states, first, first ? 0.0f : dt, table->hysteresis.band, &caps_scratch};
         std::vector<std::string> errors;
         ASSERT_TRUE(caps.Validate(&errors)) << errors.front();
         caps.Run();
-        LodResolveJob resolve{table, req, states, geom, anim, {}, {}, 0, first, switches};
+        LodResolveJob resolve{table, req, states, geom, anim, {}, {}, 0, first ? 0.0f : dt, first, switches};
         ASSERT_TRUE(resolve.Validate());
         resolve.Run();
         first = false;
