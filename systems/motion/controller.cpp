@@ -23,7 +23,7 @@ int64_t anim_signature(const AnimLod& l) {
 }
 
 // Seconds an animation level change is inertialized over: the entered level's cross-fade time.
-float transition_seconds(const AnimLod& lod) { return static_cast<float>(lod.crossfade_frames) / 60.0f; }
+float transition_seconds(const AnimLod& lod) { return lod.crossfade_s; }
 
 glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
 

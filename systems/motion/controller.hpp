@@ -136,6 +136,10 @@ public:
     void set_worker_slots(size_t count);
     /// Scratch slots available to evaluate_due.
     [[nodiscard]] size_t worker_slots() const { return workers_; }
+    /// Where evaluate_due adds the wall time (ns) of each work item, by the character's AnimLod::level
+    /// (levels past the end are not timed); empty (the default) times nothing. The frame budget's
+    /// animation part learns its per-level costs from it. The span must outlive the updates.
+    void set_level_timing(std::span<uint64_t> level_ns) { level_ns_ = level_ns; }
     /// Characters due in the last begin_update, in evaluation order.
     [[nodiscard]] size_t due_count() const { return due_.size(); }
     /// Work items of the last begin_update for evaluate_due: the due characters, then the throttled
@@ -268,6 +272,7 @@ private:
     std::span<const AnimLod> lods_;
     std::span<Transform> transforms_;
     std::span<Velocity> velocities_;
+    std::span<uint64_t> level_ns_;  // per AnimLod level: ns of work items (empty = not timed)
 };
 
 /// Job form of MotionController::update over spans of characters (index = character id, or

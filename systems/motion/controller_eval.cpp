@@ -9,6 +9,9 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <utility>
 
@@ -137,15 +140,26 @@ void MotionController::settle_inertia(Character& ch, const PoseView& pose, float
 
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
     end = std::min(end, work_count());
+    // Per-level time of this chunk, added to level_ns_ once at the end (one clock read per item).
+    std::array<uint64_t, 256> chunk_ns{};
+    const bool timed = !level_ns_.empty();
+    auto now = [] { return static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()); };
+    uint64_t last = timed ? now() : 0;
     for (size_t i = begin; i < end; ++i) {
+        const Due& d = i < due_.size() ? due_[i] : between_[i - due_.size()];
         if (i < due_.size()) {
-            pose_one(due_[i], worker);
-            continue;
+            pose_one(d, worker);
+        } else {
+            const Character& ch = chars_[d.character];
+            keys_.interpolate(static_cast<uint32_t>(ch.keys_slot), d.posed_dt / ch.keys_span, pool_.view(d.character).model);
         }
-        const Due& d = between_[i - due_.size()];
-        const Character& ch = chars_[d.character];
-        keys_.interpolate(static_cast<uint32_t>(ch.keys_slot), d.posed_dt / ch.keys_span, pool_.view(d.character).model);
+        if (!timed) continue;
+        const uint64_t t = now();
+        chunk_ns[lods_[d.element].level] += t - last;
+        last = t;
     }
+    for (size_t l = 0; timed && l < level_ns_.size() && l < chunk_ns.size(); ++l)
+        if (chunk_ns[l] != 0) std::atomic_ref<uint64_t>(level_ns_[l]).fetch_add(chunk_ns[l], std::memory_order_relaxed);
 }
 
 size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,

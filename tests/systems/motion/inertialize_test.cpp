@@ -112,13 +112,13 @@ protected:
     }
 };
 
-AnimLod level(uint8_t index, WalkMethod walk, uint8_t interval, uint8_t crossfade_frames) {
+AnimLod level(uint8_t index, WalkMethod walk, uint8_t interval, float crossfade_s) {
     AnimLod l;
     l.level = index;
     l.walk = walk;
     l.ik = IkSolver::None;
     l.update_interval = interval;
-    l.crossfade_frames = crossfade_frames;
+    l.crossfade_s = crossfade_s;
     return l;
 }
 
@@ -127,8 +127,8 @@ AnimLod level(uint8_t index, WalkMethod walk, uint8_t interval, uint8_t crossfad
 // frames. And no frame of a transition moves a joint further than the fastest ordinary frame (a
 // transition frame may fall on the swing toe's peak, above the p95, so the p95 is not its bound).
 TEST_F(SwitchedWalk, InertializedSwitchesStayWithinOrdinaryMotion) {
-    const AnimLod ladder[4] = {level(0, WalkMethod::Kinematic, 1, 12), level(1, WalkMethod::ClipPlayback, 1, 12),
-                               level(2, WalkMethod::ClipPlayback, 8, 12), level(3, WalkMethod::ClipPlayback, 2, 12)};
+    const AnimLod ladder[4] = {level(0, WalkMethod::Kinematic, 1, 0.2f), level(1, WalkMethod::ClipPlayback, 1, 0.2f),
+                               level(2, WalkMethod::ClipPlayback, 8, 0.2f), level(3, WalkMethod::ClipPlayback, 2, 0.2f)};
     PopMeter pops, during;
     const size_t changes = walk(10.0f, 1.0f / 60.0f, pops, [&](float t, AnimLod& lod) {
         lod = ladder[static_cast<int>(t / 0.7f) % 4];
@@ -148,14 +148,14 @@ TEST_F(SwitchedWalk, InertializedSwitchesStayWithinOrdinaryMotion) {
 // The same ladder with transitions off snaps: the check above is not passed by accident.
 TEST_F(SwitchedWalk, WithoutTransitionsTheKinematicToClipSwitchJumps) {
     PopMeter snapped, smooth;
-    auto ladder = [](uint8_t fade) {
+    auto ladder = [](float fade) {
         return [fade](float t, AnimLod& lod) {
             lod = static_cast<int>(t / 0.7f) % 2 ? level(1, WalkMethod::ClipPlayback, 1, fade)
                                                  : level(0, WalkMethod::Kinematic, 1, fade);
         };
     };
-    walk(6.0f, 1.0f / 60.0f, snapped, ladder(0));
-    walk(6.0f, 1.0f / 60.0f, smooth, ladder(12));
+    walk(6.0f, 1.0f / 60.0f, snapped, ladder(0.0f));
+    walk(6.0f, 1.0f / 60.0f, smooth, ladder(0.2f));
     std::printf("kinematic <-> clip: snapped worst %.2f cm, inertialized worst %.2f cm\n",
                 static_cast<double>(100.0f * snapped.worst_switch()), static_cast<double>(100.0f * smooth.worst_switch()));
     EXPECT_GT(snapped.worst_switch(), snapped.ordinary_p95());
@@ -169,7 +169,7 @@ TEST_F(SwitchedWalk, TransitionsLastTheSameSecondsAtAnyFrameRate) {
         PopMeter pops;
         std::vector<float> lengths;
         walk(3.0f, 1.0f / hz, pops, [](float t, AnimLod& lod) {
-            lod = t < 1.0f ? level(0, WalkMethod::Kinematic, 1, 12) : level(1, WalkMethod::ClipPlayback, 1, 12);
+            lod = t < 1.0f ? level(0, WalkMethod::Kinematic, 1, 0.2f) : level(1, WalkMethod::ClipPlayback, 1, 0.2f);
         }, &lengths);
         ASSERT_EQ(lengths.size(), 1u) << hz << " Hz";
         EXPECT_NEAR(lengths[0], 0.2f, 1.0f / hz + 1e-4f) << hz << " Hz";

@@ -113,7 +113,7 @@ TEST_F(MeteredWalk, WalkMethodSwitchesAgainstOrdinaryFrames) {
     PopMeter pops;
     walk(8.0f, skate, pops, [](int frame, AnimLod& lod) {
         lod.walk = (frame / 60) % 2 ? WalkMethod::Kinematic : WalkMethod::ClipPlayback;
-        lod.crossfade_frames = 12;
+        lod.crossfade_s = 0.2f;
     });
     std::printf("clip <-> kinematic every 1 s: %zu switches, worst switch-frame joint jump %.2f cm, ordinary p95 %.2f cm, "
                 "skate %.2f mm per metre\n",
