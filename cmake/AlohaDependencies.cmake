@@ -19,3 +19,13 @@ if(NOT TARGET aloha_opensubdiv)
     IMPORTED_LOCATION ${ALOHA_OSD_CPU_LIBRARY}
     INTERFACE_INCLUDE_DIRECTORIES ${ALOHA_OSD_INCLUDE_DIR})
 endif()
+
+# stb_image (Debian libstb-dev) decodes glTF base colour textures (PNG, JPEG).
+if(NOT TARGET aloha_stb)
+  find_library(ALOHA_STB_LIBRARY stb REQUIRED)
+  find_path(ALOHA_STB_INCLUDE_DIR stb_image.h PATH_SUFFIXES stb REQUIRED)
+  add_library(aloha_stb SHARED IMPORTED GLOBAL)
+  set_target_properties(aloha_stb PROPERTIES
+    IMPORTED_LOCATION ${ALOHA_STB_LIBRARY}
+    INTERFACE_INCLUDE_DIRECTORIES ${ALOHA_STB_INCLUDE_DIR})
+endif()

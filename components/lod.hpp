@@ -13,6 +13,7 @@ struct LodAttributes {
     float speed = 0.0f;               ///< m/s
     float importance = 0.0f;          ///< copied from Importance
     uint8_t visible = 0;              ///< 1 when the bounds intersect the view frustum
+    float occluded = 0.0f;            ///< 0..1: fraction of the on-screen bounds behind nearer characters
 };
 
 /// Bits of GeomLod::layers: which of the four layers are simulated/drawn.
@@ -40,7 +41,7 @@ struct GeomLod {
     uint8_t subdiv_level = 0;    ///< Catmull-Clark levels when method == Subdivided
     uint16_t theta_steps = 8;    ///< super-ellipsoid steps around (theta), the one tessellation parameter
     uint16_t phi_steps = 6;      ///< steps from pole to pole (phi)
-    uint16_t geomorph_frames = 0;///< frames to morph from the previous surface when this level is entered
+    float geomorph_s = 0.0f;     ///< seconds to morph from the previous surface when this level is entered
 };
 
 /// How cyclic locomotion is produced at an animation level (from cheapest to richest).
@@ -60,8 +61,8 @@ struct AnimLod {
     IkSolver ik = IkSolver::Ccd;
     uint8_t ik_iterations = 4;
     uint8_t update_interval = 1;  ///< animate every N frames (time still advances every frame)
-    uint8_t crossfade_frames = 0; ///< frames to cross-fade poses when the method changes
     float ik_tolerance = 1e-3f;   ///< metres
+    float crossfade_s = 0.0f;     ///< seconds to cross-fade poses when the method changes
 };
 
 /// What the knowledge base wants for a character this frame (written by the rules system).
@@ -75,14 +76,18 @@ struct LodRequest {
 struct LodState {
     uint8_t geom_level = 0;
     uint8_t anim_level = 0;
-    uint8_t prev_geom_level = 0;    ///< level being morphed from while geomorph_left > 0
-    uint8_t prev_anim_level = 0;    ///< level being cross-faded from while crossfade_left > 0
-    uint16_t frames_at_geom = 0;    ///< frames since the last geometric switch (saturating)
-    uint16_t frames_at_anim = 0;    ///< frames since the last animation switch (saturating)
-    uint16_t geomorph_left = 0;     ///< frames of geomorph remaining
-    uint16_t crossfade_left = 0;    ///< frames of pose cross-fade remaining
+    uint8_t prev_geom_level = 0;    ///< level being morphed from while geomorph_left_s > 0
+    uint8_t prev_anim_level = 0;    ///< level being cross-faded from while crossfade_left_s > 0
+    float seconds_at_geom = 0.0f;   ///< simulated seconds since the last geometric switch (0 on the switch frame)
+    float seconds_at_anim = 0.0f;   ///< simulated seconds since the last animation switch (0 on the switch frame)
+    float geomorph_left_s = 0.0f;   ///< seconds of geomorph remaining
+    float crossfade_left_s = 0.0f;  ///< seconds of pose cross-fade remaining
     uint16_t rule_id = 0;           ///< rule that produced the current levels
-    uint8_t budget_demotion = 0;    ///< levels removed by the frame budget (0 = none)
+    uint8_t budget_demotion = 0;    ///< geometric levels removed by the frame budget (0 = none)
+    uint8_t anim_demotion = 0;      ///< animation levels removed by the frame budget (0 = none)
+    uint8_t cap_geom_level = 0;     ///< richest geometric level the level caps allow this frame (0 = any)
+    uint8_t cap_anim_level = 0;     ///< richest animation level the level caps allow this frame (0 = any)
+    uint8_t always_full = 0;        ///< 1: set by the scene; the frame budget never demotes this character
 };
 
 }  // namespace aloha

@@ -7,6 +7,8 @@
 // (bit 0: x, bit 1: y, bit 2: z; 0 = -0.5, 1 = +0.5) and no normal (the fragment shader derives flat face
 // normals). Lavapipe shades vertices on one thread and runs instances one by one, so 8 arithmetic corners
 // per box in one draw is far cheaper than N instances of a 24-vertex mesh.
+// Textured mode (offsets.w == 2): the vertex's texture coordinate is element gl_VertexIndex of the material
+// set's UV buffer (set 1, shared by every instance of the topology).
 
 layout(std430, set = 0, binding = 0) readonly buffer Positions { float positions[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Normals { float normals[]; };
@@ -15,17 +17,20 @@ struct Instance {
     vec4 colour;
 };
 layout(std430, set = 0, binding = 2) readonly buffer Instances { Instance instances[]; };
+layout(std430, set = 1, binding = 0) readonly buffer Uvs { vec2 uvs[]; };
 
 layout(push_constant) uniform Push {
     mat4 view_proj;     // clip-space (Vulkan convention) from world
     vec4 light;         // xyz: unit direction towards the light (world), w: ambient in [0,1]
     vec4 camera;        // xyz: camera position (world)
-    uvec4 offsets;      // x: vertex_base, y: vertex_stride, z: instance_base, w: 1 = box mode
+    uvec4 offsets;      // x: vertex_base, y: vertex_stride, z: instance_base, w: 0 mesh, 1 boxes, 2 textured mesh
+    vec4 base_colour;   // the draw's material colour
 } pc;
 
 layout(location = 0) out vec3 v_normal;
 layout(location = 1) out vec3 v_world;
 layout(location = 2) out vec4 v_colour;
+layout(location = 3) out vec2 v_uv;
 
 void main() {
     uint inst;
@@ -50,6 +55,7 @@ void main() {
     vec4 world = m * vec4(p, 1.0);
     v_normal = cof * n;
     v_world = world.xyz;
-    v_colour = instances[inst].colour;
+    v_colour = instances[inst].colour * pc.base_colour;
+    v_uv = pc.offsets.w == 2u ? uvs[gl_VertexIndex] : vec2(0.0);
     gl_Position = pc.view_proj * world;
 }

@@ -85,7 +85,7 @@ Result<Keys> read_sampler(const tinygltf::Model& model, const tinygltf::Animatio
 }  // namespace
 
 Result<RawAnimation> read_clip(const tinygltf::Model& model, int index, const std::vector<JointBinding>& joints,
-                               const std::string& file, std::vector<std::string>* notes) {
+                               const std::string& file, std::vector<std::string>* notes, size_t* morph_channels) {
     const tinygltf::Animation& anim = model.animations[static_cast<size_t>(index)];
     const std::string aw = "animations[" + std::to_string(index) + "]";
     RawAnimation clip;
@@ -106,14 +106,14 @@ Result<RawAnimation> read_clip(const tinygltf::Model& model, int index, const st
         else if (ch.target_path == "rotation") path = Path::kRotation;
         else if (ch.target_path == "scale") path = Path::kScale;
         else if (ch.target_path == "weights") {
-            notes->push_back(cw + ": morph target weights are not supported; channel skipped");
+            ++*morph_channels;
             continue;
         } else {
             return make_error(file, "unknown target path '" + ch.target_path + "'", 0, 0, cw);
         }
         const int j = joint_of_node[static_cast<size_t>(ch.target_node)];
         if (j < 0) {
-            notes->push_back(cw + ": target nodes[" + std::to_string(ch.target_node) + "] is not a joint of skin 0; channel skipped");
+            notes->push_back(cw + ": target nodes[" + std::to_string(ch.target_node) + "] is not a joint; channel skipped");
             continue;
         }
         uint8_t& dup = seen[static_cast<size_t>(j) * 3 + static_cast<size_t>(path)];

@@ -9,6 +9,7 @@
 #include <tiny_gltf.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aloha::gltf_detail {
@@ -43,11 +44,6 @@ Result<glm::mat4> node_local_matrix(const tinygltf::Model& model, int index, con
 /// Splits an affine matrix without shear into TRS. Errors (naming `where`): singular, shear.
 Result<Trs> decompose(const glm::mat4& m, const std::string& file, const std::string& where);
 
-/// Converts the primitives of skinned mesh `mesh_index`; `runtime_of_raw` maps skin joint
-/// indices to runtime joint indices.
-Status read_skinned_mesh(const tinygltf::Model& model, int mesh_index, const std::vector<int>& runtime_of_raw,
-                         const std::string& file, std::vector<GltfSkinnedMesh>* out);
-
 /// Per raw joint: its node and the folded non-joint ancestor transform applied to its keys.
 struct JointBinding {
     int node = -1;
@@ -55,8 +51,73 @@ struct JointBinding {
     bool folded = false;
 };
 
-/// Converts animation `index` into a clip with tracks in RAW joint order; notes skipped channels.
+/// The character's joints gathered from every skin (see gltf_loader.hpp for the order).
+struct SkinSet {
+    std::vector<int> joint_of_node;                   ///< raw joint of each node, -1 for non-joints
+    std::vector<JointBinding> bindings;               ///< per raw joint
+    std::vector<std::vector<int>> raw_of_skin_joint;  ///< per skin: raw joint of skins[k].joints[i]
+    std::vector<std::vector<glm::mat4>> skin_ibm;     ///< per skin: inverse bind of skins[k].joints[i] as in the file
+};
+
+/// Reads every skin: fills out->skeleton (rest transforms with folded ancestors, unique names),
+/// out->inverse_bind_matrices (per raw joint: skin 0's, then later skins' new joints brought into
+/// skin 0's bind space through a shared joint) and notes.
+Result<SkinSet> read_skins(const tinygltf::Model& model, const std::vector<int>& parents, const std::string& file,
+                           GltfCharacter* out);
+
+/// Counters of things read but changed or left out while converting primitives, turned into one
+/// note each by add_mesh_notes().
+struct MeshNotes {
+    size_t unnormalised_vertices = 0, unnormalised_primitives = 0;
+    size_t flat_normal_primitives = 0;
+    size_t morph_primitives = 0, morph_applied_primitives = 0;
+    size_t eight_influence_primitives = 0;
+    size_t skipped_primitives = 0;        ///< points and lines
+    size_t bind_mismatch_vertices = 0;    ///< second-skin vertices whose joints disagree on the bind pose
+    size_t untextured_primitives = 0;     ///< textured material but no such TEXCOORD set
+    std::vector<std::string> unattached;  ///< mesh nodes with no skin and no joint above them
+};
+
+/// How a primitive is tied to the skeleton: through a skin (skin-local joint index -> runtime joint)
+/// or rigidly (weight 1) to one runtime joint.
+struct PrimitiveBinding {
+    const std::vector<int>* runtime_of_skin_joint = nullptr;  ///< skinned when set
+    uint16_t rigid_joint = 0;                                 ///< runtime joint of a rigid part
+    const std::vector<double>* morph_weights = nullptr;       ///< default morph weights (node's or mesh's)
+};
+
+/// Converts every primitive of mesh `mesh_index` used by node `node_index`; appends one
+/// GltfSkinnedMesh per triangle primitive to `out`. Textured materials need their TEXCOORD set.
+Status read_mesh(const tinygltf::Model& model, int node_index, int mesh_index, const PrimitiveBinding& binding,
+                 const std::vector<SurfaceMaterial>& materials, const std::vector<int>& material_texcoord,
+                 const std::string& file, MeshNotes* notes, std::vector<GltfSkinnedMesh>* out);
+
+/// Attaches every mesh node: skinned ones through their skin (second skins' bind differences
+/// resolved per vertex), rigid ones to the nearest joint at or above them. `runtime_of_raw` maps raw
+/// to runtime joints. Appends to out->meshes and notes.
+Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& parents, const SkinSet& skins,
+                     const std::vector<int>& runtime_of_raw, const std::vector<int>& material_texcoord,
+                     const std::string& file, GltfCharacter* out);
+
+/// Reads materials (base colour factor, base colour texture) and decodes the images they use into
+/// out->materials / out->textures; `texcoord` gets each material's TEXCOORD set (-1 = no texture).
+/// Images that failed to decode (see ImageDecodeLog) leave their materials untextured with a note.
+Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out,
+                      std::vector<int>* texcoord);
+
+/// tinygltf image callback state: images that could not be decoded (index -> reason).
+struct ImageDecodeLog {
+    std::vector<std::pair<int, std::string>> failures;
+};
+
+/// tinygltf image loader: decodes PNG/JPEG with stb_image into RGBA8, refusing images larger than
+/// 8192 x 8192; a failure is logged in the ImageDecodeLog passed as `user` and the load goes on.
+bool decode_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int req_width,
+                  int req_height, const unsigned char* bytes, int size, void* user);
+
+/// Converts animation `index` into a clip with tracks in RAW joint order; notes skipped channels
+/// (`weights` channels are only counted in `morph_channels`, for one note per file).
 Result<RawAnimation> read_clip(const tinygltf::Model& model, int index, const std::vector<JointBinding>& joints,
-                               const std::string& file, std::vector<std::string>* notes);
+                               const std::string& file, std::vector<std::string>* notes, size_t* morph_channels);
 
 }  // namespace aloha::gltf_detail

@@ -1,4 +1,4 @@
-// glTF character loader: runs tinygltf, then checks and converts skin 0, its meshes and clips.
+// glTF character loader: runs tinygltf, then checks and converts the skins, meshes, materials and clips.
 #include "engine/assets/gltf_loader.hpp"
 
 #include "engine/core/json_depth.hpp"
@@ -12,7 +12,6 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
-#include <set>
 
 namespace aloha {
 
@@ -20,113 +19,33 @@ namespace {
 
 using namespace gltf_detail;
 
-// Images are not needed by the character loader: accept them without decoding.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-    return true;
-}
-
-Result<GltfCharacter> convert(const tinygltf::Model& model, const std::string& file) {
-    if (model.skins.empty()) return make_error(file, "file has no skins (a character needs skin 0)", 0, 0, "skins");
-    const tinygltf::Skin& skin = model.skins[0];
-    const size_t n = skin.joints.size();
-    if (n == 0) return make_error(file, "skin has no joints", 0, 0, "skins[0]");
-    if (n > 32767) return make_error(file, "skin has " + std::to_string(n) + " joints; at most 32767 are supported", 0, 0, "skins[0]");
+Result<GltfCharacter> convert(const tinygltf::Model& model, const std::string& file, const ImageDecodeLog& images) {
     Result<std::vector<int>> parents_r = node_parents(model, file);
     if (!parents_r.ok()) return parents_r.error();
     const std::vector<int>& parents = parents_r.value();
-    std::vector<int> joint_of_node(model.nodes.size(), -1);
-    for (size_t i = 0; i < n; ++i) {
-        const int node = skin.joints[i];
-        const std::string where = "skins[0].joints[" + std::to_string(i) + "]";
-        if (node < 0 || static_cast<size_t>(node) >= model.nodes.size())
-            return make_error(file, "node " + std::to_string(node) + " is out of range (the file has " + std::to_string(model.nodes.size()) + " nodes)", 0, 0, where);
-        if (joint_of_node[static_cast<size_t>(node)] >= 0)
-            return make_error(file, "nodes[" + std::to_string(node) + "] is listed twice in the skin", 0, 0, where);
-        joint_of_node[static_cast<size_t>(node)] = static_cast<int>(i);
-    }
-
     GltfCharacter out;
-    std::vector<JointBinding> bindings(n);
-    std::set<std::string> names;
-    out.skeleton.joints.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        const int node = skin.joints[i];
-        const std::string where = "nodes[" + std::to_string(node) + "]";
-        Result<glm::mat4> local = node_local_matrix(model, node, file);
-        if (!local.ok()) return local.error();
-        JointBinding& b = bindings[i];
-        b.node = node;
-        int p = parents[static_cast<size_t>(node)];
-        while (p >= 0 && joint_of_node[static_cast<size_t>(p)] < 0) {  // fold non-joint ancestors
-            Result<glm::mat4> pm = node_local_matrix(model, p, file);
-            if (!pm.ok()) return pm.error();
-            b.fold = pm.value() * b.fold;
-            b.folded = true;
-            p = parents[static_cast<size_t>(p)];
-        }
-        if (b.folded) {
-            Result<Trs> f = decompose(b.fold, file, where + " ancestors");
-            if (!f.ok()) return f.error();
-            const glm::vec3 s = glm::abs(f.value().s);
-            if (std::abs(s.x - s.y) > 1e-5f * s.x || std::abs(s.x - s.z) > 1e-5f * s.x)
-                out.notes.push_back(where + ": ancestors have non-uniform scale; folded animation keys are approximate");
-        }
-        Result<Trs> trs = decompose(b.fold * local.value(), file, where);
-        if (!trs.ok()) return trs.error();
-        RawJoint& j = out.skeleton.joints[i];
-        j.name = model.nodes[static_cast<size_t>(node)].name.empty() ? "node" + std::to_string(node) : model.nodes[static_cast<size_t>(node)].name;
-        if (!names.insert(j.name).second) {
-            out.notes.push_back(where + ": duplicate joint name '" + j.name + "' renamed to '" + j.name + "_node" + std::to_string(node) + "'");
-            j.name += "_node" + std::to_string(node);
-        }
-        j.parent = p >= 0 ? joint_of_node[static_cast<size_t>(p)] : -1;
-        j.translation = trs.value().t;
-        j.rotation = trs.value().r;
-        j.scale = trs.value().s;
-    }
-
-    out.inverse_bind_matrices.assign(n, glm::mat4(1.0f));
-    if (skin.inverseBindMatrices >= 0) {
-        Result<std::vector<float>> ibm = read_floats(model, skin.inverseBindMatrices, TINYGLTF_TYPE_MAT4,
-                                                     {TINYGLTF_COMPONENT_TYPE_FLOAT}, file, "skins[0].inverseBindMatrices");
-        if (!ibm.ok()) return ibm.error();
-        if (ibm.value().size() < n * 16)
-            return make_error(file, "has " + std::to_string(ibm.value().size() / 16) + " matrices for " + std::to_string(n) + " joints", 0, 0,
-                              "accessors[" + std::to_string(skin.inverseBindMatrices) + "]");
-        for (size_t i = 0; i < n; ++i)
-            for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r) {
-                    const float v = ibm.value()[i * 16 + static_cast<size_t>(c * 4 + r)];
-                    if (!std::isfinite(v))
-                        return make_error(file, "inverse bind matrix " + std::to_string(i) + " has a NaN or infinite value", 0, 0,
-                                          "accessors[" + std::to_string(skin.inverseBindMatrices) + "]");
-                    out.inverse_bind_matrices[i][c][r] = v;
-                }
-    }
-
+    Result<SkinSet> skins = read_skins(model, parents, file, &out);
+    if (!skins.ok()) return skins.error();
     Result<Skeleton> skeleton = build_skeleton(out.skeleton, file);
     if (!skeleton.ok()) return skeleton.error();
     const std::vector<int> runtime_of_raw = runtime_index_of_raw(skeleton.value());
 
-    for (size_t i = 0; i < model.nodes.size(); ++i) {
-        const tinygltf::Node& node = model.nodes[i];
-        if (node.skin >= 0 && static_cast<size_t>(node.skin) >= model.skins.size())
-            return make_error(file, "skin " + std::to_string(node.skin) + " is out of range (the file has " + std::to_string(model.skins.size()) + " skins)", 0, 0,
-                              "nodes[" + std::to_string(i) + "]");
-        if (node.mesh < 0) continue;
-        if (node.skin != 0) {
-            out.notes.push_back("nodes[" + std::to_string(i) + "]: mesh not skinned by skin 0; ignored");
-            continue;
-        }
-        if (Status s = read_skinned_mesh(model, node.mesh, runtime_of_raw, file, &out.meshes); !s.ok()) return s.error();
-    }
+    for (const auto& [index, reason] : images.failures)
+        out.notes.push_back("images[" + std::to_string(index) + "]: " + reason + "; materials using it are drawn untextured");
+    std::vector<int> texcoord;
+    if (Status s = read_materials(model, file, &out, &texcoord); !s.ok()) return s.error();
+    if (Status s = attach_meshes(model, parents, skins.value(), runtime_of_raw, texcoord, file, &out); !s.ok()) return s.error();
 
+    size_t morph_channels = 0;
     for (size_t a = 0; a < model.animations.size(); ++a) {
-        Result<RawAnimation> clip = read_clip(model, static_cast<int>(a), bindings, file, &out.notes);
+        Result<RawAnimation> clip = read_clip(model, static_cast<int>(a), skins.value().bindings, file, &out.notes, &morph_channels);
         if (!clip.ok()) return clip.error();
         out.clips.push_back(remap_to_runtime(clip.value(), skeleton.value()));
         out.clip_names.push_back(out.clips.back().name);
     }
+    if (morph_channels > 0)
+        out.notes.push_back(std::to_string(morph_channels) + " morph target weight channel" + (morph_channels == 1 ? "" : "s") +
+                            " skipped: morph weights are not animated");
     return out;
 }
 
@@ -188,7 +107,8 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
         guard.folder = std::filesystem::weakly_canonical(std::filesystem::absolute(base_dir.empty() ? "." : base_dir, ec), ec);
     }
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skip_image, nullptr);
+    ImageDecodeLog images;
+    loader.SetImageLoader(decode_image, &images);
     loader.SetFsCallbacks(tinygltf::FsCallbacks{guarded_exists, tinygltf::ExpandFilePath, guarded_read, refuse_write, &guard});
     tinygltf::Model model;
     std::string err, warn;
@@ -204,7 +124,7 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         return make_error(file, "not a valid glTF file: " + (err.empty() ? std::string("unknown error") : err));
     }
-    return convert(model, file);
+    return convert(model, file, images);
 }
 
 }  // namespace

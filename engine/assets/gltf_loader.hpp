@@ -1,30 +1,53 @@
-// glTF 2.0 character loader (tinygltf): skeleton and inverse bind matrices from skin 0, the meshes
-// skinned by it, and all animation clips.
+// glTF 2.0 character loader (tinygltf): the skeleton formed by the joints of every skin, inverse
+// bind matrices, every mesh attached to it (skinned, or rigid under a joint node), materials with
+// their base colour textures, and all animation clips.
 //
-// Conventions:
-// - Raw joint i is skin.joints[i]; its parent is the nearest ancestor node that is also a joint.
-//   Transforms of non-joint nodes between a joint and its joint parent (or above a root joint,
-//   e.g. CesiumMan's Z_UP and Armature `matrix` nodes) are folded into that joint's rest transform
-//   and into its animation keys, so model space equals the glTF scene's world space (Y up).
-//   Folding keys is exact when the folded transform has uniform scale (otherwise a note is added).
-//   Animations of non-joint nodes are ignored.
-// - inverse_bind_matrices[i] belongs to raw joint i (identity when the skin has none). Skinning:
+// Conventions (each checked against the glTF 2.0 specification):
+// - Joints are the union of all skins' joints: skins[0].joints in order, then the joints of
+//   skins[1] not already listed, and so on (several skins may share joints). Raw joint i's parent is
+//   the nearest ancestor node that is also a joint. Transforms of non-joint nodes between a joint
+//   and its joint parent (or above a root joint: a scale-100 armature, CesiumMan's Z_UP and
+//   Armature `matrix` nodes) are folded into that joint's rest transform and into its animation
+//   keys, so model space equals the glTF scene's world space (Y up). Folding keys is exact when the
+//   folded transform has uniform scale (otherwise a note is added). Animations of non-joint nodes
+//   are ignored (one note per channel).
+// - inverse_bind_matrices[i] belongs to raw joint i (identity when its skin has none). Skinning:
 //   v_model = sum_k w_k * model[runtime joint] * inverse_bind_matrices[raw joint] * v. The mesh
-//   node's own transform is ignored, as the glTF spec requires for skinned meshes.
-// - GltfSkinnedMesh::joints holds RUNTIME joint indices (of build_skeleton(skeleton));
-//   weights are normalised to sum 1; one GltfSkinnedMesh per triangle primitive; a missing NORMAL
-//   is computed (area-weighted); missing indices become 0..n-1.
+//   node's own transform is ignored, as the spec requires for skinned meshes. Skin 0's matrices are
+//   kept; a later skin whose matrices of shared joints differ by an offset B (its mesh bound in
+//   another space) has its new joints' matrices and its vertices brought into skin 0's space by B,
+//   which is exact when the vertex's joints agree on B (otherwise the largest weight's joint wins,
+//   with a note).
+// - A node with a mesh and no skin under a joint node (or that is one) is a rigid part: its
+//   vertices are bound with weight 1 to the nearest joint at or above it, carrying the transforms
+//   of the nodes between (mirroring flips the triangles' winding, as the spec's determinant rule
+//   says). Meshes with no skin and no joint above them are left out with a note.
+// - GltfSkinnedMesh::joints holds RUNTIME joint indices (of build_skeleton(skeleton)); one
+//   GltfSkinnedMesh per primitive and per node using the mesh. TRIANGLES, TRIANGLE_STRIP and
+//   TRIANGLE_FAN primitives are read (strips and fans become lists); points and lines are left out
+//   with a note. Weights (JOINTS_0/WEIGHTS_0 and, when present, JOINTS_1/WEIGHTS_1, of which the
+//   4 largest are kept) are normalised to sum 1; sums off 1 by more than the quantisation allows
+//   get one note. A missing NORMAL is computed flat (each triangle gets its own corners carrying
+//   its face normal, as the spec requires; one note). Missing indices become 0..n-1. Morph
+//   targets: the shape at the default weights (node.weights, else mesh.weights, else 0: the base
+//   shape) is kept, one note; `weights` animation channels are skipped with one note per file.
+// - Materials: baseColorFactor and baseColorTexture (with its texCoord set and sampler wrap
+//   modes) per primitive; images are decoded (PNG, JPEG via stb_image) into RGBA8; an image that
+//   cannot be decoded leaves its materials untextured with a note. Other material inputs
+//   (metallic-roughness, normal, occlusion, emissive textures) are not drawn.
 // - Clips: tracks indexed by RUNTIME joint. Key times are shifted so the earliest key of the clip
 //   is at 0; start_offset keeps that original time; duration = last key - first key (CesiumMan:
 //   2.0 - 0.041667 = 1.958333 s). Unnamed clips are called "clip<index>". LINEAR keys are kept;
 //   STEP keys are expanded to hold each value until 1e-4 s (at most a quarter of the gap) before
 //   the next key so linear sampling reproduces the steps; CUBICSPLINE keeps only the value of each
-//   (in-tangent, value, out-tangent) triple, i.e. it is resampled as linear. `weights` (morph)
-//   channels are skipped with a note.
+//   (in-tangent, value, out-tangent) triple, i.e. it is resampled as linear.
+// - Names: unnamed joints are called "node<index>"; a joint name used twice gets "_node<index>"
+//   appended (with a note); any other characters (dots, colons, spaces) are kept as they are.
 #pragma once
 
 #include "engine/anim/raw_animation.hpp"
 #include "engine/anim/raw_skeleton.hpp"
+#include "engine/assets/surface_material.hpp"
 #include "engine/core/result.hpp"
 
 #include <glm/glm.hpp>
@@ -37,20 +60,25 @@
 
 namespace aloha {
 
-/// One skinned triangle mesh in bind space (the space inverse bind matrices map from).
+/// One skinned triangle mesh (a primitive) in bind space (the space inverse bind matrices map from).
 struct GltfSkinnedMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;   ///< unit length, one per position
     std::vector<glm::u16vec4> joints; ///< runtime skeleton joint indices, one per position
     std::vector<glm::vec4> weights;   ///< non-negative, sum 1, one per position
+    std::vector<glm::vec2> uvs;       ///< the material texture's coordinates, one per position (empty: none)
     std::vector<uint32_t> indices;    ///< triangle list, each < positions.size()
+    int material = -1;                ///< index into GltfCharacter::materials, -1 = the default (white)
+    std::string source;               ///< "nodes[3] meshes[1].primitives[0]", for notes and tests
 };
 
 /// A character read from a glTF file.
 struct GltfCharacter {
     RawSkeleton skeleton;                           ///< joints in skin order (raw order)
     std::vector<glm::mat4> inverse_bind_matrices;   ///< per raw joint
-    std::vector<GltfSkinnedMesh> meshes;            ///< primitives of meshes on nodes using skin 0
+    std::vector<GltfSkinnedMesh> meshes;            ///< primitives of skinned and rigid meshes
+    std::vector<SurfaceMaterial> materials;         ///< referenced by GltfSkinnedMesh::material
+    std::vector<TextureImage> textures;             ///< referenced by SurfaceMaterial::texture
     std::vector<RawAnimation> clips;                ///< tracks in runtime joint order
     std::vector<std::string> clip_names;            ///< clips[i].name, "" in the file -> "clip<i>"
     std::vector<std::string> notes;                 ///< things read but deliberately ignored

@@ -1,7 +1,11 @@
-// Skinned mesh primitives of the glTF loader: positions, normals, joints (remapped to runtime
-// order), normalised weights and triangle indices, every value checked.
+// Mesh primitives of the glTF loader: positions, normals (read, or flat as the spec requires),
+// joints (remapped to runtime order, up to 8 influences reduced to 4), normalised weights, texture
+// coordinates, default morph-target weights and triangle indices (lists, strips, fans), every value
+// checked.
 #include "engine/assets/gltf_detail.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace aloha::gltf_detail {
@@ -13,30 +17,210 @@ constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
 constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
 constexpr int kUInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
 
-// Area-weighted vertex normals (cross products are proportional to triangle area).
-std::vector<glm::vec3> compute_normals(const std::vector<glm::vec3>& p, const std::vector<uint32_t>& idx) {
-    std::vector<glm::vec3> n(p.size(), glm::vec3(0.0f));
-    for (size_t t = 0; t + 2 < idx.size(); t += 3) {
-        const glm::vec3 f = glm::cross(p[idx[t + 1]] - p[idx[t]], p[idx[t + 2]] - p[idx[t]]);
-        for (size_t k = 0; k < 3; ++k) n[idx[t + k]] += f;
+// Triangle list of a primitive from its (possibly implicit) indices and mode (4 list, 5 strip, 6 fan),
+// following the glTF spec's vertex order for strips and fans.
+std::vector<uint32_t> to_triangle_list(const std::vector<uint32_t>& idx, int mode) {
+    if (mode == TINYGLTF_MODE_TRIANGLES || mode == -1) return idx;
+    std::vector<uint32_t> out;
+    for (size_t i = 0; i + 2 < idx.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+            const size_t odd = i % 2;
+            out.insert(out.end(), {idx[i], idx[i + 1 + odd], idx[i + 2 - odd]});
+        } else {  // fan
+            out.insert(out.end(), {idx[i + 1], idx[i + 2], idx[0]});
+        }
     }
-    for (glm::vec3& v : n) v = glm::length(v) > 0.0f ? glm::normalize(v) : glm::vec3(0, 1, 0);
-    return n;
+    return out;
 }
 
-Status read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
-                      const std::vector<int>& runtime_of_raw, const std::string& file, GltfSkinnedMesh* mesh) {
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-        return make_error(file, "primitive mode " + std::to_string(prim.mode) + " is not supported (only TRIANGLES, 4)", 0, 0, where);
-    auto attribute = [&](const char* name) {
+// Gives every triangle its own three corners carrying its face normal (glTF: "When normals are not
+// specified, client implementations MUST calculate flat normals"). Degenerate triangles point up.
+void make_flat(GltfSkinnedMesh* m) {
+    GltfSkinnedMesh f;
+    const bool uv = !m->uvs.empty();
+    for (size_t t = 0; t + 2 < m->indices.size(); t += 3) {
+        const glm::vec3 a = m->positions[m->indices[t]], b = m->positions[m->indices[t + 1]], c = m->positions[m->indices[t + 2]];
+        const glm::vec3 cr = glm::cross(b - a, c - a);
+        const glm::vec3 n = glm::length(cr) > 0.0f ? glm::normalize(cr) : glm::vec3(0, 1, 0);
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t v = m->indices[t + k];
+            f.indices.push_back(static_cast<uint32_t>(f.positions.size()));
+            f.positions.push_back(m->positions[v]);
+            f.normals.push_back(n);
+            f.joints.push_back(m->joints[v]);
+            f.weights.push_back(m->weights[v]);
+            if (uv) f.uvs.push_back(m->uvs[v]);
+        }
+    }
+    m->positions = std::move(f.positions);
+    m->normals = std::move(f.normals);
+    m->joints = std::move(f.joints);
+    m->weights = std::move(f.weights);
+    m->uvs = std::move(f.uvs);
+    m->indices = std::move(f.indices);
+}
+
+// Largest allowed |sum - 1| of a vertex's weights: float noise, or the quantisation step of the
+// normalised integer type per influence.
+float weight_tolerance(const tinygltf::Model& model, int accessor, int influences) {
+    const int c = model.accessors[static_cast<size_t>(accessor)].componentType;
+    const float step = c == kUByte ? 1.0f / 255.0f : c == kUShort ? 1.0f / 65535.0f : 1e-4f;
+    return step * static_cast<float>(influences);
+}
+
+class PrimitiveReader {
+public:
+    PrimitiveReader(const tinygltf::Model& model, const std::string& file, const std::string& where, MeshNotes* notes)
+        : model_(model), file_(file), at_(where + ".attributes."), notes_(notes) {}
+
+    int attribute(const tinygltf::Primitive& prim, const std::string& name) const {
         const auto it = prim.attributes.find(name);
         return it == prim.attributes.end() ? -2 : it->second;
-    };
-    for (const char* required : {"POSITION", "JOINTS_0", "WEIGHTS_0"})
-        if (attribute(required) == -2) return make_error(file, std::string("skinned primitive has no ") + required + " attribute", 0, 0, where);
-    const std::string at = where + ".attributes.";
+    }
 
-    Result<std::vector<float>> pos = read_floats(model, attribute("POSITION"), TINYGLTF_TYPE_VEC3, {kFloat}, file, at + "POSITION");
+    Status count_check(size_t count, size_t n, const std::string& name) const {
+        if (count != n)
+            return make_error(file_, name + " has " + std::to_string(count) + " elements but POSITION has " + std::to_string(n), 0, 0, at_ + name);
+        return {};
+    }
+
+    // Joints and weights of a skinned primitive (JOINTS_0/WEIGHTS_0 and optionally the _1 sets).
+    Status skin(const tinygltf::Primitive& prim, const std::vector<int>& runtime_of_skin_joint, GltfSkinnedMesh* mesh) const {
+        const size_t n = mesh->positions.size();
+        std::vector<uint32_t> joints;
+        std::vector<float> weights;
+        int sets = 0;
+        float tolerance = 0.0f;
+        for (int set = 0; set < 2; ++set) {
+            const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
+            const int ja = attribute(prim, js), wa = attribute(prim, ws);
+            if (ja == -2 || wa == -2) {
+                if (set == 0) return make_error(file_, "skinned primitive has no " + (ja == -2 ? js : ws) + " attribute", 0, 0, at_.substr(0, at_.size() - 12));
+                break;
+            }
+            Result<std::vector<uint32_t>> j = read_uints(model_, ja, TINYGLTF_TYPE_VEC4, {kUByte, kUShort}, file_, at_ + js);
+            if (!j.ok()) return j.error();
+            if (Status s = count_check(j.value().size() / 4, n, js); !s.ok()) return s;
+            Result<std::vector<float>> w = read_floats(model_, wa, TINYGLTF_TYPE_VEC4, {kFloat, kUByte, kUShort}, file_, at_ + ws, true);
+            if (!w.ok()) return w.error();
+            if (Status s = count_check(w.value().size() / 4, n, ws); !s.ok()) return s;
+            for (size_t v = 0; v < n * 4; ++v) {
+                const uint32_t joint = j.value()[v];
+                if (joint >= runtime_of_skin_joint.size())
+                    return make_error(file_, "vertex " + std::to_string(v / 4) + " uses joint " + std::to_string(joint) + ", but the skin has " +
+                                                 std::to_string(runtime_of_skin_joint.size()) + " joints", 0, 0, at_ + js);
+                const float wv = w.value()[v];
+                if (!std::isfinite(wv) || wv < 0.0f)
+                    return make_error(file_, "vertex " + std::to_string(v / 4) + " has weight " + std::to_string(wv) + " (must be finite and >= 0)", 0, 0, at_ + ws);
+            }
+            tolerance += weight_tolerance(model_, wa, 4);
+            ++sets;
+            // Interleave per vertex: influences of set 0 then set 1.
+            if (set == 0) {
+                joints = std::move(j).value();
+                weights = std::move(w).value();
+            } else {
+                std::vector<uint32_t> jj(n * 8);
+                std::vector<float> ww(n * 8);
+                for (size_t v = 0; v < n; ++v)
+                    for (size_t k = 0; k < 4; ++k) {
+                        jj[v * 8 + k] = joints[v * 4 + k], ww[v * 8 + k] = weights[v * 4 + k];
+                        jj[v * 8 + 4 + k] = j.value()[v * 4 + k], ww[v * 8 + 4 + k] = w.value()[v * 4 + k];
+                    }
+                joints = std::move(jj);
+                weights = std::move(ww);
+            }
+        }
+        const size_t per = static_cast<size_t>(sets) * 4;
+        if (sets > 1) ++notes_->eight_influence_primitives;
+        mesh->joints.resize(n);
+        mesh->weights.resize(n);
+        size_t unnormalised = 0;
+        for (size_t v = 0; v < n; ++v) {
+            std::array<size_t, 8> order{0, 1, 2, 3, 4, 5, 6, 7};
+            std::stable_sort(order.begin(), order.begin() + static_cast<long>(per),
+                             [&](size_t a, size_t b) { return weights[v * per + a] > weights[v * per + b]; });
+            float all = 0.0f, kept = 0.0f;
+            for (size_t k = 0; k < per; ++k) all += weights[v * per + k];
+            glm::vec4 w(0.0f);
+            for (int k = 0; k < 4; ++k) {
+                const size_t s = v * per + order[static_cast<size_t>(k)];
+                mesh->joints[v][k] = static_cast<uint16_t>(runtime_of_skin_joint[joints[s]]);
+                w[k] = weights[s];
+                kept += weights[s];
+            }
+            if (!(kept > 0.0f)) return make_error(file_, "vertex " + std::to_string(v) + " has all-zero weights", 0, 0, at_ + "WEIGHTS_0");
+            if (std::abs(all - 1.0f) > tolerance) ++unnormalised;
+            mesh->weights[v] = w / kept;
+        }
+        if (unnormalised > 0) {
+            notes_->unnormalised_vertices += unnormalised;
+            ++notes_->unnormalised_primitives;
+        }
+        return {};
+    }
+
+    // Texture coordinates TEXCOORD_<set>.
+    Status uvs(const tinygltf::Primitive& prim, int set, GltfSkinnedMesh* mesh) const {
+        const std::string name = "TEXCOORD_" + std::to_string(set);
+        const int a = attribute(prim, name);
+        if (a == -2) {
+            ++notes_->untextured_primitives;
+            return {};
+        }
+        Result<std::vector<float>> uv = read_floats(model_, a, TINYGLTF_TYPE_VEC2, {kFloat, kUByte, kUShort}, file_, at_ + name, true);
+        if (!uv.ok()) return uv.error();
+        if (Status s = count_check(uv.value().size() / 2, mesh->positions.size(), name); !s.ok()) return s;
+        mesh->uvs.resize(mesh->positions.size());
+        for (size_t v = 0; v < mesh->uvs.size(); ++v) {
+            mesh->uvs[v] = glm::vec2(uv.value()[2 * v], uv.value()[2 * v + 1]);
+            if (!std::isfinite(mesh->uvs[v].x + mesh->uvs[v].y))
+                return make_error(file_, "vertex " + std::to_string(v) + " texture coordinate is NaN or infinite", 0, 0, at_ + name);
+        }
+        return {};
+    }
+
+    // Adds weight * target attribute `name` of every morph target with a non-zero default weight.
+    Status morph(const tinygltf::Primitive& prim, const std::vector<double>* weights, const std::string& name,
+                 std::vector<glm::vec3>* values, bool* applied) const {
+        for (size_t t = 0; t < prim.targets.size(); ++t) {
+            const double w = weights && t < weights->size() ? (*weights)[t] : 0.0;
+            if (!std::isfinite(w)) return make_error(file_, "default morph weight " + std::to_string(t) + " is NaN or infinite", 0, 0, at_);
+            const auto it = prim.targets[t].find(name);
+            if (w == 0.0 || it == prim.targets[t].end()) continue;
+            const std::string usage = at_.substr(0, at_.size() - 12) + ".targets[" + std::to_string(t) + "]." + name;
+            Result<std::vector<float>> d = read_floats(model_, it->second, TINYGLTF_TYPE_VEC3, {kFloat}, file_, usage);
+            if (!d.ok()) return d.error();
+            if (Status s = count_check(d.value().size() / 3, values->size(), usage); !s.ok()) return s;
+            for (size_t v = 0; v < values->size(); ++v)
+                (*values)[v] += static_cast<float>(w) * glm::vec3(d.value()[3 * v], d.value()[3 * v + 1], d.value()[3 * v + 2]);
+            *applied = true;
+        }
+        return {};
+    }
+
+private:
+    const tinygltf::Model& model_;
+    const std::string& file_;
+    std::string at_;
+    MeshNotes* notes_;
+};
+
+// Reads one primitive; returns false (with a count in `notes`) for points and lines.
+Result<bool> read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                            const PrimitiveBinding& binding, const std::vector<SurfaceMaterial>& materials,
+                            const std::vector<int>& material_texcoord, const std::string& file, MeshNotes* notes,
+                            GltfSkinnedMesh* mesh) {
+    if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
+        ++notes->skipped_primitives;
+        return false;
+    }
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP && prim.mode != TINYGLTF_MODE_TRIANGLE_FAN && prim.mode != -1)
+        return make_error(file, "primitive mode " + std::to_string(prim.mode) + " is not a glTF mode (0-6)", 0, 0, where);
+    PrimitiveReader r(model, file, where, notes);
+    const std::string at = where + ".attributes.";
+    if (r.attribute(prim, "POSITION") == -2) return make_error(file, "primitive has no POSITION attribute", 0, 0, where);
+    Result<std::vector<float>> pos = read_floats(model, r.attribute(prim, "POSITION"), TINYGLTF_TYPE_VEC3, {kFloat}, file, at + "POSITION");
     if (!pos.ok()) return pos.error();
     const size_t n = pos.value().size() / 3;
     mesh->positions.resize(n);
@@ -45,82 +229,83 @@ Status read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
         if (!std::isfinite(mesh->positions[v].x + mesh->positions[v].y + mesh->positions[v].z))
             return make_error(file, "vertex " + std::to_string(v) + " position is NaN or infinite", 0, 0, at + "POSITION");
     }
-    auto count_check = [&](size_t count, const char* name) -> Status {
-        if (count != n)
-            return make_error(file, std::string(name) + " has " + std::to_string(count) + " elements but POSITION has " + std::to_string(n), 0, 0, at + name);
-        return {};
-    };
-
-    Result<std::vector<uint32_t>> joints = read_uints(model, attribute("JOINTS_0"), TINYGLTF_TYPE_VEC4, {kUByte, kUShort}, file, at + "JOINTS_0");
-    if (!joints.ok()) return joints.error();
-    if (Status s = count_check(joints.value().size() / 4, "JOINTS_0"); !s.ok()) return s;
-    Result<std::vector<float>> weights = read_floats(model, attribute("WEIGHTS_0"), TINYGLTF_TYPE_VEC4, {kFloat, kUByte, kUShort}, file, at + "WEIGHTS_0", true);
-    if (!weights.ok()) return weights.error();
-    if (Status s = count_check(weights.value().size() / 4, "WEIGHTS_0"); !s.ok()) return s;
-    mesh->joints.resize(n);
-    mesh->weights.resize(n);
-    for (size_t v = 0; v < n; ++v) {
-        glm::vec4 w(0.0f);
-        for (int k = 0; k < 4; ++k) {
-            const uint32_t j = joints.value()[4 * v + static_cast<size_t>(k)];
-            if (j >= runtime_of_raw.size())
-                return make_error(file, "vertex " + std::to_string(v) + " uses joint " + std::to_string(j) + ", but the skin has " +
-                                            std::to_string(runtime_of_raw.size()) + " joints", 0, 0, at + "JOINTS_0");
-            mesh->joints[v][k] = static_cast<uint16_t>(runtime_of_raw[j]);
-            w[k] = weights.value()[4 * v + static_cast<size_t>(k)];
-            if (!std::isfinite(w[k]) || w[k] < 0.0f)
-                return make_error(file, "vertex " + std::to_string(v) + " has weight " + std::to_string(w[k]) + " (must be finite and >= 0)", 0, 0, at + "WEIGHTS_0");
-        }
-        const float sum = w.x + w.y + w.z + w.w;
-        if (!(sum > 0.0f)) return make_error(file, "vertex " + std::to_string(v) + " has all-zero weights", 0, 0, at + "WEIGHTS_0");
-        mesh->weights[v] = w / sum;
+    bool morphed = false;
+    if (!prim.targets.empty()) {
+        ++notes->morph_primitives;
+        if (Status s = r.morph(prim, binding.morph_weights, "POSITION", &mesh->positions, &morphed); !s.ok()) return s.error();
     }
 
-    if (prim.indices >= 0) {
-        Result<std::vector<uint32_t>> idx = read_uints(model, prim.indices, TINYGLTF_TYPE_SCALAR, {kUByte, kUShort, kUInt}, file, where + ".indices");
-        if (!idx.ok()) return idx.error();
-        mesh->indices = std::move(idx).value();
+    if (binding.runtime_of_skin_joint) {
+        if (Status s = r.skin(prim, *binding.runtime_of_skin_joint, mesh); !s.ok()) return s.error();
     } else {
-        mesh->indices.resize(n);
-        for (size_t v = 0; v < n; ++v) mesh->indices[v] = static_cast<uint32_t>(v);
+        mesh->joints.assign(n, glm::u16vec4(binding.rigid_joint, 0, 0, 0));
+        mesh->weights.assign(n, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
     }
-    if (mesh->indices.size() % 3 != 0)
-        return make_error(file, "triangle list has " + std::to_string(mesh->indices.size()) + " indices, not a multiple of 3", 0, 0, where + ".indices");
-    for (size_t k = 0; k < mesh->indices.size(); ++k)
-        if (mesh->indices[k] >= n)
-            return make_error(file, "index " + std::to_string(k) + " is " + std::to_string(mesh->indices[k]) + ", but there are " +
-                                        std::to_string(n) + " vertices", 0, 0, where + ".indices");
 
-    if (attribute("NORMAL") != -2) {
-        Result<std::vector<float>> nrm = read_floats(model, attribute("NORMAL"), TINYGLTF_TYPE_VEC3, {kFloat}, file, at + "NORMAL");
+    std::vector<uint32_t> idx;
+    if (prim.indices >= 0) {
+        Result<std::vector<uint32_t>> read = read_uints(model, prim.indices, TINYGLTF_TYPE_SCALAR, {kUByte, kUShort, kUInt}, file, where + ".indices");
+        if (!read.ok()) return read.error();
+        idx = std::move(read).value();
+    } else {
+        idx.resize(n);
+        for (size_t v = 0; v < n; ++v) idx[v] = static_cast<uint32_t>(v);
+    }
+    for (size_t k = 0; k < idx.size(); ++k)
+        if (idx[k] >= n)
+            return make_error(file, "index " + std::to_string(k) + " is " + std::to_string(idx[k]) + ", but there are " + std::to_string(n) + " vertices", 0, 0,
+                              where + ".indices");
+    const int mode = prim.mode;
+    if ((mode == TINYGLTF_MODE_TRIANGLES || mode == -1) && idx.size() % 3 != 0)
+        return make_error(file, "triangle list has " + std::to_string(idx.size()) + " indices, not a multiple of 3", 0, 0, where + ".indices");
+    mesh->indices = to_triangle_list(idx, mode);
+
+    if (prim.material >= static_cast<int>(materials.size()))
+        return make_error(file, "material " + std::to_string(prim.material) + " is out of range (the file has " + std::to_string(materials.size()) + " materials)", 0, 0,
+                          where + ".material");
+    mesh->material = prim.material;
+    if (prim.material >= 0 && material_texcoord[static_cast<size_t>(prim.material)] >= 0)
+        if (Status s = r.uvs(prim, material_texcoord[static_cast<size_t>(prim.material)], mesh); !s.ok()) return s.error();
+
+    if (r.attribute(prim, "NORMAL") != -2) {
+        Result<std::vector<float>> nrm = read_floats(model, r.attribute(prim, "NORMAL"), TINYGLTF_TYPE_VEC3, {kFloat}, file, at + "NORMAL");
         if (!nrm.ok()) return nrm.error();
-        if (Status s = count_check(nrm.value().size() / 3, "NORMAL"); !s.ok()) return s;
+        if (Status s = r.count_check(nrm.value().size() / 3, n, "NORMAL"); !s.ok()) return s.error();
         mesh->normals.resize(n);
+        for (size_t v = 0; v < n; ++v) mesh->normals[v] = glm::vec3(nrm.value()[3 * v], nrm.value()[3 * v + 1], nrm.value()[3 * v + 2]);
+        if (!prim.targets.empty())
+            if (Status s = r.morph(prim, binding.morph_weights, "NORMAL", &mesh->normals, &morphed); !s.ok()) return s.error();
         for (size_t v = 0; v < n; ++v) {
-            const glm::vec3 nv(nrm.value()[3 * v], nrm.value()[3 * v + 1], nrm.value()[3 * v + 2]);
-            const float len = glm::length(nv);
+            const float len = glm::length(mesh->normals[v]);
             if (!std::isfinite(len) || len < 1e-6f)
                 return make_error(file, "vertex " + std::to_string(v) + " normal is zero, NaN or infinite", 0, 0, at + "NORMAL");
-            mesh->normals[v] = nv / len;
+            mesh->normals[v] /= len;
         }
     } else {
-        mesh->normals = compute_normals(mesh->positions, mesh->indices);
+        ++notes->flat_normal_primitives;
+        make_flat(mesh);
     }
-    return {};
+    if (morphed) ++notes->morph_applied_primitives;
+    return true;
 }
 
 }  // namespace
 
-Status read_skinned_mesh(const tinygltf::Model& model, int mesh_index, const std::vector<int>& runtime_of_raw,
-                         const std::string& file, std::vector<GltfSkinnedMesh>* out) {
+Status read_mesh(const tinygltf::Model& model, int node_index, int mesh_index, const PrimitiveBinding& binding,
+                 const std::vector<SurfaceMaterial>& materials, const std::vector<int>& material_texcoord,
+                 const std::string& file, MeshNotes* notes, std::vector<GltfSkinnedMesh>* out) {
     const std::string where = "meshes[" + std::to_string(mesh_index) + "]";
     if (mesh_index < 0 || static_cast<size_t>(mesh_index) >= model.meshes.size())
-        return make_error(file, "mesh index is out of range (the file has " + std::to_string(model.meshes.size()) + " meshes)", 0, 0, where);
+        return make_error(file, "mesh index is out of range (the file has " + std::to_string(model.meshes.size()) + " meshes)", 0, 0,
+                          "nodes[" + std::to_string(node_index) + "]");
     const tinygltf::Mesh& mesh = model.meshes[static_cast<size_t>(mesh_index)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         GltfSkinnedMesh m;
-        if (Status s = read_primitive(model, mesh.primitives[p], where + ".primitives[" + std::to_string(p) + "]", runtime_of_raw, file, &m); !s.ok())
-            return s;
+        const std::string pw = where + ".primitives[" + std::to_string(p) + "]";
+        Result<bool> read = read_primitive(model, mesh.primitives[p], pw, binding, materials, material_texcoord, file, notes, &m);
+        if (!read.ok()) return read.error();
+        if (!read.value()) continue;
+        m.source = "nodes[" + std::to_string(node_index) + "] " + pw;
         out->push_back(std::move(m));
     }
     return {};

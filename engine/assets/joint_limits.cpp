@@ -1,6 +1,7 @@
 #include "engine/assets/joint_limits.hpp"
 
 #include "engine/core/json_depth.hpp"
+#include "engine/core/text_position.hpp"
 
 #include "engine/assets/file_io.hpp"
 
@@ -13,20 +14,6 @@ namespace aloha {
 namespace {
 
 using nlohmann::json;
-
-// 1-based line and column of byte `offset` in `text`.
-void line_column(std::string_view text, size_t offset, int* line, int* column) {
-    *line = 1;
-    *column = 1;
-    for (size_t i = 0; i < offset && i < text.size(); ++i) {
-        if (text[i] == '\n') {
-            ++*line;
-            *column = 1;
-        } else {
-            ++*column;
-        }
-    }
-}
 
 std::string type_of(const json& v) { return v.type_name(); }
 
@@ -41,7 +28,7 @@ Result<JointLimitTable> parse_joint_limits(std::string_view text, const std::str
         return make_error(source_name, std::string("JSON number out of range: ") + e.what());
     } catch (const json::parse_error& e) {
         int line = 0, column = 0;
-        line_column(text, e.byte > 0 ? e.byte - 1 : 0, &line, &column);
+        line_column_of(text, e.byte > 0 ? e.byte - 1 : 0, &line, &column);
         return make_error(source_name, std::string("invalid JSON: ") + e.what(), line, column);
     }
     auto fail = [&](const std::string& path, const std::string& msg) { return make_error(source_name, msg, 0, 0, path); };

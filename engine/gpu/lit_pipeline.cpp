@@ -109,9 +109,11 @@ Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRen
 
 }  // namespace
 
-glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light) {
-    const float diffuse = glm::max(glm::dot(glm::normalize(n), glm::vec3(light)), 0.0f);
-    return colour * (light.w + (1.0f - light.w) * diffuse);
+glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light, const LitLighting& lighting) {
+    n = glm::normalize(n);
+    const float diffuse = glm::max(glm::dot(n, glm::vec3(light)), 0.0f);
+    const glm::vec3 hemi = glm::mix(glm::vec3(lighting.ground), glm::vec3(lighting.sky), 0.5f + 0.5f * n.y);
+    return glm::clamp(colour * (light.w * hemi + (1.0f - light.w) * glm::vec3(lighting.key) * diffuse), 0.0f, 1.0f);
 }
 
 glm::mat4 vulkan_clip_from_gl() {
@@ -125,27 +127,40 @@ glm::mat4 vulkan_clip_from_gl() {
 Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass render_pass, uint32_t max_sets) {
     LitPipelines lp;
     lp.device_ = ctx.device();
-    VkDescriptorSetLayoutBinding b[4]{};
-    for (uint32_t i = 0; i < 4; ++i) {
+    VkDescriptorSetLayoutBinding b[5]{};
+    for (uint32_t i = 0; i < 5; ++i) {
         b[i].binding = i;
         b[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         b[i].descriptorCount = 1;
-        b[i].stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
+        b[i].stageFlags = i == 4 ? VK_SHADER_STAGE_FRAGMENT_BIT : VK_SHADER_STAGE_VERTEX_BIT;
     }
     VkDescriptorSetLayoutCreateInfo sli{};
     sli.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-    sli.bindingCount = 4;
+    sli.bindingCount = 5;
     sli.pBindings = b;
     ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.set_layout_));
+    VkDescriptorSetLayoutBinding mb[2]{};
+    mb[0].binding = 0;
+    mb[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    mb[0].descriptorCount = 1;
+    mb[0].stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
+    mb[1].binding = 1;
+    mb[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    mb[1].descriptorCount = 1;
+    mb[1].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+    sli.bindingCount = 2;
+    sli.pBindings = mb;
+    ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.material_layout_));
+    const VkDescriptorSetLayout layouts[2] = {lp.set_layout_, lp.material_layout_};
     VkPushConstantRange pcr{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(LitPush)};
     VkPipelineLayoutCreateInfo pli{};
     pli.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-    pli.setLayoutCount = 1;
-    pli.pSetLayouts = &lp.set_layout_;
+    pli.setLayoutCount = 2;
+    pli.pSetLayouts = layouts;
     pli.pushConstantRangeCount = 1;
     pli.pPushConstantRanges = &pcr;
     ALOHA_VK_RETURN(vkCreatePipelineLayout(lp.device_, &pli, nullptr, &lp.layout_));
-    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4 * max_sets};
+    VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5 * max_sets};
     VkDescriptorPoolCreateInfo dpi{};
     dpi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
     dpi.maxSets = max_sets;
@@ -178,6 +193,8 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       set_layout_(std::exchange(o.set_layout_, VK_NULL_HANDLE)),
       layout_(std::exchange(o.layout_, VK_NULL_HANDLE)),
       pool_(std::exchange(o.pool_, VK_NULL_HANDLE)),
+      material_layout_(std::exchange(o.material_layout_, VK_NULL_HANDLE)),
+      material_pools_(std::exchange(o.material_pools_, {})),
       mesh_(std::exchange(o.mesh_, VK_NULL_HANDLE)),
       culled_(std::exchange(o.culled_, VK_NULL_HANDLE)),
       lines_(std::exchange(o.lines_, VK_NULL_HANDLE)) {}
@@ -189,6 +206,8 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
         layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
         pool_ = std::exchange(o.pool_, VK_NULL_HANDLE);
+        material_layout_ = std::exchange(o.material_layout_, VK_NULL_HANDLE);
+        material_pools_ = std::exchange(o.material_pools_, {});
         mesh_ = std::exchange(o.mesh_, VK_NULL_HANDLE);
         culled_ = std::exchange(o.culled_, VK_NULL_HANDLE);
         lines_ = std::exchange(o.lines_, VK_NULL_HANDLE);
@@ -202,6 +221,10 @@ void LitPipelines::destroy() {
     if (culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, culled_, nullptr);
     if (lines_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, lines_, nullptr);
     if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
+    for (VkDescriptorPool p : material_pools_) vkDestroyDescriptorPool(device_, p, nullptr);
+    material_pools_.clear();
+    if (material_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, material_layout_, nullptr);
+    material_layout_ = VK_NULL_HANDLE;
     if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
     if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
     device_ = VK_NULL_HANDLE;
@@ -223,13 +246,14 @@ Result<VkDescriptorSet> LitPipelines::allocate_set() const {
 }
 
 void LitPipelines::write_set(VkDescriptorSet set, const Buffer& positions, const Buffer& normals,
-                             const Buffer& instances, const Buffer& lines) const {
-    const VkDescriptorBufferInfo infos[4] = {{positions.handle(), 0, VK_WHOLE_SIZE},
+                             const Buffer& instances, const Buffer& lines, const Buffer& lighting) const {
+    const VkDescriptorBufferInfo infos[5] = {{positions.handle(), 0, VK_WHOLE_SIZE},
                                              {normals.handle(), 0, VK_WHOLE_SIZE},
                                              {instances.handle(), 0, VK_WHOLE_SIZE},
-                                             {lines.handle(), 0, VK_WHOLE_SIZE}};
-    VkWriteDescriptorSet w[4]{};
-    for (uint32_t i = 0; i < 4; ++i) {
+                                             {lines.handle(), 0, VK_WHOLE_SIZE},
+                                             {lighting.handle(), 0, VK_WHOLE_SIZE}};
+    VkWriteDescriptorSet w[5]{};
+    for (uint32_t i = 0; i < 5; ++i) {
         w[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         w[i].dstSet = set;
         w[i].dstBinding = i;
@@ -237,7 +261,50 @@ void LitPipelines::write_set(VkDescriptorSet set, const Buffer& positions, const
         w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         w[i].pBufferInfo = &infos[i];
     }
-    vkUpdateDescriptorSets(device_, 4, w, 0, nullptr);
+    vkUpdateDescriptorSets(device_, 5, w, 0, nullptr);
+}
+
+Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, VkImageView view, VkSampler sampler) {
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkDescriptorSetAllocateInfo ai{};
+    ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &material_layout_;
+    VkResult r = VK_ERROR_OUT_OF_POOL_MEMORY;
+    if (!material_pools_.empty()) {
+        ai.descriptorPool = material_pools_.back();
+        r = vkAllocateDescriptorSets(device_, &ai, &set);
+    }
+    if (r == VK_ERROR_OUT_OF_POOL_MEMORY || r == VK_ERROR_FRAGMENTED_POOL) {
+        constexpr uint32_t kSets = 256;
+        const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSets}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSets}};
+        VkDescriptorPoolCreateInfo dpi{};
+        dpi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+        dpi.maxSets = kSets;
+        dpi.poolSizeCount = 2;
+        dpi.pPoolSizes = sizes;
+        VkDescriptorPool pool = VK_NULL_HANDLE;
+        ALOHA_VK_RETURN(vkCreateDescriptorPool(device_, &dpi, nullptr, &pool));
+        material_pools_.push_back(pool);
+        ai.descriptorPool = pool;
+        r = vkAllocateDescriptorSets(device_, &ai, &set);
+    }
+    if (r != VK_SUCCESS) return vk_error("vkAllocateDescriptorSets (material)", r);
+    const VkDescriptorBufferInfo buffer{uvs.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorImageInfo image{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet w[2]{};
+    for (uint32_t i = 0; i < 2; ++i) {
+        w[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        w[i].dstSet = set;
+        w[i].dstBinding = i;
+        w[i].descriptorCount = 1;
+    }
+    w[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w[0].pBufferInfo = &buffer;
+    w[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w[1].pImageInfo = &image;
+    vkUpdateDescriptorSets(device_, 2, w, 0, nullptr);
+    return set;
 }
 
 }  // namespace aloha::gpu

@@ -1,5 +1,6 @@
 // The lit-mesh and line pipelines (shaders/lit_mesh.*, shaders/line.*): vertex pulling from storage buffers,
-// per-instance model matrix + colour, one directional light + ambient, depth test, push-constant camera.
+// per-instance model matrix + colour, per-draw material (base colour factor, optional texture with per-vertex
+// UVs), a key light plus hemispherical ambient, depth test, push-constant camera.
 #pragma once
 
 #include "engine/core/result.hpp"
@@ -8,21 +9,39 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <vector>
 
 namespace aloha::gpu {
 
 class Buffer;
 class Context;
 
-/// Push constants shared by both pipelines (112 bytes, std430 layout of shaders/lit_mesh.vert).
+/// What the w component of LitPush::offsets selects.
+enum LitMode : uint32_t {
+    kLitMesh = 0,          ///< vertex-pulled mesh, albedo = instance colour * base colour
+    kLitBoxes = 1,         ///< arithmetic unit boxes (proxies), flat normals
+    kLitTexturedMesh = 2,  ///< mesh whose albedo is also multiplied by texture(set 1) at the vertex UVs
+};
+
+/// Push constants shared by both pipelines (128 bytes, std430 layout of shaders/lit_mesh.vert).
 struct LitPush {
     glm::mat4 view_proj{1.0f};  ///< Vulkan clip space from world (see vulkan_clip_from_gl())
     glm::vec4 light{0.0f, 0.0f, 1.0f, 0.2f}; ///< xyz: unit direction towards the light, w: ambient in [0,1]
     glm::vec4 camera{0.0f};     ///< xyz: camera position in world space (normals are turned to face it)
-    glm::uvec4 offsets{0u};     ///< mesh: x vertex_base, y vertex_stride (0 = shared), z instance_base;
+    glm::uvec4 offsets{0u};     ///< mesh: x vertex_base, y vertex_stride (0 = shared), z instance_base, w LitMode;
                                 ///< lines: x first line vertex
+    glm::vec4 base_colour{1.0f}; ///< the draw's material colour (display space), multiplies the albedo
 };
-static_assert(sizeof(LitPush) == 112, "LitPush must match the shader push-constant block");
+static_assert(sizeof(LitPush) == 128, "LitPush must match the shader push-constant block");
+
+/// The frame's lighting (set 0 binding 4, 48 bytes std430): ambient light is mix(ground, sky,
+/// 0.5 + 0.5 n.y) (a hemisphere), the key light's colour multiplies its diffuse term.
+struct LitLighting {
+    glm::vec4 sky{1.0f};        ///< rgb: ambient colour from straight above
+    glm::vec4 ground{1.0f};     ///< rgb: ambient colour from straight below
+    glm::vec4 key{1.0f};        ///< rgb: key light colour
+};
+static_assert(sizeof(LitLighting) == 48, "LitLighting must match the shader's std430 struct");
 
 /// One instance in binding 2: model matrix and RGBA colour (80 bytes, std430).
 struct LitInstance {
@@ -39,15 +58,18 @@ struct LineVertex {
 static_assert(sizeof(LineVertex) == 32, "LineVertex must match the shader's std430 struct");
 
 /// The colour the lit shader writes for albedo `colour` and world normal `n` (already facing the camera):
-/// colour.rgb * (ambient + (1 - ambient) * max(dot(n, L), 0)). Used by tests to predict pixels.
-[[nodiscard]] glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light);
+/// colour.rgb * (ambient * mix(ground, sky, 0.5 + 0.5 n.y) + (1 - ambient) * key * max(dot(n, L), 0)),
+/// clamped to [0, 1]. Used by tests to predict pixels.
+[[nodiscard]] glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light, const LitLighting& lighting = {});
 
 /// Matrix taking OpenGL clip space (glm::perspective: y up, z in [-w, w]) to Vulkan clip space
 /// (y down, z in [0, w]). Multiply it on the left of a glm projection.
 [[nodiscard]] glm::mat4 vulkan_clip_from_gl();
 
-/// Descriptor set layout (bindings 0 positions float[], 1 normals float[], 2 LitInstance[], 3 LineVertex[],
-/// all storage buffers), the pipeline layout (set 0 + LitPush), the three pipelines and a descriptor pool.
+/// Descriptor set layouts (set 0: bindings 0 positions float[], 1 normals float[], 2 LitInstance[],
+/// 3 LineVertex[], 4 LitLighting, all storage buffers; set 1, the material: 0 UVs vec2[] (storage buffer),
+/// 1 base colour texture (combined image sampler)), the pipeline layout (sets 0, 1 + LitPush), the three
+/// pipelines and descriptor pools.
 class LitPipelines {
 public:
     /// Builds the pipelines for render passes compatible with `render_pass` (colour + D32 depth, see
@@ -72,10 +94,13 @@ public:
     [[nodiscard]] VkPipelineLayout layout() const { return layout_; }
     /// Allocates one descriptor set from the pool (at most max_sets in total).
     [[nodiscard]] Result<VkDescriptorSet> allocate_set() const;
-    /// Points `set` at the four buffers (whole ranges); each must be a non-empty storage buffer.
+    /// Points `set` at the five buffers (whole ranges); each must be a non-empty storage buffer.
     /// The set must not be in use by a pending command buffer.
     void write_set(VkDescriptorSet set, const Buffer& positions, const Buffer& normals, const Buffer& instances,
-                   const Buffer& lines) const;
+                   const Buffer& lines, const Buffer& lighting) const;
+    /// Allocates a material set (set 1) pointing at `uvs` (a non-empty storage buffer of vec2) and the
+    /// texture `view` / `sampler` (in SHADER_READ_ONLY_OPTIMAL layout). Sets live as long as the pipelines.
+    [[nodiscard]] Result<VkDescriptorSet> material_set(const Buffer& uvs, VkImageView view, VkSampler sampler);
     /// Releases everything now (also done by the destructor).
     void destroy();
 
@@ -84,6 +109,8 @@ private:
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout material_layout_ = VK_NULL_HANDLE;
+    std::vector<VkDescriptorPool> material_pools_;  ///< 256 sets each, a new one when full
     VkPipeline mesh_ = VK_NULL_HANDLE;
     VkPipeline culled_ = VK_NULL_HANDLE;
     VkPipeline lines_ = VK_NULL_HANDLE;

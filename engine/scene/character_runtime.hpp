@@ -46,6 +46,7 @@ public:
     std::unique_ptr<GeometryController> geometry;
     std::vector<uint16_t> proxy_joints;          ///< joints drawn as proxy boxes (bones >= 5 cm)
     std::vector<std::string> path_names;         ///< scene path names added to `motion`, by path id
+    std::vector<uint32_t> render_materials;      ///< renderer ids of type.materials (empty until registered)
     uint32_t count = 0;
     uint32_t spawned = 0;
 

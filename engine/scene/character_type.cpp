@@ -5,6 +5,7 @@
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
 #include "engine/scene/character_rig.hpp"
+#include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
 #include "systems/geometry/muscle/muscle_fit.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
@@ -129,6 +130,8 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
     if (!g.meshes.empty()) {
         type.mesh = character_mesh_from_gltf(g, original.value());
         normalise_mesh(*type.mesh, change);
+        type.materials = gltf_surface_materials(g);
+        type.textures = std::move(g.textures);
     }
     return {};
 }
@@ -178,6 +181,14 @@ Status load_from_humanoid(const CharacterTypeDesc& desc, CharacterType& type) {
     return {};
 }
 
+// A type without an authored mesh shows the skin generated from its muscles, with the generated
+// body texture (skin, shirt, trousers, shoes; see body_texture.hpp).
+void use_generated_look(CharacterType& type) {
+    if (type.mesh) return;
+    type.materials = {body_material()};
+    type.textures = {make_body_texture()};
+}
+
 }  // namespace
 
 int find_clip(const CharacterType& type, const std::string& name) {
@@ -196,6 +207,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         type.frame.units = "metres (built-in humanoid)";
         type.frame.height = desc.height;
         measure(type);
+        use_generated_look(type);
         return type;
     }
     Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
@@ -236,6 +248,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
                              (type.mesh ? "drawn with its skinned mesh at those levels" : "drawn as rigid proxies (it has no mesh)"));
     }
     measure(type);
+    use_generated_look(type);
     return type;
 }
 

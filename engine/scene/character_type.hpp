@@ -5,6 +5,7 @@
 #include "engine/anim/humanoid_map.hpp"
 #include "engine/anim/skeleton.hpp"
 #include "engine/assets/rig_normalise.hpp"
+#include "engine/assets/surface_material.hpp"
 #include "engine/core/result.hpp"
 #include "engine/scene/scene_desc.hpp"
 #include "systems/geometry/controller/character_geometry.hpp"
@@ -30,13 +31,15 @@ struct CharacterType {
     std::optional<WalkRig> rig;     ///< leg rig for kinematic walking (none when legs are not found)
     MuscleSet muscles;
     std::optional<CharacterMesh> mesh;  ///< glTF skin, when the type has one
+    std::vector<SurfaceMaterial> materials; ///< indexed by the mesh's vertex_material (the generated body's
+                                            ///< one material for a type without a mesh)
+    std::vector<TextureImage> textures;     ///< indexed by SurfaceMaterial::texture
     float height = 1.8f;            ///< standing height (m), for bounds
     float radius = 0.4f;            ///< horizontal radius (m), for bounds
     std::vector<std::string> notes; ///< what was skipped or assumed while loading
     HumanoidMap map;                ///< canonical humanoid joints in `skeleton` (map.humanoid: all required found)
     RigFrame frame;                 ///< axes and units the file was found in (or given)
 };
-
 
 /// Loads a character type. BVH and glTF skeletons are mapped to the canonical humanoid and
 /// normalised (axes, units, rest frames); a mapped humanoid gets the canonical joint limits, muscle

@@ -69,6 +69,7 @@ struct CharacterDesc {
     glm::vec3 position{0.0f};
     float heading_deg = 0.0f;  ///< rotation about +Y
     float importance = 0.5f;
+    bool always_full = false;  ///< the frame budget never demotes this character
     std::vector<RequestDesc> requests;
     std::optional<RequestDesc> overlay;  ///< reach / look-at layered over the requests (MotionController::set_overlay)
     float overlay_weight = 1.0f;         ///< its weight in [0, 1]
@@ -105,6 +106,7 @@ struct SceneDesc {
     std::string file;              ///< absolute path of the scene file
     std::string name;
     std::string rules;             ///< absolute path of the rule file
+    std::string tier;              ///< hardware tier of the rules ("" = the rule file's default_tier, or auto)
     uint32_t frames = 300;
     float dt = 1.0f / 60.0f;
     uint32_t width = 1280, height = 720;

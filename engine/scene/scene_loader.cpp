@@ -291,6 +291,7 @@ Result<SceneDesc> parse_scene(const std::string& text, const std::string& file) 
         if (res.ok()) scene.rules = res.value();
         else errors.push_back(res.error());
     }
+    scene.tier = root.string("tier", "");  // checked against the rule file's tiers when the world loads
     read_camera(root, scene, errors);
     read_types(root, scene, errors);
     read_paths(root, scene, errors);

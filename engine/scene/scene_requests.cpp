@@ -87,6 +87,7 @@ void read_characters(JsonObjectReader& root, SceneDesc& scene, std::vector<Error
         c.position = r.vec3("position", glm::vec3(0.0f));
         c.heading_deg = static_cast<float>(r.number("heading_deg", 0.0, -3600.0, 3600.0));
         c.importance = static_cast<float>(r.number("importance", 0.5, 0.0, 1.0));
+        c.always_full = r.boolean("always_full", false);
         if (const nlohmann::json* reqs = r.child("requests")) {
             if (!reqs->is_array() || reqs->size() > 1000) {
                 r.error("requests", "expected an array of at most 1000 requests");

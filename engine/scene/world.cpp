@@ -114,14 +114,10 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
         }
     }
     if (Status s = rules_.load(scene_.rules); !s.ok()) return s;
+    applied_rules_generation_ = rules_.generation();
     const RuleTable& table = rules_.table();
-    if (options.budget_ms) {
-        BudgetParams params = table.budget.value_or(BudgetParams{});
-        params.target_ms = static_cast<float>(*options.budget_ms);
-        budget_.set_params(params);
-        budget_on_ = true;
-    }
     if (Status s = spawn_characters(); !s.ok()) return s;
+    if (Status s = apply_rule_settings(); !s.ok()) return s;
     std::vector<GeomLod> levels;
     for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
     for (size_t t = 0; t < types_.size(); ++t)
@@ -144,7 +140,33 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
     register_systems();
     if (Status s = scheduler_.build(); !s.ok()) return s;
     scheduler_.set_threads(options.threads);
+    motion_system_ = scheduler_.find("motion");
+    muscle_system_ = scheduler_.find("muscle");
+    skin_system_ = scheduler_.find("spring_skin");
     return {};
+}
+
+Status World::apply_rule_settings() {
+    const RuleTable& table = rules_.table();
+    BudgetOverrides o;
+    o.enabled = options_.budget;
+    o.total_ms = options_.budget_ms;
+    o.single_total_ms = options_.budget_single_ms;
+    o.animation_ms = options_.budget_animation_ms;
+    o.geometry_ms = options_.budget_geometry_ms;
+    if (!options_.lod) o.enabled = false;  // LOD off: everyone at level 0, nothing to demote
+    budget_.configure(table, o, character_group(registry_).span<LodState>());
+    // The tier: the host's (--tier), else the scene's "tier", else the rule file's default_tier or auto.
+    const std::string name = options_.tier ? *options_.tier : scene_.tier;
+    const int named = name.empty() ? -1 : table.find_tier(name);
+    tier_ = resolve_tier(table, named, options_.hardware ? &*options_.hardware : nullptr);
+    if (named >= 0) tier_.reason = options_.tier ? "named by the host (--tier)" : "named by the scene";
+    if (name.empty() || named >= 0) return {};
+    std::string list;
+    for (const auto& t : table.tiers) list += (list.empty() ? "" : ", ") + t;
+    const std::string message = "tier '" + name + "' is not one of the tiers of " + table.source + " (" + list + ")";
+    if (options_.tier) return make_error("--tier", message);
+    return make_error(scene_.file, message, 0, 0, "/tier");
 }
 
 Status World::spawn_characters() {
@@ -177,7 +199,9 @@ Status World::spawn_characters() {
         registry_.emplace<CharacterRef>(e, CharacterRef{static_cast<uint16_t>(c.type), id});
         registry_.emplace<LodAttributes>(e);
         registry_.emplace<LodRequest>(e);
-        registry_.emplace<LodState>(e);
+        LodState state;
+        state.always_full = c.always_full ? 1 : 0;
+        registry_.emplace<LodState>(e, state);
         registry_.emplace<GeomLod>(e);
         registry_.emplace<AnimLod>(e);
         MotionState ms;
@@ -245,8 +269,10 @@ void World::step() {
                                   scene_.camera.near_plane, scene_.camera.far_plane);
     }
     if (rules_.shared()) {
-        auto polled = rules_.poll();  // live tuning: pick up an edited rule file
-        if (polled.ok() && polled.value()) {
+        (void)rules_.poll();  // live tuning: pick up an edited rule file (a failed reload keeps the old table)
+        // A new table (from the file, or swapped in by a viewer): apply every section of it.
+        if (rules_.generation() != applied_rules_generation_) {
+            applied_rules_generation_ = rules_.generation();
             auto group = character_group(registry_);
             clamp_lod_states(rules_.table(), group.span<LodState>());
             const RuleTable& table = rules_.table();
@@ -254,10 +280,26 @@ void World::step() {
             for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
             for (auto& rt : types_) rt->geometry->set_levels(rt->usable_levels(levels));
             topologies_.clear();  // level topologies may have changed: register again on demand
+            (void)apply_rule_settings();  // budget and tier too; a tier the new file lacks falls back to its own
         }
     }
+    // The budget parts learn from each level's time of the frame before.
+    auto to_ms = [](const std::vector<uint64_t>& ns, std::vector<double>& ms) {
+        ms.assign(ns.size(), 0.0);
+        for (size_t l = 0; l < ns.size(); ++l) ms[l] = static_cast<double>(ns[l]) * 1e-6;
+    };
+    to_ms(geom_level_ns_, geom_level_ms_);
+    to_ms(anim_level_ns_, anim_level_ms_);
+    geom_level_ns_.assign(rules_.table().geom_levels.size(), 0);
+    anim_level_ns_.assign(rules_.table().anim_levels.size(), 0);
+    switches_[0] = switches_[1] = 0;
     scheduler_.run_frame(dt);
     last_cpu_ms_ = static_cast<double>(scheduler_.latest_ns_before(Phase::Render)) * 1e-6;
+    auto latest_ms = [&](int system) {
+        return system < 0 ? 0.0 : static_cast<double>(scheduler_.timings(static_cast<uint32_t>(system)).latest()) * 1e-6;
+    };
+    last_animation_ms_ = latest_ms(motion_system_);
+    last_geometry_ms_ = latest_ms(muscle_system_) + latest_ms(skin_system_);
     first_frame_ = false;
     ++frame_;
     time_ += dt;

@@ -14,13 +14,17 @@
 #include "engine/scheduler/scheduler.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/lod/attributes.hpp"
-#include "systems/lod/frame_budget.hpp"
+#include "systems/lod/budget_driver.hpp"
+#include "systems/lod/level_caps.hpp"
+#include "systems/lod/occlusion.hpp"
 #include "systems/lod/rule_set.hpp"
 #include "systems/lod/stats.hpp"
+#include "systems/lod/tier.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,7 +51,16 @@ enum OverlayBits : uint8_t { kOverlayBones = 1u << 0, kOverlayMuscles = 1u << 1,
 struct WorldOptions {
     unsigned threads = 0;                  ///< scheduler threads (0 = all cores)
     bool lod = true;                       ///< false: every character at level 0 (full detail) always
-    std::optional<double> budget_ms;       ///< CPU frame budget; overrides the rule file's
+    std::optional<bool> budget;            ///< force the frame budget on/off (default: as the rule file says)
+    std::optional<double> budget_ms;       ///< total CPU budget; overrides the rule file's (its parts are
+                                           ///< scaled to sum to it; a file without parts gets one total)
+    std::optional<double> budget_single_ms;     ///< one total for the CPU systems (the single-total controller),
+                                                ///< whatever the rule file's budget says
+    std::optional<double> budget_animation_ms;  ///< animation part's target; overrides the rule file's
+    std::optional<double> budget_geometry_ms;   ///< geometry part's target; overrides the rule file's
+    bool occlusion = true;                 ///< estimate LodAttributes::occluded from the crowd (lod_occlusion)
+    std::optional<std::string> tier;       ///< tier name; overrides the rule file's default_tier and "auto"
+    std::optional<HardwareInfo> hardware;  ///< facts for "default_tier": "auto" (without: the richest tier)
     uint64_t seed_override = 0;            ///< != 0 replaces every crowd's seed
     std::optional<uint32_t> characters;    ///< rescale crowds to this many characters in all
     DebugColour colour = DebugColour::Shaded;
@@ -118,17 +131,31 @@ public:
     [[nodiscard]] const Scheduler& scheduler() const { return scheduler_; }
     /// The knowledge base (reload it live with rules().reload_from_file() or poll()).
     [[nodiscard]] RuleSet& rules() { return rules_; }
+    [[nodiscard]] const RuleSet& rules() const { return rules_; }
     /// Characters per level / method / rule after the last frame.
     [[nodiscard]] const LodStats& lod_stats() const { return stats_; }
     /// Camera used by the last frame (LOD view) and its render matrices.
     [[nodiscard]] const LodCamera& camera() const { return camera_; }
     [[nodiscard]] RenderCamera render_camera() const;
+    /// Sets `frame`'s camera (render_camera()), character lighting (set_character_lighting) and whether
+    /// materials are drawn (in the shaded colouring; debug colourings show their palette alone).
+    void frame_settings(FrameInput& frame) const;
     /// The last frame's draw lists.
     [[nodiscard]] const RenderLists& render_lists() const { return lists_; }
     /// Per-frame statistics of the last Render phase (GPU ms; -1 without a renderer).
     [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
-    /// The last frame's CPU systems (every phase before Render), ms: what the frame budget steers.
+    /// The last frame's CPU systems (every phase before Render), ms: what a single-total budget steers.
     [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }
+    /// The last frame's animation part (the motion system), ms.
+    [[nodiscard]] double last_animation_ms() const { return last_animation_ms_; }
+    /// The last frame's geometry part (the muscle and spring_skin systems), ms.
+    [[nodiscard]] double last_geometry_ms() const { return last_geometry_ms_; }
+    /// Characters that switched geometric [0] / animation [1] level in the last frame.
+    [[nodiscard]] std::array<uint32_t, 2> last_level_switches() const { return {switches_[0], switches_[1]}; }
+    /// The frame budget's mode, settings and state.
+    [[nodiscard]] BudgetStatus budget_status() const { return budget_.status(); }
+    /// The hardware tier the rules are evaluated at, and why.
+    [[nodiscard]] const TierChoice& tier() const { return tier_; }
     /// Outcome of the last Render phase (Vulkan errors surface here, not as exceptions).
     [[nodiscard]] const Status& render_status() const { return render_status_; }
     /// Why character `i` (group order) has its levels, as JSON (attributes, rule, levels).
@@ -155,20 +182,31 @@ private:
     World() = default;
     Status load(const SceneDesc& scene, const WorldOptions& options);
     Status spawn_characters();
+    Status apply_rule_settings();
     void register_systems();
     void regroup();
     void gather_render_lists();
     void gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::mat4& world);
     static constexpr uint32_t kNoTopology = 0xFFFFFFFFu;
-    uint32_t topology_id(const CharacterRuntime& rt, const SurfaceView& surface);
+    uint32_t topology_id(CharacterRuntime& rt, const SurfaceView& surface);
 
     SceneDesc scene_;
     WorldOptions options_;
     Registry registry_;
     Scheduler scheduler_;
     RuleSet rules_;
-    FrameBudget budget_;
-    bool budget_on_ = false;
+    LodBudget budget_;
+    LevelCapScratch caps_scratch_;
+    OcclusionGrid occlusion_grid_;
+    TierChoice tier_;
+    std::vector<uint64_t> geom_level_ns_;            ///< this frame: muscle + skin time per geometric level
+    std::vector<double> geom_level_ms_;              ///< the last frame's, ms (what the geometry budget learns from)
+    std::vector<uint64_t> anim_level_ns_;            ///< this frame: motion time per animation level
+    std::vector<double> anim_level_ms_;              ///< the last frame's, ms (what the animation budget learns from)
+    uint32_t switches_[2] = {0, 0};
+    uint32_t applied_rules_generation_ = 0;          ///< RuleSet::generation() whose settings are in force
+    int motion_system_ = -1, muscle_system_ = -1, skin_system_ = -1;
+    double last_animation_ms_ = 0.0, last_geometry_ms_ = 0.0;
     LodStats stats_;
     LodCamera camera_;
     std::vector<std::unique_ptr<CharacterRuntime>> types_;

@@ -10,10 +10,12 @@ namespace aloha {
 
 namespace {
 
-// Pixel position of a world point (OpenGL-convention camera); false when behind the eye.
-bool to_pixels(const glm::mat4& view_proj, const glm::vec3& p, const glm::vec2& viewport, glm::vec2& out) {
+// Pixel position of a world point (OpenGL-convention perspective camera: clip w = view depth); false when
+// nearer than the near plane, where the renderer clips it (and the division would blow a millimetre up
+// into millions of pixels).
+bool to_pixels(const glm::mat4& view_proj, const glm::vec3& p, const glm::vec2& viewport, float near_plane, glm::vec2& out) {
     const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
-    if (c.w <= 1e-6f) return false;
+    if (!(c.w >= near_plane)) return false;
     out = glm::vec2((c.x / c.w * 0.5f + 0.5f) * viewport.x, (0.5f - c.y / c.w * 0.5f) * viewport.y);
     return true;
 }
@@ -44,7 +46,7 @@ Status World::reference_frame(ReferenceFrame& out) {
     size_t used = 0;
     for (size_t i = 0; i < g.size(); ++i) {
         if (!attributes[i].visible) continue;
-        if (states[i].frames_at_geom == 0 && !first_frame_) ++out.switches;
+        if (states[i].seconds_at_geom == 0.0f && !first_frame_) ++out.switches;
         CharacterRuntime& rt = *types_[refs[i].type];
         const PoseSource poses = rt.poses();
         const glm::mat4 world = world_matrix(transforms[i]);
@@ -53,8 +55,8 @@ Status World::reference_frame(ReferenceFrame& out) {
         const uint8_t level = states[i].geom_level;
         for (size_t k = 0; k < out.current_scratch.size(); ++k) {
             glm::vec2 a, b;
-            if (!to_pixels(view_proj, glm::vec3(world * glm::vec4(out.current_scratch[k], 1.0f)), viewport, a) ||
-                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, b))
+            if (!to_pixels(view_proj, glm::vec3(world * glm::vec4(out.current_scratch[k], 1.0f)), viewport, camera_.near_plane, a) ||
+                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, camera_.near_plane, b))
                 continue;
             const double d = glm::length(a - b);
             out.deviation_sum[level] += d;
@@ -79,7 +81,8 @@ Status World::reference_frame(ReferenceFrame& out) {
         view.positions = pos;
         const uint32_t topology = topology_id(rt, view);
         if (topology == kNoTopology) return render_status_;
-        out.meshes.push_back({topology, pos, nrm, world, glm::vec4(0.86f, 0.68f, 0.56f, 1.0f)});
+        // The shaded colouring's instance colour: white over the type's materials, skin tone without.
+        out.meshes.push_back({topology, pos, nrm, world, rt.render_materials.empty() ? glm::vec4(0.86f, 0.68f, 0.56f, 1.0f) : glm::vec4(1.0f)});
         ++used;
     }
     return {};

@@ -11,13 +11,15 @@ namespace aloha {
 
 namespace {
 
-glm::vec4 character_colour(DebugColour mode, const LodState& state, const AnimLod& anim, bool proxy) {
+// `textured`: the surface carries the type's materials, which give its colour (the instance is white).
+glm::vec4 character_colour(DebugColour mode, const LodState& state, const AnimLod& anim, bool proxy, bool textured = false) {
     switch (mode) {
         case DebugColour::ByLodLevel: return colour_for_level(state.geom_level);
         case DebugColour::ByRule: return colour_for_rule(state.rule_id);
         case DebugColour::ByMotionMethod: return colour_for_motion_method(static_cast<int>(anim.walk));
         case DebugColour::Shaded: break;
     }
+    if (textured) return glm::vec4(1.0f);
     return proxy ? glm::vec4(0.62f, 0.66f, 0.74f, 1.0f) : glm::vec4(0.86f, 0.68f, 0.56f, 1.0f);
 }
 
@@ -30,7 +32,14 @@ Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* tar
     renderer_ = renderer;
     target_ = target;
     topologies_.clear();
+    for (auto& rt : types_) rt->render_materials.clear();
     return {};
+}
+
+void World::frame_settings(FrameInput& frame) const {
+    frame.camera = render_camera();
+    set_character_lighting(frame);
+    frame.materials = options_.colour == DebugColour::Shaded;
 }
 
 void World::gather_render_lists() {
@@ -70,7 +79,7 @@ void World::gather_render_lists() {
             // With overlays on, the skin is left out so the inner layers (bones, muscles, springs) show.
             if (!options_.overlay)
                 lists_.meshes.push_back({topology, surface.positions, surface.normals, world,
-                                         character_colour(options_.colour, states[i], anims[i], false)});
+                                         character_colour(options_.colour, states[i], anims[i], false, !rt.render_materials.empty())});
             else
                 gather_overlays(rt, refs[i].id, world);
         }
@@ -107,11 +116,39 @@ void World::gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::
             lists_.lines.push_back({to_world(muscle[k]), to_world(skin.positions[k]), glm::vec4(0.2f, 0.9f, 0.9f, 1.0f)});
 }
 
-uint32_t World::topology_id(const CharacterRuntime& rt, const SurfaceView& surface) {
+uint32_t World::topology_id(CharacterRuntime& rt, const SurfaceView& surface) {
     for (const auto& [key, id] : topologies_)
         if (key == surface.topology_key) return id;
+    if (rt.render_materials.empty() && !rt.type.materials.empty()) {  // the type's textures and materials, once
+        std::vector<uint32_t> textures;
+        for (const TextureImage& t : rt.type.textures) {
+            auto tex = renderer_->register_texture(t);
+            if (!tex.ok()) {
+                render_status_ = tex.error();
+                return kNoTopology;
+            }
+            textures.push_back(tex.value());
+        }
+        for (const SurfaceMaterial& m : rt.type.materials) {
+            const int texture = m.texture >= 0 && static_cast<size_t>(m.texture) < textures.size() ? static_cast<int>(textures[static_cast<size_t>(m.texture)]) : -1;
+            auto mat = renderer_->register_material(m, texture);
+            if (!mat.ok()) {
+                render_status_ = mat.error();
+                rt.render_materials.clear();
+                return kNoTopology;
+            }
+            rt.render_materials.push_back(mat.value());
+        }
+    }
+    TopologySurface materials;
+    materials.uvs = rt.geometry->level_uvs(surface.level);
+    materials.vertex_material = rt.geometry->level_vertex_materials(surface.level);
+    materials.materials = rt.render_materials;
+    // Double-sided materials (glTF doubleSided) need their back faces: no culling for the topology.
+    bool double_sided = false;
+    for (const SurfaceMaterial& m : rt.type.materials) double_sided = double_sided || m.double_sided;
     auto id = renderer_->register_topology(rt.geometry->level_indices(surface.level),
-                                           static_cast<uint32_t>(surface.positions.size()), /*cull_back_faces=*/true);
+                                           static_cast<uint32_t>(surface.positions.size()), /*cull_back_faces=*/!double_sided, materials);
     if (!id.ok()) {
         render_status_ = id.error();
         return kNoTopology;

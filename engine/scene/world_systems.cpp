@@ -5,6 +5,7 @@
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
 
+#include <chrono>
 #include <functional>
 
 namespace aloha {
@@ -21,6 +22,11 @@ struct GpuResource {};
 
 // Characters per parallel chunk for the cheap per-character LOD loops.
 constexpr size_t kLodGrain = 2048;
+
+uint64_t now_ns() {
+    return static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
+}
 }  // namespace
 
 void World::register_systems() {
@@ -44,12 +50,19 @@ void World::register_systems() {
                         });
                     }});
 
-    if (budget_on_) {
-        scheduler_.add({"lod_budget", Phase::Rules, reads<LodAttributes, RuleResource>(), writes<LodState>(),
+    // Occlusion by the crowd itself: a coarse depth grid of nearer characters' cores (systems/lod/occlusion.hpp).
+    if (options_.occlusion) {
+        scheduler_.add({"lod_occlusion", Phase::Rules, reads<Transform, Bounds, GeomLod, CameraResource>(), writes<LodAttributes>(),
                         [this](SystemContext&) {
                             auto g = character_group(registry_);
-                            budget_.update(static_cast<float>(last_cpu_ms_), g.span<LodAttributes>(),
-                                           g.span<LodState>(), rules_.table());
+                            OcclusionJob job;
+                            job.transforms = g.span<Transform>();
+                            job.bounds = g.span<Bounds>();
+                            job.geom = g.span<GeomLod>();
+                            job.camera = camera_;
+                            job.grid = &occlusion_grid_;
+                            job.attributes = g.span<LodAttributes>();
+                            job.Run();
                         }});
     }
 
@@ -66,7 +79,7 @@ void World::register_systems() {
                             job.table = &table;
                             job.attributes = g.span<LodAttributes>().subspan(b, e - b);
                             job.states = g.span<LodState>().subspan(b, e - b);
-                            job.tier = table.default_tier;
+                            job.tier = tier_.tier;
                             job.output = g.span<LodRequest>().subspan(b, e - b);
                             job.Run();
                         });
@@ -75,10 +88,33 @@ void World::register_systems() {
     {
         SystemDesc resolve{"lod_resolve", Phase::Resolve, reads<RuleResource>(), everything_in_group, nullptr};
         resolve.writes.push_back(resource_type_id<SurfaceResource>());
-        resolve.run = [this](SystemContext&) {
+        resolve.run = [this](SystemContext& ctx) {
             auto g = character_group(registry_);
+            const float dt = first_frame_ ? 0.0f : ctx.dt();  // the resolver's clocks run in simulated seconds
             const RuleTable& table = rules_.table();
             changed_.resize(g.size());
+            // The frame budget (off, one total, or separate animation and geometry parts: LodBudget) steers
+            // on the last frame's measured times and this frame's requests (to predict pending switches).
+            if (budget_.active()) {
+                BudgetMeasurement m;
+                m.total_ms = static_cast<float>(last_cpu_ms_);
+                m.animation_ms = static_cast<float>(last_animation_ms_);
+                m.geometry_ms = static_cast<float>(last_geometry_ms_);
+                if (geom_level_ms_.size() == table.geom_levels.size()) m.geometry_level_ms = geom_level_ms_;
+                if (anim_level_ms_.size() == table.anim_levels.size()) m.animation_level_ms = anim_level_ms_;
+                budget_.update(m, g.span<LodAttributes>(), g.span<LodRequest>(), g.span<LodState>(), table);
+            }
+            // Level caps (at most N characters at a level or richer, by significance) before the resolver.
+            LevelCapJob caps;
+            caps.table = &table;
+            caps.requests = g.span<LodRequest>();
+            caps.attributes = g.span<LodAttributes>();
+            caps.states = g.span<LodState>();
+            caps.snap = first_frame_;
+            caps.dt = dt;
+            caps.keep_bonus = table.hysteresis.band;
+            caps.scratch = &caps_scratch_;
+            if (options_.lod) caps.Run();
             LodResolveJob job;
             job.table = &table;
             job.requests = g.span<LodRequest>();
@@ -87,6 +123,8 @@ void World::register_systems() {
             job.anim = g.span<AnimLod>();
             job.changed_indices = changed_;
             job.snap = first_frame_;
+            job.dt = dt;
+            job.switch_counts = switches_;
             const size_t changed = job.Run();
             // Marshal level switches to the geometric controller (geomorph from the old surface).
             auto refs = g.span<CharacterRef>();
@@ -101,7 +139,7 @@ void World::register_systems() {
                     GeometryController& gc = *types_[refs[i].type]->geometry;
                     if (gc.level_of(refs[i].id) == states[i].geom_level) continue;  // animation level only
                     gc.begin_level(refs[i].id, states[i].geom_level, static_cast<int8_t>(states[i].prev_geom_level),
-                                   geom[i].geomorph_frames);
+                                   transition_frames(geom[i].geomorph_s, ctx.dt()));
                 }
             }
             if (changed > 0 || first_frame_) regroup();  // keep characters grouped by (type, level)
@@ -119,6 +157,7 @@ void World::register_systems() {
                     writes<MotionState, Transform, Velocity, PoseResource>(), [this](SystemContext& ctx) {
                         auto g = character_group(registry_);
                         for (auto& rt : types_) {
+                            rt->motion->set_level_timing(anim_level_ns_);  // per-level time for the animation budget
                             MotionUpdateJob job;
                             job.controller = rt->motion.get();
                             job.dt = ctx.dt();
@@ -149,9 +188,11 @@ void World::register_systems() {
                             const PoseSource poses = rt.poses();
                             const uint8_t level = geom[r.begin].level;
                             const std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
+                            const uint64_t start = now_ns();  // per-level time for the geometry budget
                             ctx.parallel_for(ids.size(), 1, [&](size_t b, size_t e) {
                                 rt.geometry->update_muscles(level, ids.subspan(b, e - b), poses);
                             });
+                            if (level < geom_level_ns_.size()) geom_level_ns_[level] += now_ns() - start;
                         }
                     }});
 
@@ -180,17 +221,19 @@ void World::register_systems() {
                             if (method == GeomMethod::RigidProxy || method == GeomMethod::SkinnedMesh) {
                                 size_t n = 0;
                                 for (size_t i = r.begin; i < r.end; ++i)
-                                    if (motion[i].frames_since_update == 0 || states[i].frames_at_geom == 0 ||
-                                        states[i].geomorph_left > 0 || first_frame_ ||
+                                    if (motion[i].frames_since_update == 0 || states[i].seconds_at_geom == 0.0f ||
+                                        states[i].geomorph_left_s > 0.0f || first_frame_ ||
                                         rt.geometry->geomorph_frames_left(refs[i].id) > 0)
                                         due_ids_[r.begin + n++] = refs[i].id;
                                 ids = std::span<const uint32_t>(due_ids_.data() + r.begin, n);
                             }
                             // Grain: cheap methods in big chunks, rich ones one or a few characters each.
                             const size_t grain = method == GeomMethod::RigidProxy ? 256 : method == GeomMethod::SkinnedMesh ? 16 : 1;
+                            const uint64_t start = now_ns();  // per-level time for the geometry budget
                             ctx.parallel_for(ids.size(), grain, [&](size_t b, size_t e) {
                                 rt.geometry->update_skin(level, ids.subspan(b, e - b), poses, ctx.dt());
                             });
+                            if (level < geom_level_ns_.size()) geom_level_ns_[level] += now_ns() - start;
                         }
                     }});
 
@@ -204,7 +247,7 @@ void World::register_systems() {
                     [this](SystemContext&) {
                         if (!renderer_ || !target_) return;
                         FrameInput input;
-                        input.camera = render_camera();
+                        frame_settings(input);
                         input.meshes = lists_.meshes;
                         input.proxies = lists_.proxies;
                         input.lines = lists_.lines;

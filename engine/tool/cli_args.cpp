@@ -22,7 +22,8 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 bool accepts(const std::string& command, const std::string& option) {
     static const std::set<std::string> common = {"--help", "-h", "--threads", "--seed", "--lod", "--budget-ms",
                                                  "--characters", "--device", "--validation", "--width", "--height",
-                                                 "--overlay"};
+                                                 "--overlay", "--budget-animation-ms", "--budget-geometry-ms", "--budget-single-ms",
+                                                 "--budget", "--tier", "--occlusion"};
     if (common.count(option)) return command != "validate" || option == "--help" || option == "-h";
     if (command == "render") return option == "--frame" || option == "--out" || option == "--colour" || option == "--force";
     if (command == "view") return option == "--frames" || option == "--colour" || option == "--out";
@@ -123,7 +124,8 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
             o.overlay = list;
             continue;
         }
-        if (a == "--out" || a == "--colour" || a == "--device" || a == "--lod") {
+        if (a == "--out" || a == "--colour" || a == "--device" || a == "--lod" || a == "--budget" || a == "--tier" ||
+            a == "--occlusion") {
             auto v = take();
             if (!v.ok()) return v.error();
             if (v.value().empty()) return arg_error("option '" + a + "' needs a non-empty value");
@@ -134,19 +136,26 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
                     return arg_error("--colour expects shaded, level, rule or method, got '" + v.value() + "'");
                 o.colour = v.value();
             }
-            if (a == "--lod") {
-                if (v.value() != "on" && v.value() != "off") return arg_error("--lod expects on or off, got '" + v.value() + "'");
-                o.lod = v.value() == "on";
+            if (a == "--lod" || a == "--budget" || a == "--occlusion") {
+                if (v.value() != "on" && v.value() != "off")
+                    return arg_error(a + " expects on or off, got '" + v.value() + "'");
+                if (a == "--lod") o.lod = v.value() == "on";
+                if (a == "--budget") o.budget = v.value() == "on";
+                if (a == "--occlusion") o.occlusion = v.value() == "on";
             }
+            if (a == "--tier") o.tier = v.value();
             continue;
         }
-        if (a == "--budget-ms") {
+        if (a == "--budget-ms" || a == "--budget-animation-ms" || a == "--budget-geometry-ms" || a == "--budget-single-ms") {
             auto v = take();
             if (!v.ok()) return v.error();
             double d = 0;
             if (!parse_number(v.value(), d) || !(d > 0.0 && d < 10000.0))
-                return arg_error("--budget-ms expects a number of milliseconds in (0, 10000), got '" + v.value() + "'");
-            o.budget_ms = d;
+                return arg_error(a + " expects a number of milliseconds in (0, 10000), got '" + v.value() + "'");
+            (a == "--budget-ms"             ? o.budget_ms
+             : a == "--budget-animation-ms" ? o.budget_animation_ms
+             : a == "--budget-single-ms"    ? o.budget_single_ms
+                                            : o.budget_geometry_ms) = d;
             continue;
         }
         if (a == "--seed") {
@@ -178,7 +187,15 @@ std::string help_text(const std::string& command) {
         "  --threads T        worker threads (0 = all cores)\n"
         "  --seed S           override every crowd's seed\n"
         "  --lod on|off       LOD on (rules) or off (every character at the top level)\n"
-        "  --budget-ms X      CPU frame budget: lower detail where least noticed to fit X ms\n"
+        "  --budget-ms X      CPU frame budget: lower detail where least noticed to fit X ms (the rule file's\n"
+        "                     animation/geometry split kept, scaled to X; without a split one total)\n"
+        "  --budget-animation-ms X, --budget-geometry-ms X  separate budgets of the motion system and of the\n"
+        "                     muscle + spring_skin systems (override the rule file's)\n"
+        "  --budget-single-ms X  one total for the CPU systems, geometry and animation demoted together (the\n"
+        "                     single-total controller), whatever the rule file's budget says\n"
+        "  --budget on|off    run the rule file's budget or not (default: as the file says)\n"
+        "  --tier NAME        hardware tier of the rules (default: the rule file's default_tier, or auto)\n"
+        "  --occlusion on|off estimate which characters the crowd hides (attribute 'occluded'; default on)\n"
         "  --characters N     rescale the scene's crowds to N characters in all\n"
         "  --width W, --height H  override the viewport\n"
         "  --device D         lavapipe | gpu | device index (default: a real GPU if present, else lavapipe)\n"

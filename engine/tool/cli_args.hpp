@@ -22,7 +22,13 @@ struct CliOptions {
     std::optional<uint32_t> width, height;
     std::optional<uint64_t> seed;
     bool lod = true;                   ///< --lod on|off
-    std::optional<double> budget_ms;   ///< --budget-ms X
+    std::optional<double> budget_ms;   ///< --budget-ms X: total CPU budget (the rule file's parts scaled to it)
+    std::optional<double> budget_single_ms;     ///< --budget-single-ms X: one total, single-total controller
+    std::optional<double> budget_animation_ms;  ///< --budget-animation-ms X: the animation part's target
+    std::optional<double> budget_geometry_ms;   ///< --budget-geometry-ms X: the geometry part's target
+    std::optional<bool> budget;        ///< --budget on|off: force the rule file's budget on or off
+    std::string tier;                  ///< --tier NAME: hardware tier (default: the rule file's, or auto)
+    bool occlusion = true;             ///< --occlusion on|off: estimate occlusion by the crowd
     uint32_t threads = 0;              ///< --threads T (0 = all cores)
     std::optional<uint32_t> characters;///< --characters N: rescale the scene's crowds to N characters
     bool fidelity = false;             ///< --fidelity

@@ -3,6 +3,7 @@
 #include "engine/scheduler/chrome_trace.hpp"
 #include "engine/tool/commands.hpp"
 #include "engine/tool/fidelity.hpp"
+#include "engine/tool/profile_lod.hpp"
 #include "engine/tool/session.hpp"
 #include "engine/tool/stats.hpp"
 #include "systems/lod/rule_table.hpp"
@@ -28,6 +29,7 @@ struct FrameRecord {
     std::array<uint32_t, 5> geom_methods{};
     std::array<uint32_t, 3> walk_methods{};
     FidelityFrame fidelity;
+    LodSample lod;
 };
 
 void progress(size_t done, size_t total, bool tty, const std::string& label) {
@@ -154,6 +156,7 @@ int run_profile(const CliOptions& options) {
         r.anim_levels = st.per_anim_level;
         r.geom_methods = st.per_geom_method;
         r.walk_methods = st.per_walk_method;
+        r.lod = sample_lod(world);
         if (fidelity) {
             auto fr = fidelity->measure();
             if (!fr.ok()) {
@@ -181,6 +184,11 @@ int run_profile(const CliOptions& options) {
     report["threads"] = options.threads;
     report["lod"] = options.lod;
     report["budget_ms"] = options.budget_ms ? nlohmann::json(*options.budget_ms) : nlohmann::json(nullptr);
+    {
+        std::vector<LodSample> lod;
+        for (const auto& r : records) lod.push_back(r.lod);
+        add_lod_report(world, lod, s.scene.dt, report);
+    }
     report["viewport"] = {s.scene.width, s.scene.height};
     report["device"] = s.context ? s.context->device_name() : std::string("none (--no-render)");
     report["wall_seconds"] = wall_s;
@@ -248,7 +256,7 @@ int run_profile(const CliOptions& options) {
         for (const auto& g : gnames) f << ",geom_" << g;
         for (const auto& a : anames) f << ",anim_" << a;
         if (fidelity) f << ",mean_deviation_px,max_deviation_px,psnr_db,change_px,switches";
-        f << "\n";
+        f << ",animation_ms,geometry_ms,geom_switches,anim_switches,visible,occluded\n";
         for (size_t i = 0; i < records.size(); ++i) {
             const auto& r = records[i];
             f << i << "," << r.cpu_ms << "," << r.render_ms << "," << r.gpu_ms << "," << r.frame_ms;
@@ -258,7 +266,8 @@ int run_profile(const CliOptions& options) {
             if (fidelity)
                 f << "," << r.fidelity.mean_deviation_px << "," << r.fidelity.max_deviation_px << "," << r.fidelity.psnr_db
                   << "," << r.fidelity.changed_fraction << "," << r.fidelity.switches;
-            f << "\n";
+            f << "," << r.lod.animation_ms << "," << r.lod.geometry_ms << "," << r.lod.geom_switches << ","
+              << r.lod.anim_switches << "," << r.lod.visible << "," << r.lod.occluded << "\n";
         }
     }
     // ---- trace.json
@@ -305,6 +314,7 @@ int run_profile(const CliOptions& options) {
         else std::cout << "LOD off: CPU systems mean " << fmt(compare["cpu_systems_ms"]["mean"].get<double>()) << " ms, "
                        << fmt(compare["ratio_mean"].get<double>()) << "x slower than LOD on (target 20x)\n";
     }
+    std::cout << lod_summary(report);
     std::cout << "state hash " << world.state_hash() << "; reports in " << out << "/\n";
     return 0;
 }

@@ -140,6 +140,7 @@ Status draw_image(WindowGpu& g, World& world, const ViewerState& state, const Vi
     }
     const RenderLists& lists = world.render_lists();
     FrameInput input;
+    world.frame_settings(input);
     const float aspect = static_cast<float>(img.view.extent.width) / static_cast<float>(img.view.extent.height);
     input.camera = camera.matrices(scene_key(world), aspect);
     shown->camera = input.camera;

@@ -50,7 +50,7 @@ public:
         if (!lod.ok()) return lod.error();
         if (Status st = world.reference_frame(frame_); !st.ok()) return st.error();
         FrameInput input;
-        input.camera = world.render_camera();
+        world.frame_settings(input);
         input.meshes = frame_.meshes;
         if (Status st = s_.renderer->render(input, reference_target_); !st.ok()) return st.error();
         if (Status st = s_.renderer->finish(); !st.ok()) return st.error();

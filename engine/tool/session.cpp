@@ -2,8 +2,11 @@
 
 #include "engine/gpu/png.hpp"
 #include "engine/scene/scene_loader.hpp"
+#include "systems/lod/rule_table.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <thread>
 
 namespace aloha::tool {
 
@@ -19,6 +22,21 @@ DebugColour colour_from_option(const std::string& name) {
     if (name == "rule") return DebugColour::ByRule;
     if (name == "method") return DebugColour::ByMotionMethod;
     return DebugColour::Shaded;
+}
+
+HardwareInfo hardware_info(const gpu::Context* context, unsigned threads) {
+    HardwareInfo hw;
+    hw.cores = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+    if (!context) return hw;
+    hw.gpu_name = context->device_name();
+    hw.software_rasterizer = context->is_cpu_device();
+    VkPhysicalDeviceMemoryProperties memory{};
+    vkGetPhysicalDeviceMemoryProperties(context->physical_device(), &memory);
+    uint64_t bytes = 0;
+    for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+        if (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) bytes += memory.memoryHeaps[h].size;
+    hw.gpu_memory_mb = bytes >> 20;
+    return hw;
 }
 
 Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool render) {
@@ -40,17 +58,35 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     if (options.overlay.find("muscles") != std::string::npos) wo.overlay |= kOverlayMuscles;
     if (options.overlay.find("springs") != std::string::npos) wo.overlay |= kOverlaySprings;
     wo.keep_refined_surfaces = render;  // nothing displays them without a renderer
-    auto world = World::create(session->scene, wo);
-    if (!world.ok()) return world.error();
-    session->world = std::move(world.value());
-    if (!render) return session;
+    wo.budget = options.budget;
+    wo.budget_animation_ms = options.budget_animation_ms;
+    wo.budget_geometry_ms = options.budget_geometry_ms;
+    wo.budget_single_ms = options.budget_single_ms;
+    wo.occlusion = options.occlusion;
+    if (!options.tier.empty()) wo.tier = options.tier;
     gpu::ContextOptions co;
     const char* env = std::getenv("ALOHA_VALIDATION");
     co.validation = options.validation || (env && std::string(env) == "1");
     co.device = options.device;
-    auto ctx = gpu::Context::create(co);
-    if (!ctx.ok()) return ctx.error();
-    session->context = std::move(ctx.value());
+    if (render) {
+        auto ctx = gpu::Context::create(co);
+        if (!ctx.ok()) return ctx.error();
+        session->context = std::move(ctx.value());
+        wo.hardware = hardware_info(session->context.get(), options.threads);
+    } else if (!wo.tier) {
+        // No renderer, but rules with "default_tier": "auto" still need the GPU's facts: look once.
+        auto rules = load_rules(session->scene.rules);
+        if (rules.ok() && rules.value().tier_auto) {
+            gpu::ContextOptions probe;
+            probe.device = options.device;
+            auto ctx = gpu::Context::create(probe);
+            wo.hardware = hardware_info(ctx.ok() ? ctx.value().get() : nullptr, options.threads);
+        }
+    }
+    auto world = World::create(session->scene, wo);
+    if (!world.ok()) return world.error();
+    session->world = std::move(world.value());
+    if (!render) return session;
     auto renderer = CrowdRenderer::create(*session->context);
     if (!renderer.ok()) return renderer.error();
     session->renderer = std::move(renderer.value());

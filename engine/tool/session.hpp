@@ -24,8 +24,13 @@ struct Session {
 };
 
 /// Loads the scene named in `options`, applies overrides (--width/--height/--seed/--characters/--lod/
-/// --budget-ms/--threads) and builds the World; with `render` also the GPU side.
+/// --budget*/--tier/--occlusion/--threads) and builds the World with the hardware facts for an "auto"
+/// tier; with `render` also the GPU side.
 Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool render);
+
+/// The hardware facts tier selection uses: cores (`threads`, or every core when 0) and, with a
+/// context, its device's name, whether it rasterises in software, and its device-local memory.
+HardwareInfo hardware_info(const gpu::Context* context, unsigned threads);
 
 /// The DebugColour named by --colour.
 DebugColour colour_from_option(const std::string& name);

@@ -232,11 +232,11 @@ void draw_rules(World& world, ViewerState& state) {
     }
     bool changed = false;
     float band = t.hysteresis.band;
-    int min_frames = t.hysteresis.min_frames;
+    float min_seconds = t.hysteresis.min_seconds;
     bool hyst = ImGui::SliderFloat("hysteresis band", &band, 0.0f, 1.0f, "%.3f");
-    hyst |= ImGui::InputInt("min frames", &min_frames);
+    hyst |= ImGui::InputFloat("min seconds", &min_seconds, 0.05f, 0.5f, "%.3f");
     if (hyst) {
-        set_hysteresis(t, band, static_cast<uint16_t>(std::clamp(min_frames, 0, 65535)));
+        set_hysteresis(t, band, min_seconds);
         changed = true;
     }
     const std::vector<RuleThreshold> thresholds = editable_thresholds(t);

@@ -41,15 +41,7 @@ float threshold_value(const RuleTable& table, const RuleThreshold& t) {
 }
 
 void recompute_widened_bounds(RuleTable& table, uint32_t box) {
-    ConditionBox& cb = table.boxes[box];
-    const float band = table.hysteresis.band;
-    cb.lo_wide = cb.lo;
-    cb.hi_wide = cb.hi;
-    for (int k = 0; k < kLodAttributeCount; ++k) {
-        if (!is_continuous(static_cast<LodAttribute>(k))) continue;
-        if (std::isfinite(cb.lo[k])) cb.lo_wide[k] = cb.lo[k] - band * std::fabs(cb.lo[k]);
-        if (std::isfinite(cb.hi[k])) cb.hi_wide[k] = cb.hi[k] + band * std::fabs(cb.hi[k]);
-    }
+    widen_box(table.boxes[box], table.hysteresis.band);  // the parser's own formula
 }
 
 void recompute_widened_bounds(RuleTable& table) {
@@ -78,9 +70,9 @@ void set_rule_levels(RuleTable& table, uint32_t rule, uint8_t geom_level, uint8_
     table.compiled[rule].anim_level = anim_level;
 }
 
-void set_hysteresis(RuleTable& table, float band, uint16_t min_frames) {
+void set_hysteresis(RuleTable& table, float band, float min_seconds) {
     table.hysteresis.band = std::isfinite(band) ? std::clamp(band, 0.0f, 1.0f) : table.hysteresis.band;
-    table.hysteresis.min_frames = min_frames;
+    if (std::isfinite(min_seconds)) table.hysteresis.min_seconds = std::clamp(min_seconds, 0.0f, 600.0f);
     recompute_widened_bounds(table);
 }
 

@@ -48,8 +48,9 @@ float set_threshold(RuleTable& table, const RuleThreshold& t, float value);
 /// Points rule `rule` at levels (geom, anim) in both rules[] and compiled[]; requires indices in range.
 void set_rule_levels(RuleTable& table, uint32_t rule, uint8_t geom_level, uint8_t anim_level);
 
-/// Sets the hysteresis band (clamped to [0, 1]) and minimum frames, recomputing every widened bound.
-void set_hysteresis(RuleTable& table, float band, uint16_t min_frames);
+/// Sets the hysteresis band (clamped to [0, 1]) and minimum seconds at a level (clamped to [0, 600];
+/// a non-finite value keeps the old one), recomputing every widened bound.
+void set_hysteresis(RuleTable& table, float band, float min_seconds);
 
 /// Checks the RuleTable invariants an edit could break (level indices in range, compiled parallel to
 /// rules, box ranges inside boxes, lo <= hi, widened bounds containing the plain ones, last rule

@@ -8,9 +8,8 @@
 namespace aloha {
 
 float noticeability(const LodAttributes& a) {
-    if (a.visible == 0) return 0.0f;
-    const float e = std::min(a.eccentricity, 1.0e3f);
-    return a.projected_height_px * (0.25f + a.importance) / (1.0f + e * e);
+    static const SignificanceExpr kDefault;
+    return kDefault.evaluate(a);
 }
 
 FrameBudget::FrameBudget(const BudgetParams& params) : params_(params) {}
@@ -37,7 +36,6 @@ BudgetStep FrameBudget::update(float measured_ms, std::span<const LodAttributes>
     const bool room = ema_ < target * (1.0f - params_.deadband);
     if (!over && !room) return step;
 
-    const uint16_t min_frames = table.hysteresis.min_frames;
     const uint8_t last_anim = static_cast<uint8_t>(table.anim_levels.size() - 1);
     ranked_.clear();
     uint32_t active = 0;
@@ -46,16 +44,16 @@ BudgetStep FrameBudget::update(float measured_ms, std::span<const LodAttributes>
         const bool hidden = table.geom_levels[std::min<size_t>(s.geom_level, table.geom_levels.size() - 1)].method ==
                             GeomMethod::Hidden;
         active += hidden ? 0u : 1u;
-        const bool settled = s.frames_at_geom >= min_frames && s.frames_at_anim >= min_frames;
-        if (!settled || hidden) continue;
+        const bool settled = held_long_enough(table, s.seconds_at_geom) && held_long_enough(table, s.seconds_at_anim);
+        if (!settled || hidden || s.always_full) continue;
         if (over) {
             const bool can_go_lower =
                 demoted_geom_level(table, s.geom_level, 1) != s.geom_level || s.anim_level < last_anim;
             if (s.budget_demotion < params_.max_demotion && can_go_lower)
-                ranked_.emplace_back(noticeability(attributes[i]), static_cast<uint32_t>(i));
+                ranked_.emplace_back(table.significance.evaluate(attributes[i]), static_cast<uint32_t>(i));
         } else if (s.budget_demotion > 0) {
-            // Promote the most noticeable first: rank by negated score.
-            ranked_.emplace_back(-noticeability(attributes[i]), static_cast<uint32_t>(i));
+            // Promote the most significant first: rank by negated score.
+            ranked_.emplace_back(-table.significance.evaluate(attributes[i]), static_cast<uint32_t>(i));
         }
     }
     if (ranked_.empty()) return step;
@@ -69,6 +67,7 @@ BudgetStep FrameBudget::update(float measured_ms, std::span<const LodAttributes>
     for (size_t j = 0; j < k; ++j) {
         LodState& s = states[ranked_[j].second];
         s.budget_demotion = static_cast<uint8_t>(over ? s.budget_demotion + 1 : s.budget_demotion - 1);
+        s.anim_demotion = s.budget_demotion;
     }
     settle_left_ = params_.settle_frames;
     step.direction = over ? -1 : 1;

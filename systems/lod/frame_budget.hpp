@@ -1,7 +1,9 @@
-// The frame-budget controller: keeps the measured CPU time of the systems under a target by
-// demoting the least noticeable characters one level at a time, and promoting the most noticeable
-// demoted ones back when there is room. Anti-oscillation: EMA smoothing, a deadband between the
-// demote and promote thresholds, proportional steps, and settle frames after every step.
+// The single-total frame-budget controller (a rule file's budget with one `target_ms`): keeps the
+// measured CPU time of the systems under a target by demoting the least significant characters one
+// level (geometric and animation together) at a time, and promoting the most significant demoted
+// ones back when there is room. Anti-oscillation: EMA smoothing, a deadband between the demote and
+// promote thresholds, proportional steps, and settle frames after every step. The separate
+// animation/geometry budgets are PartBudget (part_budget.hpp).
 #pragma once
 
 #include "components/lod.hpp"
@@ -14,9 +16,9 @@
 
 namespace aloha {
 
-/// How much a loss of detail on this character would be noticed (higher = more). 0 when not
-/// visible; otherwise projected_height_px * (0.25 + importance) / (1 + eccentricity^2): small,
-/// peripheral, unimportant characters score lowest.
+/// The default significance (kDefaultSignificance): 0 when not visible; otherwise
+/// projected_height_px * (0.25 + importance) / (1 + eccentricity^2): small, peripheral, unimportant
+/// characters score lowest. Rule files may define their own (RuleTable::significance).
 [[nodiscard]] float noticeability(const LodAttributes& a);
 
 /// What one FrameBudget::update did.
@@ -24,12 +26,14 @@ struct BudgetStep {
     int direction = 0;        ///< -1 demoted, +1 promoted, 0 nothing
     uint32_t changed = 0;     ///< characters whose budget_demotion changed
     float smoothed_ms = 0.0f; ///< the EMA of the measured time after this update
+    float predicted_ms = 0.0f;///< part budgets: the smoothed time plus the pending switches' predicted cost
 };
 
-/// Frame-budget controller. Call update() once per frame before the resolver, with the measured
-/// time of the last frame; it edits LodState::budget_demotion, which the resolver applies.
-/// Only characters whose levels may switch now (held >= hysteresis.min_frames frames) are touched,
-/// so every change takes effect on the same frame.
+/// Single-total controller. Call update() once per frame before the resolver, with the measured
+/// time of the last frame; it edits LodState::budget_demotion and anim_demotion (always equal here),
+/// which the resolver applies. Only characters whose levels may switch now (held >=
+/// hysteresis.min_seconds) and not `always_full` are touched, so every change takes effect on
+/// the same frame.
 class FrameBudget {
 public:
     /// A controller with `params` (target_ms > 0, smoothing in (0, 1]).
@@ -44,7 +48,7 @@ public:
     void reset();
 
     /// Feeds `measured_ms` (last frame) and, when outside the deadband and settled, demotes or
-    /// promotes characters of `states` ranked by noticeability of `attributes` (same size).
+    /// promotes characters of `states` ranked by the table's significance of `attributes` (same size).
     /// Allocates only when the crowd grows. Requires table levels non-empty.
     BudgetStep update(float measured_ms, std::span<const LodAttributes> attributes, std::span<LodState> states,
                       const RuleTable& table);

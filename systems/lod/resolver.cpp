@@ -1,6 +1,7 @@
 #include "systems/lod/resolver.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace aloha {
 
@@ -18,6 +19,37 @@ uint8_t demoted_anim_level(const RuleTable& table, uint8_t requested, uint8_t de
     return static_cast<uint8_t>(std::min(requested + demotion, last));
 }
 
+LodTargets lod_targets(const RuleTable& table, const LodRequest& request, const LodState& state) {
+    LodTargets t;
+    t.geom = demoted_geom_level(table, request.geom_level, state.budget_demotion);
+    t.anim = demoted_anim_level(table, request.anim_level, state.anim_demotion);
+    const uint8_t cap_geom = std::min<uint8_t>(state.cap_geom_level, static_cast<uint8_t>(table.geom_levels.size() - 1));
+    if (cap_geom > t.geom && table.geom_levels[t.geom].method != GeomMethod::Hidden) t.geom = cap_geom;
+    t.anim = std::max(t.anim, std::min<uint8_t>(state.cap_anim_level, static_cast<uint8_t>(table.anim_levels.size() - 1)));
+    return t;
+}
+
+bool held_long_enough(const RuleTable& table, float held_s) { return held_s + 1e-6f >= table.hysteresis.min_seconds; }
+
+uint16_t transition_frames(float seconds, float dt) {
+    if (!(seconds > 0.0f) || !(dt > 0.0f)) return 0;
+    return static_cast<uint16_t>(std::clamp(std::lround(seconds / dt), 1L, 65535L));
+}
+
+LodTargets uncapped_outcome(const RuleTable& table, const LodRequest& request, const LodState& state, bool snap,
+                            float dt) {
+    LodState uncapped = state;
+    uncapped.cap_geom_level = uncapped.cap_anim_level = 0;
+    const LodTargets target = lod_targets(table, request, uncapped);
+    const uint8_t geom = std::min<uint8_t>(state.geom_level, static_cast<uint8_t>(table.geom_levels.size() - 1));
+    const uint8_t anim = std::min<uint8_t>(state.anim_level, static_cast<uint8_t>(table.anim_levels.size() - 1));
+    // Timers advance before the resolver compares them, hence + dt.
+    const bool geom_free = snap || held_long_enough(table, state.seconds_at_geom + dt) ||
+                           table.geom_levels[geom].method == GeomMethod::Hidden;
+    const bool anim_free = snap || held_long_enough(table, state.seconds_at_anim + dt);
+    return {geom_free ? target.geom : geom, anim_free ? target.anim : anim};
+}
+
 bool LodResolveJob::Validate(std::vector<std::string>* errors) const {
     bool ok = true;
     auto fail = [&](std::string m) {
@@ -32,19 +64,21 @@ bool LodResolveJob::Validate(std::vector<std::string>* errors) const {
     if (anim.size() != n) fail("anim size differs from requests");
     if (!changed_flags.empty() && changed_flags.size() != n) fail("changed_flags size differs from requests (and is not empty)");
     if (!changed_indices.empty() && changed_indices.size() < n) fail("changed_indices has room for fewer than n indices");
+    if (!(dt >= 0.0f) || !std::isfinite(dt)) fail("dt must be finite and >= 0 (got " + std::to_string(dt) + ")");
     return ok;
 }
 
 namespace {
-inline uint16_t inc_sat(uint16_t v) { return v == 0xFFFF ? v : static_cast<uint16_t>(v + 1); }
-inline uint16_t dec_zero(uint16_t v) { return v == 0 ? 0 : static_cast<uint16_t>(v - 1); }
+// Time held at a level stops growing here (a day): far past any hysteresis, and float keeps sub-frame steps.
+constexpr float kHeldCap = 86400.0f;
+inline float advance(float held, float dt) { return std::min(held + dt, kHeldCap); }
+inline float run_down(float left, float dt) { return std::max(left - dt, 0.0f); }
 }  // namespace
 
 size_t LodResolveJob::Run() const {
     const RuleTable& t = *table;
     const uint8_t last_geom = static_cast<uint8_t>(t.geom_levels.size() - 1);
     const uint8_t last_anim = static_cast<uint8_t>(t.anim_levels.size() - 1);
-    const uint16_t min_frames = t.hysteresis.min_frames;
     size_t changed = 0;
     for (size_t i = 0; i < requests.size(); ++i) {
         const LodRequest& req = requests[i];
@@ -53,29 +87,36 @@ size_t LodResolveJob::Run() const {
         s.anim_level = std::min(s.anim_level, last_anim);
         s.prev_geom_level = std::min(s.prev_geom_level, last_geom);
         s.prev_anim_level = std::min(s.prev_anim_level, last_anim);
-        s.frames_at_geom = inc_sat(s.frames_at_geom);
-        s.frames_at_anim = inc_sat(s.frames_at_anim);
-        s.geomorph_left = dec_zero(s.geomorph_left);
-        s.crossfade_left = dec_zero(s.crossfade_left);
+        s.cap_geom_level = std::min(s.cap_geom_level, last_geom);
+        s.cap_anim_level = std::min(s.cap_anim_level, last_anim);
+        s.seconds_at_geom = advance(s.seconds_at_geom, dt);
+        s.seconds_at_anim = advance(s.seconds_at_anim, dt);
+        s.geomorph_left_s = run_down(s.geomorph_left_s, dt);
+        s.crossfade_left_s = run_down(s.crossfade_left_s, dt);
 
-        const uint8_t target_geom = demoted_geom_level(t, req.geom_level, s.budget_demotion);
-        const uint8_t target_anim = demoted_anim_level(t, req.anim_level, s.budget_demotion);
+        const LodTargets target = lod_targets(t, req, s);
+        const uint8_t target_geom = target.geom;
+        const uint8_t target_anim = target.anim;
         bool level_changed = false;
-        const bool geom_free = snap || s.frames_at_geom >= min_frames ||
-                               t.geom_levels[s.geom_level].method == GeomMethod::Hidden;
+        // Over a cap: leave at once, whatever the time hysteresis says.
+        const bool geom_free = snap || held_long_enough(t, s.seconds_at_geom) ||
+                               t.geom_levels[s.geom_level].method == GeomMethod::Hidden || s.geom_level < s.cap_geom_level;
+        const bool anim_free = snap || held_long_enough(t, s.seconds_at_anim) || s.anim_level < s.cap_anim_level;
         if (target_geom != s.geom_level && geom_free) {
             s.prev_geom_level = snap ? target_geom : s.geom_level;
             s.geom_level = target_geom;
-            s.geomorph_left = snap ? 0 : t.geom_levels[target_geom].geomorph_frames;
-            s.frames_at_geom = 0;
+            s.geomorph_left_s = snap ? 0.0f : t.geom_levels[target_geom].geomorph_s;
+            s.seconds_at_geom = 0.0f;
             level_changed = true;
+            if (switch_counts) ++switch_counts[0];
         }
-        if (target_anim != s.anim_level && (snap || s.frames_at_anim >= min_frames)) {
+        if (target_anim != s.anim_level && anim_free) {
             s.prev_anim_level = snap ? target_anim : s.anim_level;
             s.anim_level = target_anim;
-            s.crossfade_left = snap ? 0 : t.anim_levels[target_anim].crossfade_frames;
-            s.frames_at_anim = 0;
+            s.crossfade_left_s = snap ? 0.0f : t.anim_levels[target_anim].crossfade_s;
+            s.seconds_at_anim = 0.0f;
             level_changed = true;
+            if (switch_counts) ++switch_counts[1];
         }
         if (s.geom_level == target_geom && s.anim_level == target_anim) s.rule_id = req.rule_id;
         states[i] = s;
@@ -100,6 +141,8 @@ void clamp_lod_states(const RuleTable& table, std::span<LodState> states) {
         s.prev_geom_level = std::min(s.prev_geom_level, last_geom);
         s.prev_anim_level = std::min(s.prev_anim_level, last_anim);
         s.rule_id = std::min(s.rule_id, last_rule);
+        s.cap_geom_level = std::min(s.cap_geom_level, last_geom);
+        s.cap_anim_level = std::min(s.cap_anim_level, last_anim);
     }
 }
 

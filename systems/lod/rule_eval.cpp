@@ -34,7 +34,6 @@ void RuleEvalJob::Run() const {
     const uint32_t fallback = rule_count - 1;
     alignas(32) float v[kBoxSlots];
     v[6] = static_cast<float>(tier);
-    v[7] = 0.0f;
     for (size_t i = 0; i < attributes.size(); ++i) {
         const LodAttributes& a = attributes[i];
         v[0] = a.distance;
@@ -43,6 +42,7 @@ void RuleEvalJob::Run() const {
         v[3] = a.speed;
         v[4] = static_cast<float>(a.visible);
         v[5] = a.importance;
+        v[7] = a.occluded;
         const uint32_t current = states.empty() ? 0xFFFFFFFFu : states[i].rule_id;
         uint32_t fired = fallback;
         for (uint32_t r = 0; r < fallback; ++r) {

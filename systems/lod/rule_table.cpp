@@ -1,6 +1,7 @@
 #include "systems/lod/rule_table.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,7 @@ std::string_view attribute_name(LodAttribute a) {
         case LodAttribute::Visible: return "visible";
         case LodAttribute::Importance: return "importance";
         case LodAttribute::Tier: return "tier";
+        case LodAttribute::Occluded: return "occluded";
     }
     return "?";
 }
@@ -43,6 +45,28 @@ int RuleTable::find_tier(std::string_view name) const {
     return -1;
 }
 
+bool gets_value_band(LodAttribute a) {
+    return a != LodAttribute::Visible && a != LodAttribute::Tier && a != LodAttribute::Occluded;
+}
+
+void widen_box(ConditionBox& box, float band) {
+    box.lo_wide = box.lo;
+    box.hi_wide = box.hi;
+    for (int k = 0; k < kLodAttributeCount; ++k) {
+        if (!gets_value_band(static_cast<LodAttribute>(k))) continue;
+        if (std::isfinite(box.lo[k])) box.lo_wide[k] = box.lo[k] - band * std::fabs(box.lo[k]);
+        if (std::isfinite(box.hi[k])) box.hi_wide[k] = box.hi[k] + band * std::fabs(box.hi[k]);
+    }
+}
+
+bool RuleTable::has_caps() const {
+    for (const auto& l : geom_levels)
+        if (l.max_characters != kNoCap) return true;
+    for (const auto& l : anim_levels)
+        if (l.max_characters != kNoCap) return true;
+    return false;
+}
+
 GeomLod RuleTable::geom_lod(uint8_t level) const {
     const size_t i = std::min<size_t>(level, geom_levels.size() - 1);
     const GeomLevelDef& d = geom_levels[i];
@@ -53,7 +77,7 @@ GeomLod RuleTable::geom_lod(uint8_t level) const {
     g.subdiv_level = d.subdiv_level;
     g.theta_steps = d.theta_steps;
     g.phi_steps = d.phi_steps;
-    g.geomorph_frames = d.geomorph_frames;
+    g.geomorph_s = d.geomorph_s;
     return g;
 }
 
@@ -66,7 +90,7 @@ AnimLod RuleTable::anim_lod(uint8_t level) const {
     a.ik = d.ik;
     a.ik_iterations = d.ik_iterations;
     a.update_interval = d.update_interval;
-    a.crossfade_frames = d.crossfade_frames;
+    a.crossfade_s = d.crossfade_s;
     a.ik_tolerance = d.ik_tolerance;
     return a;
 }

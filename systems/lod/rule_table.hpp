@@ -4,6 +4,7 @@
 
 #include "components/lod.hpp"
 #include "engine/core/result.hpp"
+#include "systems/lod/significance.hpp"
 
 #include <array>
 #include <cstdint>
@@ -24,12 +25,16 @@ enum class LodAttribute : uint8_t {
     Visible = 4,
     Importance = 5,
     Tier = 6,
+    Occluded = 7,
 };
 
-/// Number of testable attributes (slots 0..6 of a box; slot 7 is padding that always passes).
-inline constexpr int kLodAttributeCount = 7;
-/// Slots per condition box (padded to 8 floats so the test vectorises).
+/// Number of testable attributes (slots 0..7 of a box).
+inline constexpr int kLodAttributeCount = 8;
+/// Slots per condition box (8 floats so the test vectorises).
 inline constexpr int kBoxSlots = 8;
+
+/// Level cap value meaning "no cap".
+inline constexpr uint32_t kNoCap = 0xFFFFFFFFu;
 
 /// The rule-file name of attribute `a` ("distance", "projected_height_px", ...).
 [[nodiscard]] std::string_view attribute_name(LodAttribute a);
@@ -42,7 +47,8 @@ struct GeomLevelDef {
     uint16_t phi_steps = 6;                 ///< super-ellipsoid steps pole to pole
     uint8_t subdiv_level = 0;               ///< Catmull-Clark levels (Subdivided only)
     uint8_t layers = kLayerSkeleton;        ///< LayerBits
-    uint16_t geomorph_frames = 0;           ///< morph frames when this level is entered
+    float geomorph_s = 0.0f;                ///< morph seconds when this level is entered
+    uint32_t max_characters = kNoCap;       ///< cap: at most this many characters here or richer
 };
 
 /// One animation level as declared in the rule file (index 0 = richest).
@@ -53,24 +59,49 @@ struct AnimLevelDef {
     uint8_t ik_iterations = 0;
     float ik_tolerance = 1e-3f;             ///< metres
     uint8_t update_interval = 1;            ///< animate every N frames
-    uint8_t crossfade_frames = 0;           ///< pose cross-fade frames when this level is entered
+    float crossfade_s = 0.0f;               ///< pose cross-fade seconds when this level is entered
+    uint32_t max_characters = kNoCap;       ///< cap: at most this many characters here or richer
 };
 
 /// Value and time hysteresis of the resolver.
 struct HysteresisParams {
     float band = 0.1f;           ///< relative widening of the active rule's bounds (0.1 = 10%)
-    uint16_t min_frames = 10;    ///< frames a character stays at a level before it may switch again
+    float min_seconds = 0.15f;   ///< simulated seconds a character stays at a level before it may switch again
 };
 
-/// Frame-budget controller settings (section "budget" of a rule file).
+/// One separately budgeted part of the CPU systems (section "budget/animation" or "budget/geometry").
+struct BudgetPartParams {
+    float target_ms = 0.0f;      ///< the part's measured time the controller steers to; 0 = not budgeted
+    float tolerance = 0.05f;     ///< no step while the smoothed time is within target * (1 +- tolerance)
+    float gain = 0.7f;           ///< fraction of the predicted error corrected per step, in (0, 1]
+    uint8_t max_demotion = 3;    ///< most levels this part may remove from one character
+};
+
+/// Frame-budget settings (section "budget" of a rule file). Either a single total (`target_ms`, the
+/// original controller demoting both kinds of level together) or separate animation and geometry
+/// parts, each steering on its own measured time with learned per-level costs.
 struct BudgetParams {
-    float target_ms = 12.0f;     ///< CPU-systems time the controller aims under
-    float deadband = 0.15f;      ///< no promotion unless the smoothed time < target * (1 - deadband)
+    bool enabled = true;         ///< false: the settings are kept but the host runs no budget
+    float target_ms = 0.0f;      ///< total CPU-systems time of the single-total controller; 0 = none
+    float deadband = 0.15f;      ///< single total: no promotion unless smoothed < target * (1 - deadband)
     float smoothing = 0.25f;     ///< EMA weight of the newest measurement, in (0, 1]
-    float demote_gain = 0.5f;    ///< fraction of the relative overshoot applied per step
-    float promote_gain = 0.2f;   ///< fraction of the relative headroom applied per step
+    float demote_gain = 0.5f;    ///< single total: fraction of the relative overshoot applied per step
+    float promote_gain = 0.2f;   ///< single total: fraction of the relative headroom applied per step
     uint16_t settle_frames = 4;  ///< frames to wait after a step before the next one
-    uint8_t max_demotion = 3;    ///< most levels the budget may remove from one character
+    uint8_t max_demotion = 3;    ///< single total: most levels the budget may remove from one character
+    float cost_smoothing = 0.2f; ///< parts: EMA weight of each new per-level cost measurement, in (0, 1]
+    BudgetPartParams animation;  ///< the motion system's time
+    BudgetPartParams geometry;   ///< the muscle + spring_skin systems' time
+
+    /// True when at least one part has a target (the per-part controller is used).
+    [[nodiscard]] bool has_parts() const { return animation.target_ms > 0.0f || geometry.target_ms > 0.0f; }
+};
+
+/// What a tier needs of the hardware to be chosen automatically (entries of "tiers" given as objects).
+struct TierRequirements {
+    uint32_t min_cores = 0;              ///< logical CPU cores
+    uint64_t min_gpu_memory_mb = 0;      ///< device-local GPU memory
+    bool needs_hardware_gpu = false;     ///< a software rasteriser (lavapipe) does not qualify
 };
 
 /// One rule as written (name, where it is in the file, what it selects).
@@ -91,6 +122,14 @@ struct alignas(32) ConditionBox {
     std::array<float, kBoxSlots> hi_wide;
 };
 
+/// True when value hysteresis widens bounds on `a`: not for the discrete visible and tier, nor for
+/// occluded (a character must not stay hidden while part of it shows).
+[[nodiscard]] bool gets_value_band(LodAttribute a);
+
+/// Sets box.lo_wide / hi_wide from lo / hi: finite bounds of attributes that get a band move out by
+/// `band` times their magnitude (the rule a character is on holds until it is crossed by the band).
+void widen_box(ConditionBox& box, float band);
+
 /// A rule's compiled form: its boxes are boxes[first_box, first_box + box_count) (an OR of them).
 struct CompiledRule {
     uint32_t first_box = 0;
@@ -107,8 +146,12 @@ struct RuleTable {
     std::vector<AnimLevelDef> anim_levels;   ///< richest first
     HysteresisParams hysteresis;
     std::optional<BudgetParams> budget;      ///< absent: no frame budget
+    SignificanceExpr significance;           ///< ranking for the budget and the caps (default formula)
     std::vector<std::string> tiers;          ///< tier names, index = value of the "tier" attribute
-    uint8_t default_tier = 0;                ///< tier used when the host names none
+    std::vector<TierRequirements> tier_requirements;  ///< parallel to tiers
+    bool tier_requirements_given = false;    ///< some tier of the file states requirements
+    uint8_t default_tier = 0;                ///< tier used when the host names none (and hardware is unknown)
+    bool tier_auto = false;                  ///< "default_tier": "auto": the host picks from its hardware
     std::vector<RuleDef> rules;              ///< evaluation order
     std::vector<CompiledRule> compiled;      ///< parallel to rules
     std::vector<ConditionBox> boxes;         ///< all rules' boxes, contiguous per rule
@@ -122,6 +165,8 @@ struct RuleTable {
     [[nodiscard]] int find_rule(std::string_view name) const;
     /// Index of the tier named `name`, or -1.
     [[nodiscard]] int find_tier(std::string_view name) const;
+    /// True when some level (geometric or animation) has a cap.
+    [[nodiscard]] bool has_caps() const;
     /// The GeomLod marshalled for level `level` (clamped to the last level).
     [[nodiscard]] GeomLod geom_lod(uint8_t level) const;
     /// The AnimLod marshalled for level `level` (clamped to the last level).

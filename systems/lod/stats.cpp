@@ -45,7 +45,8 @@ void LodStatsJob::Run() const {
     s.per_geom_method.fill(0);
     s.per_walk_method.fill(0);
     s.characters = static_cast<uint32_t>(states.size());
-    s.visible = s.demoted = s.in_geomorph = s.in_crossfade = 0;
+    s.visible = s.demoted = s.in_geomorph = s.in_crossfade = s.occluded = 0;
+    s.occlusion_histogram.fill(0);
     const size_t last_geom = t.geom_levels.size() - 1;
     const size_t last_anim = t.anim_levels.size() - 1;
     for (size_t i = 0; i < states.size(); ++i) {
@@ -57,9 +58,14 @@ void LodStatsJob::Run() const {
         if (st.rule_id < s.per_rule.size()) ++s.per_rule[st.rule_id];
         ++s.per_geom_method[static_cast<size_t>(t.geom_levels[g].method)];
         ++s.per_walk_method[static_cast<size_t>(t.anim_levels[a].walk)];
-        s.demoted += st.budget_demotion > 0;
-        s.in_geomorph += st.geomorph_left > 0;
-        s.in_crossfade += st.crossfade_left > 0;
+        s.demoted += st.budget_demotion > 0 || st.anim_demotion > 0;
+        if (!attributes.empty() && attributes[i].visible != 0) {
+            const float o = attributes[i].occluded;
+            s.occluded += o >= 1.0f;
+            ++s.occlusion_histogram[o <= 0.0f ? 0 : o < 0.5f ? 1 : o < 0.9f ? 2 : o < 1.0f ? 3 : 4];
+        }
+        s.in_geomorph += st.geomorph_left_s > 0.0f;
+        s.in_crossfade += st.crossfade_left_s > 0.0f;
         if (!attributes.empty()) s.visible += attributes[i].visible != 0;
     }
 }
@@ -70,7 +76,7 @@ LodExplanation explain(const RuleTable& table, uint32_t i, std::span<const LodAt
     const LodState& s = states[i];
     e.index = i;
     e.attributes = attributes[i];
-    e.noticeability = noticeability(attributes[i]);
+    e.noticeability = table.significance.evaluate(attributes[i]);
     e.rule_id = s.rule_id;
     if (s.rule_id < table.rules.size()) {
         const RuleDef& r = table.rules[s.rule_id];
@@ -79,16 +85,20 @@ LodExplanation explain(const RuleTable& table, uint32_t i, std::span<const LodAt
         e.rule_anim_level = r.anim_level;
     }
     e.budget_demotion = s.budget_demotion;
+    e.anim_demotion = s.anim_demotion;
+    e.cap_geom_level = s.cap_geom_level;
+    e.cap_anim_level = s.cap_anim_level;
+    e.always_full = s.always_full != 0;
     e.geom = table.geom_lod(s.geom_level);
     e.geom_level_name = table.geom_levels[e.geom.level].name;
     e.anim = table.anim_lod(s.anim_level);
     e.anim_level_name = table.anim_levels[e.anim.level].name;
     e.prev_geom_level = s.prev_geom_level;
-    e.geomorph_left = s.geomorph_left;
+    e.geomorph_left_s = s.geomorph_left_s;
     e.prev_anim_level = s.prev_anim_level;
-    e.crossfade_left = s.crossfade_left;
-    e.frames_at_geom = s.frames_at_geom;
-    e.frames_at_anim = s.frames_at_anim;
+    e.crossfade_left_s = s.crossfade_left_s;
+    e.seconds_at_geom = s.seconds_at_geom;
+    e.seconds_at_anim = s.seconds_at_anim;
     return e;
 }
 
@@ -99,21 +109,24 @@ nlohmann::json to_json(const LodExplanation& e) {
         {"index", e.index},
         {"attributes", {{"distance", a.distance}, {"projected_height_px", a.projected_height_px},
                         {"eccentricity", a.eccentricity}, {"speed", a.speed}, {"visible", a.visible != 0},
-                        {"importance", a.importance}}},
+                        {"importance", a.importance}, {"occluded", a.occluded}}},
         {"noticeability", e.noticeability},
         {"rule", {{"id", e.rule_id}, {"name", e.rule_name}, {"geometry_level", e.rule_geom_level},
                   {"animation_level", e.rule_anim_level}}},
         {"budget_demotion", e.budget_demotion},
+        {"anim_budget_demotion", e.anim_demotion},
+        {"caps", {{"geometry_level", e.cap_geom_level}, {"animation_level", e.cap_anim_level}}},
+        {"always_full", e.always_full},
         {"geometry", {{"level", e.geom.level}, {"name", e.geom_level_name}, {"method", to_string(e.geom.method)},
                       {"theta_steps", e.geom.theta_steps}, {"phi_steps", e.geom.phi_steps},
                       {"subdivision", e.geom.subdiv_level}, {"layers", e.geom.layers},
-                      {"previous_level", e.prev_geom_level}, {"geomorph_left", e.geomorph_left},
-                      {"frames_at_level", e.frames_at_geom}}},
+                      {"previous_level", e.prev_geom_level}, {"geomorph_left_s", e.geomorph_left_s},
+                      {"seconds_at_level", e.seconds_at_geom}}},
         {"animation", {{"level", e.anim.level}, {"name", e.anim_level_name}, {"walk", to_string(e.anim.walk)},
                        {"ik", to_string(e.anim.ik)}, {"ik_iterations", e.anim.ik_iterations},
                        {"ik_tolerance", e.anim.ik_tolerance}, {"update_interval", e.anim.update_interval},
-                       {"previous_level", e.prev_anim_level}, {"crossfade_left", e.crossfade_left},
-                       {"frames_at_level", e.frames_at_anim}}},
+                       {"previous_level", e.prev_anim_level}, {"crossfade_left_s", e.crossfade_left_s},
+                       {"seconds_at_level", e.seconds_at_anim}}},
     };
 }
 
@@ -132,6 +145,7 @@ nlohmann::json to_json(const LodStats& s, const RuleTable& table) {
     json wm = json::object();
     for (size_t i = 0; i < s.per_walk_method.size(); ++i) wm[std::string(to_string(static_cast<WalkMethod>(i)))] = s.per_walk_method[i];
     return json{{"characters", s.characters}, {"visible", s.visible},       {"demoted", s.demoted},
+                {"occluded", s.occluded},       {"occlusion_histogram", s.occlusion_histogram},
                 {"in_geomorph", s.in_geomorph}, {"in_crossfade", s.in_crossfade},
                 {"geometry_levels", geom},      {"animation_levels", anim}, {"rules", rules},
                 {"geometry_methods", gm},       {"walk_methods", wm}};

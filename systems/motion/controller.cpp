@@ -16,6 +16,15 @@ constexpr float kTurnRate = 6.0f;  // rad/s: how fast a walker turns to face its
 
 bool is_live(RequestKind k) { return k == RequestKind::PlayClip || k == RequestKind::Walk; }
 
+// What of an AnimLod shapes the pose: level, walk method, IK solver and iterations, update interval.
+int64_t anim_signature(const AnimLod& l) {
+    return static_cast<int64_t>(l.level) | static_cast<int64_t>(l.walk) << 8 | static_cast<int64_t>(l.ik) << 16 |
+           static_cast<int64_t>(l.ik_iterations) << 24 | static_cast<int64_t>(l.update_interval) << 32;
+}
+
+// Seconds an animation level change is inertialized over: the entered level's cross-fade time.
+float transition_seconds(const AnimLod& lod) { return lod.crossfade_s; }
+
 glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
 
 // Turns `rotation` about Y towards facing `dir` (unit, horizontal) by at most `max_angle` radians.
@@ -34,7 +43,7 @@ glm::quat turn_towards(const glm::quat& rotation, const glm::vec3& dir, float ma
 MotionController::MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity)
     : skeleton_(&skeleton), clips_(&clips), chars_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
       snapshot_(skeleton.joint_count(), capacity, nullptr), scratch_(skeleton.joint_count(), 1, nullptr),
-      keys_(skeleton.joint_count()) {
+      keys_(skeleton.joint_count()), inertia_(skeleton.joint_count()) {
     active_.reserve(capacity);
     due_.reserve(capacity);
 }
@@ -185,6 +194,19 @@ void MotionController::advance_clock(Channel& ch, float seconds) const {
     }
 }
 
+void MotionController::sync_walk_clock(Channel& ch, WalkMethod from, WalkMethod to) const {
+    if (from == to || ch.req.kind != RequestKind::Walk || ch.walk_clip < 0) return;
+    const float d = clips_->find(static_cast<ClipId>(ch.walk_clip))->duration();
+    if (!(d > 0.0f)) return;
+    if (to == WalkMethod::ClipPlayback) {
+        ch.time = (std::floor(ch.time / d) + ch.walk.phase) * d;
+    } else if (from == WalkMethod::ClipPlayback) {
+        const float cycles = ch.time / d;
+        ch.walk.phase = cycles - std::floor(cycles);
+        ch.walk.initialised = 0;
+    }
+}
+
 void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transform* placement, Velocity* velocity) {
     ch.request_time += dt;
     const MotionRequest& r = ch.req;
@@ -279,6 +301,8 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
             start_next(c, ch);
             switched = true;
         }
+        if (!switched && ch.cur.req.kind == RequestKind::Walk && ch.has_walk_method)
+            sync_walk_clock(ch.cur, ch.walk_method, walk_method(lod));
         // Requests that end during this frame hand over at the start of the next one.
         advance(ch.cur, lod, dt, &x, &v);
         if (ch.fade_left > 0.0f) {
@@ -286,10 +310,7 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
             ch.fade_left = std::max(0.0f, ch.fade_left - dt);
         }
         if (ch.cur.req.kind == RequestKind::Walk) {
-            const WalkMethod m = walk_method(lod);
-            if (ch.has_walk_method && m != ch.walk_method && lod.crossfade_frames > 0 && ch.fade_left <= 0.0f)
-                begin_fade(c, ch, static_cast<float>(lod.crossfade_frames) * dt, false);
-            ch.walk_method = m;
+            ch.walk_method = walk_method(lod);
             ch.has_walk_method = 1;
         } else {
             ch.has_walk_method = 0;
@@ -298,13 +319,34 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
         update_slots(c, ch);
         advance_overlay(ch.overlay, lod, dt);
 
+        // An animation level change (walk method, IK, update interval) is inertialized from the pose
+        // shown now; the character is posed at once so the change never waits for its update phase.
+        const bool posing = ch.cur.req.kind != RequestKind::Rest || ch.overlay.on;
+        const int64_t signature = anim_signature(lod);
+        const bool level_changed = ch.last_anim >= 0 && ch.last_anim != signature;
+        ch.last_anim = signature;
+        bool inertial_start = false;
+        if (ch.inertial_slot >= 0 && ch.inertial_done) {
+            inertia_.release(static_cast<uint32_t>(ch.inertial_slot));
+            ch.inertial_slot = -1;
+        }
+        if (level_changed && posing && !switched && transition_seconds(lod) > 0.0f) {
+            if (ch.inertial_slot < 0) ch.inertial_slot = static_cast<int32_t>(inertia_.acquire());
+            ch.inertial_pending = 1;
+            ch.inertial_done = 0;
+            ch.inertial_elapsed = 0.0f;
+            ch.inertial_total = transition_seconds(lod);
+            inertial_start = true;
+        } else if (ch.inertial_slot >= 0) {
+            ch.inertial_elapsed += dt;
+        }
+
         ch.since_posed += dt;
         ++st.frames_since_update;
         // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
         const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
         const bool on_phase = (frame_ + c) % interval == 0;
-        const bool posing = ch.cur.req.kind != RequestKind::Rest || ch.overlay.on;
-        if (posing && (switched || on_phase || (ch.overlay.on && ch.overlay.needs_pose()))) {
+        if (posing && (switched || inertial_start || on_phase || (ch.overlay.on && ch.overlay.needs_pose()))) {
             due_.push_back(Due{c, e, ch.since_posed, switched});
             st.frames_since_update = 0;
             ch.since_posed = 0.0f;
@@ -312,7 +354,10 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
             const bool interpolate = interval > 1 && clip_driven(ch, lod) && ch.fade_left <= 0.0f;
             if (interpolate && ch.keys_slot < 0) ch.keys_slot = static_cast<int32_t>(keys_.acquire());
             if (!interpolate && ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
-            ch.keys_span = static_cast<float>(interval) * dt;
+            // The end key is the next scheduled update's pose: a forced pose off the schedule (a switch,
+            // a transition start) spans only the frames left to it, so the keys join without a step.
+            const uint64_t to_next = interval - (frame_ + c) % interval;
+            ch.keys_span = static_cast<float>(to_next) * dt;
         } else if (ch.keys_slot >= 0 && ch.cur.req.kind != RequestKind::Rest) {
             between_.push_back(Due{c, e, ch.since_posed, false});
         }
@@ -329,6 +374,8 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
         if (resting) {
             v.linear = glm::vec3(0.0f);
             if (ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
+            if (ch.inertial_slot >= 0) inertia_.release(static_cast<uint32_t>(ch.inertial_slot)), ch.inertial_slot = -1;
+            ch.last_anim = -1;  // a level change while resting shows nothing: no transition on waking
             const uint32_t moved = active_.back();
             active_[k] = moved;
             chars_[moved].active_index = static_cast<int32_t>(k);

@@ -10,6 +10,7 @@
 #include "components/motion.hpp"
 #include "components/transform.hpp"
 #include "systems/motion/clip.hpp"
+#include "systems/motion/inertialize.hpp"
 #include "systems/motion/kinematic_walk.hpp"
 #include "systems/motion/pose_pool.hpp"
 #include "systems/motion/sampling.hpp"
@@ -135,6 +136,10 @@ public:
     void set_worker_slots(size_t count);
     /// Scratch slots available to evaluate_due.
     [[nodiscard]] size_t worker_slots() const { return workers_; }
+    /// Where evaluate_due adds the wall time (ns) of each work item, by the character's AnimLod::level
+    /// (levels past the end are not timed); empty (the default) times nothing. The frame budget's
+    /// animation part learns its per-level costs from it. The span must outlive the updates.
+    void set_level_timing(std::span<uint64_t> level_ns) { level_ns_ = level_ns; }
     /// Characters due in the last begin_update, in evaluation order.
     [[nodiscard]] size_t due_count() const { return due_.size(); }
     /// Work items of the last begin_update for evaluate_due: the due characters, then the throttled
@@ -153,6 +158,16 @@ public:
     [[nodiscard]] const MotionRequest& current(uint32_t character) const { return chars_[character].cur.req; }
     /// True while `character` is cross-fading into its current request.
     [[nodiscard]] bool fading(uint32_t character) const { return chars_[character].fade_left > 0.0f; }
+    /// True while `character` is in any transition: a request cross-fade or an inertialized level change.
+    [[nodiscard]] bool in_transition(uint32_t character) const {
+        const Character& ch = chars_[character];
+        return ch.fade_left > 0.0f || (ch.inertial_slot >= 0 && !ch.inertial_done);
+    }
+    /// Characters whose pose carries a decaying offset from an animation level change.
+    [[nodiscard]] size_t inertializing() const { return inertia_.in_use(); }
+    /// The walk method `lod` gives with the methods this controller has (a level asking for a method
+    /// the character lacks falls back: dynamic -> kinematic -> clip playback).
+    [[nodiscard]] WalkMethod resolved_walk_method(const AnimLod& lod) const { return walk_method(lod); }
     /// The pose pool (slot i = character i).
     [[nodiscard]] const PosePool& poses() const { return pool_; }
     /// The skeleton animated.
@@ -197,6 +212,11 @@ private:
         int32_t keys_slot = -1;      // ThrottleKeys slot while interpolating between throttled updates
         float keys_span = 0.0f;      // seconds from the start to the end key pose
         Overlay overlay;             // reach / look-at layered over the current request
+        int32_t inertial_slot = -1;  // InertialOffsets slot while a level change is inertialized
+        float inertial_elapsed = 0.0f, inertial_total = 0.0f;  // seconds into / of the transition
+        uint8_t inertial_pending = 0;  // the offset is taken at the next pose (the change happened this frame)
+        uint8_t inertial_done = 0;     // posed with the offset gone: the slot is released at the next update
+        int64_t last_anim = -1;        // anim_signature of the AnimLod at the last update (-1 before the first)
     };
     struct Due {
         uint32_t character;
@@ -216,6 +236,11 @@ private:
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
     bool clip_driven(const Character& ch, const AnimLod& lod) const;
     void advance_clock(Channel& ch, float seconds) const;
+    // Carries a walk's place in its cycle across a change between clip playback and the procedural
+    // walks (their clocks run only while used): clip time <-> phase * the clip's duration (the gait
+    // cycle starts at the left touchdown, as the kinematic walk's phase 0), and a kinematic walk
+    // re-entered plants its feet afresh.
+    void sync_walk_clock(Channel& ch, WalkMethod from, WalkMethod to) const;
     void advance_overlay(Overlay& o, const AnimLod& lod, float dt) const;
     void apply_overlay(uint32_t c, Character& ch, const AnimLod& lod, const PoseView& pose, Transform& placement,
                        Velocity& velocity, float posed_dt, bool primary);
@@ -241,10 +266,13 @@ private:
     std::vector<Due> due_;
     std::vector<Due> between_;  // throttled characters shown interpolated this frame
     ThrottleKeys keys_;
+    InertialOffsets inertia_;
+    void settle_inertia(Character& ch, const PoseView& pose, float elapsed);
     // Spans of the update in progress (set by begin_update, read by evaluate_due).
     std::span<const AnimLod> lods_;
     std::span<Transform> transforms_;
     std::span<Velocity> velocities_;
+    std::span<uint64_t> level_ns_;  // per AnimLod level: ns of work items (empty = not timed)
 };
 
 /// Job form of MotionController::update over spans of characters (index = character id, or

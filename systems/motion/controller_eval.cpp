@@ -9,6 +9,9 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <utility>
 
@@ -86,16 +89,21 @@ void MotionController::pose_one(const Due& d, size_t worker) {
         std::copy(shown.scales.begin(), shown.scales.end(), scratch.scales.begin());
         std::copy(shown.model.begin(), shown.model.end(), scratch.model.begin());
     }
+    // A level change this frame: keep the pose shown so far before the new one overwrites it.
+    if (ch.inertial_slot >= 0 && ch.inertial_pending)
+        inertia_.hold(static_cast<uint32_t>(ch.inertial_slot), skeleton_->parents().data(), std::as_const(pool_).view(c).model);
     evaluate(c, ch.cur, lod, out, x, v, d.posed_dt, true, d.started);
     if (ch.keys_slot >= 0) {
         // Key poses for the frames until the next update: now, and one interval ahead.
         const uint32_t slot = static_cast<uint32_t>(ch.keys_slot);
         apply_overlay(c, ch, lod, out, x, v, d.posed_dt, true);
+        settle_inertia(ch, out, ch.inertial_elapsed);
         keys_.capture(slot, false, out.model);
         Channel ahead = ch.cur;
         advance_clock(ahead, ch.keys_span);
         evaluate(c, ahead, lod, scratch, x, v, ch.keys_span, false, false);
         apply_overlay(c, ch, lod, scratch, x, v, ch.keys_span, false);
+        settle_inertia(ch, scratch, ch.inertial_elapsed + ch.keys_span);
         keys_.capture(slot, true, std::as_const(scratch_).view(worker).model);
         return;
     }
@@ -111,19 +119,47 @@ void MotionController::pose_one(const Due& d, size_t worker) {
                        out.scales.data(), nullptr, out.model.data(), static_cast<size_t>(skeleton_->joint_count()));
     }
     apply_overlay(c, ch, lod, out, x, v, d.posed_dt, true);  // over the blended pose
+    settle_inertia(ch, out, ch.inertial_elapsed);
+}
+
+void MotionController::settle_inertia(Character& ch, const PoseView& pose, float elapsed) {
+    if (ch.inertial_slot < 0) return;
+    const auto slot = static_cast<uint32_t>(ch.inertial_slot);
+    if (ch.inertial_pending) {
+        // The change happened this frame: the offset is what separates the new pose from the old.
+        inertia_.relate(slot, ConstPoseView{pose.translations, pose.rotations, pose.scales, pose.model});
+        ch.inertial_pending = 0;
+    }
+    ch.inertial_done = ch.inertial_elapsed >= ch.inertial_total ? 1 : 0;
+    const float w = inertial_weight(elapsed, ch.inertial_total);
+    if (w <= 0.0f) return;
+    inertia_.apply(slot, w, pose);
+    local_to_model(skeleton_->parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),
+                   nullptr, pose.model.data(), static_cast<size_t>(skeleton_->joint_count()));
 }
 
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
     end = std::min(end, work_count());
+    // Per-level time of this chunk, added to level_ns_ once at the end (one clock read per item).
+    std::array<uint64_t, 256> chunk_ns{};
+    const bool timed = !level_ns_.empty();
+    auto now = [] { return static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()); };
+    uint64_t last = timed ? now() : 0;
     for (size_t i = begin; i < end; ++i) {
+        const Due& d = i < due_.size() ? due_[i] : between_[i - due_.size()];
         if (i < due_.size()) {
-            pose_one(due_[i], worker);
-            continue;
+            pose_one(d, worker);
+        } else {
+            const Character& ch = chars_[d.character];
+            keys_.interpolate(static_cast<uint32_t>(ch.keys_slot), d.posed_dt / ch.keys_span, pool_.view(d.character).model);
         }
-        const Due& d = between_[i - due_.size()];
-        const Character& ch = chars_[d.character];
-        keys_.interpolate(static_cast<uint32_t>(ch.keys_slot), d.posed_dt / ch.keys_span, pool_.view(d.character).model);
+        if (!timed) continue;
+        const uint64_t t = now();
+        chunk_ns[lods_[d.element].level] += t - last;
+        last = t;
     }
+    for (size_t l = 0; timed && l < level_ns_.size() && l < chunk_ns.size(); ++l)
+        if (chunk_ns[l] != 0) std::atomic_ref<uint64_t>(level_ns_[l]).fetch_add(chunk_ns[l], std::memory_order_relaxed);
 }
 
 size_t MotionController::update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,

@@ -79,6 +79,10 @@ void PopMeter::add(std::span<const glm::vec3> joints, bool switch_frame) {
     last_.assign(joints.begin(), joints.end());
 }
 
+float PopMeter::ordinary_max() const {
+    return ordinary_.empty() ? 0.0f : *std::max_element(ordinary_.begin(), ordinary_.end());
+}
+
 float PopMeter::ordinary_p95() const {
     if (ordinary_.empty()) return 0.0f;
     std::vector<float> sorted = ordinary_;

@@ -61,6 +61,8 @@ public:
     void add(std::span<const glm::vec3> joints, bool switch_frame);
     /// 95th percentile of the ordinary frames' largest joint motion (m); 0 without ordinary frames.
     [[nodiscard]] float ordinary_p95() const;
+    /// Largest joint motion of any ordinary frame (m); 0 without ordinary frames.
+    [[nodiscard]] float ordinary_max() const;
     /// Largest joint motion on a switch frame (m); 0 without switch frames.
     [[nodiscard]] float worst_switch() const { return worst_switch_; }
     /// Switch frames seen.

@@ -4,6 +4,12 @@
 
 namespace aloha {
 
+ModelKey decompose_model(const glm::mat4& m) {
+    const glm::vec3 s(glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2])));
+    const glm::mat3 r{glm::vec3(m[0]) / s.x, glm::vec3(m[1]) / s.y, glm::vec3(m[2]) / s.z};
+    return ModelKey{glm::normalize(glm::quat_cast(r)), glm::vec3(m[3]), s};
+}
+
 uint32_t ThrottleKeys::acquire() {
     ++used_;
     if (!free_.empty()) {
@@ -23,12 +29,7 @@ void ThrottleKeys::release(uint32_t slot) {
 
 void ThrottleKeys::capture(uint32_t slot, bool ahead, std::span<const glm::mat4> model) {
     ModelKey* out = keys_.data() + (2 * static_cast<size_t>(slot) + (ahead ? 1 : 0)) * joints_;
-    for (size_t j = 0; j < joints_; ++j) {
-        const glm::mat4& m = model[j];
-        const glm::vec3 s(glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2])));
-        const glm::mat3 r{glm::vec3(m[0]) / s.x, glm::vec3(m[1]) / s.y, glm::vec3(m[2]) / s.z};
-        out[j] = ModelKey{glm::normalize(glm::quat_cast(r)), glm::vec3(m[3]), s};
-    }
+    for (size_t j = 0; j < joints_; ++j) out[j] = decompose_model(model[j]);
 }
 
 void ThrottleKeys::interpolate(uint32_t slot, float w, std::span<glm::mat4> model) const {

@@ -22,6 +22,9 @@ struct ModelKey {
     glm::vec3 scale{1.0f};
 };
 
+/// Splits an affine matrix with positive scale into rotation, translation and per-axis scale.
+[[nodiscard]] ModelKey decompose_model(const glm::mat4& m);
+
 /// Pairs of model-space key poses (the pose at the last update and one interval ahead) for the
 /// characters that interpolate, in slots handed out and taken back serially.
 class ThrottleKeys {

@@ -71,7 +71,8 @@ Status CrowdRenderer::init(const RendererOptions& options) {
                                   std::pair{&s.instances, uint64_t(std::max(options_.initial_instances, 1u)) *
                                                               sizeof(gpu::LitInstance)},
                                   std::pair{&s.lines, uint64_t(std::max(options_.initial_line_segments, 1u)) * 2 *
-                                                          sizeof(gpu::LineVertex)}}) {
+                                                          sizeof(gpu::LineVertex)},
+                                  std::pair{&s.lighting, uint64_t(sizeof(gpu::LitLighting))}}) {
             Status st = ensure(*buf, bytes, grew);
             if (!st) return st;
         }
@@ -79,7 +80,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
         if (!st) return st;
     }
     growth_events_ = 0;  // initial allocations are not growth
-    return {};
+    return init_materials();
 }
 
 CrowdRenderer::~CrowdRenderer() {
@@ -91,28 +92,6 @@ CrowdRenderer::~CrowdRenderer() {
         if (s.cmd != VK_NULL_HANDLE) vkFreeCommandBuffers(dev, ctx_.command_pool(), 1, &s.cmd);
     }
     if (compat_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(dev, compat_pass_, nullptr);
-}
-
-Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indices, uint32_t vertex_count,
-                                                 bool cull_back_faces) {
-    if (indices.empty() || indices.size() % 3 != 0)
-        return gpu::gpu_error("register_topology: index count " + std::to_string(indices.size()) +
-                              " is not a non-zero multiple of 3");
-    const uint32_t max_index = *std::max_element(indices.begin(), indices.end());
-    if (vertex_count == 0) vertex_count = max_index + 1;
-    if (max_index >= vertex_count)
-        return gpu::gpu_error("register_topology: index " + std::to_string(max_index) + " >= vertex_count " +
-                              std::to_string(vertex_count));
-    Result<gpu::Buffer> buf = gpu::Buffer::create(ctx_, indices.size_bytes(), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    if (!buf) return buf.error();
-    buf.value().write(std::as_bytes(indices));
-    Topology t;
-    t.indices = std::move(buf).value();
-    t.index_count = static_cast<uint32_t>(indices.size());
-    t.vertex_count = vertex_count;
-    t.cull_back_faces = cull_back_faces;
-    topologies_.push_back(std::move(t));
-    return static_cast<uint32_t>(topologies_.size() - 1);
 }
 
 uint32_t CrowdRenderer::topology_vertex_count(uint32_t topology) const {
@@ -144,6 +123,8 @@ bool CrowdRenderer::Validate(const FrameInput& frame, std::vector<std::string>* 
     }
     if (glm::length(frame.light_direction) <= 0.0f) fail("light_direction must be non-zero");
     if (!(frame.ambient >= 0.0f && frame.ambient <= 1.0f)) fail("ambient must be in [0, 1]");
+    for (const glm::vec3& c : {frame.sky_colour, frame.ground_colour, frame.key_colour})
+        if (!(c.r >= 0.0f && c.g >= 0.0f && c.b >= 0.0f && c.r + c.g + c.b < 1e6f)) fail("light colours must be finite and >= 0");
     return ok;
 }
 
@@ -229,7 +210,7 @@ Status CrowdRenderer::render(const FrameInput& frame, const gpu::TargetView& tar
     st = ensure_proxy_indices(slot, static_cast<uint32_t>(frame.proxies.size()));
     if (!st) return st;
     if (grew || slot.set_dirty) {
-        pipes_.write_set(slot.set, slot.positions, slot.normals, slot.instances, slot.lines);
+        pipes_.write_set(slot.set, slot.positions, slot.normals, slot.instances, slot.lines, slot.lighting);
         slot.set_dirty = false;
     }
     last_upload_bytes_ = upload(frame, slot);

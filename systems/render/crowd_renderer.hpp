@@ -3,10 +3,12 @@
 // per-frame-in-flight buffers that grow only when exceeded.
 #pragma once
 
+#include "engine/assets/surface_material.hpp"
 #include "engine/core/result.hpp"
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/lit_pipeline.hpp"
 #include "engine/gpu/offscreen_target.hpp"
+#include "engine/gpu/texture.hpp"
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
@@ -58,8 +60,26 @@ struct FrameInput {
     std::span<const ProxyInstance> proxies;      ///< batch (b): one instanced draw
     std::span<const LineSegment> lines;          ///< batch (c): one line-list draw
     glm::vec4 clear_colour{0.12f, 0.12f, 0.14f, 1.0f}; ///< background
-    glm::vec3 light_direction{0.3f, 0.8f, 0.5f}; ///< towards the light, world space (normalised here)
-    float ambient = 0.3f;                        ///< 0..1; 1 writes the albedo unlit
+    glm::vec3 light_direction{0.3f, 0.8f, 0.5f}; ///< towards the key light, world space (normalised here)
+    float ambient = 0.3f;                        ///< 0..1 share of the hemisphere light; 1 with white sky and
+                                                 ///< ground writes the albedo unlit
+    glm::vec3 sky_colour{1.0f};                  ///< ambient light from straight above (hemisphere)
+    glm::vec3 ground_colour{1.0f};               ///< ambient light from straight below
+    glm::vec3 key_colour{1.0f};                  ///< key light colour
+    bool materials = true;                       ///< draw topologies' materials (base colour, texture); false:
+                                                 ///< the instance colour alone (debug colourings)
+};
+
+/// Light that reads as a character: a warm key light from the upper front right and a hemisphere from
+/// a pale sky to a dark warm ground (ambient 0.45). Sets only the lighting fields of `frame`.
+void set_character_lighting(FrameInput& frame);
+
+/// The materials of a topology: per-vertex texture coordinates and material, and which registered
+/// material each local material index is. Triangles take the material of their first vertex.
+struct TopologySurface {
+    std::span<const glm::vec2> uvs;               ///< one per vertex, or empty (no texture is sampled)
+    std::span<const uint16_t> vertex_material;    ///< one per vertex (indices into `materials`), or empty
+    std::span<const uint32_t> materials;          ///< ids from CrowdRenderer::register_material
 };
 
 /// Where the renderer waits/signals for swapchain use; all optional.
@@ -91,8 +111,17 @@ public:
     /// Registers a shared triangle index list (size a non-zero multiple of 3) once; vertex_count 0 means
     /// max index + 1. `cull_back_faces`: the mesh is closed and wound counter-clockwise seen from outside,
     /// so back faces are skipped (about half the raster work). Returns the id for DeformableMesh::topology.
+    /// `surface` (optional) gives its materials: the index list is then reordered by material, one draw
+    /// per material.
     [[nodiscard]] Result<uint32_t> register_topology(std::span<const uint32_t> indices, uint32_t vertex_count = 0,
-                                                     bool cull_back_faces = false);
+                                                     bool cull_back_faces = false, const TopologySurface& surface = {});
+    /// Uploads a texture (RGBA8, rows top to bottom, colours as stored: sRGB-encoded) once; returns its id.
+    /// Errors: empty or inconsistent image, Vulkan failures.
+    [[nodiscard]] Result<uint32_t> register_texture(const TextureImage& image);
+    /// Registers a material: `material.base_colour` is a LINEAR factor (glTF) and is drawn encoded as
+    /// pow(rgb, 1/2.2), the display space the renderer shades in, so that factor x texel matches the
+    /// sRGB encoding of their linear product; `texture` is an id from register_texture or -1.
+    [[nodiscard]] Result<uint32_t> register_material(const SurfaceMaterial& material, int texture);
     /// Vertex count of a registered topology (0 when unknown).
     [[nodiscard]] uint32_t topology_vertex_count(uint32_t topology) const;
 
@@ -120,18 +149,30 @@ public:
     [[nodiscard]] uint64_t frame_count() const { return frame_index_; }
 
 private:
+    struct Range {  // triangles of one material in a topology's index list
+        uint32_t first_index = 0;
+        uint32_t index_count = 0;
+        uint32_t material = 0;
+        VkDescriptorSet set = VK_NULL_HANDLE;  // the topology's UVs + the material's texture
+    };
     struct Topology {
         gpu::Buffer indices;
         uint32_t index_count = 0;
         uint32_t vertex_count = 0;
         bool cull_back_faces = false;
+        gpu::Buffer uvs;              // empty without UVs
+        std::vector<Range> ranges;    // empty without materials
+    };
+    struct Material {
+        glm::vec4 colour{1.0f};       // display-space base colour
+        int texture = -1;
     };
     struct Slot {
         VkCommandBuffer cmd = VK_NULL_HANDLE;
         VkFence fence = VK_NULL_HANDLE;
         VkQueryPool queries = VK_NULL_HANDLE;
         VkDescriptorSet set = VK_NULL_HANDLE;
-        gpu::Buffer positions, normals, instances, lines;
+        gpu::Buffer positions, normals, instances, lines, lighting;
         gpu::Buffer proxy_indices;  // fill_box_batch_indices for proxy_capacity boxes (rewritten on growth)
         uint32_t proxy_capacity = 0;
         bool pending = false;
@@ -146,12 +187,18 @@ private:
     Status retire(Slot& slot);
     uint64_t upload(const FrameInput& frame, Slot& slot);
     Status record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot);
+    Status init_materials();
 
     gpu::Context& ctx_;
     RendererOptions options_;
     gpu::LitPipelines pipes_;
     VkRenderPass compat_pass_ = VK_NULL_HANDLE;
     std::vector<Topology> topologies_;
+    std::vector<gpu::Texture> textures_;
+    std::vector<Material> materials_;
+    gpu::Texture white_;                              // 1x1 white: untextured draws
+    gpu::Buffer no_uvs_;                              // one zero vec2: draws without UVs
+    VkDescriptorSet plain_set_ = VK_NULL_HANDLE;      // no_uvs_ + white_
     std::vector<Slot> slots_;
     // Per-frame scratch, reused (capacity only grows): meshes ordered by topology, group offsets.
     std::vector<uint32_t> order_;

@@ -45,6 +45,11 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
     if (!frame.proxies.empty())
         std::memcpy(static_cast<void*>(instances + frame.meshes.size()), frame.proxies.data(),
                     frame.proxies.size_bytes());
+    gpu::LitLighting lighting;
+    lighting.sky = glm::vec4(frame.sky_colour, 1.0f);
+    lighting.ground = glm::vec4(frame.ground_colour, 1.0f);
+    lighting.key = glm::vec4(frame.key_colour, 1.0f);
+    slot.lighting.write(std::as_bytes(std::span(&lighting, 1)));
     auto* lv = reinterpret_cast<gpu::LineVertex*>(slot.lines.mapped());
     for (size_t i = 0; i < frame.lines.size(); ++i) {
         const LineSegment& l = frame.lines[i];
@@ -89,8 +94,10 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     uint32_t draws = 0;
     const bool any_mesh = !frame.meshes.empty() || !frame.proxies.empty();
-    if (any_mesh)
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 1, &slot.set, 0, nullptr);
+    if (any_mesh) {
+        const VkDescriptorSet sets[2] = {slot.set, plain_set_};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 2, sets, 0, nullptr);
+    }
     VkPipeline bound = VK_NULL_HANDLE;
     for (size_t t = 0; t < topologies_.size(); ++t) {
         if (group_count_[t] == 0) continue;
@@ -99,17 +106,34 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, want);
             bound = want;
         }
-        push.offsets = glm::uvec4(group_vertex_base_[t], topologies_[t].vertex_count, group_start_[t], 0);
-        vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-        vkCmdBindIndexBuffer(cmd, topologies_[t].indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, topologies_[t].index_count, group_count_[t], 0, 0, 0);
-        ++draws;
+        const Topology& topo = topologies_[t];
+        vkCmdBindIndexBuffer(cmd, topo.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        if (!frame.materials || topo.ranges.empty()) {
+            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], gpu::kLitMesh);
+            push.base_colour = glm::vec4(1.0f);
+            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+            vkCmdDrawIndexed(cmd, topo.index_count, group_count_[t], 0, 0, 0);
+            ++draws;
+            continue;
+        }
+        for (const Range& r : topo.ranges) {  // one draw per material, every instance of the topology
+            const Material& m = materials_[r.material];
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
+            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t],
+                                      m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? gpu::kLitTexturedMesh : gpu::kLitMesh);
+            push.base_colour = m.colour;
+            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+            vkCmdDrawIndexed(cmd, r.index_count, group_count_[t], r.first_index, 0, 0);
+            ++draws;
+        }
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
     }
     if (!frame.proxies.empty()) {
         // Box mode: one indexed, non-instanced draw of all proxies (see shaders/lit_mesh.vert), back faces
         // culled (boxes are closed and wound counter-clockwise from outside).
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.mesh_culled());
-        push.offsets = glm::uvec4(0, 0, static_cast<uint32_t>(frame.meshes.size()), 1);
+        push.offsets = glm::uvec4(0, 0, static_cast<uint32_t>(frame.meshes.size()), gpu::kLitBoxes);
+        push.base_colour = glm::vec4(1.0f);
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdBindIndexBuffer(cmd, slot.proxy_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, kBoxIndexCount * static_cast<uint32_t>(frame.proxies.size()), 1, 0, 0, 0);

@@ -77,7 +77,7 @@ struct Crowd {
         }
         LodAttributesJob{t, v, b, imp, cam, attrs}.Run();
         RuleEvalJob{&table(), attrs, states, 1, req}.Run();
-        LodResolveJob{&table(), req, states, geom, anim, {}, changed, 0, true}.Run();
+        LodResolveJob{&table(), req, states, geom, anim, {}, changed, 0, 0.0f, true}.Run();
     }
 };
 
@@ -112,7 +112,7 @@ BENCHMARK(BM_RuleEval10Rules)->Unit(benchmark::kMicrosecond);
 
 void BM_Resolve(benchmark::State& state) {
     Crowd& c = crowd();
-    const LodResolveJob job{&table(), c.req, c.states, c.geom, c.anim, {}, c.changed, 0, false};
+    const LodResolveJob job{&table(), c.req, c.states, c.geom, c.anim, {}, c.changed, 0, 1.0f / 60.0f, false};
     for (auto _ : state) {
         benchmark::DoNotOptimize(job.Run());
     }
@@ -126,7 +126,7 @@ void BM_AttributesRulesResolve(benchmark::State& state) {
     for (auto _ : state) {
         LodAttributesJob{c.t, c.v, c.b, c.imp, c.cam, c.attrs}.Run();
         RuleEvalJob{&table(), c.attrs, c.states, 1, c.req}.Run();
-        benchmark::DoNotOptimize(LodResolveJob{&table(), c.req, c.states, c.geom, c.anim, {}, c.changed, 0, false}.Run());
+        benchmark::DoNotOptimize(LodResolveJob{&table(), c.req, c.states, c.geom, c.anim, {}, c.changed, 0, 1.0f / 60.0f, false}.Run());
     }
     state.counters["ns_per_char"] = benchmark::Counter(static_cast<double>(kCharacters) * state.iterations(),
                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);

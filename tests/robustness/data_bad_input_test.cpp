@@ -52,8 +52,8 @@ TEST(RulesBadInput, ShippedFileVariants) {
                         "rules.json", {"JSON syntax error"}));
     EXPECT_TRUE(refused(parse_rules(replaced(rules, "\"theta_steps\": 24", "\"theta_steps\": 1000000000"), "rules.json"),
                         "R4 theta_steps 1e9", "rules.json", {"/geometric_levels/0/theta_steps"}));
-    EXPECT_TRUE(refused(parse_rules(replaced(rules, "\"min_frames\": 12", "\"min_frames\": -1"), "rules.json"),
-                        "R5 negative min_frames", "rules.json", {"/hysteresis/min_frames"}));
+    EXPECT_TRUE(refused(parse_rules(replaced(rules, "\"min_seconds\": 0.2", "\"min_seconds\": -1"), "rules.json"),
+                        "R5 negative min_seconds", "rules.json", {"/hysteresis/min_seconds"}));
     EXPECT_TRUE(refused(parse_rules(replaced(rules, "\"update_interval\": 1", "\"update_interval\": 0"), "rules.json"),
                         "R6 update_interval 0", "rules.json", {"/animation_levels/0/update_interval"}));
 }
@@ -89,7 +89,7 @@ TEST(RulesBadInput, HostileConditionsAndFiles) {
 TEST(RulesBadInput, ThresholdThatOverflowsFloat) {
     const std::string rules = robustness::slurp(kData + "rules/default.json");
     EXPECT_TRUE(refused(parse_rules(replaced(rules, "\"ge\": 0.8", "\"ge\": 1e39"), "rules.json"),
-                        "R7 threshold 1e39 (float overflow)", "rules.json", {"/rules/1/when/importance"}));
+                        "R7 threshold 1e39 (float overflow)", "rules.json", {"/rules/2/when/importance"}));
 }
 
 // Regression (found while fuzzing, fixed): a folder given as the rule file or muscle layout reads as an empty file, so the user sees

@@ -35,6 +35,8 @@ struct CharacterMesh {
     std::vector<glm::vec4> weights;        ///< weights (sum 1), one per position
     std::vector<uint32_t> indices;         ///< triangle list
     std::vector<glm::mat4> inverse_bind;   ///< one per RUNTIME joint
+    std::vector<glm::vec2> uvs;            ///< texture coordinates, one per position, or empty (none)
+    std::vector<uint16_t> vertex_material; ///< material index per position (the type's list), or empty (all 0)
 };
 
 /// The peeled (SkinnedMesh) bind mesh generated from the muscles of a type without a real mesh, at

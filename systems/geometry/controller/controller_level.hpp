@@ -27,6 +27,8 @@ struct GeometryController::Level {
     const SubdivisionTopology* subdivision = nullptr;  ///< Subdivided
     std::vector<uint32_t> own_indices;             ///< grid index buffer when built here
     std::span<const uint32_t> indices;             ///< the level's triangle list
+    std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)
+    std::vector<uint16_t> vertex_material;         ///< material per displayed vertex (empty: all 0)
     SlotStore store;                               ///< per-character storage
 
     /// Level with storage shaped by `layout`.

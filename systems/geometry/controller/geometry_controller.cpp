@@ -2,6 +2,7 @@
 // the per-character outputs. The per-frame work is in controller_update.cpp.
 #include "systems/geometry/controller/geometry_controller.hpp"
 
+#include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/spring_skin/grid_sample.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
@@ -34,6 +35,38 @@ GeometryController::GeometryController(const CharacterGeometry& geometry, std::s
 }
 
 GeometryController::~GeometryController() = default;
+
+namespace {
+
+// UVs and materials of the level's displayed vertices: those of its control surface (the real mesh,
+// or the generated body UVs of the grid skin at rest), carried through the subdivision stencils.
+void set_surface_attributes(const CharacterGeometry& g, GeometryController::Level& level) {
+    std::vector<glm::vec2> uvs;
+    std::vector<uint16_t> materials;
+    if (level.real_mesh) {
+        uvs = g.mesh().uvs;
+        materials = g.mesh().vertex_material;
+    } else {
+        uvs = body_grid_uvs(g.skeleton(), g.rest_model(), g.muscles(), g.generated_mesh(level.theta_steps, level.phi_steps).positions);
+    }
+    const SubdivisionTopology* sub = level.subdivision;
+    if (!sub) {
+        level.uvs = std::move(uvs);
+        level.vertex_material = std::move(materials);
+        return;
+    }
+    // Refined vertex i = sum of weights * control vertices; primitives share no vertex, so every
+    // stencil stays within one material.
+    if (!uvs.empty()) level.uvs.assign(sub->refined_vertex_count, glm::vec2(0.0f));
+    if (!materials.empty()) level.vertex_material.assign(sub->refined_vertex_count, 0);
+    for (uint32_t i = 0; i < sub->refined_vertex_count; ++i) {
+        for (uint32_t k = sub->offsets[i]; k < sub->offsets[i + 1]; ++k)
+            if (!uvs.empty()) level.uvs[i] += sub->weights[k] * uvs[sub->indices[k]];
+        if (!materials.empty() && sub->offsets[i + 1] > sub->offsets[i]) level.vertex_material[i] = materials[sub->indices[sub->offsets[i]]];
+    }
+}
+
+}  // namespace
 
 std::unique_ptr<GeometryController::Level> GeometryController::build_level(const GeomLod& lod, uint8_t index,
                                                                            uint8_t revision) const {
@@ -101,6 +134,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
             level->indices = level->own_indices;
         }
     }
+    if (level->mesh_level) set_surface_attributes(g, *level);
     return level;
 }
 
@@ -230,6 +264,12 @@ void GeometryController::muscle_surface(uint32_t character, std::vector<glm::vec
 }
 
 std::span<const uint32_t> GeometryController::level_indices(uint8_t level) const { return levels_.at(level)->indices; }
+
+std::span<const glm::vec2> GeometryController::level_uvs(uint8_t level) const { return levels_.at(level)->uvs; }
+
+std::span<const uint16_t> GeometryController::level_vertex_materials(uint8_t level) const {
+    return levels_.at(level)->vertex_material;
+}
 
 uint32_t GeometryController::topology_key(uint8_t level) const {
     const Level& L = *levels_.at(level);

@@ -117,6 +117,12 @@ public:
     void muscle_surface(uint32_t character, std::vector<glm::vec3>& positions) const;
     /// Triangle list shared by every character of `level` (empty for RigidProxy / Hidden).
     [[nodiscard]] std::span<const uint32_t> level_indices(uint8_t level) const;
+    /// Texture coordinates of `level`'s displayed vertices, shared by every character there: the real
+    /// mesh's (stencil-interpolated when subdivided), or the generated body UVs of the grid skin
+    /// (body_texture.hpp); empty for RigidProxy / Hidden and for a real mesh without UVs.
+    [[nodiscard]] std::span<const glm::vec2> level_uvs(uint8_t level) const;
+    /// Material index (into the type's materials) of each displayed vertex of `level`; empty = all 0.
+    [[nodiscard]] std::span<const uint16_t> level_vertex_materials(uint8_t level) const;
     /// Topology key of `level` (see SurfaceView::topology_key).
     [[nodiscard]] uint32_t topology_key(uint8_t level) const;
 

@@ -5,8 +5,17 @@ namespace aloha {
 
 CharacterMesh character_mesh_from_gltf(const GltfCharacter& character, const Skeleton& skeleton) {
     CharacterMesh out;
+    bool any_uvs = false;
+    for (const GltfSkinnedMesh& m : character.meshes) any_uvs = any_uvs || !m.uvs.empty();
+    const auto default_material = static_cast<uint16_t>(character.materials.size());
     for (const GltfSkinnedMesh& m : character.meshes) {
         const auto base = static_cast<uint32_t>(out.positions.size());
+        if (any_uvs) {
+            if (m.uvs.empty()) out.uvs.resize(out.uvs.size() + m.positions.size(), glm::vec2(0.0f));
+            else out.uvs.insert(out.uvs.end(), m.uvs.begin(), m.uvs.end());
+        }
+        out.vertex_material.resize(out.vertex_material.size() + m.positions.size(),
+                                   m.material >= 0 ? static_cast<uint16_t>(m.material) : default_material);
         out.positions.insert(out.positions.end(), m.positions.begin(), m.positions.end());
         out.normals.insert(out.normals.end(), m.normals.begin(), m.normals.end());
         out.joints.insert(out.joints.end(), m.joints.begin(), m.joints.end());
@@ -19,6 +28,14 @@ CharacterMesh character_mesh_from_gltf(const GltfCharacter& character, const Ske
         const auto raw = static_cast<size_t>(source[r]);
         if (raw < character.inverse_bind_matrices.size()) out.inverse_bind[r] = character.inverse_bind_matrices[raw];
     }
+    return out;
+}
+
+std::vector<SurfaceMaterial> gltf_surface_materials(const GltfCharacter& character) {
+    std::vector<SurfaceMaterial> out = character.materials;
+    SurfaceMaterial fallback;
+    fallback.name = "glTF default material";
+    out.push_back(fallback);
     return out;
 }
 

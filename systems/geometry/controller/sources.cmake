@@ -1,6 +1,7 @@
 # Geometric controller (part of aloha::geometry): per character type geometry, per-level slot
 # storage, level switches with geomorphing, per-frame update per method, fidelity reference.
 list(APPEND ALOHA_GEOMETRY_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/body_texture.cpp
   ${CMAKE_CURRENT_LIST_DIR}/character_geometry.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_character_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/slot_store.cpp

@@ -1,6 +1,7 @@
 #include "systems/geometry/muscle/muscle_loader.hpp"
 
 #include "engine/core/json_depth.hpp"
+#include "engine/core/text_position.hpp"
 
 #include <filesystem>
 
@@ -85,20 +86,6 @@ struct Reader {
         vec<3>(*it, "offset", where, a.offset, false);
     }
 };
-
-// 1-based line and column of byte offset `pos` in `text`.
-void line_column(const std::string& text, size_t pos, int& line, int& column) {
-    line = 1;
-    column = 1;
-    for (size_t i = 0; i < pos && i < text.size(); ++i) {
-        if (text[i] == '\n') {
-            ++line;
-            column = 1;
-        } else {
-            ++column;
-        }
-    }
-}
 
 }  // namespace
 
@@ -200,7 +187,7 @@ Result<std::vector<MuscleDef>> load_muscle_defs(const std::string& path) {
         return make_error(path, std::string("JSON number out of range: ") + e.what());
     } catch (const json::parse_error& e) {
         int line = 0, column = 0;
-        line_column(text, e.byte > 0 ? e.byte - 1 : 0, line, column);
+        line_column_of(text, e.byte > 0 ? e.byte - 1 : 0, &line, &column);
         return make_error(path, std::string("JSON syntax error: ") + e.what(), line, column);
     }
     return parse_muscle_defs(doc, path);

@@ -4,6 +4,7 @@
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/lit_pipeline.hpp"
+#include "engine/gpu/texture.hpp"
 #include "engine/gpu/offscreen_target.hpp"
 #include "engine/gpu/png.hpp"
 
@@ -78,9 +79,18 @@ TEST(LitMesh, QuadCoverageColourDepthAndOrientation) {
         Buffer ib = make_buffer(ctx, inst, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         Buffer lb = make_buffer(ctx, lines, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
         Buffer xb = make_buffer(ctx, idx, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        Buffer lightb = make_buffer(ctx, std::vector<LitLighting>(1), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        Buffer uvb = make_buffer(ctx, std::vector<glm::vec2>(1), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        const std::vector<uint8_t> white_texel = {255, 255, 255, 255};
+        Result<Texture> white = Texture::create(ctx, 1, 1, white_texel);
+        ASSERT_TRUE(white.ok()) << white.error().to_string();
         Result<VkDescriptorSet> set = pipes.value().allocate_set();
         ASSERT_TRUE(set.ok()) << set.error().to_string();
-        pipes.value().write_set(set.value(), pb, nb, ib, lb);
+        pipes.value().write_set(set.value(), pb, nb, ib, lb, lightb);
+        // The untextured mode still binds a material set (the shader declares it): UVs unused, white texel.
+        Result<VkDescriptorSet> material = pipes.value().material_set(uvb, white.value().view(), white.value().sampler());
+        ASSERT_TRUE(material.ok()) << material.error().to_string();
+        const VkDescriptorSet sets[2] = {set.value(), material.value()};
 
         const glm::vec3 eye(0, 0, 3);
         LitPush push;
@@ -109,8 +119,7 @@ TEST(LitMesh, QuadCoverageColourDepthAndOrientation) {
             vkCmdSetViewport(cmd, 0, 1, &vp);
             vkCmdSetScissor(cmd, 0, 1, &sc);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lp.mesh());
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lp.layout(), 0, 1, &set.value(), 0,
-                                    nullptr);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lp.layout(), 0, 2, sets, 0, nullptr);
             vkCmdPushConstants(cmd, lp.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof(LitPush), &push);
             vkCmdBindIndexBuffer(cmd, xb.handle(), 0, VK_INDEX_TYPE_UINT32);

@@ -1,5 +1,6 @@
 #include "engine/scene/scene_loader.hpp"
 #include "engine/scene/world.hpp"
+#include "tests/engine/scene/world_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -22,11 +23,7 @@ SceneDesc small_crowd(uint32_t count, CrowdMix mix = {0.6f, 0.3f, 0.1f}) {
     return s;
 }
 
-std::unique_ptr<World> make_world(const SceneDesc& s, WorldOptions o = {}) {
-    auto w = World::create(s, o);
-    EXPECT_TRUE(w.ok()) << (w.ok() ? "" : w.error().to_string());
-    return w.ok() ? std::move(w.value()) : nullptr;
-}
+using scene_test::make_world;
 
 TEST(World, SameSceneSameHashAcrossRunsAndThreadCounts) {
     const SceneDesc s = small_crowd(300);

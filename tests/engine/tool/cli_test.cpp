@@ -25,6 +25,26 @@ TEST(Cli, ParsesProfileOptions) {
     EXPECT_TRUE(o.fidelity);
 }
 
+TEST(Cli, ParsesBudgetTierAndOcclusionOptions) {
+    auto r = parse({"profile", "scene.json", "--budget", "off", "--budget-animation-ms", "1.5", "--budget-geometry-ms",
+                    "4", "--budget-single-ms", "6", "--tier", "medium", "--occlusion", "off"});
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const CliOptions& o = r.value();
+    ASSERT_TRUE(o.budget.has_value());
+    EXPECT_FALSE(*o.budget);
+    EXPECT_DOUBLE_EQ(*o.budget_animation_ms, 1.5);
+    EXPECT_DOUBLE_EQ(*o.budget_geometry_ms, 4.0);
+    EXPECT_DOUBLE_EQ(*o.budget_single_ms, 6.0);
+    EXPECT_FALSE(o.budget_ms.has_value());
+    EXPECT_EQ(o.tier, "medium");
+    EXPECT_FALSE(o.occlusion);
+    auto d = parse({"profile", "scene.json"});
+    ASSERT_TRUE(d.ok());
+    EXPECT_FALSE(d.value().budget.has_value());  // the rule file decides
+    EXPECT_TRUE(d.value().occlusion);
+    EXPECT_TRUE(d.value().tier.empty());
+}
+
 TEST(Cli, RejectsBadArgumentsNamingThem) {
     struct Case { std::vector<std::string> args; std::string words; };
     const std::vector<Case> cases = {
@@ -37,6 +57,10 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"profile", "s.json", "--lod", "maybe"}, "--lod expects on or off"},
         {{"profile", "s.json", "--budget-ms", "nan"}, "--budget-ms"},
         {{"profile", "s.json", "--budget-ms", "-1"}, "--budget-ms"},
+        {{"profile", "s.json", "--budget-geometry-ms", "0"}, "--budget-geometry-ms expects"},
+        {{"profile", "s.json", "--budget", "maybe"}, "--budget expects on or off"},
+        {{"profile", "s.json", "--occlusion", "1"}, "--occlusion expects on or off"},
+        {{"profile", "s.json", "--tier"}, "'--tier' needs a value"},
         {{"profile", "s.json", "--threads", "1000"}, "[0, 256]"},
         {{"profile", "s.json", "--frame", "3"}, "not known to 'aloha profile'"},
         {{"render", "s.json", "--warmup", "3"}, "not known to 'aloha render'"},

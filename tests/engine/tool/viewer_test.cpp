@@ -109,7 +109,7 @@ TEST(ViewerCamera, FlyMovesAtItsSpeed) {
 // A small rule file: three geometric levels, one rule with a two-sided distance range.
 std::string small_rules(int geom_levels, float near_hi) {
     nlohmann::json j;
-    j["hysteresis"] = {{"band", 0.1}, {"min_frames", 5}};
+    j["hysteresis"] = {{"band", 0.1}, {"min_seconds", 0.08}};
     j["geometric_levels"] = nlohmann::json::array();
     for (int i = 0; i < geom_levels; ++i)
         j["geometric_levels"].push_back({{"name", "g" + std::to_string(i)}, {"method", "rigid_proxy"}});
@@ -145,10 +145,11 @@ TEST(ViewerRules, HysteresisEditEqualsTheParsedFile) {
     RuleTable edited = parse_ok(ss.str());
     nlohmann::json j = nlohmann::json::parse(ss.str(), nullptr, true, /*ignore_comments=*/true);
     j["hysteresis"]["band"] = 0.25;
-    j["hysteresis"]["min_frames"] = 3;
+    j["hysteresis"]["min_seconds"] = 0.05;
     const RuleTable expected = parse_ok(j.dump());
-    set_hysteresis(edited, 0.25f, 3);
-    EXPECT_EQ(edited.hysteresis.min_frames, 3);
+    set_hysteresis(edited, 0.25f, 0.05f);
+    EXPECT_EQ(edited.hysteresis.min_seconds, 0.05f);
+    EXPECT_EQ(edited.hysteresis.min_seconds, expected.hysteresis.min_seconds);
     expect_same_boxes(edited, expected);
     EXPECT_TRUE(validate_edited_table(edited));
 }
@@ -203,15 +204,15 @@ TEST(ViewerRules, ReloadRestoresTheFileAndOnlyClampsState) {
     { std::ofstream(path) << small_rules(2, 50.0f); }  // one geometric level fewer
     std::vector<LodState> states(3);
     states[0].geom_level = 2;
-    states[0].frames_at_geom = 17;
+    states[0].seconds_at_geom = 17.0f;
     states[1].geom_level = 1;
-    states[1].crossfade_left = 4;
+    states[1].crossfade_left_s = 0.25f;
     ASSERT_TRUE(reload_rules_keep_state(set, states).ok());
     EXPECT_EQ(threshold_value(set.table(), editable_thresholds(set.table())[1]), 50.0f);
     EXPECT_EQ(states[0].geom_level, 1);       // clamped into the 2-level table
-    EXPECT_EQ(states[0].frames_at_geom, 17);  // timers untouched
+    EXPECT_EQ(states[0].seconds_at_geom, 17.0f);  // timers untouched
     EXPECT_EQ(states[1].geom_level, 1);
-    EXPECT_EQ(states[1].crossfade_left, 4);
+    EXPECT_EQ(states[1].crossfade_left_s, 0.25f);
     { std::ofstream(path) << "{ broken"; }
     const uint32_t gen = set.generation();
     EXPECT_FALSE(reload_rules_keep_state(set, states).ok());

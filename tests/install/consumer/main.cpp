@@ -128,6 +128,7 @@ int main(int argc, char** argv) {
         resolve.anim = g.anim;
         resolve.changed_indices = changed;
         resolve.snap = frame == 0;
+        resolve.dt = frame == 0 ? 0.0f : dt;
         const size_t switched = resolve.Run();
         // Level switches go to the geometric controller (it geomorphs from the old surface).
         if (frame == 0) {
@@ -136,7 +137,8 @@ int main(int argc, char** argv) {
             for (size_t k = 0; k < switched; ++k) {
                 const uint32_t c = changed[k];
                 if (shapes.level_of(c) != g.lod[c].geom_level)
-                    shapes.begin_level(c, g.lod[c].geom_level, static_cast<int8_t>(g.lod[c].prev_geom_level), g.geom[c].geomorph_frames);
+                    shapes.begin_level(c, g.lod[c].geom_level, static_cast<int8_t>(g.lod[c].prev_geom_level),
+                                      aloha::transition_frames(g.geom[c].geomorph_s, dt));
             }
         }
         MotionUpdateJob animate{&motion, dt, g.anim, g.motion, g.transforms, g.velocities};

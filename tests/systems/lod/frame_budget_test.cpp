@@ -61,14 +61,14 @@ struct Sim {
         RuleEvalJob{&table, attrs, states, 1, req}.Run();
         std::vector<LodState> fresh(states.end() - static_cast<std::ptrdiff_t>(n), states.end());
         LodResolveJob{&table, std::span<const LodRequest>(req).last(n), fresh,
-                      std::span<GeomLod>(geom).last(n), std::span<AnimLod>(anim).last(n), {}, {}, 0, true}.Run();
+                      std::span<GeomLod>(geom).last(n), std::span<AnimLod>(anim).last(n), {}, {}, 0, 0.0f, true}.Run();
         std::copy(fresh.begin(), fresh.end(), states.end() - static_cast<std::ptrdiff_t>(n));
     }
     void frame() {
         const BudgetStep s = budget.update(measured, attrs, states, table);
         if (s.direction != 0) directions.push_back(s.direction);
         RuleEvalJob{&table, attrs, states, 1, req}.Run();
-        LodResolveJob{&table, req, states, geom, anim, {}, {}, 0, false}.Run();
+        LodResolveJob{&table, req, states, geom, anim, {}, {}, 0, lod_test::kFrameDt, false}.Run();
         measured = 0.0f;
         for (const LodState& st : states) measured += kGeomCost[st.geom_level] + kAnimCost[st.anim_level];
     }

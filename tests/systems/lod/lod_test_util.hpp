@@ -10,22 +10,25 @@
 
 namespace aloha::lod_test {
 
-/// A small valid rule file: 4 geometric levels (rich, mid, proxy, hidden), 3 animation levels,
+/// The frame time the lod tests step at (60 Hz) unless a test says otherwise.
+inline constexpr float kFrameDt = 1.0f / 60.0f;
+
+/// A small valid rule file (min_seconds 0.08: a switch after 5 frames at 60 Hz): 4 geometric levels (rich, mid, proxy, hidden), 3 animation levels,
 /// rules near (distance < 10), mid (distance < 20), off (not visible), far (fallback).
 inline nlohmann::json small_rules() {
     return nlohmann::json::parse(R"({
       "tiers": ["low", "high"],
       "default_tier": "high",
-      "hysteresis": { "band": 0.1, "min_frames": 5 },
+      "hysteresis": { "band": 0.1, "min_seconds": 0.08 },
       "geometric_levels": [
-        { "name": "rich", "method": "layered", "theta_steps": 16, "phi_steps": 12, "geomorph_frames": 8 },
-        { "name": "mid", "method": "skinned_mesh", "geomorph_frames": 4 },
+        { "name": "rich", "method": "layered", "theta_steps": 16, "phi_steps": 12, "geomorph_s": 0.2 },
+        { "name": "mid", "method": "skinned_mesh", "geomorph_s": 0.1 },
         { "name": "proxy", "method": "rigid_proxy" },
         { "name": "hidden", "method": "hidden" }
       ],
       "animation_levels": [
-        { "name": "full", "walk": "dynamic", "ik": "dls", "ik_iterations": 10, "crossfade_frames": 6 },
-        { "name": "kin", "walk": "kinematic", "ik": "ccd", "ik_iterations": 3, "update_interval": 2, "crossfade_frames": 3 },
+        { "name": "full", "walk": "dynamic", "ik": "dls", "ik_iterations": 10, "crossfade_s": 0.15 },
+        { "name": "kin", "walk": "kinematic", "ik": "ccd", "ik_iterations": 3, "update_interval": 2, "crossfade_s": 0.05 },
         { "name": "clip", "walk": "clip", "update_interval": 8 }
       ],
       "rules": [

@@ -12,6 +12,7 @@ namespace aloha {
 namespace {
 
 using lod_test::at_distance;
+using lod_test::kFrameDt;
 using lod_test::must_parse;
 using lod_test::small_rules;
 
@@ -23,7 +24,7 @@ struct Frame {
     std::vector<uint32_t> indices;
     explicit Frame(size_t n) : states(n), geom(n), anim(n), flags(n), indices(n) {}
     size_t resolve(const RuleTable& t, const std::vector<LodRequest>& req, bool snap = false) {
-        LodResolveJob job{&t, req, states, geom, anim, flags, indices, 100, snap};
+        LodResolveJob job{&t, req, states, geom, anim, flags, indices, 100, snap ? 0.0f : kFrameDt, snap};
         std::vector<std::string> errors;
         EXPECT_TRUE(job.Validate(&errors));
         return job.Run();
@@ -37,8 +38,8 @@ TEST(Resolver, SnapTakesRequestsWithoutTransitions) {
     Frame f(2);
     EXPECT_EQ(f.resolve(t, {request(2, 2, 3), request(0, 0, 0)}, true), 1u);  // only #0 differs from 0/0
     EXPECT_EQ(f.states[0].geom_level, 2);
-    EXPECT_EQ(f.states[0].geomorph_left, 0);
-    EXPECT_EQ(f.states[0].crossfade_left, 0);
+    EXPECT_EQ(f.states[0].geomorph_left_s, 0.0f);
+    EXPECT_EQ(f.states[0].crossfade_left_s, 0.0f);
     EXPECT_EQ(f.states[0].rule_id, 3);
     EXPECT_EQ(f.geom[0].method, GeomMethod::RigidProxy);
     EXPECT_EQ(f.anim[0].update_interval, 8);
@@ -47,11 +48,11 @@ TEST(Resolver, SnapTakesRequestsWithoutTransitions) {
     EXPECT_EQ(f.flags[1], 0);
 }
 
-TEST(Resolver, MinimumFramesAtALevelAndTransitions) {
-    const RuleTable t = must_parse(small_rules());  // min_frames 5
+TEST(Resolver, MinimumTimeAtALevelAndTransitions) {
+    const RuleTable t = must_parse(small_rules());  // min_seconds 0.08: 5 frames of 1/60 s
     Frame f(1);
     f.resolve(t, {request(2, 2, 3)}, true);
-    // Request "near" (rich, full) at once: held until the level has been kept 5 frames.
+    // Request "near" (rich, full) at once: held until the level has been kept 0.08 s (5 frames).
     int switched_at = -1;
     for (int frame = 1; frame <= 10; ++frame) {
         if (f.resolve(t, {request(0, 0, 1)}) == 1) {
@@ -59,19 +60,22 @@ TEST(Resolver, MinimumFramesAtALevelAndTransitions) {
             switched_at = frame;
             EXPECT_EQ(f.states[0].geom_level, 0);
             EXPECT_EQ(f.states[0].prev_geom_level, 2);
-            EXPECT_EQ(f.states[0].geomorph_left, 8);   // entered level's geomorph_frames
-            EXPECT_EQ(f.geom[0].geomorph_frames, 8);
+            EXPECT_EQ(f.states[0].geomorph_left_s, 0.2f);   // entered level's geomorph_s
+            EXPECT_EQ(f.geom[0].geomorph_s, 0.2f);
+            EXPECT_EQ(f.states[0].seconds_at_geom, 0.0f);
             EXPECT_EQ(f.states[0].prev_anim_level, 2);
-            EXPECT_EQ(f.states[0].crossfade_left, 6);  // entered level's crossfade_frames
+            EXPECT_EQ(f.states[0].crossfade_left_s, 0.15f);  // entered level's crossfade_s
             EXPECT_EQ(f.states[0].rule_id, 1);
         } else if (switched_at < 0) {
             EXPECT_EQ(f.states[0].rule_id, 3);  // the rule that produced the current levels
         }
     }
     EXPECT_EQ(switched_at, 5);
-    // Six more frames after the switch: the morph counts down 8 -> 3, the cross-fade 6 -> 1.
-    EXPECT_EQ(f.states[0].geomorph_left, 3);
-    EXPECT_EQ(f.states[0].crossfade_left, 1);
+    // Five more frames (5/60 s) after the switch: the morph counts down 0.2 -> 0.1167 s, the
+    // cross-fade 0.15 -> 0.0667 s (float sums of five steps: 1e-6 s).
+    EXPECT_NEAR(f.states[0].geomorph_left_s, 0.2f - 5.0f * kFrameDt, 1e-6f);
+    EXPECT_NEAR(f.states[0].crossfade_left_s, 0.15f - 5.0f * kFrameDt, 1e-6f);
+    EXPECT_NEAR(f.states[0].seconds_at_geom, 5.0f * kFrameDt, 1e-6f);
 }
 
 TEST(Resolver, LeavingHiddenIsImmediate) {
@@ -89,7 +93,8 @@ TEST(Resolver, BudgetDemotionNeverHidesAVisibleCharacter) {
     EXPECT_EQ(demoted_geom_level(t, 3, 1), 3);   // hidden stays hidden
     EXPECT_EQ(demoted_anim_level(t, 1, 9), 2);
     Frame f(1);
-    f.states[0].budget_demotion = 1;
+    f.states[0].budget_demotion = 1;  // geometric levels removed
+    f.states[0].anim_demotion = 1;    // animation levels removed (separate since the part budgets)
     f.resolve(t, {request(0, 0, 1)}, true);
     EXPECT_EQ(f.states[0].geom_level, 1);
     EXPECT_EQ(f.states[0].anim_level, 1);
@@ -133,7 +138,7 @@ TEST(Resolver, NoFlickerAtAThreshold) {
     const RuleTable with = must_parse(small_rules());  // band 0.1 (threshold 20 -> leave above 22)
     EXPECT_LE(switches_at_threshold(with), 1);
     auto j = small_rules();
-    j["hysteresis"] = {{"band", 0.0}, {"min_frames", 0}};
+    j["hysteresis"] = {{"band", 0.0}, {"min_seconds", 0}};
     const RuleTable without = must_parse(j);
     // Without hysteresis the level follows the sign of the noise: about half the frames switch.
     EXPECT_GT(switches_at_threshold(without), 300);

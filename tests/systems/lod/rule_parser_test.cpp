@@ -64,10 +64,10 @@ TEST(RuleParser, SmallFileCompiles) {
     EXPECT_EQ(t.geom_levels[0].layers, kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin);
     EXPECT_EQ(t.geom_levels[1].layers, kLayerSkeleton | kLayerSkin);
     EXPECT_EQ(t.anim_levels[1].update_interval, 2);
-    EXPECT_EQ(t.hysteresis.min_frames, 5);
+    EXPECT_EQ(t.hysteresis.min_seconds, 0.08f);
     EXPECT_FALSE(t.budget.has_value());
     EXPECT_EQ(t.find_rule("mid"), 2);
-    EXPECT_EQ(t.geom_lod(1).geomorph_frames, 4);
+    EXPECT_EQ(t.geom_lod(1).geomorph_s, 0.1f);
     EXPECT_EQ(t.anim_lod(200).level, 2);  // clamped to the last level
 }
 

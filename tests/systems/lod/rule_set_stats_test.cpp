@@ -42,7 +42,7 @@ struct Pipeline {
         : attrs(std::move(a)), req(attrs.size()), states(attrs.size()), geom(attrs.size()), anim(attrs.size()) {}
     void frame(const RuleTable& t, bool snap = false) {
         RuleEvalJob{&t, attrs, states, t.default_tier, req}.Run();
-        LodResolveJob{&t, req, states, geom, anim, {}, {}, 0, snap}.Run();
+        LodResolveJob{&t, req, states, geom, anim, {}, {}, 0, snap ? 0.0f : lod_test::kFrameDt, snap}.Run();
     }
 };
 
@@ -75,12 +75,12 @@ TEST(RuleSet, ReloadMidRunKeepsStatesAndAppliesNewThresholds) {
     EXPECT_EQ(set.generation(), 2u);
     // Nothing was reset by the reload itself.
     EXPECT_EQ(p.states[0].geom_level, before.geom_level);
-    EXPECT_EQ(p.states[0].frames_at_geom, before.frames_at_geom);
+    EXPECT_EQ(p.states[0].seconds_at_geom, before.seconds_at_geom);
     p.frame(set.table());
-    EXPECT_EQ(p.states[0].geom_level, 0);  // 15 < 16: near (held > min_frames, so it switches at once)
+    EXPECT_EQ(p.states[0].geom_level, 0);  // 15 < 16: near (held > min_seconds, so it switches at once)
     EXPECT_EQ(p.states[1].geom_level, 1);  // 30 < 40: mid
     EXPECT_EQ(p.states[0].prev_geom_level, 1);  // a normal transition from the kept level
-    EXPECT_GT(p.states[0].geomorph_left, 0);
+    EXPECT_GT(p.states[0].geomorph_left_s, 0.0f);
 
     // A broken edit: the error names the file and the old table stays.
     write_file(path, "{ \"rules\": [ }", base, 20);
@@ -135,6 +135,7 @@ TEST(LodStats, ExplainOneCharacter) {
     const RuleTable t = must_parse(small_rules());
     Pipeline p({at_distance(15.0f)});
     p.states[0].budget_demotion = 1;
+    p.states[0].anim_demotion = 1;
     p.frame(t, true);
     const LodExplanation e = explain(t, 0, p.attrs, p.states);
     EXPECT_EQ(e.rule_name, "mid");
@@ -149,6 +150,7 @@ TEST(LodStats, ExplainOneCharacter) {
     EXPECT_EQ(j["geometry"]["method"], "rigid_proxy");
     EXPECT_EQ(j["animation"]["walk"], "clip");
     EXPECT_EQ(j["budget_demotion"], 1);
+    EXPECT_EQ(j["anim_budget_demotion"], 1);
     EXPECT_EQ(j["attributes"]["visible"], true);
 }
 

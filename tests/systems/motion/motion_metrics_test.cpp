@@ -4,6 +4,7 @@
 #include "systems/motion/library/motion_library.hpp"
 #include "systems/motion/motion_metrics.hpp"
 #include "tests/common/test_humanoid.hpp"
+#include "tests/systems/motion/generated_gait_fixture.hpp"
 #include "tests/systems/motion/walk_request.hpp"
 
 #include <gtest/gtest.h>
@@ -51,15 +52,15 @@ TEST(PopMeter, SeparatesSwitchFramesFromOrdinaryOnes) {
     const glm::vec3 jump[2] = {glm::vec3(1.04f, 0, 0), glm::vec3(0, 0.1f, 0)};  // 5 cm on the switch frame
     m.add(jump, true);
     EXPECT_NEAR(m.ordinary_p95(), 0.01f, 1e-6f);
+    EXPECT_NEAR(m.ordinary_max(), 0.01f, 1e-6f);
     EXPECT_NEAR(m.worst_switch(), 0.05f, 1e-5f);
     EXPECT_EQ(m.switches(), 1u);
 }
 
-class MeteredWalk : public ::testing::Test {
+class MeteredWalk : public test::GeneratedGait {
 protected:
     void SetUp() override {
-        const MotionLibrary lib = make_motion_library(sk, rig, "h");
-        for (const RawAnimation& g : lib.gaits) gaits.push_back(clips.add(g, sk).value());
+        GeneratedGait::SetUp();
         for (const char* name : {"LeftAnkle", "LeftToe", "RightAnkle", "RightToe"}) feet.push_back(sk.find(name));
         for (int foot : feet) ASSERT_GE(foot, 0);
         soles = sole_offsets(sk, feet);
@@ -67,33 +68,23 @@ protected:
     // Walks at 1.4 m/s for `seconds`; `lod_at(frame, lod)` may change the level each frame.
     template <class LodAt>
     void walk(float seconds, FootSkateMeter& skate, PopMeter& pops, LodAt lod_at) {
-        MotionController mc(sk, clips, 1);
-        mc.set_walk_rig(rig);
-        mc.set_walk_clips(gaits);
-        std::vector<AnimLod> lods(1);
-        std::vector<MotionState> states(1);
-        std::vector<Transform> xs(1);
-        std::vector<Velocity> vs(1);
-        ASSERT_TRUE(mc.push_request(0, test::straight_walk(1.4f)));
-        std::vector<glm::vec3> world(static_cast<size_t>(sk.joint_count()));
+        Walker w(*this, 1.4f);
+        std::vector<glm::vec3> world;
         std::vector<glm::vec3> foot(feet.size());
         for (int f = 0; f < static_cast<int>(seconds / kDt); ++f) {
-            const AnimLod before = lods[0];
-            lod_at(f, lods[0]);
-            const bool switched = before.walk != lods[0].walk || before.update_interval != lods[0].update_interval;
-            mc.update(kDt, lods, states, xs, vs);
-            const auto model = mc.poses().view(0).model;
-            for (size_t j = 0; j < world.size(); ++j) world[j] = xs[0].position + xs[0].rotation * glm::vec3(model[j][3]);
+            const AnimLod before = w.lod();
+            lod_at(f, w.lod());
+            const bool switched = before.walk != w.lod().walk || before.update_interval != w.lod().update_interval;
+            w.step(kDt);
+            w.world_joints(world);
+            const auto model = w.mc.poses().view(0).model;
+            const Transform& x = w.xs[0];
             for (size_t k = 0; k < feet.size(); ++k)
-                foot[k] = xs[0].position + xs[0].rotation * glm::vec3(model[static_cast<size_t>(feet[k])] * glm::vec4(soles[k], 1.0f));
-            skate.add(foot, xs[0].position, kDt);
+                foot[k] = x.position + x.rotation * glm::vec3(model[static_cast<size_t>(feet[k])] * glm::vec4(soles[k], 1.0f));
+            skate.add(foot, x.position, kDt);
             pops.add(world, switched);
         }
     }
-    Skeleton sk = test::humanoid_skeleton_for();
-    WalkRig rig = test::humanoid_rig(sk);
-    ClipLibrary clips;
-    std::vector<ClipId> gaits;
     std::vector<int> feet;
     std::vector<glm::vec3> soles;
 };
@@ -122,7 +113,7 @@ TEST_F(MeteredWalk, WalkMethodSwitchesAgainstOrdinaryFrames) {
     PopMeter pops;
     walk(8.0f, skate, pops, [](int frame, AnimLod& lod) {
         lod.walk = (frame / 60) % 2 ? WalkMethod::Kinematic : WalkMethod::ClipPlayback;
-        lod.crossfade_frames = 12;
+        lod.crossfade_s = 0.2f;
     });
     std::printf("clip <-> kinematic every 1 s: %zu switches, worst switch-frame joint jump %.2f cm, ordinary p95 %.2f cm, "
                 "skate %.2f mm per metre\n",

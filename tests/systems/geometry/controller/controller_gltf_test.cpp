@@ -75,6 +75,17 @@ TEST(GeometryControllerGltf, CesiumManWorksAtEveryLevel) {
     for (uint8_t l = 1; l <= 3; ++l) EXPECT_EQ(ctl.vertices_per_character(l), n);
     EXPECT_GT(ctl.vertices_per_character(0), n);
     EXPECT_EQ(ctl.level_indices(1).size(), g.mesh().indices.size());
+    // CesiumMan's one textured material: its UVs reach every mesh level (through the subdivision
+    // stencils at level 0, as weighted sums of UVs in [0, 1]: still in [0, 1]).
+    ASSERT_EQ(g.mesh().uvs.size(), n);
+    for (uint8_t l = 0; l <= 3; ++l) {
+        ASSERT_EQ(ctl.level_uvs(l).size(), ctl.vertices_per_character(l)) << int(l);
+        ASSERT_EQ(ctl.level_vertex_materials(l).size(), ctl.vertices_per_character(l)) << int(l);
+    }
+    for (const glm::vec2& uv : ctl.level_uvs(0)) {
+        ASSERT_GE(uv.x, -1e-5f);
+        ASSERT_LE(uv.x, 1.0f + 1e-5f);
+    }
 
     // At the rest pose the real mesh is reproduced: SkinnedMesh by construction (palette = rest *
     // inverse bind) and Layered(16, 12) because it is the bind tessellation, where a binding

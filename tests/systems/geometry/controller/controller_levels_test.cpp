@@ -138,12 +138,12 @@ TEST(GeometryController, SetLevelsKeepsCharactersAndRebuildsWhatChanged) {
     const uint32_t key1 = ctl.topology_key(1), key2 = ctl.topology_key(2);
 
     levels[2].theta_steps = 12;   // changes storage and topology
-    levels[1].geomorph_frames = 9; // does not
+    levels[1].geomorph_s = 0.15f; // does not
     levels.pop_back();            // Hidden level removed: its character moves to the new last level
     ctl.set_levels(levels);
     EXPECT_EQ(ctl.topology_key(1), key1);
     EXPECT_NE(ctl.topology_key(2), key2);
-    EXPECT_EQ(ctl.level(1).geomorph_frames, 9);
+    EXPECT_EQ(ctl.level(1).geomorph_s, 0.15f);
     EXPECT_EQ(ctl.level_of(2), 2);
     EXPECT_EQ(ctl.level_of(5), 4);
     EXPECT_EQ(ctl.vertices_per_character(2), g.muscle_count() * grid_vertex_count(12, 6));

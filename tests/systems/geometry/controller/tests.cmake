@@ -6,5 +6,6 @@ aloha_test(geomctl_tests
     ${CMAKE_CURRENT_LIST_DIR}/controller_morph_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_threads_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_gltf_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/body_texture_test.cpp
   LIBS aloha::geometry aloha::assets aloha::motion
   LABELS geometry)

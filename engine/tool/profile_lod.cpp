@@ -1,0 +1,112 @@
+#include "engine/tool/profile_lod.hpp"
+
+#include "engine/tool/stats.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace aloha::tool {
+
+LodSample sample_lod(const World& world) {
+    LodSample s;
+    s.animation_ms = world.last_animation_ms();
+    s.geometry_ms = world.last_geometry_ms();
+    const auto switches = world.last_level_switches();
+    s.geom_switches = switches[0];
+    s.anim_switches = switches[1];
+    s.visible = world.lod_stats().visible;
+    s.occluded = world.lod_stats().occluded;
+    s.occlusion_histogram = world.lod_stats().occlusion_histogram;
+    return s;
+}
+
+namespace {
+
+// A part's measured series against its target: mean, percentiles, mean / target, frames within 10%.
+nlohmann::json part_json(const std::vector<double>& v, const BudgetStatus::Part& p) {
+    nlohmann::json j = to_json(summarize(v));
+    j["active"] = p.active;
+    if (!p.active) return j;
+    size_t within = 0;
+    for (double x : v) within += std::fabs(x - p.target_ms) <= 0.1 * p.target_ms;
+    const double mean = j["mean"].get<double>();
+    j["target_ms"] = p.target_ms;
+    j["band_ms_at_end"] = p.band_ms;
+    j["mean_over_target"] = p.target_ms > 0 ? mean / p.target_ms : 0.0;
+    j["mean_within_10_percent"] = std::fabs(mean - p.target_ms) <= 0.1 * p.target_ms;
+    j["frames_within_10_percent"] = v.empty() ? 0.0 : double(within) / double(v.size());
+    j["learned_cost_ms_per_character"] = p.level_cost_ms;
+    j["learned_marginal_ms_per_character"] = p.level_marginal_ms;
+    return j;
+}
+
+}  // namespace
+
+void add_lod_report(const World& world, const std::vector<LodSample>& samples, double dt, nlohmann::json& report) {
+    const RuleTable& table = world.rules().table();
+    const TierChoice& tier = world.tier();
+    report["tier"] = {{"name", tier.tier < table.tiers.size() ? table.tiers[tier.tier] : std::string("?")},
+                      {"index", tier.tier},
+                      {"reason", tier.reason}};
+    const BudgetStatus b = world.budget_status();
+    std::vector<double> anim, geom;
+    double geom_switches = 0, anim_switches = 0, occluded_fraction = 0;
+    uint64_t occluded = 0, visible = 0;
+    std::array<double, 5> histogram{};
+    for (const LodSample& s : samples) {
+        for (size_t k = 0; k < histogram.size(); ++k) histogram[k] += double(s.occlusion_histogram[k]) / double(samples.size());
+        anim.push_back(s.animation_ms);
+        geom.push_back(s.geometry_ms);
+        geom_switches += s.geom_switches;
+        anim_switches += s.anim_switches;
+        occluded += s.occluded;
+        visible += s.visible;
+        occluded_fraction += s.visible ? double(s.occluded) / double(s.visible) : 0.0;
+    }
+    const char* mode = b.mode == BudgetStatus::Mode::Parts ? "parts" : b.mode == BudgetStatus::Mode::Total ? "total" : "off";
+    nlohmann::json budget = {{"mode", mode}};
+    if (b.mode == BudgetStatus::Mode::Total) budget["target_ms"] = b.params.target_ms;
+    budget["animation"] = part_json(anim, b.animation);
+    budget["geometry"] = part_json(geom, b.geometry);
+    report["budget"] = budget;
+    const double seconds = double(samples.size()) * dt;
+    report["level_changes_per_second"] = {{"geometric", seconds > 0 ? geom_switches / seconds : 0.0},
+                                          {"animation", seconds > 0 ? anim_switches / seconds : 0.0}};
+    report["occlusion"] = {{"enabled", world.options().occlusion},
+                           {"fully_occluded_per_frame", samples.empty() ? 0.0 : double(occluded) / double(samples.size())},
+                           {"visible_per_frame", samples.empty() ? 0.0 : double(visible) / double(samples.size())},
+                           {"fraction_of_visible", samples.empty() ? 0.0 : occluded_fraction / double(samples.size())},
+                           {"visible_by_occluded_fraction_per_frame",
+                            {{"0", histogram[0]}, {"below_0.5", histogram[1]}, {"0.5_to_0.9", histogram[2]},
+                             {"0.9_to_1", histogram[3]}, {"1", histogram[4]}}}};
+}
+
+std::string lod_summary(const nlohmann::json& r) {
+    std::ostringstream o;
+    o << std::fixed << std::setprecision(3);
+    o << "tier " << r["tier"]["name"].get<std::string>() << " (" << r["tier"]["reason"].get<std::string>() << ")\n";
+    const auto& b = r["budget"];
+    o << "budget " << b["mode"].get<std::string>();
+    if (b["mode"] == "total") o << ", target " << b["target_ms"].get<double>() << " ms (CPU systems)";
+    o << "\n";
+    for (const char* part : {"animation", "geometry"}) {
+        const auto& p = b[part];
+        o << "  " << std::left << std::setw(10) << part << std::right << " mean " << p["mean"].get<double>() << " ms";
+        if (p["active"].get<bool>())
+            o << ", target " << p["target_ms"].get<double>() << " ms, mean/target " << p["mean_over_target"].get<double>()
+              << (p["mean_within_10_percent"].get<bool>() ? " (within 10%)" : " (NOT within 10%)") << ", frames within 10% "
+              << p["frames_within_10_percent"].get<double>();
+        o << "\n";
+    }
+    o << std::setprecision(1) << "level changes per second: geometric " << r["level_changes_per_second"]["geometric"].get<double>()
+      << ", animation " << r["level_changes_per_second"]["animation"].get<double>() << "\n";
+    const auto& occ = r["occlusion"];
+    if (occ["enabled"].get<bool>())
+        o << "occlusion: " << occ["fully_occluded_per_frame"].get<double>() << " of " << occ["visible_per_frame"].get<double>()
+          << " visible characters fully occluded per frame (" << std::setprecision(3)
+          << 100.0 * occ["fraction_of_visible"].get<double>() << "%)\n";
+    return o.str();
+}
+
+}  // namespace aloha::tool

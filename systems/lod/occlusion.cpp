@@ -1,0 +1,157 @@
+#include "systems/lod/occlusion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace aloha {
+
+void OcclusionGrid::resize(glm::vec2 viewport_px, float cell_px) {
+    width = std::max(1, static_cast<int>(std::ceil(viewport_px.x / cell_px)));
+    height = std::max(1, static_cast<int>(std::ceil(viewport_px.y / cell_px)));
+    depth.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+}
+
+bool OcclusionJob::Validate(std::vector<std::string>* errors) const {
+    bool ok = true;
+    auto fail = [&](std::string m) {
+        ok = false;
+        if (errors) errors->push_back("OcclusionJob: " + std::move(m));
+    };
+    if (attributes.size() != transforms.size()) fail("attributes size differs from transforms");
+    if (!bounds.empty() && bounds.size() != transforms.size()) fail("bounds size differs from transforms (and is not empty)");
+    if (!geom.empty() && geom.size() != transforms.size()) fail("geom size differs from transforms (and is not empty)");
+    if (!(params.enter_margin_px >= 0.0f)) fail("enter_margin_px must be >= 0");
+    if (grid == nullptr) fail("needs a grid (scratch)");
+    if (!(params.cell_px >= 1.0f)) fail("cell_px must be >= 1");
+    if (!(camera.viewport_px.x > 0.0f && camera.viewport_px.y > 0.0f)) fail("camera viewport must be > 0 pixels");
+    if (!(camera.viewport_px.x / std::max(params.cell_px, 1.0f) <= 8192.0f &&
+          camera.viewport_px.y / std::max(params.cell_px, 1.0f) <= 8192.0f))
+        fail("grid would exceed 8192 cells per side: raise cell_px");
+    if (!(camera.near_plane > 0.0f)) fail("camera needs near > 0");
+    if (!(params.torso_y0 < params.torso_y1 && params.neck_y0 < params.neck_y1 && params.head_y0 < params.head_y1 &&
+          params.torso_radius >= 0.0f && params.neck_radius >= 0.0f && params.head_radius >= 0.0f))
+        fail("core shapes need y0 < y1 and radius >= 0");
+    return ok;
+}
+
+namespace {
+
+struct Projector {
+    glm::mat4 view_proj;
+    glm::vec4 depth_row;  // view depth = depth_row . (p, 1)
+    glm::vec2 half_viewport;
+    float fx = 0.0f;      // pixels per unit of x (divided by depth when perspective)
+    float near_plane = 0.0f;
+    bool perspective = true;
+
+    // Pixel position and view depth of `p`; false when at or behind the near plane.
+    bool project(const glm::vec3& p, glm::vec2& px, float& z) const {
+        z = glm::dot(depth_row, glm::vec4(p, 1.0f));
+        if (!(z > near_plane)) return false;
+        const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
+        px = glm::vec2((c.x / c.w + 1.0f) * half_viewport.x, (1.0f - c.y / c.w) * half_viewport.y);
+        return true;
+    }
+};
+
+}  // namespace
+
+size_t OcclusionJob::Run() const {
+    OcclusionGrid& g = *grid;
+    const float cell = params.cell_px;
+    g.resize(camera.viewport_px, cell);
+    constexpr float kFar = std::numeric_limits<float>::infinity();
+    std::fill(g.depth.begin(), g.depth.end(), kFar);
+    Projector pr;
+    pr.view_proj = camera.projection * camera.view;
+    pr.depth_row = -glm::vec4(camera.view[0][2], camera.view[1][2], camera.view[2][2], camera.view[3][2]);
+    pr.half_viewport = camera.viewport_px * 0.5f;
+    pr.fx = camera.projection[0][0] * pr.half_viewport.x;
+    pr.near_plane = camera.near_plane;
+    pr.perspective = camera.projection[2][3] != 0.0f;
+    // The screen-horizontal segment through an axis point stays inside a vertical cylinder only when the
+    // camera's right vector is horizontal (no roll); otherwise no core is used and nothing is occluded.
+    const bool level_camera = std::fabs(camera.view[1][0]) < 1e-3f;
+    const Bounds default_bounds{};
+
+    // Pass 1: cores of every visible character, inner rectangles, whole cells only.
+    auto rasterise_core = [&](const glm::vec3& base, float h, float y0, float y1, float radius) {
+        glm::vec2 pb(0.0f), pt(0.0f);
+        float zb = 0.0f, zt = 0.0f;
+        if (!pr.project(base + glm::vec3(0.0f, y0 * h, 0.0f), pb, zb) ||
+            !pr.project(base + glm::vec3(0.0f, y1 * h, 0.0f), pt, zt))
+            return;
+        const float far_z = std::max(zb, zt);
+        const float half_w = radius * h * pr.fx / (pr.perspective ? far_z : 1.0f);
+        const float x0 = std::max(pb.x, pt.x) - half_w, x1 = std::min(pb.x, pt.x) + half_w;
+        const float y_lo = std::min(pb.y, pt.y), y_hi = std::max(pb.y, pt.y);
+        const int cx0 = std::max(0, static_cast<int>(std::ceil(x0 / cell)));
+        const int cx1 = std::min(g.width, static_cast<int>(std::floor(x1 / cell)));
+        const int cy0 = std::max(0, static_cast<int>(std::ceil(y_lo / cell)));
+        const int cy1 = std::min(g.height, static_cast<int>(std::floor(y_hi / cell)));
+        const float depth = far_z + radius * h;
+        for (int y = cy0; y < cy1; ++y) {
+            float* row = g.depth.data() + static_cast<size_t>(y) * static_cast<size_t>(g.width);
+            for (int x = cx0; x < cx1; ++x) row[x] = std::min(row[x], depth);
+        }
+    };
+    for (size_t i = 0; level_camera && i < transforms.size(); ++i) {
+        if (!attributes[i].visible) continue;
+        const Transform& t = transforms[i];
+        const float h = (bounds.empty() ? default_bounds : bounds[i]).height * t.scale;
+        rasterise_core(t.position, h, params.torso_y0, params.torso_y1, params.torso_radius);
+        rasterise_core(t.position, h, params.neck_y0, params.neck_y1, params.neck_radius);
+        rasterise_core(t.position, h, params.head_y0, params.head_y1, params.head_radius);
+    }
+
+    // Pass 2: bounds boxes, outer rectangles, every cell touched.
+    size_t full = 0;
+    for (size_t i = 0; i < transforms.size(); ++i) {
+        LodAttributes& a = attributes[i];
+        a.occluded = 0.0f;
+        if (!a.visible || !level_camera) continue;
+        const Transform& t = transforms[i];
+        const Bounds& b = bounds.empty() ? default_bounds : bounds[i];
+        const float h = b.height * t.scale, r = b.radius * t.scale;
+        glm::vec2 lo(kFar), hi(-kFar);
+        float near_z = kFar;
+        bool in_front = true;
+        for (int k = 0; k < 8 && in_front; ++k) {
+            const glm::vec3 corner = t.position + glm::vec3(k & 1 ? r : -r, k & 2 ? h : 0.0f, k & 4 ? r : -r);
+            glm::vec2 px(0.0f);
+            float z = 0.0f;
+            in_front = pr.project(corner, px, z);
+            lo = glm::min(lo, px), hi = glm::max(hi, px), near_z = std::min(near_z, z);
+        }
+        if (!in_front) continue;
+        if (geom.empty() || geom[i].method != GeomMethod::Hidden) lo -= params.enter_margin_px, hi += params.enter_margin_px;
+        const int cx0 = std::max(0, static_cast<int>(std::floor(lo.x / cell)));
+        const int cx1 = std::min(g.width, static_cast<int>(std::ceil(hi.x / cell)));
+        const int cy0 = std::max(0, static_cast<int>(std::floor(lo.y / cell)));
+        const int cy1 = std::min(g.height, static_cast<int>(std::ceil(hi.y / cell)));
+        if (cx0 >= cx1 || cy0 >= cy1) continue;
+        // Covered cells of the rectangle sampled every `step` cells each way (every cell when it is small,
+        // about kSamples otherwise: the fraction is an estimate); "fully covered" is only ever said after checking every cell.
+        auto count = [&](int step, size_t* seen) {
+            size_t covered = 0;
+            *seen = 0;
+            for (int y = cy0; y < cy1; y += step) {
+                const float* row = g.depth.data() + static_cast<size_t>(y) * static_cast<size_t>(g.width);
+                for (int x = cx0; x < cx1; x += step) covered += row[x] < near_z ? 1u : 0u, ++*seen;
+            }
+            return covered;
+        };
+        constexpr double kSamples = 64.0;
+        const double cells = double(cx1 - cx0) * double(cy1 - cy0);
+        const int step = cells <= kSamples ? 1 : static_cast<int>(std::ceil(std::sqrt(cells / kSamples)));
+        size_t seen = 0;
+        size_t covered = count(step, &seen);
+        if (step > 1 && covered == seen) covered = count(1, &seen);
+        a.occluded = covered == seen ? 1.0f : static_cast<float>(covered) / static_cast<float>(seen);
+        full += covered == seen ? 1u : 0u;
+    }
+    return full;
+}
+
+}  // namespace aloha

@@ -1,0 +1,72 @@
+// The lod_occlusion system: a cheap estimate of how much of each character is hidden behind the
+// crowd in front of it. Nearer characters are rasterised into a coarse screen-space depth grid as
+// conservative inner shapes (torso, neck and head cores that every level's body covers); each visible
+// character's bounds are then tested against the grid, giving LodAttributes::occluded, the covered
+// fraction of the cells its bounds touch (1 = certainly hidden).
+#pragma once
+
+#include "components/lod.hpp"
+#include "components/transform.hpp"
+#include "systems/lod/attributes.hpp"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+/// The shapes and resolution of the estimate. Cores are vertical cylinders on the character's axis,
+/// given as fractions of its height (y from the feet, radius); they must lie inside the drawn body
+/// at every level and pose, so that "covered by cores" means "covered by bodies".
+struct OcclusionParams {
+    float cell_px = 2.0f;            ///< grid cell size in pixels (>= 1)
+    float torso_y0 = 0.50f;          ///< torso core bottom (hips), fraction of height
+    float torso_y1 = 0.78f;          ///< torso core top (below the shoulders)
+    float torso_radius = 0.05f;      ///< torso core radius, fraction of height (8.75 cm at 1.75 m)
+    float neck_y0 = 0.78f;           ///< neck core bottom (the torso core's top: no gap between them)
+    float neck_y1 = 0.885f;          ///< neck core top (the head core's bottom)
+    float neck_radius = 0.022f;      ///< neck core radius, fraction of height (3.9 cm at 1.75 m: inside the
+                                     ///< 4 cm neck proxy box)
+    float head_y0 = 0.885f;          ///< head core bottom (chin)
+    float head_y1 = 0.97f;           ///< head core top
+    float head_radius = 0.036f;      ///< head core radius, fraction of height
+    float enter_margin_px = 8.0f;    ///< a drawn character's bounds are grown by this much on screen before
+                                     ///< testing, so becoming hidden needs a margin that staying hidden does
+                                     ///< not (spatial hysteresis: no flicker from a pixel of sway)
+};
+
+/// Scratch that lives across frames: the depth grid (farthest core depth per cell, min over cores).
+struct OcclusionGrid {
+    int width = 0, height = 0;       ///< cells
+    std::vector<float> depth;        ///< width * height view depths; +inf = nothing in front
+    /// Sizes the grid for `viewport_px` and `cell_px`; allocates only when it grows.
+    void resize(glm::vec2 viewport_px, float cell_px);
+};
+
+/// Fills LodAttributes::occluded for a crowd (all characters at once: every one may hide another).
+///
+/// Pass 1: for each core (in front of the near plane) of each visible character, the inner screen
+/// rectangle of the core (the horizontal extent it covers at every height between its ends, at its
+/// farthest depth) is rasterised inwards (only whole cells) with the core's farthest view depth.
+/// Pass 2: for each visible character the outer rectangle of its bounds box (radius, height) is
+/// rasterised outwards (grown by enter_margin_px unless the character is drawn Hidden now); occluded =
+/// cells whose grid depth is nearer than the bounds' nearest depth / cells touched (on screen),
+/// counted on every cell of rectangles up to 64 cells and on an even sample of about 64 of larger
+/// ones, except that 1 (fully covered) is only given after every cell was checked. A character's own cores never cover it (they are behind its nearest
+/// point). 0 for characters not visible or crossing the near plane.
+struct OcclusionJob {
+    std::span<const Transform> transforms;    ///< n entries
+    std::span<const Bounds> bounds;           ///< n entries, or empty (default Bounds)
+    std::span<const GeomLod> geom;            ///< n entries (current levels: Hidden ones get no margin), or empty
+    LodCamera camera;                         ///< the camera the attributes were measured with
+    OcclusionParams params;                   ///< shapes and grid resolution
+    OcclusionGrid* grid = nullptr;            ///< required: scratch, resized as needed
+    std::span<LodAttributes> attributes;      ///< n entries: `visible` read, `occluded` written
+
+    /// Checks sizes, grid and parameters; appends one message per failure to `errors` when given.
+    bool Validate(std::vector<std::string>* errors = nullptr) const;
+    /// Writes attributes[i].occluded for every i; returns how many are fully occluded. Requires Validate().
+    size_t Run() const;
+};
+
+}  // namespace aloha

@@ -1,0 +1,151 @@
+#include "systems/lod/part_budget.hpp"
+
+#include "systems/lod/resolver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+
+float PartBudget::band_ms() const {
+    // Gaussian noise of deviation s has mean absolute deviation 0.8 s, and an EMA of weight a has
+    // deviation s * sqrt(a / (2 - a)); two of those keep noise from triggering steps.
+    const float a = common_.smoothing;
+    const float smoothed_noise = 1.25f * noise_ * std::sqrt(a / (2.0f - a));
+    return std::max(part_.tolerance * part_.target_ms, 2.0f * smoothed_noise);
+}
+
+PartBudget::PartBudget(BudgetKind kind, const BudgetPartParams& part, const BudgetParams& common)
+    : kind_(kind), part_(part), common_(common) {}
+
+void PartBudget::set_params(const BudgetPartParams& part, const BudgetParams& common) {
+    part_ = part;
+    common_ = common;
+}
+
+void PartBudget::reset() {
+    ema_ = -1.0f;
+    noise_ = 0.0f;
+    settle_left_ = 0;
+    levels_ = 0;
+    model_ = LevelCostModel();
+}
+
+BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_ms,
+                              std::span<const LodAttributes> attributes, std::span<const LodRequest> requests,
+                              std::span<LodState> states, const RuleTable& table) {
+    BudgetStep step;
+    const bool geometric = kind_ == BudgetKind::Geometry;
+    const size_t levels = geometric ? table.geom_levels.size() : table.anim_levels.size();
+    if (levels != levels_) model_.set_levels(kind_, table), levels_ = levels, last_level_.clear();
+    auto level_of = [&](const LodState& s) -> size_t { return std::min<size_t>(geometric ? s.geom_level : s.anim_level, levels - 1); };
+    counts_.assign(levels, 0);
+    for (const LodState& s : states) ++counts_[level_of(s)];
+
+    // Switches since the last update are in this measurement in full but in the average only by its
+    // weight: move the average by their predicted effect first, so it does not lag behind them.
+    double switched_ms = 0.0;
+    const bool same_crowd = last_level_.size() == states.size();
+    last_level_.resize(states.size());
+    for (size_t i = 0; i < states.size(); ++i) {
+        const size_t l = level_of(states[i]);
+        if (same_crowd && l != last_level_[i]) switched_ms += model_.marginal(l) - model_.marginal(last_level_[i]);
+        last_level_[i] = static_cast<uint8_t>(l);
+    }
+    if (std::isfinite(measured_ms) && measured_ms >= 0.0f) {
+        model_.observe(counts_, level_ms, measured_ms, common_.cost_smoothing);
+        if (ema_ < 0.0f) {
+            ema_ = measured_ms;
+        } else {
+            ema_ = std::max(0.0f, ema_ + static_cast<float>(switched_ms));
+            // A lone spike (another process took the core) moves the average by at most 3 noise widths:
+            // a sustained change still gets through in a few frames, a one-frame outlier cannot trigger a step.
+            const float limit = 3.0f * std::max(noise_, part_.tolerance * part_.target_ms);
+            const float dev = std::clamp(measured_ms - ema_, -limit, limit);
+            noise_ += common_.smoothing * (std::fabs(dev) - noise_);
+            ema_ += common_.smoothing * dev;
+        }
+    }
+    step.smoothed_ms = ema_;
+    if (ema_ < 0.0f || attributes.size() != states.size() || part_.target_ms <= 0.0f) return step;
+
+    // Where each character is headed: the level the resolver aims it at (request, demotions, caps).
+    // Switches still held back by time hysteresis are not in any measurement yet; their predicted
+    // cost is added, so the budget acts before they land instead of after.
+    const bool know_requests = requests.size() == states.size();
+    auto headed = [&](size_t i) -> size_t {
+        if (!know_requests) return level_of(states[i]);
+        const LodTargets t = lod_targets(table, requests[i], states[i]);
+        return std::min<size_t>(geometric ? t.geom : t.anim, levels - 1);
+    };
+    double pending_ms = 0.0;
+    for (size_t i = 0; know_requests && i < states.size(); ++i)
+        pending_ms += model_.marginal(headed(i)) - model_.marginal(level_of(states[i]));
+    const double predicted = ema_ + pending_ms;
+    step.predicted_ms = static_cast<float>(predicted);
+    if (settle_left_ > 0) {
+        --settle_left_;
+        return step;
+    }
+    const double target = part_.target_ms;
+    if (std::fabs(predicted - target) <= band_ms()) return step;
+    const bool over = predicted > target;
+    const double wanted = part_.gain * std::fabs(predicted - target);  // ms to save (over) or to spend (under)
+
+    // Candidates: (significance, index), each judged at the level it is headed for. Characters held
+    // by time hysteresis at a level they keep are left alone (a change would not show); one whose
+    // switch is pending may be retargeted. A demotion predicted to save under 1% of the band is not
+    // worth a visible switch (a hundred of them would not move the time across the band): passed over.
+    const double least_saving = 0.01 * band_ms();
+    auto one_poorer = [&](size_t l) -> size_t {
+        if (!geometric) return std::min(l + 1, levels - 1);
+        return demoted_geom_level(table, static_cast<uint8_t>(l), 1);
+    };
+    auto saving = [&](size_t l) { return model_.marginal(l) - model_.marginal(one_poorer(l)); };
+    auto extra = [&](size_t l) { return std::max(0.0, model_.marginal(l > 0 ? l - 1 : 0) - model_.marginal(l)); };
+    ranked_.clear();
+    for (size_t i = 0; i < states.size(); ++i) {
+        const LodState& s = states[i];
+        const size_t l = headed(i);
+        if (s.always_full || (geometric && table.geom_levels[l].method == GeomMethod::Hidden)) continue;
+        if (l == level_of(s) && !held_long_enough(table, geometric ? s.seconds_at_geom : s.seconds_at_anim)) continue;
+        const uint8_t demotion = geometric ? s.budget_demotion : s.anim_demotion;
+        if (over ? demotion >= part_.max_demotion || one_poorer(l) == l || saving(l) < least_saving : demotion == 0)
+            continue;
+        // Significance per millisecond: the least noticed detail for the time it saves goes first, the most
+        // noticed for the time it costs comes back first (with equal costs: plain significance order).
+        const double significance = std::max(0.0f, table.significance.evaluate(attributes[i]));
+        const double ms = std::max(1e-9, over ? saving(l) : extra(l));
+        ranked_.emplace_back(static_cast<float>(over ? significance / ms : -significance / ms), static_cast<uint32_t>(i));
+    }
+    if (ranked_.empty()) return step;
+    std::sort(ranked_.begin(), ranked_.end());
+    double changed_ms = 0.0;
+    uint32_t changed = 0;
+    for (const auto& [score, i] : ranked_) {
+        const size_t l = headed(i);
+        uint8_t& demotion = geometric ? states[i].budget_demotion : states[i].anim_demotion;
+        if (over) {
+            changed_ms += saving(l);
+            ++demotion, ++changed;
+            if (changed_ms >= wanted) break;
+        } else {
+            // In order: stop at the first that does not fit, but take it when it lands nearer the target
+            // than not taking it (a coarse step, one dynamic walker say, must not leave the time far under).
+            const double e = extra(l);
+            const bool fits = changed_ms + e <= wanted;
+            if (!fits && std::fabs(predicted + changed_ms + e - target) >= std::fabs(predicted + changed_ms - target)) break;
+            changed_ms += e;
+            --demotion, ++changed;
+            if (!fits) break;
+        }
+    }
+    if (changed == 0) return step;
+    // The effect shows as switches (anticipated at the next update) or as pending switches.
+    settle_left_ = common_.settle_frames;
+    step.direction = over ? -1 : 1;
+    step.changed = changed;
+    return step;
+}
+
+}  // namespace aloha

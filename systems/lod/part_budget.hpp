@@ -1,0 +1,83 @@
+// Separate frame budgets for animation and geometry. Each part steers on its own measured time (the
+// motion system; the muscle + spring_skin systems) with per-level costs learned online, so a step
+// demotes (or promotes) just enough characters to close the predicted gap: it converges in a few
+// frames and, inside a tolerance band around the target, leaves everyone alone.
+#pragma once
+
+#include "components/lod.hpp"
+#include "systems/lod/frame_budget.hpp"
+#include "systems/lod/level_cost.hpp"
+#include "systems/lod/rule_table.hpp"
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace aloha {
+
+/// One part's controller. Call update() once per frame before the resolver with the part's measured
+/// time of the last frame; it edits LodState::budget_demotion (geometry) or anim_demotion (animation).
+///
+/// Each frame:
+/// 1. The smoothed time (EMA) is first moved by the predicted effect of the switches since the last
+///    update (they are in this measurement in full), then takes the measurement, each frame's
+///    deviation clipped to three noise widths so a lone spike cannot trigger a step.
+/// 2. Prediction: smoothed time + the predicted cost of pending switches (characters whose resolver
+///    target differs from their level, held back by time hysteresis), so the budget acts before an
+///    expensive switch lands rather than after.
+/// 3. When the prediction is outside target +- band_ms() (the tolerance, widened when measurements
+///    are noisier than it, so noise alone never steps) and no settle frames are left, the controller
+///    wants to change the time by gain * |target - prediction|. Over: it demotes characters one level,
+///    in order of significance per millisecond saved (least first), summing the predicted saving
+///    (marginal cost of the level it is headed for - that of one level poorer) until the wanted saving
+///    is reached; characters whose demotion would save under 1% of the band are passed over. Under: it
+///    promotes demoted characters, most significance per millisecond first, while the predicted extra
+///    cost fits (the first that does not fit is still taken when it lands nearer the target than
+///    leaving it). Then it waits settle_frames.
+/// Only characters not `always_full`, not headed for Hidden, and either held min_seconds at their level
+/// or with a switch pending are touched; at most max_demotion levels each.
+class PartBudget {
+public:
+    /// A controller for `kind` with `part` and the section-wide `common` settings.
+    PartBudget(BudgetKind kind, const BudgetPartParams& part, const BudgetParams& common);
+    /// Replaces the settings (after a reload or an override); keeps the smoothed time and the costs.
+    void set_params(const BudgetPartParams& part, const BudgetParams& common);
+    /// The part's settings in use.
+    [[nodiscard]] const BudgetPartParams& params() const { return part_; }
+    /// Which kind of level it removes.
+    [[nodiscard]] BudgetKind kind() const { return kind_; }
+    /// Smoothed measured time (ms); negative before the first update.
+    [[nodiscard]] float smoothed_ms() const { return ema_; }
+    /// Mean absolute deviation of single measurements from the smoothed time (ms), a running average.
+    [[nodiscard]] float noise_ms() const { return noise_; }
+    /// Half-width of the band around the target inside which no step is taken (ms): target *
+    /// tolerance, or twice the noise left in the smoothed time when that is larger.
+    [[nodiscard]] float band_ms() const;
+    /// The learned per-level costs.
+    [[nodiscard]] const LevelCostModel& costs() const { return model_; }
+    /// Forgets the smoothed time, the settle countdown and the learned costs.
+    void reset();
+
+    /// Feeds the last frame's `measured_ms` (and, when available, `level_ms`: the time spent at each
+    /// level of this kind, size = level count) and steps when needed. `attributes` and `states` have
+    /// the same size; `requests` (the last frame's, same size) enables the prediction of pending
+    /// switches, empty disables it. Allocates only when the crowd or the level count grows.
+    BudgetStep update(float measured_ms, std::span<const double> level_ms, std::span<const LodAttributes> attributes,
+                      std::span<const LodRequest> requests, std::span<LodState> states, const RuleTable& table);
+
+private:
+    BudgetKind kind_;
+    BudgetPartParams part_;
+    BudgetParams common_;
+    LevelCostModel model_;
+    float ema_ = -1.0f;
+    float noise_ = 0.0f;
+    int settle_left_ = 0;
+    size_t levels_ = 0;
+    std::vector<uint32_t> counts_;
+    std::vector<uint8_t> last_level_;                 // each character's level at the last update
+    std::vector<std::pair<float, uint32_t>> ranked_;  // (score, index) scratch
+};
+
+}  // namespace aloha

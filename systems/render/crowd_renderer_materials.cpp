@@ -1,0 +1,138 @@
+// CrowdRenderer materials: textures, materials, topologies with per-vertex UVs and materials (index
+// lists reordered into one range per material, each with its descriptor set), and character lighting.
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/vk_error.hpp"
+#include "systems/render/crowd_renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+
+void set_character_lighting(FrameInput& frame) {
+    frame.light_direction = glm::vec3(0.45f, 0.8f, 0.55f);
+    frame.key_colour = glm::vec3(1.0f, 0.96f, 0.9f);
+    frame.ambient = 0.45f;
+    frame.sky_colour = glm::vec3(0.95f, 1.0f, 1.1f);
+    frame.ground_colour = glm::vec3(0.42f, 0.38f, 0.34f);
+}
+
+Status CrowdRenderer::init_materials() {
+    const uint8_t white[4] = {255, 255, 255, 255};
+    Result<gpu::Texture> t = gpu::Texture::create(ctx_, 1, 1, white);
+    if (!t) return t.error();
+    white_ = std::move(t).value();
+    Result<gpu::Buffer> b = gpu::Buffer::create(ctx_, sizeof(glm::vec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!b) return b.error();
+    no_uvs_ = std::move(b).value();
+    const glm::vec2 zero(0.0f);
+    no_uvs_.write(std::as_bytes(std::span(&zero, 1)));
+    Result<VkDescriptorSet> set = pipes_.material_set(no_uvs_, white_.view(), white_.sampler());
+    if (!set) return set.error();
+    plain_set_ = set.value();
+    return {};
+}
+
+Result<uint32_t> CrowdRenderer::register_texture(const TextureImage& image) {
+    if (image.width == 0 || image.height == 0 || image.rgba.size() != size_t{image.width} * image.height * 4)
+        return gpu::gpu_error("register_texture: '" + image.name + "' has " + std::to_string(image.rgba.size()) + " bytes for " +
+                              std::to_string(image.width) + " x " + std::to_string(image.height) + " RGBA8 pixels");
+    auto mode = [](TextureWrap w) {
+        switch (w) {
+            case TextureWrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+            case TextureWrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+            case TextureWrap::Repeat: break;
+        }
+        return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    };
+    Result<gpu::Texture> t = gpu::Texture::create(ctx_, image.width, image.height, image.rgba,
+                                                  gpu::SamplerDesc{mode(image.wrap_u), mode(image.wrap_v), image.nearest});
+    if (!t) return t.error();
+    textures_.push_back(std::move(t).value());
+    return static_cast<uint32_t>(textures_.size() - 1);
+}
+
+Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& material, int texture) {
+    if (texture >= static_cast<int>(textures_.size()) || texture < -1)
+        return gpu::gpu_error("register_material: '" + material.name + "' uses texture " + std::to_string(texture) + " (" +
+                              std::to_string(textures_.size()) + " registered)");
+    const glm::vec4 f = material.base_colour;
+    for (int c = 0; c < 4; ++c)
+        if (!(f[c] >= 0.0f && f[c] <= 1.0f))
+            return gpu::gpu_error("register_material: '" + material.name + "' base colour values must be in [0, 1]");
+    Material m;
+    m.colour = glm::vec4(std::pow(f.r, 1.0f / 2.2f), std::pow(f.g, 1.0f / 2.2f), std::pow(f.b, 1.0f / 2.2f), f.a);
+    m.texture = texture;
+    materials_.push_back(m);
+    return static_cast<uint32_t>(materials_.size() - 1);
+}
+
+Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indices, uint32_t vertex_count, bool cull_back_faces,
+                                                 const TopologySurface& surface) {
+    if (indices.empty() || indices.size() % 3 != 0)
+        return gpu::gpu_error("register_topology: index count " + std::to_string(indices.size()) + " is not a non-zero multiple of 3");
+    const uint32_t max_index = *std::max_element(indices.begin(), indices.end());
+    if (vertex_count == 0) vertex_count = max_index + 1;
+    if (max_index >= vertex_count)
+        return gpu::gpu_error("register_topology: index " + std::to_string(max_index) + " >= vertex_count " + std::to_string(vertex_count));
+    if (!surface.uvs.empty() && surface.uvs.size() != vertex_count)
+        return gpu::gpu_error("register_topology: " + std::to_string(surface.uvs.size()) + " UVs for " + std::to_string(vertex_count) + " vertices");
+    const bool materials = !surface.materials.empty();
+    if (materials && !surface.vertex_material.empty() && surface.vertex_material.size() != vertex_count)
+        return gpu::gpu_error("register_topology: " + std::to_string(surface.vertex_material.size()) + " vertex materials for " +
+                              std::to_string(vertex_count) + " vertices");
+    for (const uint32_t id : surface.materials)
+        if (id >= materials_.size())
+            return gpu::gpu_error("register_topology: material " + std::to_string(id) + " is not registered (" + std::to_string(materials_.size()) + ")");
+    auto local_of = [&](size_t tri) -> uint32_t {
+        return surface.vertex_material.empty() ? 0u : surface.vertex_material[indices[tri * 3]];
+    };
+    if (materials)
+        for (size_t tri = 0; tri < indices.size() / 3; ++tri)
+            if (local_of(tri) >= surface.materials.size())
+                return gpu::gpu_error("register_topology: triangle " + std::to_string(tri) + " uses material " + std::to_string(local_of(tri)) + " of " +
+                                      std::to_string(surface.materials.size()));
+    // Triangles grouped by material (stable: the order within a material is kept).
+    std::vector<uint32_t> ordered(indices.begin(), indices.end());
+    Topology t;
+    if (materials) {
+        std::vector<uint32_t> tris(indices.size() / 3);
+        for (uint32_t k = 0; k < tris.size(); ++k) tris[k] = k;
+        std::stable_sort(tris.begin(), tris.end(), [&](uint32_t a, uint32_t b) { return local_of(a) < local_of(b); });
+        for (size_t k = 0; k < tris.size(); ++k)
+            for (size_t c = 0; c < 3; ++c) ordered[k * 3 + c] = indices[size_t{tris[k]} * 3 + c];
+        if (!surface.uvs.empty()) {
+            Result<gpu::Buffer> uv = gpu::Buffer::create(ctx_, surface.uvs.size_bytes(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+            if (!uv) return uv.error();
+            uv.value().write(std::as_bytes(surface.uvs));
+            t.uvs = std::move(uv).value();
+        }
+        for (size_t k = 0; k < tris.size();) {
+            const uint32_t local = local_of(tris[k]);
+            size_t end = k;
+            while (end < tris.size() && local_of(tris[end]) == local) ++end;
+            Range r;
+            r.first_index = static_cast<uint32_t>(k * 3);
+            r.index_count = static_cast<uint32_t>((end - k) * 3);
+            r.material = surface.materials[local];
+            const Material& m = materials_[r.material];
+            const gpu::Texture& tex = m.texture >= 0 && t.uvs.handle() != VK_NULL_HANDLE ? textures_[static_cast<size_t>(m.texture)] : white_;
+            Result<VkDescriptorSet> set = pipes_.material_set(t.uvs.handle() != VK_NULL_HANDLE ? t.uvs : no_uvs_, tex.view(), tex.sampler());
+            if (!set) return set.error();
+            r.set = set.value();
+            t.ranges.push_back(r);
+            k = end;
+        }
+    }
+    Result<gpu::Buffer> buf = gpu::Buffer::create(ctx_, indices.size_bytes(), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    if (!buf) return buf.error();
+    buf.value().write(std::as_bytes(std::span<const uint32_t>(ordered)));
+    t.indices = std::move(buf).value();
+    t.index_count = static_cast<uint32_t>(indices.size());
+    t.vertex_count = vertex_count;
+    t.cull_back_faces = cull_back_faces;
+    topologies_.push_back(std::move(t));
+    return static_cast<uint32_t>(topologies_.size() - 1);
+}
+
+}  // namespace aloha

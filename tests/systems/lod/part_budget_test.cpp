@@ -1,0 +1,177 @@
+// PartBudget (separate animation and geometry budgets) against a synthetic cost model with
+// measurement noise: each part settles within 10% of its own target in a few steps and stays
+// there without oscillating, learns the per-level costs, never demotes always_full characters,
+// re-converges when the crowd doubles and gives everything back when there is room.
+#include "systems/lod/part_budget.hpp"
+#include "tests/systems/lod/lod_crowd_sim.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace aloha {
+namespace {
+
+using lod_test::at_distance;
+using lod_test::CrowdSim;
+using lod_test::Lcg;
+using lod_test::must_parse;
+using lod_test::small_rules;
+
+// True cost in ms per character at each level (rich, mid, proxy, hidden; full, kin, clip).
+constexpr double kGeomCost[] = {0.050, 0.012, 0.002, 0.0};
+constexpr double kAnimCost[] = {0.030, 0.006, 0.001};
+// Measurements are the truth times (1 + noise), noise uniform in +-kNoise.
+constexpr double kNoise = 0.02;
+
+struct BudgetSim {
+    RuleTable table = must_parse(small_rules());
+    CrowdSim crowd{table, 0};
+    BudgetParams common;
+    PartBudget anim{BudgetKind::Animation, {}, {}};
+    PartBudget geom{BudgetKind::Geometry, {}, {}};
+    Lcg rnd;
+    double geom_truth = 0, anim_truth = 0;      // noise-free cost of the last frame
+    double geom_ms = -1, anim_ms = -1;          // what the controllers are told
+    std::vector<double> geom_level_ms;
+    std::vector<int> anim_steps, geom_steps;    // direction of every step, in order
+
+    // Adds n characters at 2..40 m with random importance.
+    void add(size_t n) {
+        const size_t old = crowd.attrs.size();
+        crowd.resize(old + n);
+        for (size_t i = old; i < crowd.attrs.size(); ++i) {
+            crowd.attrs[i] = at_distance(2.0f + 38.0f * rnd.next());
+            crowd.attrs[i].importance = rnd.next();
+        }
+    }
+    void set_targets(double anim_target, double geom_target) {
+        common.settle_frames = 2;
+        BudgetPartParams a, g;
+        a.target_ms = static_cast<float>(anim_target);
+        g.target_ms = static_cast<float>(geom_target);
+        anim.set_params(a, common);
+        geom.set_params(g, common);
+    }
+    void frame() {
+        if (anim.params().target_ms > 0) {
+            const BudgetStep s = anim.update(static_cast<float>(anim_ms), {}, crowd.attrs, crowd.req, crowd.states, table);
+            if (s.direction) anim_steps.push_back(s.direction);
+        }
+        if (geom.params().target_ms > 0) {
+            const BudgetStep s = geom.update(static_cast<float>(geom_ms), geom_level_ms, crowd.attrs, crowd.req, crowd.states, table);
+            if (s.direction) geom_steps.push_back(s.direction);
+        }
+        crowd.frame();
+        geom_level_ms.assign(4, 0.0);
+        anim_truth = geom_truth = 0.0;
+        for (const LodState& s : crowd.states) {
+            geom_level_ms[s.geom_level] += kGeomCost[s.geom_level];
+            anim_truth += kAnimCost[s.anim_level];
+        }
+        for (double& l : geom_level_ms) geom_truth += l, l *= 1.0 + kNoise * (2.0 * rnd.next() - 1.0);
+        geom_ms = geom_truth * (1.0 + kNoise * (2.0 * rnd.next() - 1.0));
+        anim_ms = anim_truth * (1.0 + kNoise * (2.0 * rnd.next() - 1.0));
+    }
+};
+
+int direction_changes(const std::vector<int>& steps) {
+    int n = 0;
+    for (size_t i = 1; i < steps.size(); ++i) n += steps[i] != steps[i - 1];
+    return n;
+}
+
+TEST(PartBudget, EachPartSettlesWithinTenPercentOfItsTarget) {
+    BudgetSim sim;
+    sim.add(1000);
+    sim.frame();
+    const double anim_full = sim.anim_truth, geom_full = sim.geom_truth;
+    const double anim_target = 0.6 * anim_full, geom_target = 0.5 * geom_full;
+    sim.set_targets(anim_target, geom_target);
+    int settled_at = -1;
+    for (int f = 0; f < 300; ++f) {
+        sim.frame();
+        const bool in = std::fabs(sim.anim_truth - anim_target) <= 0.1 * anim_target &&
+                        std::fabs(sim.geom_truth - geom_target) <= 0.1 * geom_target;
+        if (in && settled_at < 0) settled_at = f;
+        if (!in) settled_at = -1;
+    }
+    // Settled early and stayed: the last frame outside the band was within the first 40 frames.
+    ASSERT_GE(settled_at, 0);
+    EXPECT_LE(settled_at, 40);
+    // A few steps, no oscillation: mostly demotions; at most one turn-around per part.
+    EXPECT_LE(direction_changes(sim.geom_steps), 1);
+    EXPECT_LE(direction_changes(sim.anim_steps), 1);
+    EXPECT_LE(sim.geom_steps.size(), 8u);
+    EXPECT_LE(sim.anim_steps.size(), 8u);
+    std::printf("animation %.3f -> %.3f ms (target %.3f, %zu steps); geometry %.3f -> %.3f ms (target %.3f, %zu steps)\n",
+                anim_full, sim.anim_truth, anim_target, sim.anim_steps.size(), geom_full, sim.geom_truth, geom_target,
+                sim.geom_steps.size());
+
+    // Geometry learns each populated level's cost from per-level times: within the noise (2%) plus
+    // the moving average's lag, 5%. Animation learns from totals only: its prediction of the total is
+    // what must be right (5%).
+    const auto& costs = sim.geom.costs().costs();
+    for (size_t l = 0; l < 3; ++l) EXPECT_NEAR(costs[l], kGeomCost[l], 0.05 * kGeomCost[l]) << "level " << l;
+    std::vector<uint32_t> counts(3, 0);
+    for (const LodState& s : sim.crowd.states) ++counts[s.anim_level];
+    EXPECT_NEAR(sim.anim.costs().predict(counts), sim.anim_truth, 0.05 * sim.anim_truth);
+}
+
+TEST(PartBudget, AlwaysFullCharactersAreNeverDemoted) {
+    BudgetSim sim;
+    sim.add(600);
+    for (size_t i = 0; i < sim.crowd.states.size(); i += 5) sim.crowd.states[i].always_full = 1;
+    sim.frame();
+    // Targets no demotion of the others can reach: the controllers demote everyone else they can.
+    sim.set_targets(0.05 * sim.anim_truth, 0.05 * sim.geom_truth);
+    for (int f = 0; f < 300; ++f) {
+        sim.frame();
+        for (size_t i = 0; i < sim.crowd.states.size(); i += 5) {
+            const LodState& s = sim.crowd.states[i];
+            ASSERT_EQ(s.budget_demotion, 0) << "character " << i << " frame " << f;
+            ASSERT_EQ(s.anim_demotion, 0) << "character " << i << " frame " << f;
+            ASSERT_EQ(s.geom_level, sim.crowd.req[i].geom_level) << "character " << i << " frame " << f;
+            ASSERT_EQ(s.anim_level, sim.crowd.req[i].anim_level) << "character " << i << " frame " << f;
+        }
+    }
+    size_t demoted = 0;
+    for (const LodState& s : sim.crowd.states) demoted += s.budget_demotion > 0;
+    EXPECT_GT(demoted, 100u);  // the others really were pushed down
+}
+
+TEST(PartBudget, ReconvergesWhenTheCrowdDoublesAndGivesBackWhenThereIsRoom) {
+    BudgetSim sim;
+    sim.add(500);
+    sim.frame();
+    const double anim_target = 0.7 * sim.anim_truth, geom_target = 0.6 * sim.geom_truth;
+    sim.set_targets(anim_target, geom_target);
+    for (int f = 0; f < 150; ++f) sim.frame();
+    sim.add(500);  // the same kind of crowd again: about twice the cost
+    const size_t geom_before = sim.geom_steps.size();
+    for (int f = 0; f < 150; ++f) sim.frame();
+    EXPECT_NEAR(sim.anim_truth, anim_target, 0.1 * anim_target);
+    EXPECT_NEAR(sim.geom_truth, geom_target, 0.1 * geom_target);
+    EXPECT_LE(sim.geom_steps.size() - geom_before, 8u);
+
+    sim.set_targets(10.0 * anim_target, 10.0 * geom_target);  // plenty of room
+    for (int f = 0; f < 300; ++f) sim.frame();
+    for (const LodState& s : sim.crowd.states) {
+        EXPECT_EQ(s.budget_demotion, 0);
+        EXPECT_EQ(s.anim_demotion, 0);
+    }
+}
+
+TEST(PartBudget, InsideTheToleranceNothingMoves) {
+    BudgetSim sim;
+    sim.add(300);
+    sim.frame();
+    sim.set_targets(sim.anim_truth * 1.01, sim.geom_truth * 0.99);  // within +-5% already
+    for (int f = 0; f < 100; ++f) sim.frame();
+    EXPECT_TRUE(sim.anim_steps.empty());
+    EXPECT_TRUE(sim.geom_steps.empty());
+}
+
+}  // namespace
+}  // namespace aloha

@@ -1,0 +1,201 @@
+// Materials in the CrowdRenderer on lavapipe under validation: a textured quad shows its texels where
+// its UVs put them, a base colour factor is drawn in display space, several materials in one topology
+// draw as one range each, the debug (materials off) path shows the instance colour alone, and the
+// hemisphere light matches lit_colour().
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/lit_pipeline.hpp"
+#include "engine/gpu/png.hpp"
+#include "systems/render/crowd_renderer.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace aloha {
+namespace {
+
+constexpr uint32_t kSize = 64;
+
+std::unique_ptr<gpu::Context> make_context() {
+    gpu::ContextOptions o;
+    o.validation = true;
+    o.device = "lavapipe";
+    Result<std::unique_ptr<gpu::Context>> c = gpu::Context::create(o);
+    EXPECT_TRUE(c.ok()) << c.error().to_string();
+    return c.ok() ? std::move(c).value() : nullptr;
+}
+
+// 2 x 2 texture, rows top to bottom: (red, green), (blue, grey).
+TextureImage quad_texture() {
+    TextureImage t;
+    t.name = "test";
+    t.width = t.height = 2;
+    t.rgba = {200, 30, 40, 255, 20, 180, 60, 255, 30, 50, 210, 255, 128, 128, 128, 255};
+    t.wrap_u = t.wrap_v = TextureWrap::ClampToEdge;
+    t.nearest = true;
+    return t;
+}
+
+glm::u8vec4 pixel(const gpu::Rgba8Image& img, uint32_t x, uint32_t y) {
+    const uint8_t* p = &img.pixels[(y * kSize + x) * 4];
+    return {p[0], p[1], p[2], p[3]};
+}
+
+bool near(glm::u8vec4 a, glm::u8vec4 b, int lsb) {
+    return std::abs(a.r - b.r) <= lsb && std::abs(a.g - b.g) <= lsb && std::abs(a.b - b.b) <= lsb;
+}
+
+// A square [-1, 1]^2 in z = 0 filling an orthographic 64 x 64 view, split into a left and a right half
+// (6 vertices: x = -1, 0, 1 at y = -1 and 1), UVs spanning the texture (v = 0 at the top).
+struct Quad {
+    std::vector<glm::vec3> positions = {{-1, -1, 0}, {0, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {0, 1, 0}, {1, 1, 0}};
+    std::vector<glm::vec3> normals = std::vector<glm::vec3>(6, glm::vec3(0, 0, 1));
+    std::vector<glm::vec2> uvs = {{0, 1}, {0.5f, 1}, {1, 1}, {0, 0}, {0.5f, 0}, {1, 0}};
+    std::vector<uint32_t> indices = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4};
+};
+
+FrameInput unlit_frame(const std::vector<DeformableMesh>& meshes) {
+    FrameInput f;
+    f.camera.view = glm::lookAt(glm::vec3(0, 0, 3), glm::vec3(0), glm::vec3(0, 1, 0));
+    f.camera.proj = glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 10.0f);
+    f.meshes = meshes;
+    f.clear_colour = {0, 0, 0, 1};
+    f.ambient = 1.0f;  // white sky and ground: the albedo unlit
+    return f;
+}
+
+Result<gpu::Rgba8Image> draw(CrowdRenderer& r, gpu::Context& ctx, const FrameInput& frame, const char* png) {
+    Result<gpu::OffscreenTarget> target = gpu::OffscreenTarget::create(ctx, kSize, kSize);
+    if (!target.ok()) return target.error();
+    if (Status s = r.render(frame, target.value()); !s.ok()) return s.error();
+    if (Status s = r.finish(); !s.ok()) return s.error();
+    Result<gpu::Rgba8Image> img = target.value().read_back(ctx);
+    if (img.ok()) (void)gpu::write_png(::testing::TempDir() + png, kSize, kSize, img.value().pixels);
+    return img;
+}
+
+// Left half: the texture (nearest, white base colour); right half: an untextured material with linear
+// factor (0.5, 0.25, 1), drawn as pow(f, 1/2.2) = (0.7297, 0.5325, 1) -> (186, 136, 255).
+TEST(MaterialRender, TexturedQuadShowsTextureColoursAndFactor) {
+    std::unique_ptr<gpu::Context> ctx = make_context();
+    ASSERT_TRUE(ctx);
+    {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+        ASSERT_TRUE(made.ok()) << made.error().to_string();
+        CrowdRenderer& r = *made.value();
+        Result<uint32_t> tex = r.register_texture(quad_texture());
+        ASSERT_TRUE(tex.ok()) << tex.error().to_string();
+        SurfaceMaterial textured;
+        Result<uint32_t> a = r.register_material(textured, static_cast<int>(tex.value()));
+        SurfaceMaterial tinted;
+        tinted.base_colour = {0.5f, 0.25f, 1.0f, 1.0f};
+        Result<uint32_t> b = r.register_material(tinted, -1);
+        ASSERT_TRUE(a.ok() && b.ok());
+        const Quad q;
+        const std::vector<uint16_t> vertex_material = {0, 1, 1, 0, 1, 1};  // triangles take their first vertex's
+        const std::vector<uint32_t> ids = {a.value(), b.value()};
+        Result<uint32_t> topo = r.register_topology(q.indices, 6, false, {q.uvs, vertex_material, ids});
+        ASSERT_TRUE(topo.ok()) << topo.error().to_string();
+        const std::vector<DeformableMesh> meshes = {{topo.value(), q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+        FrameInput frame = unlit_frame(meshes);
+        Result<gpu::Rgba8Image> img = draw(r, *ctx, frame, "aloha_material_render.png");
+        ASSERT_TRUE(img.ok()) << img.error().to_string();
+        EXPECT_EQ(r.last_draw_count(), 2u) << "one draw per material range";
+        // Left half spans u in [0, 0.5]: texel column 0 (red on top, blue below); the texel row boundary
+        // is at the pixel boundary y = 32, so whole 32 x 32 blocks are exact.
+        int red = 0, blue = 0, tint = 0, other = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const glm::u8vec4 p = pixel(img.value(), x, y);
+                if (near(p, {200, 30, 40, 255}, 1)) ++red;
+                else if (near(p, {30, 50, 210, 255}, 1)) ++blue;
+                else if (near(p, {186, 136, 255, 255}, 1)) ++tint;
+                else ++other;
+            }
+        EXPECT_EQ(red, 32 * 32);
+        EXPECT_EQ(blue, 32 * 32);
+        EXPECT_EQ(tint, 32 * 64);
+        EXPECT_EQ(other, 0);
+        EXPECT_TRUE(near(pixel(img.value(), 8, 8), {200, 30, 40, 255}, 1));
+        EXPECT_TRUE(near(pixel(img.value(), 8, 56), {30, 50, 210, 255}, 1));
+
+        // Debug colourings draw the instance colour alone.
+        const std::vector<DeformableMesh> green = {{topo.value(), q.positions, q.normals, glm::mat4(1.0f), glm::vec4(0, 1, 0, 1)}};
+        FrameInput plain = unlit_frame(green);
+        plain.materials = false;
+        Result<gpu::Rgba8Image> flat = draw(r, *ctx, plain, "aloha_material_render_plain.png");
+        ASSERT_TRUE(flat.ok());
+        for (uint32_t y = 0; y < kSize; y += 7)
+            for (uint32_t x = 0; x < kSize; x += 7) EXPECT_TRUE(near(pixel(flat.value(), x, y), {0, 255, 0, 255}, 0));
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
+// The whole texture over the quad (u 0..1): four 32 x 32 blocks of its four texels; and the character
+// lighting (key light + hemisphere) gives lit_colour()'s prediction, within 1 LSB of rounding.
+TEST(MaterialRender, FullTextureAndCharacterLighting) {
+    std::unique_ptr<gpu::Context> ctx = make_context();
+    ASSERT_TRUE(ctx);
+    {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+        ASSERT_TRUE(made.ok());
+        CrowdRenderer& r = *made.value();
+        const uint32_t tex = r.register_texture(quad_texture()).value();
+        const uint32_t mat = r.register_material(SurfaceMaterial{}, static_cast<int>(tex)).value();
+        Quad q;
+        q.uvs = {{0, 1}, {0.5f, 1}, {1, 1}, {0, 0}, {0.5f, 0}, {1, 0}};
+        const std::vector<uint32_t> ids = {mat};
+        const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}).value();
+        const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+        FrameInput frame = unlit_frame(meshes);
+        Result<gpu::Rgba8Image> img = draw(r, *ctx, frame, "aloha_material_full.png");
+        ASSERT_TRUE(img.ok());
+        const glm::u8vec4 texel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
+        for (uint32_t k = 0; k < 4; ++k) {
+            int n = 0;
+            for (uint32_t y = (k / 2) * 32; y < (k / 2) * 32 + 32; ++y)
+                for (uint32_t x = (k % 2) * 32; x < (k % 2) * 32 + 32; ++x) n += near(pixel(img.value(), x, y), texel[k], 1);
+            EXPECT_EQ(n, 32 * 32) << "texel " << k;
+        }
+        set_character_lighting(frame);
+        Result<gpu::Rgba8Image> lit = draw(r, *ctx, frame, "aloha_material_lit.png");
+        ASSERT_TRUE(lit.ok());
+        gpu::LitLighting lighting;
+        lighting.sky = glm::vec4(frame.sky_colour, 1);
+        lighting.ground = glm::vec4(frame.ground_colour, 1);
+        lighting.key = glm::vec4(frame.key_colour, 1);
+        const glm::vec3 want = gpu::lit_colour(glm::vec3(texel[0]) / 255.0f, {0, 0, 1},
+                                               glm::vec4(glm::normalize(frame.light_direction), frame.ambient), lighting);
+        const glm::u8vec4 got = pixel(lit.value(), 8, 8);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c] * 255.0f, 1.0f) << "channel " << c;
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
+// Bad inputs are refused with messages, never drawn.
+TEST(MaterialRender, RegistrationErrors) {
+    std::unique_ptr<gpu::Context> ctx = make_context();
+    ASSERT_TRUE(ctx);
+    {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+        ASSERT_TRUE(made.ok());
+        CrowdRenderer& r = *made.value();
+        TextureImage bad = quad_texture();
+        bad.rgba.pop_back();
+        EXPECT_FALSE(r.register_texture(bad).ok());
+        EXPECT_FALSE(r.register_material(SurfaceMaterial{}, 3).ok());
+        SurfaceMaterial over;
+        over.base_colour = {2, 0, 0, 1};
+        EXPECT_FALSE(r.register_material(over, -1).ok());
+        const Quad q;
+        const std::vector<uint32_t> ids = {7};
+        EXPECT_FALSE(r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}).ok());
+        const std::vector<glm::vec2> short_uvs(3);
+        EXPECT_FALSE(r.register_topology(q.indices, 6, false, {short_uvs, {}, {}}).ok());
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
+}  // namespace
+}  // namespace aloha
