@@ -330,6 +330,84 @@ inline std::map<std::string, std::string> unity_names(const std::string& left, c
                  left, right);
 }
 
+/// Mixamo / HumanIK names with the "mixamorig:" namespace (Hips, Spine, Spine1, Spine2, Neck,
+/// Head, LeftUpLeg, LeftLeg, LeftFoot, LeftToeBase, LeftShoulder = collar, LeftArm, LeftForeArm,
+/// LeftHand, LeftHandMiddle1, LeftHandThumb1 and the right side).
+inline std::map<std::string, std::string> mixamo_names() {
+    return sided({{"Hips", "mixamorig:Hips"}, {"lowerback", "mixamorig:Spine"}, {"Chest", "mixamorig:Spine1"},
+                  {"Chest2", "mixamorig:Spine2"}, {"lowerneck", "mixamorig:Neck"}, {"Head", "mixamorig:Head"}},
+                 {{"LeftHip", "mixamorig:%UpLeg"}, {"LeftKnee", "mixamorig:%Leg"}, {"LeftAnkle", "mixamorig:%Foot"},
+                  {"LeftToe", "mixamorig:%ToeBase"}, {"LeftCollar", "mixamorig:%Shoulder"}, {"LeftShoulder", "mixamorig:%Arm"},
+                  {"LeftElbow", "mixamorig:%ForeArm"}, {"LeftWrist", "mixamorig:%Hand"},
+                  {"LFingers", "mixamorig:%HandMiddle1"}, {"LThumb", "mixamorig:%HandThumb1"}},
+                 "Left", "Right");
+}
+
+/// Unity Humanoid bone names with UpperChest (LeftUpperLeg, LeftLowerLeg, LeftFoot, LeftToes,
+/// LeftShoulder, LeftUpperArm, LeftLowerArm, LeftHand and the right side).
+inline std::map<std::string, std::string> unity_humanoid_names() {
+    return sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Chest", "Chest"}, {"Chest2", "UpperChest"},
+                  {"lowerneck", "Neck"}, {"Head", "Head"}},
+                 {{"LeftHip", "%UpperLeg"}, {"LeftKnee", "%LowerLeg"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toes"},
+                  {"LeftCollar", "%Shoulder"}, {"LeftShoulder", "%UpperArm"}, {"LeftElbow", "%LowerArm"},
+                  {"LeftWrist", "%Hand"}},
+                 "Left", "Right");
+}
+
+/// VRM humanoid bone names, camelCase (hips, spine, chest, upperChest, neck, head, leftUpperLeg,
+/// ..., leftThumbProximal and the right side).
+inline std::map<std::string, std::string> vrm_names() {
+    return sided({{"Hips", "hips"}, {"lowerback", "spine"}, {"Chest", "chest"}, {"Chest2", "upperChest"},
+                  {"lowerneck", "neck"}, {"Head", "head"}},
+                 {{"LeftHip", "%UpperLeg"}, {"LeftKnee", "%LowerLeg"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toes"},
+                  {"LeftCollar", "%Shoulder"}, {"LeftShoulder", "%UpperArm"}, {"LeftElbow", "%LowerArm"},
+                  {"LeftWrist", "%Hand"}, {"LThumb", "%ThumbProximal"}},
+                 "left", "right");
+}
+
+/// VRoid export node names (J_Bip_C_Hips, J_Bip_L_UpperLeg, ...).
+inline std::map<std::string, std::string> vroid_names() {
+    return sided({{"Hips", "J_Bip_C_Hips"}, {"lowerback", "J_Bip_C_Spine"}, {"Chest", "J_Bip_C_Chest"},
+                  {"Chest2", "J_Bip_C_UpperChest"}, {"lowerneck", "J_Bip_C_Neck"}, {"Head", "J_Bip_C_Head"}},
+                 {{"LeftHip", "J_Bip_%_UpperLeg"}, {"LeftKnee", "J_Bip_%_LowerLeg"}, {"LeftAnkle", "J_Bip_%_Foot"},
+                  {"LeftToe", "J_Bip_%_ToeBase"}, {"LeftCollar", "J_Bip_%_Shoulder"}, {"LeftShoulder", "J_Bip_%_UpperArm"},
+                  {"LeftElbow", "J_Bip_%_LowerArm"}, {"LeftWrist", "J_Bip_%_Hand"}},
+                 "L", "R");
+}
+
+/// Unreal mannequin names (pelvis, spine_01..03, neck_01, head, thigh_l, calf_l, foot_l, ball_l,
+/// clavicle_l, upperarm_l, lowerarm_l, hand_l, middle_01_l, thumb_01_l and the right side).
+inline std::map<std::string, std::string> unreal_names() {
+    return sided({{"Hips", "pelvis"}, {"lowerback", "spine_01"}, {"Chest", "spine_02"}, {"Chest2", "spine_03"},
+                  {"lowerneck", "neck_01"}, {"Head", "head"}},
+                 {{"LeftHip", "thigh_%"}, {"LeftKnee", "calf_%"}, {"LeftAnkle", "foot_%"}, {"LeftToe", "ball_%"},
+                  {"LeftCollar", "clavicle_%"}, {"LeftShoulder", "upperarm_%"}, {"LeftElbow", "lowerarm_%"},
+                  {"LeftWrist", "hand_%"}, {"LFingers", "middle_01_%"}, {"LThumb", "thumb_01_%"}},
+                 "l", "r");
+}
+
+/// A four-legged skeleton in centimetres (pelvis, spine, skull, back and front thighs and paws, tail):
+/// no humanoid convention matches it.
+inline RawSkeleton quadruped() {
+    RawSkeleton raw;
+    auto add = [&](const char* name, int parent, glm::vec3 t) {
+        raw.joints.push_back(RawJoint{name, parent, t});
+        return static_cast<int>(raw.joints.size()) - 1;
+    };
+    const int pelvis = add("pelvis", -1, {0, 60, -40});  // centimetres
+    const int chest = add("spine", pelvis, {0, 5, 80});
+    add("skull", chest, {0, 20, 25});
+    for (const char* s : {"l", "r"}) {
+        const float x = s[0] == 'l' ? 12.0f : -12.0f;
+        const int back = add((std::string("back_thigh_") + s).c_str(), pelvis, {x, -5, 0});
+        add((std::string("back_paw_") + s).c_str(), back, {0, -50, 0});
+        const int front = add((std::string("front_thigh_") + s).c_str(), chest, {x, -5, 0});
+        add((std::string("front_paw_") + s).c_str(), front, {0, -55, 0});
+    }
+    add("tail", pelvis, {0, 5, -30});
+    return raw;
+}
+
 /// Names no convention knows (CesiumMan-like: torso_1, leg_L_1, arm_R_2 ...).
 inline std::map<std::string, std::string> odd_names() {
     return sided({{"Hips", "torso_1"}, {"Chest2", "torso_3"}, {"lowerneck", "neck_1"}, {"Head", "neck_2"}},

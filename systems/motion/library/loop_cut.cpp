@@ -13,6 +13,13 @@ namespace aloha {
 
 namespace {
 
+// `v` as a message shows it: 0.6, not 0.600000.
+std::string short_number(float v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", static_cast<double>(v));
+    return buf;
+}
+
 // Heading (yaw about +Y) of a model rotation: the direction its +Z axis points on the ground.
 float heading_of(const glm::quat& q) {
     const glm::vec3 f = q * glm::vec3(0, 0, 1);
@@ -71,7 +78,7 @@ Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleto
     if (!built.ok()) return built.error();
     const AnimationClip& clip = built.value();
     if (clip.duration() < min_seconds + 2.0f * step)
-        return make_error(source, "clip '" + take.name + "' is shorter than a loop of " + std::to_string(min_seconds) + " s");
+        return make_error(source, "clip '" + take.name + "' is shorter than a loop of " + short_number(min_seconds) + " s");
     const Frames f = sample_frames(clip, skeleton, step);
     const size_t n = f.root.size(), J = f.joints;
     const auto pose = [&](size_t i, size_t j) { return f.rel[i * J + j]; };
@@ -111,8 +118,8 @@ Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleto
         }
     }
     if (!found)
-        return make_error(source, "clip '" + take.name + "' has no stretch of " + std::to_string(min_seconds) +
-                                      " s travelling at " + std::to_string(min_speed) + " m/s or more to loop");
+        return make_error(source, "clip '" + take.name + "' has no stretch of " + short_number(min_seconds) +
+                                      " s travelling at " + short_number(min_speed) + " m/s or more to loop");
     if (best.pose_error > kMaxLoopPoseError || best.velocity_error > kMaxLoopVelocityError) {
         char buf[256];
         std::snprintf(buf, sizeof buf,

@@ -50,55 +50,29 @@ TEST(HumanoidMap, CmuBvh) {
 }
 
 TEST(HumanoidMap, MixamoWithNamespace) {
-    const auto names = sided({{"Hips", "mixamorig:Hips"}, {"lowerback", "mixamorig:Spine"}, {"Chest", "mixamorig:Spine1"},
-                              {"Chest2", "mixamorig:Spine2"}, {"lowerneck", "mixamorig:Neck"}, {"Head", "mixamorig:Head"}},
-                             {{"LeftHip", "mixamorig:%UpLeg"}, {"LeftKnee", "mixamorig:%Leg"}, {"LeftAnkle", "mixamorig:%Foot"},
-                              {"LeftToe", "mixamorig:%ToeBase"}, {"LeftCollar", "mixamorig:%Shoulder"}, {"LeftShoulder", "mixamorig:%Arm"},
-                              {"LeftElbow", "mixamorig:%ForeArm"}, {"LeftWrist", "mixamorig:%Hand"},
-                              {"LFingers", "mixamorig:%HandMiddle1"}, {"LThumb", "mixamorig:%HandThumb1"}},
-                             "Left", "Right");
+    const auto names = test::mixamo_names();
     // Mixamo's LeftShoulder is the collar bone, unlike CMU's: the whole convention decides.
     expect_maps(names, "Mixamo / HumanIK",
                 {{"mixamorig:HeadTop_End", "mixamorig:Head", {0, 0.12f, 0}}, {"mixamorig:LeftHandIndex1", "mixamorig:LeftHand", {0, -0.05f, 0.01f}}});
 }
 
 TEST(HumanoidMap, UnityHumanoid) {
-    const auto names = sided({{"Hips", "Hips"}, {"lowerback", "Spine"}, {"Chest", "Chest"}, {"Chest2", "UpperChest"},
-                              {"lowerneck", "Neck"}, {"Head", "Head"}},
-                             {{"LeftHip", "%UpperLeg"}, {"LeftKnee", "%LowerLeg"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toes"},
-                              {"LeftCollar", "%Shoulder"}, {"LeftShoulder", "%UpperArm"}, {"LeftElbow", "%LowerArm"},
-                              {"LeftWrist", "%Hand"}},
-                             "Left", "Right");
+    const auto names = test::unity_humanoid_names();
     expect_maps(names, "Unity Humanoid / VRM", {{"LeftEye", "Head", {0.03f, 0.08f, 0.08f}}});
 }
 
 TEST(HumanoidMap, VrmBoneNames) {
-    const auto names = sided({{"Hips", "hips"}, {"lowerback", "spine"}, {"Chest", "chest"}, {"Chest2", "upperChest"},
-                              {"lowerneck", "neck"}, {"Head", "head"}},
-                             {{"LeftHip", "%UpperLeg"}, {"LeftKnee", "%LowerLeg"}, {"LeftAnkle", "%Foot"}, {"LeftToe", "%Toes"},
-                              {"LeftCollar", "%Shoulder"}, {"LeftShoulder", "%UpperArm"}, {"LeftElbow", "%LowerArm"},
-                              {"LeftWrist", "%Hand"}, {"LThumb", "%ThumbProximal"}},
-                             "left", "right");
+    const auto names = test::vrm_names();
     expect_maps(names, "Unity Humanoid / VRM");
 }
 
 TEST(HumanoidMap, VroidNodeNames) {
-    const auto names = sided({{"Hips", "J_Bip_C_Hips"}, {"lowerback", "J_Bip_C_Spine"}, {"Chest", "J_Bip_C_Chest"},
-                              {"Chest2", "J_Bip_C_UpperChest"}, {"lowerneck", "J_Bip_C_Neck"}, {"Head", "J_Bip_C_Head"}},
-                             {{"LeftHip", "J_Bip_%_UpperLeg"}, {"LeftKnee", "J_Bip_%_LowerLeg"}, {"LeftAnkle", "J_Bip_%_Foot"},
-                              {"LeftToe", "J_Bip_%_ToeBase"}, {"LeftCollar", "J_Bip_%_Shoulder"}, {"LeftShoulder", "J_Bip_%_UpperArm"},
-                              {"LeftElbow", "J_Bip_%_LowerArm"}, {"LeftWrist", "J_Bip_%_Hand"}},
-                             "L", "R");
+    const auto names = test::vroid_names();
     expect_maps(names, "VRoid", {{"J_Sec_Hair1_01", "J_Bip_C_Head", {0, 0.1f, -0.05f}}});
 }
 
 TEST(HumanoidMap, UnrealMannequin) {
-    const auto names = sided({{"Hips", "pelvis"}, {"lowerback", "spine_01"}, {"Chest", "spine_02"}, {"Chest2", "spine_03"},
-                              {"lowerneck", "neck_01"}, {"Head", "head"}},
-                             {{"LeftHip", "thigh_%"}, {"LeftKnee", "calf_%"}, {"LeftAnkle", "foot_%"}, {"LeftToe", "ball_%"},
-                              {"LeftCollar", "clavicle_%"}, {"LeftShoulder", "upperarm_%"}, {"LeftElbow", "lowerarm_%"},
-                              {"LeftWrist", "hand_%"}, {"LFingers", "middle_01_%"}, {"LThumb", "thumb_01_%"}},
-                             "l", "r");
+    const auto names = test::unreal_names();
     // Twist and IK helper bones are carried along and ignored.
     expect_maps(names, "Unreal mannequin",
                 {{"thigh_twist_01_l", "thigh_l", {0, -0.2f, 0}}, {"ik_foot_l", "pelvis", {0.1f, -0.9f, 0}}});

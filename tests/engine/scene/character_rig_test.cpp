@@ -187,29 +187,9 @@ Drawn run_rendered(const fs::path& path, int frames) {
     return out;
 }
 
-RawSkeleton quadruped() {
-    RawSkeleton raw;
-    auto add = [&](const char* name, int parent, glm::vec3 t) {
-        raw.joints.push_back(RawJoint{name, parent, t});
-        return static_cast<int>(raw.joints.size()) - 1;
-    };
-    const int pelvis = add("pelvis", -1, {0, 60, -40});  // centimetres
-    const int chest = add("spine", pelvis, {0, 5, 80});
-    add("skull", chest, {0, 20, 25});
-    for (const char* s : {"l", "r"}) {
-        const float x = s[0] == 'l' ? 12.0f : -12.0f;
-        const int back = add((std::string("back_thigh_") + s).c_str(), pelvis, {x, -5, 0});
-        add((std::string("back_paw_") + s).c_str(), back, {0, -50, 0});
-        const int front = add((std::string("front_thigh_") + s).c_str(), chest, {x, -5, 0});
-        add((std::string("front_paw_") + s).c_str(), front, {0, -55, 0});
-    }
-    add("tail", pelvis, {0, 5, -30});
-    return raw;
-}
-
 TEST(CharacterRig, QuadrupedLoadsPlaysAndIsDrawnAsProxies) {
     const fs::path dir = temp_dir("dog");
-    test::write_text((dir / "dog.bvh").string(), test::bvh_text(quadruped(), 30, glm::vec3(0, 0, 1), 3.0f));
+    test::write_text((dir / "dog.bvh").string(), test::bvh_text(test::quadruped(), 30, glm::vec3(0, 0, 1), 3.0f));
     const CharacterType t = load_or_fail(desc_for("dog", (dir / "dog.bvh").string()));
     EXPECT_FALSE(t.map.humanoid);
     EXPECT_EQ(t.muscles.size(), 0);
@@ -239,7 +219,7 @@ TEST(CharacterRig, QuadrupedGltfIsDrawnWithItsMesh) {
     // A four-legged glTF with a skinned mesh: no muscles (layered levels refused in one note), its
     // mesh at every level that would have been layered, its clip played.
     const fs::path dir = temp_dir("dog_gltf");
-    RawSkeleton raw = quadruped();
+    RawSkeleton raw = test::quadruped();
     for (RawJoint& j : raw.joints) j.translation *= 0.01f;  // metres, as glTF is
     test::write_text((dir / "dog.gltf").string(), test::gltf_text(raw, 1, 0.3f, /*mesh=*/true));
     const CharacterType t = load_or_fail(desc_for("dog", (dir / "dog.gltf").string()));

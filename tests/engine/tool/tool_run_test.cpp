@@ -1,4 +1,5 @@
 // Runs the built `aloha` program end to end (headless, lavapipe) and checks its outputs and errors.
+#include "engine/anim/humanoid_map.hpp"
 #include "tests/common/rig_fixtures.hpp"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -140,6 +142,89 @@ TEST(Tool, ValidatePrintsTheHumanoidMapping) {
                              "  units: centimetres; file axes: up +Y, forward +Z; standing height 1.68 m",
                              "  kinematic and dynamic walk: yes", "  geometric levels layered and subdivided: yes"})
         EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+    fs::remove_all(out);
+}
+
+// One file per naming convention, written as that convention's tools write them (units, up and
+// facing axes, rest frames), and a quadruped: `aloha validate` prints for each the convention and
+// mapping it found, the units and axes it assumed and the levels it can use.
+TEST(Tool, ValidatePrintsEveryConvention) {
+    namespace t = aloha::test;
+    const fs::path out = temp_dir("validate_conventions");
+    struct Case {
+        const char* name;
+        std::map<std::string, std::string> names;
+        const char* format;       // "bvh" or "gltf"
+        float units_per_metre;
+        glm::quat axes;           // file model = axes * canonical model
+        bool t_pose, bone_frames;
+        const char* convention;   // expected report line
+        const char* units;        // expected units line prefix
+    };
+    std::map<std::string, std::string> cmu;
+    for (const aloha::CanonicalJoint& c : aloha::canonical_humanoid()) cmu[c.name] = c.name;
+    const glm::quat id(1, 0, 0, 0);
+    const glm::quat z_up = glm::angleAxis(1.5707963f, glm::vec3(1, 0, 0));                       // +Y -> +Z, +Z -> -Y
+    const glm::quat z_up_x_fwd = glm::angleAxis(2.0943951f, glm::normalize(glm::vec3(1, 1, 1)));  // +Y -> +Z, +Z -> +X
+    const glm::quat minus_z = glm::angleAxis(3.1415927f, glm::vec3(0, 1, 0));                     // +Z -> -Z
+    const std::vector<Case> cases = {
+        {"cmu", cmu, "bvh", 1.0f / 0.056444f, id, false, false, "convention CMU BVH: humanoid", "units: CMU units"},
+        {"mixamo", t::mixamo_names(), "gltf", 100.0f, id, true, true, "convention Mixamo / HumanIK: humanoid", "units: centimetres; file axes: up +Y, forward +Z"},
+        {"rigify", t::rigify_names("DEF-"), "gltf", 1.0f, z_up, true, true, "convention Blender Rigify: humanoid", "units: metres; file axes: up +Z, forward -Y"},
+        {"blender", t::unity_names(".L", ".R", false), "gltf", 1.0f, z_up, false, true, "convention Unity Humanoid / VRM: humanoid", "units: metres; file axes: up +Z, forward -Y"},
+        {"unreal", t::unreal_names(), "gltf", 100.0f, z_up_x_fwd, false, true, "convention Unreal mannequin: humanoid", "units: centimetres; file axes: up +Z, forward +X"},
+        {"poser", t::poser_names(), "bvh", 100.0f, id, false, false, "convention Poser / DAZ: humanoid", "units: centimetres; file axes: up +Y, forward +Z"},
+        {"daz", t::daz_names(), "bvh", 100.0f, id, false, false, "convention Poser / DAZ: humanoid", "units: centimetres; file axes: up +Y, forward +Z"},
+        {"unity", t::unity_humanoid_names(), "gltf", 1.0f, id, false, true, "convention Unity Humanoid / VRM: humanoid", "units: metres; file axes: up +Y, forward +Z"},
+        {"vrm", t::vrm_names(), "gltf", 1.0f, minus_z, false, false, "convention Unity Humanoid / VRM: humanoid", "units: metres; file axes: up +Y, forward -Z"},
+        {"vroid", t::vroid_names(), "gltf", 1.0f, minus_z, false, false, "convention VRoid: humanoid", "units: metres; file axes: up +Y, forward -Z"},
+    };
+    std::string types, characters;
+    float x = 0.0f;
+    for (const Case& c : cases) {
+        t::RigStyle style;
+        style.units_per_metre = c.units_per_metre;
+        style.axes = c.axes;
+        style.bone_frames = c.bone_frames;
+        const aloha::RawSkeleton raw = t::styled(t::renamed_humanoid(c.names, {}, c.t_pose), style);
+        const std::string file = std::string(c.name) + "." + c.format;
+        if (std::string(c.format) == "bvh")
+            t::write_text((out / file).string(), t::bvh_text(raw, 20, c.axes * glm::vec3(0, 0, 1), 4.0f));
+        else
+            t::write_text((out / file).string(), t::gltf_text(raw, 1, 0.3f));
+        types += std::string(types.empty() ? "" : ", ") + R"({"name": ")" + c.name + R"(", ")" + c.format + R"(": ")" + file + "\"}";
+        characters += std::string(characters.empty() ? "" : ", ") + R"({"type": ")" + c.name + R"(", "position": [)" +
+                      std::to_string(x) + ", 0, 0]}";
+        x += 1.0f;
+    }
+    // A quadruped in centimetres (no convention, no humanoid).
+    t::write_text((out / "dog.bvh").string(), t::bvh_text(t::quadruped(), 20, glm::vec3(0, 0, 1), 3.0f));
+    types += R"(, {"name": "dog", "bvh": "dog.bvh"})";
+    characters += R"(, {"type": "dog", "position": [-2, 0, 0]})";
+    t::write_text((out / "scene.json").string(), R"({"camera": {"position": [4, 1.5, 8], "target": [4, 1, 0]}, "character_types": [)" +
+                                                     types + R"(], "characters": [)" + characters + "]}");
+    const RunResult r = run("validate " + (out / "scene.json").string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::printf("%s", r.output.c_str());  // the reports docs/CHARACTERS.md quotes
+    // Each type's block: from its header line to the next one.
+    auto block = [&](const std::string& name) {
+        const size_t at = r.output.find("character type '" + name + "'");
+        if (at == std::string::npos) return std::string();
+        return r.output.substr(at, r.output.find("character type '", at + 1) - at);
+    };
+    for (const Case& c : cases) {
+        const std::string b = block(c.name);
+        ASSERT_FALSE(b.empty()) << c.name << "\n" << r.output;
+        for (const std::string& line : {std::string("  ") + c.convention, std::string("  ") + c.units, std::string("  kinematic and dynamic walk: yes"),
+                                       std::string("  reach: yes"), std::string("  geometric levels layered and subdivided: yes")})
+            EXPECT_NE(b.find(line), std::string::npos) << c.name << ": " << line << "\n" << b;
+        // Every required canonical joint mapped, nothing of the fixture ignored.
+        EXPECT_NE(b.find("  joints ignored by the layers (0): none"), std::string::npos) << b;
+    }
+    const std::string d = block("dog");
+    for (const char* line : {": not a humanoid (missing LeftHip, RightHip, LeftKnee", "  kinematic and dynamic walk: no",
+                             "  geometric level rigid proxy: yes", "  geometric levels layered and subdivided: refused (no muscles; drawn as rigid proxies)"})
+        EXPECT_NE(d.find(line), std::string::npos) << line << "\n" << d;
     fs::remove_all(out);
 }
 
