@@ -255,6 +255,33 @@ TEST(CharacterRig, QuadrupedGltfIsDrawnWithItsMesh) {
     fs::remove_all(dir);
 }
 
+TEST(CharacterRig, ArmatureNodeAboveTheJointsIsFoldedThenNormalised) {
+    // A Mixamo-style export: joints in centimetres under an "Armature" node scaling by 0.01 and
+    // turning the rig Z-up (+90 degrees about X), so the file's world is metres, Z-up. The loader
+    // folds the node into the joints; the normalisation then finds metres and turns the rig upright.
+    const fs::path dir = temp_dir("armature");
+    test::RigStyle cm;
+    cm.units_per_metre = 100.0f;
+    cm.bone_frames = true;
+    const RawSkeleton raw = test::styled(test::renamed_humanoid(test::mixamo_names()), cm);
+    nlohmann::json j = nlohmann::json::parse(test::gltf_text(raw, 1, 0.3f));
+    const glm::quat z_up = glm::angleAxis(kPi / 2, glm::vec3(1, 0, 0));
+    j["nodes"].push_back({{"name", "Armature"}, {"children", {0}}, {"scale", {0.01, 0.01, 0.01}},
+                          {"rotation", {z_up.x, z_up.y, z_up.z, z_up.w}}});
+    j["scenes"][0]["nodes"] = {j["nodes"].size() - 1};
+    test::write_text((dir / "mixamo.gltf").string(), j.dump(1));
+    const CharacterType t = load_or_fail(desc_for("mixamo", (dir / "mixamo.gltf").string()));
+    EXPECT_EQ(t.frame.units, "metres");
+    EXPECT_EQ(t.frame.up, "+Z");
+    // The built-in 1.75 m humanoid's joints span 0.873 of it; estimated height = span x 1.1 (1.68 m).
+    EXPECT_NEAR(t.frame.height, 0.873f * 1.75f * 1.1f, 1e-3f);
+    expect_layers(t, "Mixamo / HumanIK", "mixamorig:LeftLeg");
+    expect_walks(t);
+    expect_dynamic_walks(t);
+    expect_reaches(t);
+    fs::remove_all(dir);
+}
+
 TEST(CharacterRig, SceneHumanoidMapAndScaleReachTheType) {
     const fs::path dir = temp_dir("scene_map");
     const auto names = test::odd_names();
