@@ -115,7 +115,8 @@ inline void expect_walks(const CharacterType& t) {
 // more than cos 45 degrees of its rest height over it: a torso leaning less than 45 degrees), the
 // pelvis within 0.15 m of the kinematic gait's it tracks, the root at 1.2 m/s (as in
 // tests/systems/motion/dynamic/dynamic_hook_test.cpp).
-inline void expect_dynamic_walks(const CharacterType& t) {
+// `max_track` loosens the pelvis bound for a rig the dynamic walk is known to track looser.
+inline void expect_dynamic_walks(const CharacterType& t, float max_track = 0.15f) {
     ASSERT_TRUE(t.rig.has_value());
     MotionController mc(t.skeleton, t.clips, 2);
     mc.set_walk_rig(*t.rig);
@@ -145,7 +146,7 @@ inline void expect_dynamic_walks(const CharacterType& t) {
                 t.name.c_str(), static_cast<double>(min_rise), static_cast<double>(rest_rise), static_cast<double>(worst_track),
                 static_cast<double>(xs[0].position.z));
     EXPECT_GT(min_rise, 0.7071f * rest_rise);
-    EXPECT_LT(worst_track, 0.15f);
+    EXPECT_LT(worst_track, max_track);
     EXPECT_NEAR(xs[0].position.z, 6.0f, 0.05f);
 }
 
