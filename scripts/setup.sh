@@ -16,6 +16,7 @@ PACKAGES=(
   libtbb-dev                                    # scheduler thread pool / parallel loops
   libimgui-dev                                  # viewer overlay
   libpng-dev                                    # PNG output
+  libstb-dev                                    # stb_image: glTF base colour textures
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   xvfb xauth                                    # viewer tests under a virtual X server
   clang libclang-rt-14-dev                      # libFuzzer targets

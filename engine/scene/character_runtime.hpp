@@ -47,6 +47,8 @@ public:
     std::vector<uint16_t> proxy_joints;          ///< joints drawn as proxy boxes (bones >= 5 cm)
     std::vector<std::string> path_names;         ///< scene path names added to `motion`, by path id
     std::vector<uint32_t> render_materials;      ///< renderer ids of type.materials (empty until registered)
+    std::vector<int> feet;                       ///< ankles then toes of type.rig (empty without a rig)
+    std::vector<glm::vec3> soles;                ///< each foot joint's sole point in its own frame
     uint32_t count = 0;
     uint32_t spawned = 0;
 

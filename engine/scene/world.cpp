@@ -4,6 +4,7 @@
 #include "engine/scene/character_runtime.hpp"
 #include "systems/lod/resolver.hpp"
 #include "systems/lod/rule_table.hpp"
+#include "systems/motion/motion_metrics.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -31,6 +32,12 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
     const auto rest_t = type.skeleton.rest_translations();
     for (size_t j = 0; j < parents.size(); ++j)
         if (parents[j] < 0 || glm::length(rest_t[j]) >= 0.05f) proxy_joints.push_back(static_cast<uint16_t>(j));
+    if (type.rig) {
+        for (int side = 0; side < 2; ++side) feet.push_back(type.rig->ankle[static_cast<size_t>(side)]);
+        for (int side = 0; side < 2; ++side)
+            if (type.rig->toe[static_cast<size_t>(side)] >= 0) feet.push_back(type.rig->toe[static_cast<size_t>(side)]);
+        soles = sole_offsets(type.skeleton, feet);
+    }
 }
 
 std::vector<GeomLod> CharacterRuntime::usable_levels(std::span<const GeomLod> levels) const {

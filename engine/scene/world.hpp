@@ -10,6 +10,7 @@
 #include "components/transform.hpp"
 #include "engine/ecs/ecs.hpp"
 #include "engine/scene/character_type.hpp"
+#include "engine/scene/motion_sample.hpp"
 #include "engine/scene/scene_desc.hpp"
 #include "engine/scheduler/scheduler.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
@@ -174,6 +175,9 @@ public:
     /// Counts NaN/Inf values in every character's placement, pose matrices and displayed surface (0 when
     /// healthy): the long-run stability check.
     [[nodiscard]] uint64_t nonfinite_count() const;
+    /// Fills `out` with character `index` (spawn order: types in scene order, then id) as the last
+    /// frame left it. Requires index < character_count().
+    void motion_sample(uint32_t index, MotionSample& out) const;
     /// Number of character types and each one's data.
     [[nodiscard]] size_t type_count() const { return types_.size(); }
     [[nodiscard]] const CharacterType& type(size_t i) const;

@@ -16,7 +16,7 @@ bool parse_number(const std::string& text, T& out) {
     return ec == std::errc() && p == end;
 }
 
-const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "validate", "help"};
+const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "export", "validate", "help"};
 
 // Which options each command accepts.
 bool accepts(const std::string& command, const std::string& option) {
@@ -24,17 +24,55 @@ bool accepts(const std::string& command, const std::string& option) {
                                                  "--characters", "--device", "--validation", "--width", "--height",
                                                  "--overlay", "--budget-animation-ms", "--budget-geometry-ms", "--budget-single-ms",
                                                  "--budget", "--tier", "--occlusion"};
+    if (command == "export")  // --characters selects characters here, it does not rescale the crowd
+        return option == "--joints" || option == "--characters" || option == "--frames" || option == "--force" ||
+               (common.count(option) && option != "--overlay" && option != "--width" && option != "--height");
     if (common.count(option)) return command != "validate" || option == "--help" || option == "-h";
     if (command == "render") return option == "--frame" || option == "--out" || option == "--colour" || option == "--force";
     if (command == "view") return option == "--frames" || option == "--colour" || option == "--out";
     if (command == "profile")
         return option == "--frames" || option == "--warmup" || option == "--out" || option == "--fidelity" ||
                option == "--no-render" || option == "--colour" || option == "--force" || option == "--quiet" ||
-               option == "--compare-lod" || option == "--compare-frames";
+               option == "--compare-lod" || option == "--compare-frames" || option == "--motion-metrics";
     if (command == "scale")
         return option == "--counts" || option == "--frames" || option == "--warmup" || option == "--out" ||
                option == "--force" || option == "--quiet" || option == "--no-render";
     return false;
+}
+
+// export's --joints FILE, --characters LIST (indices and inclusive ranges) and --frames A:B.
+Status parse_export_option(const std::string& option, const std::string& value, CliOptions& o) {
+    if (value.empty()) return arg_error("option '" + option + "' needs a non-empty value");
+    if (option == "--joints") {
+        o.joints = value;
+        return {};
+    }
+    if (option == "--frames") {
+        const size_t colon = value.find(':');
+        uint32_t a = 0, b = 0;
+        const bool ok = colon == std::string::npos ? parse_number(value, b)
+                                                   : parse_number(value.substr(0, colon), a) && parse_number(value.substr(colon + 1), b);
+        if (!ok || b <= a || b > 10'000'000)
+            return arg_error("--frames expects A:B with 0 <= A < B <= 10000000 (frames A to B-1) or a frame count N, got '" + value + "'");
+        o.frame_range = std::pair{a, b};
+        return {};
+    }
+    o.character_ranges.clear();
+    size_t start = 0;
+    while (start <= value.size()) {
+        const size_t comma = std::min(value.find(',', start), value.size());
+        const std::string item = value.substr(start, comma - start);
+        const size_t dash = item.find('-');
+        uint32_t lo = 0, hi = 0;
+        const bool ok = dash == std::string::npos ? parse_number(item, lo) && (hi = lo, true)
+                                                  : parse_number(item.substr(0, dash), lo) && parse_number(item.substr(dash + 1), hi);
+        if (!ok || hi < lo)
+            return arg_error("--characters expects a comma list of character indices and ranges (e.g. 0,5,10-20), got '" +
+                             value + "' (bad item '" + item + "')");
+        o.character_ranges.emplace_back(lo, hi);
+        start = comma + 1;
+    }
+    return {};
 }
 
 }  // namespace
@@ -51,7 +89,7 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
         return o;
     }
     if (!kCommands.count(o.command))
-        return arg_error("unknown command '" + o.command + "' (expected render, view, profile or validate; try --help)");
+        return arg_error("unknown command '" + o.command + "' (expected render, view, profile, scale, export or validate; try --help)");
     for (size_t i = 1; i < args.size(); ++i) {
         std::string a = args[i];
         std::string value;
@@ -93,6 +131,13 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
         if (a == "--validation") { o.validation = true; continue; }
         if (a == "--quiet") { o.quiet = true; continue; }
         if (a == "--compare-lod") { o.compare_lod = true; continue; }
+        if (a == "--motion-metrics") { o.motion_metrics = true; continue; }
+        if (o.command == "export" && (a == "--joints" || a == "--characters" || a == "--frames")) {
+            auto v = take();
+            if (!v.ok()) return v.error();
+            if (Status st = parse_export_option(a, v.value(), o); !st.ok()) return st.error();
+            continue;
+        }
         if (a == "--counts") {
             auto v = take();
             if (!v.ok()) return v.error();
@@ -179,6 +224,7 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
     }
     if (o.command != "help" && !o.help && o.scene.empty()) return arg_error("'aloha " + o.command + "' needs a scene file");
     if (o.command == "scale" && !o.help && o.counts.empty()) return arg_error("'aloha scale' needs --counts A,B,...");
+    if (o.command == "export" && !o.help && o.joints.empty()) return arg_error("'aloha export' needs --joints FILE.csv");
     return o;
 }
 
@@ -222,7 +268,18 @@ std::string help_text(const std::string& command) {
                "  --no-render        CPU systems only (refined skins are computed each frame, not kept)\n"
                "  --quiet            no progress bar\n"
                "  --compare-lod      also run the scene with LOD off (CPU systems) and report the slowdown ratio\n"
-               "  --compare-frames K frames of that LOD-off run (default 10)\n" + common;
+               "  --compare-frames K frames of that LOD-off run (default 10)\n"
+               "  --motion-metrics   foot skate and pops per animation level and update interval (report.json and the\n"
+               "                     printed table; see docs/MOTION.md for the contact thresholds)\n" + common;
+    if (command == "export")
+        return "aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B] [options]\n"
+               "  Runs the scene headless (no rendering) and writes every joint's world position per frame, with each\n"
+               "  character's animation level, update interval, method and whether a transition is under way.\n"
+               "  --joints FILE      CSV path (refuses to overwrite without --force)\n"
+               "  --characters LIST  spawn indices and inclusive ranges, e.g. 0,5,10-20 (default: every character)\n"
+               "  --frames A:B       frames A to B-1, 0 = the first frame run (default: 0 to the scene's frames);\n"
+               "                     a single N means 0:N\n"
+               "  --threads, --seed, --lod, --budget*, --tier, --occlusion, --device, --validation as for profile\n";
     if (command == "scale")
         return "aloha scale SCENE --counts 1000,2000,5000,10000,20000 [--frames N] [--warmup W] [--out DIR]\n"
                "  Rescales the scene's crowds to each count, profiles the CPU systems (and the render unless\n"
@@ -237,6 +294,7 @@ std::string help_text(const std::string& command) {
            "  view      open a window with a live overlay\n"
            "  profile   headless frame-time profile (report, trace, CSV, plot, PNG)\n"
            "  scale     frame time against crowd size\n"
+           "  export    joint positions per frame to CSV\n"
            "  validate  check a scene, its rules and assets\n"
            "'aloha COMMAND --help' describes a command's options.\n";
 }

@@ -7,13 +7,14 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aloha::tool {
 
 /// Options shared by the subcommands (each subcommand uses the ones that apply to it).
 struct CliOptions {
-    std::string command;               ///< render | view | profile | scale | validate | help
+    std::string command;               ///< render | view | profile | scale | export | validate | help
     std::string scene;                 ///< scene file
     std::string out;                   ///< output file (render) or folder (profile)
     std::optional<uint32_t> frames;    ///< --frames N
@@ -43,6 +44,12 @@ struct CliOptions {
     bool compare_lod = false;          ///< --compare-lod: also time the scene with LOD off (profile)
     uint32_t compare_frames = 10;      ///< --compare-frames K: frames of the LOD-off run
     std::vector<uint32_t> counts;      ///< --counts A,B,...: crowd sizes (scale)
+    bool motion_metrics = false;       ///< --motion-metrics: foot skate and pops per animation level (profile)
+    std::string joints;                ///< --joints FILE.csv: where export writes joint positions
+    /// export --characters LIST: inclusive ranges of spawn indices ("0,5,10-20"); empty = every character
+    std::vector<std::pair<uint32_t, uint32_t>> character_ranges;
+    /// export --frames A:B: frames A..B-1 (0 = the first frame run); without it 0 to the scene's frames
+    std::optional<std::pair<uint32_t, uint32_t>> frame_range;
 };
 
 /// Parses argv (without argv[0]). Errors name the offending argument.

@@ -3,6 +3,7 @@
 #include "engine/scheduler/chrome_trace.hpp"
 #include "engine/tool/commands.hpp"
 #include "engine/tool/fidelity.hpp"
+#include "engine/tool/motion_recorder.hpp"
 #include "engine/tool/profile_lod.hpp"
 #include "engine/tool/session.hpp"
 #include "engine/tool/stats.hpp"
@@ -135,9 +136,14 @@ int run_profile(const CliOptions& options) {
     world.scheduler().set_trace_sink([&](const TraceEvent& e) { trace.push_back(e); });
     std::vector<FrameRecord> records;
     records.reserve(frames);
+    // Motion metrics are recorded between steps: they add to the wall time, not to the frame times.
+    std::unique_ptr<MotionRecorder> motion;
+    if (options.motion_metrics) motion = std::make_unique<MotionRecorder>(world);
     const auto wall_start = std::chrono::steady_clock::now();
     for (uint32_t f = 0; f < frames; ++f) {
+        const float before = world.time();
         world.step();
+        if (motion) motion->record(world, world.time() - before);
         if (!world.render_status().ok()) {
             print_error(world.render_status().error().to_string());
             return 1;
@@ -235,6 +241,7 @@ int run_profile(const CliOptions& options) {
     for (size_t k = 0; k < 5 && n > 0; ++k) explain.push_back(world.explain(static_cast<uint32_t>(k * (n - 1) / 4)));
     report["explain_sample"] = explain;
     if (options.compare_lod) report["lod_off_comparison"] = compare;
+    if (motion) report["motion_metrics"] = motion->report(table);
     if (fidelity) report["fidelity"] = fidelity_report(records.empty() ? std::vector<FidelityFrame>{} : [&] {
         std::vector<FidelityFrame> v;
         for (const auto& r : records) v.push_back(r.fidelity);
@@ -315,6 +322,7 @@ int run_profile(const CliOptions& options) {
                        << fmt(compare["ratio_mean"].get<double>()) << "x slower than LOD on (target 20x)\n";
     }
     std::cout << lod_summary(report);
+    if (motion) std::cout << motion->table(table);
     std::cout << "state hash " << world.state_hash() << "; reports in " << out << "/\n";
     return 0;
 }

@@ -13,6 +13,8 @@ int run_validate(const CliOptions& options);
 int run_profile(const CliOptions& options);
 /// `aloha scale SCENE --counts ...`
 int run_scale(const CliOptions& options);
+/// `aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B]`
+int run_export(const CliOptions& options);
 /// `aloha view SCENE` (GLFW window with overlay)
 int run_view(const CliOptions& options);
 

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     if (o.command == "profile") return run_profile(o);
     if (o.command == "view") return run_view(o);
     if (o.command == "scale") return run_scale(o);
+    if (o.command == "export") return run_export(o);
     print_error("unknown command '" + o.command + "'");
     return 2;
 }

@@ -146,7 +146,8 @@ void MotionController::start_next(uint32_t c, Character& ch) {
         ch.head = static_cast<uint8_t>((ch.head + 1) % kQueueCapacity);
         --ch.count;
     }
-    const bool fade = next.kind != RequestKind::Rest && next.crossfade_s > 0.0f;
+    // A character's first request starts from nothing shown: it is not faded in from the rest pose.
+    const bool fade = ch.shown && next.kind != RequestKind::Rest && next.crossfade_s > 0.0f;
     // Fade from the live previous request when it can be re-evaluated; from a frozen snapshot of the
     // pose shown now otherwise (rest, IK holds, or a fade already in progress).
     // A dynamic walk is never re-evaluated as the source of a fade (that would step its simulation twice).
@@ -183,6 +184,10 @@ bool MotionController::clip_driven(const Character& ch, const AnimLod& lod) cons
     const RequestKind k = ch.cur.req.kind;
     return k == RequestKind::PlayClip ||
            (k == RequestKind::Walk && ch.cur.walk_clip >= 0 && walk_method(lod) == WalkMethod::ClipPlayback);
+}
+
+bool MotionController::kinematic_walking(const Character& ch, const AnimLod& lod) const {
+    return ch.cur.req.kind == RequestKind::Walk && rig_ && walk_method(lod) == WalkMethod::Kinematic;
 }
 
 void MotionController::advance_clock(Channel& ch, float seconds) const {
@@ -325,18 +330,19 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
         const int64_t signature = anim_signature(lod);
         const bool level_changed = ch.last_anim >= 0 && ch.last_anim != signature;
         ch.last_anim = signature;
-        bool inertial_start = false;
+        // Any level change is posed at once (even without a transition), so a throttled character's
+        // keys restart on the new level's schedule instead of holding the old span's last key.
+        const bool level_start = level_changed && posing && !switched;
         if (ch.inertial_slot >= 0 && ch.inertial_done) {
             inertia_.release(static_cast<uint32_t>(ch.inertial_slot));
             ch.inertial_slot = -1;
         }
-        if (level_changed && posing && !switched && transition_seconds(lod) > 0.0f) {
+        if (level_start && transition_seconds(lod) > 0.0f) {
             if (ch.inertial_slot < 0) ch.inertial_slot = static_cast<int32_t>(inertia_.acquire());
             ch.inertial_pending = 1;
             ch.inertial_done = 0;
             ch.inertial_elapsed = 0.0f;
             ch.inertial_total = transition_seconds(lod);
-            inertial_start = true;
         } else if (ch.inertial_slot >= 0) {
             ch.inertial_elapsed += dt;
         }
@@ -346,12 +352,13 @@ size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, s
         // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
         const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
         const bool on_phase = (frame_ + c) % interval == 0;
-        if (posing && (switched || inertial_start || on_phase || (ch.overlay.on && ch.overlay.needs_pose()))) {
+        if (posing && (switched || level_start || on_phase || (ch.overlay.on && ch.overlay.needs_pose()))) {
             due_.push_back(Due{c, e, ch.since_posed, switched});
             st.frames_since_update = 0;
             ch.since_posed = 0.0f;
-            // Throttled clip playback is shown interpolated between this update and the next.
-            const bool interpolate = interval > 1 && clip_driven(ch, lod) && ch.fade_left <= 0.0f;
+            // Throttled clip playback and kinematic walks are shown interpolated between this update and
+            // the next (a held pose would slide with the placement and jump at the next update).
+            const bool interpolate = interval > 1 && (clip_driven(ch, lod) || kinematic_walking(ch, lod)) && ch.fade_left <= 0.0f;
             if (interpolate && ch.keys_slot < 0) ch.keys_slot = static_cast<int32_t>(keys_.acquire());
             if (!interpolate && ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
             // The end key is the next scheduled update's pose: a forced pose off the schedule (a switch,

@@ -217,6 +217,7 @@ private:
         uint8_t inertial_pending = 0;  // the offset is taken at the next pose (the change happened this frame)
         uint8_t inertial_done = 0;     // posed with the offset gone: the slot is released at the next update
         int64_t last_anim = -1;        // anim_signature of the AnimLod at the last update (-1 before the first)
+        uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the rest pose)
     };
     struct Due {
         uint32_t character;
@@ -235,6 +236,9 @@ private:
     void update_slots(uint32_t c, Character& ch);
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
     bool clip_driven(const Character& ch, const AnimLod& lod) const;
+    // True when `ch` walks by the kinematic walk at `lod` (its pose predictable one interval ahead
+    // from the phase and the placement moving at its velocity).
+    bool kinematic_walking(const Character& ch, const AnimLod& lod) const;
     void advance_clock(Channel& ch, float seconds) const;
     // Carries a walk's place in its cycle across a change between clip playback and the procedural
     // walks (their clocks run only while used): clip time <-> phase * the clip's duration (the gait

@@ -93,6 +93,7 @@ void MotionController::pose_one(const Due& d, size_t worker) {
     if (ch.inertial_slot >= 0 && ch.inertial_pending)
         inertia_.hold(static_cast<uint32_t>(ch.inertial_slot), skeleton_->parents().data(), std::as_const(pool_).view(c).model);
     evaluate(c, ch.cur, lod, out, x, v, d.posed_dt, true, d.started);
+    ch.shown = 1;
     if (ch.keys_slot >= 0) {
         // Key poses for the frames until the next update: now, and one interval ahead.
         const uint32_t slot = static_cast<uint32_t>(ch.keys_slot);
@@ -100,9 +101,16 @@ void MotionController::pose_one(const Due& d, size_t worker) {
         settle_inertia(ch, out, ch.inertial_elapsed);
         keys_.capture(slot, false, out.model);
         Channel ahead = ch.cur;
+        Transform x_ahead = x;
         advance_clock(ahead, ch.keys_span);
-        evaluate(c, ahead, lod, scratch, x, v, ch.keys_span, false, false);
-        apply_overlay(c, ch, lod, scratch, x, v, ch.keys_span, false);
+        if (kinematic_walking(ch, lod)) {
+            // The walk one interval on: its phase advanced and the placement moved at its velocity (the
+            // copy's planted feet stay in the world, so the keys carry them back as the root moves).
+            advance_walk_phase(ahead.walk, *rig_, std::max(ahead.req.speed, 0.0f), ch.keys_span, gait_);
+            x_ahead.position += v.linear * ch.keys_span;
+        }
+        evaluate(c, ahead, lod, scratch, x_ahead, v, ch.keys_span, false, false);
+        apply_overlay(c, ch, lod, scratch, x_ahead, v, ch.keys_span, false);
         settle_inertia(ch, scratch, ch.inertial_elapsed + ch.keys_span);
         keys_.capture(slot, true, std::as_const(scratch_).view(worker).model);
         return;

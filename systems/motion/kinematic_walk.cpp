@@ -103,7 +103,12 @@ void kinematic_walk_pose(const WalkRig& rig, const Skeleton& skeleton, Kinematic
             if (!state.initialised) state.planted[side] = base + fwd_world * (half_stance - gait.duty * stride);
             const glm::vec3 liftoff = state.planted[side];
             const glm::vec3 landing = base + fwd_world * ((1.0f - phi) * stride + half_stance);
-            const float e = s * s * (3.0f - 2.0f * s);
+            // The foot lifts before it travels (the first 10% of the swing) and reaches the landing
+            // spot's vertical at 80%, then comes down onto it: a foot that moved forward in its first or
+            // last centimetre off the ground would be seen (and measured) sliding, most of all between
+            // the keys of a throttled update.
+            const float sh = std::clamp((s - 0.1f) / 0.7f, 0.0f, 1.0f);
+            const float e = sh * sh * (3.0f - 2.0f * sh);
             target_world = liftoff + (landing - liftoff) * e +
                            up_world * (gait.clearance * rig.leg_length * placement.scale * std::sin(kPi * s));
             state.stance[side] = 0;

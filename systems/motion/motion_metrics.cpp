@@ -43,21 +43,29 @@ void FootSkateMeter::add(std::span<const glm::vec3> feet, const glm::vec3& root,
     last_root_ = root;
 }
 
-float FootSkateMeter::skate_m(const ContactThresholds& t) const {
-    const size_t frames = dts_.size();
-    float total = 0.0f;
-    for (size_t f = 0; f < feet_; ++f) {
+std::vector<float> contact_travel(std::span<const glm::vec3> soles, size_t feet, std::span<const float> dts,
+                                  const ContactThresholds& t) {
+    const size_t frames = dts.size();
+    assert(soles.size() == frames * feet);
+    std::vector<float> travel(frames, 0.0f);
+    for (size_t f = 0; f < feet; ++f) {
         float lowest = INFINITY;
-        for (size_t i = 0; i < frames; ++i) lowest = std::min(lowest, positions_[i * feet_ + f].y);
+        for (size_t i = 0; i < frames; ++i) lowest = std::min(lowest, soles[i * feet + f].y);
         // A step counts when the foot is low at both ends and moved slower than the contact speed.
         for (size_t i = 1; i < frames; ++i) {
-            const glm::vec3& a = positions_[(i - 1) * feet_ + f];
-            const glm::vec3& b = positions_[i * feet_ + f];
-            if (a.y > lowest + t.height || b.y > lowest + t.height || !(dts_[i] > 0.0f)) continue;
+            const glm::vec3& a = soles[(i - 1) * feet + f];
+            const glm::vec3& b = soles[i * feet + f];
+            if (a.y > lowest + t.height || b.y > lowest + t.height || !(dts[i] > 0.0f)) continue;
             const float d = horizontal_distance(a, b);
-            if (d <= t.speed * dts_[i]) total += d;
+            if (d <= t.speed * dts[i]) travel[i] += d;
         }
     }
+    return travel;
+}
+
+float FootSkateMeter::skate_m(const ContactThresholds& t) const {
+    float total = 0.0f;
+    for (const float d : contact_travel(positions_, feet_, dts_, t)) total += d;
     return total;
 }
 

@@ -23,9 +23,17 @@ namespace aloha {
 
 /// When a foot (sole) point counts as in contact with the ground.
 struct ContactThresholds {
-    float height = 0.01f;   ///< m above the lowest height that point reaches in the recording
+    float height = 0.005f;  ///< m above the lowest height that point reaches in the recording (a foot
+                            ///< 5-10 mm up is still landing or lifting off, moving forward: not sliding)
     float speed = 0.5f;     ///< m/s of horizontal speed (a swinging foot moves at about twice the walking speed)
 };
+
+/// Horizontal travel of the sole points while in contact, per frame (element i: the step from frame
+/// i-1 to i, summed over the feet; element 0 is 0). `soles` is frame-major, `feet` points per frame;
+/// a step counts when both ends are within t.height of the lowest height that point reaches in the
+/// recording and it moved slower than t.speed over dts[i] seconds.
+[[nodiscard]] std::vector<float> contact_travel(std::span<const glm::vec3> soles, size_t feet, std::span<const float> dts,
+                                                const ContactThresholds& t);
 
 /// Foot skate of one character over a recording: feed every frame's foot joints (same joints, same
 /// order, world metres) and root; the result compares the feet's horizontal travel while in contact

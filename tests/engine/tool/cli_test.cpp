@@ -104,3 +104,44 @@ TEST(Cli, HelpEverywhere) {
 
 }  // namespace
 }  // namespace aloha::tool
+
+namespace aloha::tool {
+namespace {
+
+TEST(Cli, ExportTakesJointsCharactersAndFrameRanges) {
+    auto o = parse_cli({"export", "s.json", "--joints", "j.csv", "--characters", "0,5,10-20", "--frames", "30:90"});
+    ASSERT_TRUE(o.ok()) << o.error().to_string();
+    EXPECT_EQ(o.value().joints, "j.csv");
+    const std::vector<std::pair<uint32_t, uint32_t>> ranges = {{0, 0}, {5, 5}, {10, 20}};
+    EXPECT_EQ(o.value().character_ranges, ranges);
+    ASSERT_TRUE(o.value().frame_range);
+    EXPECT_EQ(*o.value().frame_range, (std::pair<uint32_t, uint32_t>{30, 90}));
+    auto n = parse_cli({"export", "s.json", "--joints=j.csv", "--frames", "12"});
+    ASSERT_TRUE(n.ok());
+    EXPECT_EQ(*n.value().frame_range, (std::pair<uint32_t, uint32_t>{0, 12}));
+    EXPECT_TRUE(n.value().character_ranges.empty());
+}
+
+TEST(Cli, ExportRefusesBadSelectionsNamingThem) {
+    auto expect_error = [](std::vector<std::string> args, const std::string& part) {
+        auto o = parse_cli(args);
+        ASSERT_FALSE(o.ok());
+        EXPECT_NE(o.error().to_string().find(part), std::string::npos) << o.error().to_string();
+    };
+    expect_error({"export", "s.json"}, "needs --joints");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--frames", "9:3"}, "--frames expects A:B");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--frames", "a:b"}, "'a:b'");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--characters", "4-2"}, "bad item '4-2'");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--characters", "1,,2"}, "bad item ''");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--colour", "level"}, "not known to 'aloha export'");
+    expect_error({"render", "s.json", "--motion-metrics"}, "not known to 'aloha render'");
+}
+
+TEST(Cli, ProfileTakesMotionMetrics) {
+    auto o = parse_cli({"profile", "s.json", "--motion-metrics"});
+    ASSERT_TRUE(o.ok());
+    EXPECT_TRUE(o.value().motion_metrics);
+}
+
+}  // namespace
+}  // namespace aloha::tool

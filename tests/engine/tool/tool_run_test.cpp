@@ -229,3 +229,83 @@ TEST(Tool, ValidatePrintsEveryConvention) {
 }
 
 }  // namespace
+
+namespace {
+
+// Reads a CSV written by `aloha export` (no quoted fields in the built-in scenes) into rows of fields.
+std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
+    std::ifstream in(path);
+    std::vector<std::vector<std::string>> rows;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::vector<std::string> fields;
+        std::stringstream ss(line);
+        std::string f;
+        while (std::getline(ss, f, ',')) fields.push_back(f);
+        rows.push_back(std::move(fields));
+    }
+    return rows;
+}
+
+}  // namespace
+
+// Export: every joint of the chosen characters on the chosen frames, with level and method; the same
+// positions as a second run (deterministic); refuses to overwrite; bad selections are named.
+TEST(Tool, ExportWritesJointsOfTheChosenCharactersAndFrames) {
+    const fs::path out = temp_dir("export");
+    const std::string csv = (out / "joints.csv").string();
+    const RunResult r = run("export " + kScenes + "crowd_1k.json --joints " + csv + " --characters 3,10-11 --frames 4:7");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto rows = read_csv(csv);
+    ASSERT_GT(rows.size(), 1u);
+    const std::vector<std::string> header = {"frame", "time_s", "character", "type", "id", "anim_level", "level_index",
+                                             "update_interval", "method", "in_transition", "joint", "joint_name", "x", "y", "z"};
+    EXPECT_EQ(rows[0], header);
+    std::set<std::string> characters, frames;
+    size_t per_character_frame = 0;
+    for (size_t i = 1; i < rows.size(); ++i) {
+        ASSERT_EQ(rows[i].size(), header.size()) << "row " << i;
+        characters.insert(rows[i][2]);
+        frames.insert(rows[i][0]);
+        if (rows[i][2] == "3" && rows[i][0] == "4") ++per_character_frame;
+        EXPECT_TRUE(rows[i][8] == "clip" || rows[i][8] == "kinematic" || rows[i][8] == "dynamic" ||
+                    rows[i][8] == "play_clip" || rows[i][8] == "rest") << rows[i][8];
+    }
+    EXPECT_EQ(characters, (std::set<std::string>{"3", "10", "11"}));
+    EXPECT_EQ(frames, (std::set<std::string>{"4", "5", "6"}));
+    EXPECT_EQ(rows.size() - 1, 3 * 3 * per_character_frame);  // every joint of each character on each frame
+    const RunResult again = run("export " + kScenes + "crowd_1k.json --joints " + csv + " --characters 3,10-11 --frames 4:7");
+    EXPECT_NE(again.code, 0);
+    EXPECT_NE(again.output.find("already exists"), std::string::npos) << again.output;
+    const std::string csv2 = (out / "joints2.csv").string();
+    ASSERT_EQ(run("export " + kScenes + "crowd_1k.json --joints " + csv2 + " --characters 3,10-11 --frames 4:7").code, 0);
+    EXPECT_EQ(read_csv(csv2), rows);
+    const RunResult past = run("export " + kScenes + "crowd_1k.json --joints " + (out / "x.csv").string() + " --characters 5000");
+    EXPECT_EQ(past.code, 2);
+    EXPECT_NE(past.output.find("character 5000"), std::string::npos) << past.output;
+    EXPECT_FALSE(fs::exists(out / "x.csv"));
+}
+
+// --motion-metrics: report.json carries per-level figures and the bars; the table is printed.
+TEST(Tool, ProfileMotionMetricsReportsSkateAndPopsPerLevel) {
+    const fs::path out = temp_dir("motion_metrics");
+    const RunResult r = run("profile " + kScenes + "crowd_1k.json --no-render --motion-metrics --frames 60 --warmup 2 "
+                            "--characters 100 --quiet --out " + (out / "p").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("motion metrics"), std::string::npos) << r.output;
+    std::ifstream in(out / "p" / "report.json");
+    const nlohmann::json m = nlohmann::json::parse(in)["motion_metrics"];
+    ASSERT_TRUE(m.is_object());
+    EXPECT_EQ(m["skate_bar_mm_per_m"], 10.0);
+    EXPECT_NEAR(m["contact"]["height_m"].get<double>(), 0.005, 1e-9);  // a float in the report
+    ASSERT_FALSE(m["per_level_and_interval"].empty());
+    double walked = 0.0;
+    for (const auto& b : m["per_level_and_interval"]) {
+        for (const char* k : {"anim_level", "update_interval", "walked_m", "skate_mm_per_m", "switch_frames",
+                              "worst_switch_cm", "ordinary_p95_cm", "transition_frames", "worst_transition_cm"})
+            EXPECT_TRUE(b.contains(k)) << k;
+        walked += b["walked_m"].get<double>();
+    }
+    EXPECT_NEAR(m["overall"]["walked_m"].get<double>(), walked, 1e-6 * walked);
+    EXPECT_GT(walked, 0.0);  // the crowd walks
+}

@@ -90,7 +90,7 @@ protected:
 };
 
 // The bound: at most 10 mm of skate per metre at every update interval (contact: a sole point
-// within 1 cm of its lowest height and slower than 0.5 m/s).
+// within 5 mm of its lowest height and slower than 0.5 m/s).
 TEST_F(MeteredWalk, ClipLevelSkateAtEveryUpdateInterval) {
     for (uint16_t interval : {uint16_t{1}, uint16_t{2}, uint16_t{4}, uint16_t{8}}) {
         FootSkateMeter skate;

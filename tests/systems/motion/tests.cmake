@@ -23,6 +23,7 @@ if(TARGET aloha_motion AND TARGET aloha_assets)
     SOURCES ${CMAKE_CURRENT_LIST_DIR}/bvh_walk_test.cpp
             ${CMAKE_CURRENT_LIST_DIR}/controller_overlay_test.cpp
             ${CMAKE_CURRENT_LIST_DIR}/motion_metrics_test.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/crowd_motion_meter_test.cpp
             ${CMAKE_CURRENT_LIST_DIR}/inertialize_test.cpp
     LIBS aloha::motion aloha::assets
     LABELS motion)
