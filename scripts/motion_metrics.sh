@@ -28,13 +28,12 @@ fi
 # not part of the repository).
 scene="$out/cmu_131_01.json"
 cp "$bvh" "$out/131_01.bvh"
-cp data/characters/humanoid_muscles.json "$out/humanoid_muscles.json"  # the built-in layout: CMU joint names
 python3 - "$scene" <<'PY'
 import json, sys
 s = json.load(open("data/scenes/crowd_1k.json"))
 s["name"] = "cmu_131_01_1k"
 s.pop("$schema", None)
-s["character_types"] = [{"name": "cmu", "bvh": "131_01.bvh", "muscles": "humanoid_muscles.json"}]
+s["character_types"] = [{"name": "cmu", "bvh": "131_01.bvh"}]  # mapped to the humanoid: muscles, limits, walk
 c = s["crowds"][0]
 for key in ("height", "build", "variants"):
     c.pop(key, None)
