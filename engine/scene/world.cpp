@@ -1,7 +1,7 @@
 #include "engine/scene/world.hpp"
 
-#include "engine/core/hash.hpp"
 #include "engine/scene/character_runtime.hpp"
+#include "engine/scene/world_diagnostics.hpp"
 #include "systems/lod/resolver.hpp"
 #include "systems/lod/rule_table.hpp"
 #include "systems/motion/motion_metrics.hpp"
@@ -68,23 +68,92 @@ Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const Geom
     return {};
 }
 
+std::vector<GeomLod> geom_levels(const RuleTable& table) {
+    std::vector<GeomLod> levels;
+    for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
+    return levels;
+}
+
+Transform character_placement(const CharacterDesc& c) {
+    Transform t;
+    t.position = c.position;
+    t.rotation = glm::angleAxis(glm::radians(c.heading_deg), glm::vec3(0, 1, 0));
+    return t;
+}
+
+DrawType CharacterRuntime::draw_type() const {
+    DrawType d;
+    d.geometry = geometry.get();
+    d.poses = poses();
+    d.parents = type.skeleton.parents();
+    d.proxy_joints = proxy_joints;
+    d.materials = type.materials;
+    d.textures = type.textures;
+    return d;
+}
+
+void CharacterRuntime::add_paths(const SceneDesc& scene) {
+    for (const auto& p : scene.paths) {
+        motion->add_path(p.points);
+        path_names.push_back(p.name);
+    }
+}
+
+Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, const CharacterDesc& c, uint32_t id) {
+    for (size_t k = 0; k < c.requests.size(); ++k) {
+        const RequestDesc& rd = c.requests[k];
+        MotionRequest req = rd.request;
+        const std::string where = "character " + std::to_string(index) + " request " + std::to_string(k);
+        if (req.kind == RequestKind::PlayClip) {
+            const int clip = find_clip(type, rd.clip);
+            if (clip < 0) return make_error(scene.file, where + ": unknown clip '" + rd.clip + "' for type '" + type.name + "'");
+            req.clip = static_cast<uint16_t>(clip);
+        } else if (req.kind == RequestKind::Walk && !rd.path.empty()) {
+            const auto it = std::find(path_names.begin(), path_names.end(), rd.path);
+            req.path = static_cast<uint16_t>(it - path_names.begin());
+        } else if (req.kind == RequestKind::Reach || req.kind == RequestKind::LookAt) {
+            const int joint = find_joint(type.skeleton, type.map, rd.effector);
+            if (joint < 0) return make_error(scene.file, where + ": unknown effector joint '" + rd.effector + "' for type '" + type.name + "'");
+            req.effector = static_cast<int16_t>(joint);
+        }
+        if (!motion->push_request(id, req))
+            return make_error(scene.file, where + ": more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued");
+    }
+    if (c.overlay) {
+        MotionRequest req = c.overlay->request;
+        const int joint = find_joint(type.skeleton, type.map, c.overlay->effector);
+        if (joint < 0)
+            return make_error(scene.file, "character " + std::to_string(index) + " overlay: unknown effector joint '" +
+                                              c.overlay->effector + "' for type '" + type.name + "'");
+        req.effector = static_cast<int16_t>(joint);
+        motion->set_overlay(id, req, c.overlay_weight);
+    }
+    return {};
+}
+
+Result<std::vector<std::unique_ptr<CharacterRuntime>>> make_character_runtimes(const SceneDesc& scene,
+                                                                               std::span<const CharacterDesc> chars,
+                                                                               std::span<const GeomLod> levels,
+                                                                               bool keep_refined_surfaces) {
+    std::vector<uint32_t> per_type(scene.types.size(), 0);
+    for (const auto& c : chars) per_type[static_cast<size_t>(c.type)]++;
+    std::vector<std::unique_ptr<CharacterRuntime>> out;
+    for (size_t t = 0; t < scene.types.size(); ++t) {
+        auto type = load_character_type(scene.types[t]);
+        if (!type.ok()) return type.error();
+        out.push_back(std::make_unique<CharacterRuntime>(std::move(type.value()), per_type[t]));
+        out.back()->add_paths(scene);
+        if (Status s = out.back()->init_geometry(static_cast<uint16_t>(t), levels, keep_refined_surfaces); !s.ok()) return s.error();
+    }
+    return out;
+}
+
 PoseSource CharacterRuntime::poses() const {
     if (count == 0) return {};
     return PoseSource{motion->poses().view(0).model.data(), static_cast<size_t>(type.skeleton.joint_count())};
 }
 
 World::~World() = default;
-
-uint64_t available_memory_bytes() {
-    std::FILE* f = std::fopen("/proc/meminfo", "r");
-    if (!f) return 0;
-    char line[256];
-    uint64_t kib = 0;
-    while (std::fgets(line, sizeof line, f))
-        if (std::sscanf(line, "MemAvailable: %lu kB", &kib) == 1) break;
-    std::fclose(f);
-    return kib * 1024;
-}
 
 const CharacterType& World::type(size_t i) const { return types_[i]->type; }
 
@@ -125,11 +194,6 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
     const RuleTable& table = rules_.table();
     if (Status s = spawn_characters(); !s.ok()) return s;
     if (Status s = apply_rule_settings(); !s.ok()) return s;
-    std::vector<GeomLod> levels;
-    for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
-    for (size_t t = 0; t < types_.size(); ++t)
-        if (Status s = types_[t]->init_geometry(static_cast<uint16_t>(t), levels, options.keep_refined_surfaces); !s.ok())
-            return s;
     if (!options.lod) {
         // With LOD off every character sits at level 0: refuse up front (with the figures) rather than
         // run out of memory half-way through the first frame.
@@ -178,17 +242,9 @@ Status World::apply_rule_settings() {
 
 Status World::spawn_characters() {
     const std::vector<CharacterDesc> chars = expand_characters(scene_, options_.seed_override);
-    std::vector<uint32_t> per_type(scene_.types.size(), 0);
-    for (const auto& c : chars) per_type[static_cast<size_t>(c.type)]++;
-    for (size_t t = 0; t < scene_.types.size(); ++t) {
-        auto type = load_character_type(scene_.types[t]);
-        if (!type.ok()) return type.error();
-        types_.push_back(std::make_unique<CharacterRuntime>(std::move(type.value()), per_type[t]));
-        for (const auto& p : scene_.paths) {
-            types_.back()->motion->add_path(p.points);
-            types_.back()->path_names.push_back(p.name);
-        }
-    }
+    auto types = make_character_runtimes(scene_, chars, geom_levels(rules_.table()), options_.keep_refined_surfaces);
+    if (!types.ok()) return types.error();
+    types_ = std::move(types.value());
     (void)character_group(registry_);  // create the owning group before the components arrive
     registry_.reserve(chars.size());
     for (size_t i = 0; i < chars.size(); ++i) {
@@ -196,10 +252,7 @@ Status World::spawn_characters() {
         CharacterRuntime& rt = *types_[static_cast<size_t>(c.type)];
         const uint32_t id = rt.spawned++;
         const Entity e = registry_.create();
-        Transform tr;
-        tr.position = c.position;
-        tr.rotation = glm::angleAxis(glm::radians(c.heading_deg), glm::vec3(0, 1, 0));
-        registry_.emplace<Transform>(e, tr);
+        registry_.emplace<Transform>(e, character_placement(c));
         registry_.emplace<Velocity>(e);
         registry_.emplace<Bounds>(e, Bounds{rt.type.height, rt.type.radius});
         registry_.emplace<Importance>(e, Importance{c.importance});
@@ -214,34 +267,7 @@ Status World::spawn_characters() {
         MotionState ms;
         ms.pose_slot = id;
         registry_.emplace<MotionState>(e, ms);
-        for (size_t k = 0; k < c.requests.size(); ++k) {
-            const RequestDesc& rd = c.requests[k];
-            MotionRequest req = rd.request;
-            const std::string where = "character " + std::to_string(i) + " request " + std::to_string(k);
-            if (req.kind == RequestKind::PlayClip) {
-                const int clip = find_clip(rt.type, rd.clip);
-                if (clip < 0) return make_error(scene_.file, where + ": unknown clip '" + rd.clip + "' for type '" + rt.type.name + "'");
-                req.clip = static_cast<uint16_t>(clip);
-            } else if (req.kind == RequestKind::Walk && !rd.path.empty()) {
-                const auto it = std::find(rt.path_names.begin(), rt.path_names.end(), rd.path);
-                req.path = static_cast<uint16_t>(it - rt.path_names.begin());
-            } else if (req.kind == RequestKind::Reach || req.kind == RequestKind::LookAt) {
-                const int joint = find_joint(rt.type.skeleton, rt.type.map, rd.effector);
-                if (joint < 0) return make_error(scene_.file, where + ": unknown effector joint '" + rd.effector + "' for type '" + rt.type.name + "'");
-                req.effector = static_cast<int16_t>(joint);
-            }
-            if (!rt.motion->push_request(id, req))
-                return make_error(scene_.file, where + ": more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued");
-        }
-        if (c.overlay) {
-            MotionRequest req = c.overlay->request;
-            const int joint = find_joint(rt.type.skeleton, rt.type.map, c.overlay->effector);
-            if (joint < 0)
-                return make_error(scene_.file, "character " + std::to_string(i) + " overlay: unknown effector joint '" +
-                                                   c.overlay->effector + "' for type '" + rt.type.name + "'");
-            req.effector = static_cast<int16_t>(joint);
-            rt.motion->set_overlay(id, req, c.overlay_weight);
-        }
+        if (Status st = rt.queue_requests(scene_, i, c, id); !st.ok()) return st;
     }
     regroup();
     return {};
@@ -249,19 +275,22 @@ Status World::spawn_characters() {
 
 void World::regroup() {
     auto group = character_group(registry_);
-    const size_t n = group.size();
-    sort_keys_.resize(n);
-    auto refs = group.span<CharacterRef>();
-    auto geom = group.span<GeomLod>();
-    for (size_t i = 0; i < n; ++i) sort_keys_[i] = (static_cast<uint32_t>(refs[i].type) << 8) | geom[i].level;
-    group.partition_by_key(sort_keys_);
-    ids_.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        sort_keys_[i] = (static_cast<uint32_t>(refs[i].type) << 8) | geom[i].level;
-        types_[refs[i].type]->element_of_character[refs[i].id] = static_cast<uint32_t>(i);
-        ids_[i] = refs[i].id;
+    // Keep the group itself sorted by (type, level), so the grouped loops walk memory in order and
+    // every index the World hands out (explain, the group spans) is both element and position.
+    group_keys(group.span<CharacterRef>(), group.span<GeomLod>(), groups_.keys);
+    group.partition_by_key(groups_.keys);
+    group_by_level(group.span<CharacterRef>(), group.span<GeomLod>(), groups_);
+    const auto refs = group.span<CharacterRef>();
+    for (size_t e = 0; e < refs.size(); ++e) types_[refs[e].type]->element_of_character[refs[e].id] = static_cast<uint32_t>(e);
+}
+
+void World::refresh_type_views() {
+    geometry_types_.resize(types_.size());
+    draw_types_.resize(types_.size());
+    for (size_t t = 0; t < types_.size(); ++t) {
+        geometry_types_[t] = types_[t]->geometry_type();
+        draw_types_[t] = types_[t]->draw_type();
     }
-    key_ranges(sort_keys_, ranges_);
 }
 
 void World::step() {
@@ -282,11 +311,9 @@ void World::step() {
             applied_rules_generation_ = rules_.generation();
             auto group = character_group(registry_);
             clamp_lod_states(rules_.table(), group.span<LodState>());
-            const RuleTable& table = rules_.table();
-            std::vector<GeomLod> levels;
-            for (size_t l = 0; l < table.geom_levels.size(); ++l) levels.push_back(table.geom_lod(static_cast<uint8_t>(l)));
+            const std::vector<GeomLod> levels = geom_levels(rules_.table());
             for (auto& rt : types_) rt->geometry->set_levels(rt->usable_levels(levels));
-            topologies_.clear();  // level topologies may have changed: register again on demand
+            draws_.reset();  // level topologies may have changed: register again on demand
             (void)apply_rule_settings();  // budget and tier too; a tier the new file lacks falls back to its own
         }
     }
@@ -300,6 +327,7 @@ void World::step() {
     geom_level_ns_.assign(rules_.table().geom_levels.size(), 0);
     anim_level_ns_.assign(rules_.table().anim_levels.size(), 0);
     switches_[0] = switches_[1] = 0;
+    refresh_type_views();
     scheduler_.run_frame(dt);
     last_cpu_ms_ = static_cast<double>(scheduler_.latest_ns_before(Phase::Render)) * 1e-6;
     auto latest_ms = [&](int system) {
@@ -323,47 +351,6 @@ nlohmann::json World::explain(uint32_t i) const {
     j["type"] = types_[ref.type]->type.name;
     j["character_id"] = ref.id;
     return j;
-}
-
-uint64_t World::nonfinite_count() const {
-    auto& reg = const_cast<Registry&>(registry_);
-    auto group = character_group(reg);
-    uint64_t bad = 0;
-    auto check = [&](const float* v, size_t n) {
-        for (size_t i = 0; i < n; ++i) bad += !std::isfinite(v[i]);
-    };
-    for (const Transform& t : group.span<Transform>()) check(&t.position.x, 3), check(&t.rotation.x, 4);
-    for (const auto& rt : types_) {
-        for (uint32_t id = 0; id < rt->count; ++id) {
-            const ConstPoseView pose = rt->motion->poses().view(id);
-            check(&pose.model[0][0][0], pose.model.size() * 16);
-            const SurfaceView surface = rt->geometry->surface(id);
-            if (!surface.positions.empty()) check(&surface.positions[0].x, surface.positions.size() * 3);
-            const std::span<const glm::mat4> boxes = rt->geometry->proxy_boxes(id);
-            if (!boxes.empty()) check(&boxes[0][0][0], boxes.size() * 16);
-        }
-    }
-    return bad;
-}
-
-uint64_t World::state_hash() const {
-    auto& reg = const_cast<Registry&>(registry_);
-    auto group = character_group(reg);
-    StateHasher h;
-    auto transforms = group.span<Transform>();
-    auto states = group.span<LodState>();
-    for (const auto& rt : types_) {
-        for (uint32_t id = 0; id < rt->count; ++id) {
-            const uint32_t i = rt->element_of_character[id];
-            h.add(transforms[i].position);
-            h.add(transforms[i].rotation);
-            h.add(states[i].geom_level);
-            h.add(states[i].anim_level);
-            const ConstPoseView pose = rt->motion->poses().view(id);
-            h.add_span(pose.model);
-        }
-    }
-    return h.value();
 }
 
 }  // namespace aloha

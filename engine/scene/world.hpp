@@ -13,6 +13,9 @@
 #include "engine/scene/motion_sample.hpp"
 #include "engine/scene/scene_desc.hpp"
 #include "engine/scheduler/scheduler.hpp"
+#include "systems/frame/draw_lists.hpp"
+#include "systems/frame/geometry_frame.hpp"
+#include "systems/frame/level_groups.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/lod/attributes.hpp"
 #include "systems/lod/budget_driver.hpp"
@@ -45,9 +48,6 @@ inline CharacterGroup character_group(Registry& registry) {
                           LodState, GeomLod, AnimLod, MotionState>();
 }
 
-/// Debug overlays drawn as lines over the characters (bits, combine with |).
-enum OverlayBits : uint8_t { kOverlayBones = 1u << 0, kOverlayMuscles = 1u << 1, kOverlaySprings = 1u << 2 };
-
 /// How a World is built and run.
 struct WorldOptions {
     unsigned threads = 0;                  ///< scheduler threads (0 = all cores)
@@ -68,27 +68,6 @@ struct WorldOptions {
     uint8_t overlay = 0;                   ///< OverlayBits: bones, muscle outlines, fat springs
     bool keep_refined_surfaces = true;     ///< false (runs with no renderer): subdivided skins are
                                            ///< computed each frame but not kept (see GeometryController)
-};
-
-/// The draw lists one frame produces (Skin phase), in world space, ready for the renderer.
-struct RenderLists {
-    std::vector<DeformableMesh> meshes;
-    std::vector<ProxyInstance> proxies;
-    std::vector<LineSegment> lines;
-};
-
-/// Memory the system reports as available (MemAvailable), 0 when unknown.
-uint64_t available_memory_bytes();
-
-/// The frame as the profiler's fidelity check sees it (see World::reference_frame).
-struct ReferenceFrame {
-    std::vector<DeformableMesh> meshes;           ///< visible characters at the reference level
-    std::vector<double> deviation_sum;            ///< per geometric level: summed screen deviation (px)
-    std::vector<double> deviation_max;            ///< per geometric level: largest deviation (px)
-    std::vector<uint64_t> deviation_count;        ///< per geometric level: vertices measured
-    uint32_t switches = 0;                        ///< visible characters that switched level this frame
-    std::vector<std::vector<glm::vec3>> positions, normals;     ///< storage behind `meshes`
-    std::vector<glm::vec3> current_scratch, reference_scratch;  ///< reused per character
 };
 
 /// Hosts a scene's characters and systems. Not copyable; one thread drives step().
@@ -161,26 +140,19 @@ public:
     [[nodiscard]] const Status& render_status() const { return render_status_; }
     /// Why character `i` (group order) has its levels, as JSON (attributes, rule, levels).
     [[nodiscard]] nlohmann::json explain(uint32_t i) const;
-    /// The richest Layered level of the rule table: the full-detail picture the fidelity check renders.
-    [[nodiscard]] uint8_t reference_level() const;
-    /// Fills `out` for the last frame: every visible character's surface at reference_level() (springs
-    /// at rest) as draw items, and per level the screen-space deviation of each mesh character's displayed
-    /// control surface from its level-0 control surface. Requires an attached renderer. Allocates.
-    Status reference_frame(ReferenceFrame& out);
-    /// Approximate bytes of per-character state per geometric level (for the profiler).
-    [[nodiscard]] std::vector<uint64_t> memory_per_level() const;
-    /// Hash of every character's placement, LOD state and pose, in spawn order: equal across runs and
-    /// thread counts for the same scene and options.
-    [[nodiscard]] uint64_t state_hash() const;
-    /// Counts NaN/Inf values in every character's placement, pose matrices and displayed surface (0 when
-    /// healthy): the long-run stability check.
-    [[nodiscard]] uint64_t nonfinite_count() const;
+    /// The renderer attached (nullptr without) and the builder of the draw lists with its topology cache.
+    [[nodiscard]] CrowdRenderer* renderer() const { return renderer_; }
+    [[nodiscard]] DrawListBuilder& draw_lists() { return draws_; }
+    /// Per type: what the draw lists need (refreshed each step).
+    [[nodiscard]] std::span<const DrawType> draw_types() const { return draw_types_; }
     /// Fills `out` with character `index` (spawn order: types in scene order, then id) as the last
     /// frame left it. Requires index < character_count().
     void motion_sample(uint32_t index, MotionSample& out) const;
     /// Number of character types and each one's data.
     [[nodiscard]] size_t type_count() const { return types_.size(); }
     [[nodiscard]] const CharacterType& type(size_t i) const;
+    /// Type `i`'s controllers (motion, geometry) and its id -> group element map.
+    [[nodiscard]] const CharacterRuntime& runtime(size_t i) const { return *types_[i]; }
 
 private:
     World() = default;
@@ -189,10 +161,7 @@ private:
     Status apply_rule_settings();
     void register_systems();
     void regroup();
-    void gather_render_lists();
-    void gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::mat4& world);
-    static constexpr uint32_t kNoTopology = 0xFFFFFFFFu;
-    uint32_t topology_id(CharacterRuntime& rt, const SurfaceView& surface);
+    void refresh_type_views();
 
     SceneDesc scene_;
     WorldOptions options_;
@@ -214,14 +183,14 @@ private:
     LodStats stats_;
     LodCamera camera_;
     std::vector<std::unique_ptr<CharacterRuntime>> types_;
-    std::vector<uint32_t> sort_keys_;
+    CharacterGroups groups_;                         ///< (type, level) grouping; the group is kept sorted by
+                                                     ///< it, so element == position (order[p] == p)
+    std::vector<GeometryType> geometry_types_;       ///< per type: controller and poses (frame glue)
+    std::vector<DrawType> draw_types_;               ///< per type: what the draw lists need
     std::vector<uint32_t> due_ids_;                  ///< per-frame scratch: characters needing geometry work
-    std::vector<uint32_t> ids_;                      ///< group position -> character id in its type
-    std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< geometry topology key -> renderer id
     std::vector<uint32_t> changed_;
-    std::vector<KeyRange> ranges_;
+    DrawListBuilder draws_;                          ///< draw lists and the renderer's topology cache
     RenderLists lists_;
-    std::vector<glm::vec3> overlay_muscles_;         ///< scratch: one character's muscle surface (overlays)
     CrowdRenderer* renderer_ = nullptr;
     gpu::OffscreenTarget* target_ = nullptr;
     double last_gpu_ms_ = -1.0;

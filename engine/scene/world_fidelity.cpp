@@ -1,7 +1,7 @@
 // Fidelity support for the profiler: the frame as it would look at full detail, and how far each
 // character's LOD skin is from its full-detail skin on screen.
 #include "engine/scene/character_runtime.hpp"
-#include "engine/scene/world.hpp"
+#include "engine/scene/world_diagnostics.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,32 +22,34 @@ bool to_pixels(const glm::mat4& view_proj, const glm::vec3& p, const glm::vec2& 
 
 }  // namespace
 
-uint8_t World::reference_level() const {
-    const RuleTable& table = rules_.table();
+uint8_t reference_level(const RuleTable& table) {
     for (size_t l = 0; l < table.geom_levels.size(); ++l)
         if (table.geom_lod(static_cast<uint8_t>(l)).method == GeomMethod::Layered) return static_cast<uint8_t>(l);
     return 0;
 }
 
-Status World::reference_frame(ReferenceFrame& out) {
+Status reference_frame(World& host, ReferenceFrame& out) {
+    CrowdRenderer* renderer = host.renderer();
+    if (!renderer) return make_error("", "the fidelity check's reference frame needs an attached renderer");
     out.meshes.clear();
-    out.deviation_sum.assign(rules_.table().geom_levels.size(), 0.0);
+    out.deviation_sum.assign(host.rules().table().geom_levels.size(), 0.0);
     out.deviation_max.assign(out.deviation_sum.size(), 0.0);
     out.deviation_count.assign(out.deviation_sum.size(), 0);
     out.switches = 0;
-    auto g = character_group(registry_);
+    auto g = character_group(host.registry());
     auto refs = g.span<CharacterRef>();
     auto transforms = g.span<Transform>();
     auto attributes = g.span<LodAttributes>();
     auto states = g.span<LodState>();
-    const uint8_t picture_level = reference_level();
-    const glm::mat4 view_proj = camera_.projection * camera_.view;
-    const glm::vec2 viewport = camera_.viewport_px;
+    const uint8_t picture_level = reference_level(host.rules().table());
+    const LodCamera& camera = host.camera();
+    const glm::mat4 view_proj = camera.projection * camera.view;
+    const glm::vec2 viewport = camera.viewport_px;
     size_t used = 0;
     for (size_t i = 0; i < g.size(); ++i) {
         if (!attributes[i].visible) continue;
-        if (states[i].seconds_at_geom == 0.0f && !first_frame_) ++out.switches;
-        CharacterRuntime& rt = *types_[refs[i].type];
+        if (states[i].seconds_at_geom == 0.0f && host.frame() > 0) ++out.switches;
+        const CharacterRuntime& rt = host.runtime(refs[i].type);
         const PoseSource poses = rt.poses();
         const glm::mat4 world = world_matrix(transforms[i]);
         // Screen-space deviation of the displayed control surface from the richest level's.
@@ -55,8 +57,8 @@ Status World::reference_frame(ReferenceFrame& out) {
         const uint8_t level = states[i].geom_level;
         for (size_t k = 0; k < out.current_scratch.size(); ++k) {
             glm::vec2 a, b;
-            if (!to_pixels(view_proj, glm::vec3(world * glm::vec4(out.current_scratch[k], 1.0f)), viewport, camera_.near_plane, a) ||
-                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, camera_.near_plane, b))
+            if (!to_pixels(view_proj, glm::vec3(world * glm::vec4(out.current_scratch[k], 1.0f)), viewport, camera.near_plane, a) ||
+                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, camera.near_plane, b))
                 continue;
             const double d = glm::length(a - b);
             out.deviation_sum[level] += d;
@@ -79,10 +81,11 @@ Status World::reference_frame(ReferenceFrame& out) {
         view.level = picture_level;
         view.topology_key = rt.geometry->topology_key(picture_level);
         view.positions = pos;
-        const uint32_t topology = topology_id(rt, view);
-        if (topology == kNoTopology) return render_status_;
+        auto topology = host.draw_lists().topology(*renderer, refs[i].type, host.draw_types()[refs[i].type], view);
+        if (!topology.ok()) return topology.error();
         // The shaded colouring's instance colour: white over the type's materials, skin tone without.
-        out.meshes.push_back({topology, pos, nrm, world, rt.render_materials.empty() ? glm::vec4(0.86f, 0.68f, 0.56f, 1.0f) : glm::vec4(1.0f)});
+        out.meshes.push_back({topology.value(), pos, nrm, world,
+                              host.draw_lists().textured(refs[i].type) ? glm::vec4(1.0f) : glm::vec4(0.86f, 0.68f, 0.56f, 1.0f)});
         ++used;
     }
     return {};

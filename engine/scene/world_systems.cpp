@@ -5,7 +5,6 @@
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
 
-#include <chrono>
 #include <functional>
 
 namespace aloha {
@@ -23,10 +22,6 @@ struct GpuResource {};
 // Characters per parallel chunk for the cheap per-character LOD loops.
 constexpr size_t kLodGrain = 2048;
 
-uint64_t now_ns() {
-    return static_cast<uint64_t>(
-        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
-}
 }  // namespace
 
 void World::register_systems() {
@@ -126,22 +121,9 @@ void World::register_systems() {
             job.dt = dt;
             job.switch_counts = switches_;
             const size_t changed = job.Run();
-            // Marshal level switches to the geometric controller (geomorph from the old surface).
-            auto refs = g.span<CharacterRef>();
-            auto states = g.span<LodState>();
-            auto geom = g.span<GeomLod>();
-            if (first_frame_) {
-                for (size_t i = 0; i < g.size(); ++i)
-                    types_[refs[i].type]->geometry->begin_level(refs[i].id, states[i].geom_level, -1, 0);
-            } else {
-                for (size_t k = 0; k < changed; ++k) {
-                    const uint32_t i = changed_[k];
-                    GeometryController& gc = *types_[refs[i].type]->geometry;
-                    if (gc.level_of(refs[i].id) == states[i].geom_level) continue;  // animation level only
-                    gc.begin_level(refs[i].id, states[i].geom_level, static_cast<int8_t>(states[i].prev_geom_level),
-                                   transition_frames(geom[i].geomorph_s, ctx.dt()));
-                }
-            }
+            // Marshal level switches to the geometric controllers (geomorph from the old surface).
+            apply_level_switches(geometry_types_, g.span<CharacterRef>(), g.span<LodState>(), g.span<GeomLod>(),
+                                 std::span<const uint32_t>(changed_.data(), changed), first_frame_, ctx.dt());
             if (changed > 0 || first_frame_) regroup();  // keep characters grouped by (type, level)
             LodStatsJob stats;
             stats.table = &table;
@@ -174,78 +156,46 @@ void World::register_systems() {
                         }
                     }});
 
-    // The geometric controller, muscle stage: per (type, level) range of a muscle level one tight loop
-    // shaping the muscles for the pose (volume kept) and tessellating them at the level's (T, P).
+    // The geometric controller, per (type, level) range of the grouping one tight loop, chunks in
+    // parallel (systems/frame/geometry_frame.hpp). Muscle stage: the muscles shaped for the pose
+    // (volume kept) and tessellated at the level's (T, P).
+    auto geometry_job = [this](SystemContext& ctx) {
+        auto g = character_group(registry_);
+        GeometryUpdateJob job;
+        job.types = geometry_types_;
+        job.groups = &groups_;
+        job.states = g.span<LodState>();
+        job.motion = g.span<MotionState>();
+        job.dt = ctx.dt();
+        job.first_frame = first_frame_;
+        job.level_ns = geom_level_ns_;  // per-level time for the geometry budget
+        job.run_chunks = [&ctx](size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn) {
+            ctx.parallel_for(count, grain, fn);
+        };
+        job.scratch = &due_ids_;
+        return job;
+    };
     scheduler_.add({"muscle", Phase::Tessellate, reads<GeomLod, CharacterRef, PoseResource>(), writes<MuscleSurfaceResource>(),
-                    [this](SystemContext& ctx) {
-                        auto g = character_group(registry_);
-                        auto refs = g.span<CharacterRef>();
-                        auto geom = g.span<GeomLod>();
-                        for (const KeyRange& r : ranges_) {
-                            CharacterRuntime& rt = *types_[refs[r.begin].type];
-                            const GeomMethod method = rt.geometry->level(geom[r.begin].level).method;  // as the type draws it
-                            if (method != GeomMethod::Layered && method != GeomMethod::Subdivided) continue;
-                            const PoseSource poses = rt.poses();
-                            const uint8_t level = geom[r.begin].level;
-                            const std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
-                            const uint64_t start = now_ns();  // per-level time for the geometry budget
-                            ctx.parallel_for(ids.size(), 1, [&](size_t b, size_t e) {
-                                rt.geometry->update_muscles(level, ids.subspan(b, e - b), poses);
-                            });
-                            if (level < geom_level_ns_.size()) geom_level_ns_[level] += now_ns() - start;
-                        }
-                    }});
+                    [geometry_job](SystemContext& ctx) { geometry_job(ctx).RunMuscles(); }});
 
-    // The geometric controller, skin stage: per (type, level) range one tight loop of that level's
-    // skin (rigid proxies, linear-blend skin, fat springs on the muscle surface + skin, geomorph,
-    // OpenSubdiv), chunks in parallel.
+    // Skin stage: rigid proxies, linear-blend skin, fat springs on the muscle surface + skin, geomorph,
+    // OpenSubdiv.
     scheduler_.add({"spring_skin", Phase::Skin,
                     reads<GeomLod, LodState, MotionState, CharacterRef, PoseResource, MuscleSurfaceResource>(),
-                    writes<SurfaceResource>(), [this](SystemContext& ctx) {
-                        auto g = character_group(registry_);
-                        auto refs = g.span<CharacterRef>();
-                        auto geom = g.span<GeomLod>();
-                        auto motion = g.span<MotionState>();
-                        auto states = g.span<LodState>();
-                        due_ids_.resize(g.size());
-                        for (const KeyRange& r : ranges_) {
-                            CharacterRuntime& rt = *types_[refs[r.begin].type];
-                            const GeomMethod method = rt.geometry->level(geom[r.begin].level).method;  // as the type draws it
-                            if (method == GeomMethod::Hidden) continue;
-                            const PoseSource poses = rt.poses();
-                            const uint8_t level = geom[r.begin].level;
-                            // Proxies and linear-blend skins depend on the pose alone: only characters posed
-                            // this frame (update_interval throttling), entering the level or morphing need
-                            // work. Layered levels run every frame (the fat springs move).
-                            std::span<const uint32_t> ids(ids_.data() + r.begin, r.end - r.begin);
-                            if (method == GeomMethod::RigidProxy || method == GeomMethod::SkinnedMesh) {
-                                size_t n = 0;
-                                for (size_t i = r.begin; i < r.end; ++i)
-                                    if (motion[i].frames_since_update == 0 || states[i].seconds_at_geom == 0.0f ||
-                                        states[i].geomorph_left_s > 0.0f || first_frame_ ||
-                                        rt.geometry->geomorph_frames_left(refs[i].id) > 0)
-                                        due_ids_[r.begin + n++] = refs[i].id;
-                                ids = std::span<const uint32_t>(due_ids_.data() + r.begin, n);
-                            }
-                            // Grain: cheap methods in big chunks, rich ones one or a few characters each.
-                            const size_t grain = method == GeomMethod::RigidProxy ? 256 : method == GeomMethod::SkinnedMesh ? 16 : 1;
-                            const uint64_t start = now_ns();  // per-level time for the geometry budget
-                            ctx.parallel_for(ids.size(), grain, [&](size_t b, size_t e) {
-                                rt.geometry->update_skin(level, ids.subspan(b, e - b), poses, ctx.dt());
-                            });
-                            if (level < geom_level_ns_.size()) geom_level_ns_[level] += now_ns() - start;
-                        }
-                    }});
+                    writes<SurfaceResource>(), [geometry_job](SystemContext& ctx) { geometry_job(ctx).RunSkin(); }});
 
     scheduler_.add({"render_prepare", Phase::Render,
                     reads<SurfaceResource, Transform, GeomLod, LodState, AnimLod, CharacterRef>(),
                     writes<DrawListResource>(), [this](SystemContext&) {
-                        if (renderer_) gather_render_lists();
+                        if (!renderer_) return;
+                        auto g = character_group(registry_);
+                        render_status_ = draws_.gather(renderer_, draw_types_, groups_, g.span<Transform>(), g.span<LodState>(),
+                                                       g.span<AnimLod>(), DrawSettings{options_.colour, options_.overlay}, lists_);
                     }});
 
     scheduler_.add({"render", Phase::Render, reads<DrawListResource, CameraResource>(), writes<GpuResource>(),
                     [this](SystemContext&) {
-                        if (!renderer_ || !target_) return;
+                        if (!renderer_ || !target_ || !render_status_.ok()) return;
                         FrameInput input;
                         frame_settings(input);
                         input.meshes = lists_.meshes;

@@ -2,6 +2,7 @@
 // Event format), frame_times.svg and last_frame.png, with a progress bar and a summary table.
 #include "engine/scheduler/chrome_trace.hpp"
 #include "engine/tool/commands.hpp"
+#include "engine/scene/world_diagnostics.hpp"
 #include "engine/tool/fidelity.hpp"
 #include "engine/tool/motion_recorder.hpp"
 #include "engine/tool/profile_lod.hpp"
@@ -198,7 +199,7 @@ int run_profile(const CliOptions& options) {
     report["viewport"] = {s.scene.width, s.scene.height};
     report["device"] = s.context ? s.context->device_name() : std::string("none (--no-render)");
     report["wall_seconds"] = wall_s;
-    report["state_hash"] = world.state_hash();
+    report["state_hash"] = state_hash(world);
     report["plan"] = sched.passes();
     auto series = [&](auto get) {
         std::vector<double> v;
@@ -232,7 +233,7 @@ int run_profile(const CliOptions& options) {
                              {"geometric_methods", r.geom_methods}, {"walk_methods", r.walk_methods}});
     report["characters_per_level_per_frame"] = per_frame;
     nlohmann::json mem = nlohmann::json::object();
-    const auto bytes = world.memory_per_level();
+    const auto bytes = memory_per_level(world);
     for (size_t l = 0; l < bytes.size() && l < gnames.size(); ++l) mem[gnames[l]] = bytes[l];
     report["memory_bytes_per_character_per_level"] = mem;
     report["lod_stats_last_frame"] = to_json(world.lod_stats(), table);
@@ -323,7 +324,7 @@ int run_profile(const CliOptions& options) {
     }
     std::cout << lod_summary(report);
     if (motion) std::cout << motion->table(table);
-    std::cout << "state hash " << world.state_hash() << "; reports in " << out << "/\n";
+    std::cout << "state hash " << state_hash(world) << "; reports in " << out << "/\n";
     return 0;
 }
 

@@ -1,3 +1,4 @@
+#include "engine/scene/world_diagnostics.hpp"
 #include "engine/tool/fidelity.hpp"
 
 #include "engine/tool/session.hpp"
@@ -48,7 +49,7 @@ public:
         World& world = *s_.world;
         auto lod = s_.target.read_back(*s_.context);
         if (!lod.ok()) return lod.error();
-        if (Status st = world.reference_frame(frame_); !st.ok()) return st.error();
+        if (Status st = reference_frame(world, frame_); !st.ok()) return st.error();
         FrameInput input;
         world.frame_settings(input);
         input.meshes = frame_.meshes;

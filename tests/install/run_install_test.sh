@@ -8,6 +8,6 @@ cmake --install "$build" --prefix "$work/prefix" >/dev/null
 cmake -S "$consumer" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/build"
-"$work/build/mini_game" "$work/frame.png"
+"$work/build/mini_game" "$consumer/mini_game.json" "$work/frame.png"
 test -s "$work/frame.png"
 echo "install_consumer: ok"

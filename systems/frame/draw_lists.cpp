@@ -1,0 +1,139 @@
+#include "systems/frame/draw_lists.hpp"
+
+#include "systems/frame/placement.hpp"
+#include "systems/geometry/surface_grid.hpp"
+#include "systems/render/debug_colours.hpp"
+
+namespace aloha {
+
+namespace {
+
+// The renderer's unit box is [-0.5, 0.5]^3; proxy boxes map [-1, 1]^3.
+const glm::mat4 kHalfToUnit = glm::scale(glm::mat4(1.0f), glm::vec3(2.0f));
+
+}  // namespace
+
+glm::vec4 character_colour(DebugColour mode, const LodState& state, const AnimLod& anim, bool proxy, bool textured) {
+    switch (mode) {
+        case DebugColour::ByLodLevel: return colour_for_level(state.geom_level);
+        case DebugColour::ByRule: return colour_for_rule(state.rule_id);
+        case DebugColour::ByMotionMethod: return colour_for_motion_method(static_cast<int>(anim.walk));
+        case DebugColour::Shaded: break;
+    }
+    if (textured) return glm::vec4(1.0f);
+    return proxy ? glm::vec4(0.62f, 0.66f, 0.74f, 1.0f) : glm::vec4(0.86f, 0.68f, 0.56f, 1.0f);
+}
+
+void DrawListBuilder::reset() {
+    topologies_.clear();
+    materials_.clear();
+}
+
+Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
+                               std::span<const Transform> transforms, std::span<const LodState> states,
+                               std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out) {
+    out.meshes.clear();
+    out.proxies.clear();
+    out.lines.clear();
+    for (const LevelRange& r : groups.ranges) {
+        const DrawType& draw = types[r.type];
+        const GeometryController& gc = *draw.geometry;
+        const GeomMethod method = gc.level(r.level).method;  // as this type draws the level
+        if (method == GeomMethod::Hidden) continue;
+        if (method == GeomMethod::RigidProxy) {
+            for (uint32_t p = r.begin; p < r.end; ++p) {
+                const uint32_t e = groups.order[p], id = groups.ids[p];
+                const std::span<const glm::mat4> boxes = gc.proxy_boxes(id);
+                if (boxes.empty()) continue;
+                const glm::mat4 world = world_matrix(transforms[e]);
+                const glm::vec4 colour = character_colour(settings.colour, states[e], anims[e], true);
+                for (uint16_t j : draw.proxy_joints) out.proxies.push_back({world * boxes[j] * kHalfToUnit, colour});
+                if (settings.overlay) overlays(draw, id, world, settings.overlay, out);
+            }
+            continue;
+        }
+        if (!renderer) continue;  // meshes need a renderer's topology ids
+        for (uint32_t p = r.begin; p < r.end; ++p) {
+            const uint32_t e = groups.order[p], id = groups.ids[p];
+            const SurfaceView surface = gc.surface(id);
+            if (surface.positions.empty()) continue;
+            const glm::mat4 world = world_matrix(transforms[e]);
+            if (settings.overlay) {  // the skin is left out so the inner layers (bones, muscles, springs) show
+                overlays(draw, id, world, settings.overlay, out);
+                continue;
+            }
+            auto topology = this->topology(*renderer, r.type, draw, surface);
+            if (!topology.ok()) return topology.error();
+            out.meshes.push_back({topology.value(), surface.positions, surface.normals, world,
+                                  character_colour(settings.colour, states[e], anims[e], false, textured(r.type))});
+        }
+    }
+    return {};
+}
+
+void DrawListBuilder::overlays(const DrawType& draw, uint32_t id, const glm::mat4& world, uint8_t bits, RenderLists& out) {
+    auto to_world = [&](const glm::vec3& p) { return glm::vec3(world * glm::vec4(p, 1.0f)); };
+    if ((bits & kOverlayBones) && draw.poses.model) {
+        const std::span<const glm::mat4> pose = draw.poses.joints(id, draw.parents.size());
+        for (size_t j = 0; j < draw.parents.size(); ++j)
+            if (draw.parents[j] >= 0)
+                out.lines.push_back({to_world(glm::vec3(pose[static_cast<size_t>(draw.parents[j])][3])), to_world(glm::vec3(pose[j][3])),
+                                     glm::vec4(1.0f, 0.85f, 0.1f, 1.0f)});
+    }
+    draw.geometry->muscle_surface(id, muscle_scratch_);
+    const std::span<const glm::vec3> muscle = muscle_scratch_;
+    if (muscle.empty()) return;
+    const GeomLod& lod = draw.geometry->level(draw.geometry->level_of(id));
+    const uint32_t T = lod.theta_steps, P = lod.phi_steps, per = grid_vertex_count(T, P);
+    if (T < 3 || P < 2 || muscle.size() % per != 0) return;
+    if (bits & kOverlayMuscles) {  // each muscle's rings, as an outline
+        for (size_t m = 0; m < muscle.size() / per; ++m)
+            for (uint32_t r = 1; r < P; ++r)
+                for (uint32_t t = 0; t < T; ++t)
+                    out.lines.push_back({to_world(muscle[m * per + grid_ring_vertex(T, r, t)]),
+                                         to_world(muscle[m * per + grid_ring_vertex(T, r, t + 1)]), glm::vec4(0.85f, 0.15f, 0.15f, 1.0f)});
+    }
+    const SurfaceView skin = draw.geometry->surface(id);
+    if ((bits & kOverlaySprings) && skin.positions.size() == muscle.size())  // springs: muscle -> skin
+        for (size_t k = 0; k < muscle.size(); ++k)
+            out.lines.push_back({to_world(muscle[k]), to_world(skin.positions[k]), glm::vec4(0.2f, 0.9f, 0.9f, 1.0f)});
+}
+
+Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface) {
+    for (const auto& [key, id] : topologies_)
+        if (key == surface.topology_key) return id;
+    if (materials_.size() <= type) materials_.resize(size_t{type} + 1);
+    std::vector<uint32_t>& materials = materials_[type];
+    if (materials.empty() && !draw.materials.empty()) {  // the type's textures and materials, once
+        std::vector<uint32_t> textures;
+        for (const TextureImage& t : draw.textures) {
+            auto tex = renderer.register_texture(t);
+            if (!tex.ok()) return tex.error();
+            textures.push_back(tex.value());
+        }
+        for (const SurfaceMaterial& m : draw.materials) {
+            const int texture = m.texture >= 0 && static_cast<size_t>(m.texture) < textures.size()
+                                    ? static_cast<int>(textures[static_cast<size_t>(m.texture)]) : -1;
+            auto mat = renderer.register_material(m, texture);
+            if (!mat.ok()) {
+                materials.clear();
+                return mat.error();
+            }
+            materials.push_back(mat.value());
+        }
+    }
+    TopologySurface surface_materials;
+    surface_materials.uvs = draw.geometry->level_uvs(surface.level);
+    surface_materials.vertex_material = draw.geometry->level_vertex_materials(surface.level);
+    surface_materials.materials = materials;
+    // Double-sided materials (glTF doubleSided) need their back faces: no culling for the topology.
+    bool double_sided = false;
+    for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;
+    auto id = renderer.register_topology(draw.geometry->level_indices(surface.level), static_cast<uint32_t>(surface.positions.size()),
+                                         /*cull_back_faces=*/!double_sided, surface_materials);
+    if (!id.ok()) return id.error();
+    topologies_.emplace_back(surface.topology_key, id.value());
+    return id.value();
+}
+
+}  // namespace aloha

@@ -1,0 +1,78 @@
+// Draw-list gathering over spans: every drawn character of a frame as renderer items in world space
+// (rigid proxy boxes, deformable meshes over registered topologies, debug overlay lines), walking the
+// (type, level) groups. The builder keeps the topology cache: each (type, level) index buffer and the
+// type's textures and materials are registered with the renderer once, on first use.
+#pragma once
+
+#include "components/character.hpp"
+#include "components/lod.hpp"
+#include "components/transform.hpp"
+#include "engine/assets/surface_material.hpp"
+#include "engine/core/result.hpp"
+#include "systems/frame/level_groups.hpp"
+#include "systems/geometry/controller/geometry_controller.hpp"
+#include "systems/render/crowd_renderer.hpp"
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace aloha {
+
+/// Debug overlays drawn as lines over the characters (bits, combine with |).
+enum OverlayBits : uint8_t { kOverlayBones = 1u << 0, kOverlayMuscles = 1u << 1, kOverlaySprings = 1u << 2 };
+
+/// The draw lists one frame produces, in world space, ready for the renderer.
+struct RenderLists {
+    std::vector<DeformableMesh> meshes;
+    std::vector<ProxyInstance> proxies;
+    std::vector<LineSegment> lines;
+};
+
+/// What the draw lists need of one character type.
+struct DrawType {
+    const GeometryController* geometry = nullptr;   ///< required
+    PoseSource poses;                               ///< pose matrices (bone overlay)
+    std::span<const int16_t> parents;               ///< skeleton parents (bone overlay)
+    std::span<const uint16_t> proxy_joints;         ///< joints drawn as proxy boxes
+    std::span<const SurfaceMaterial> materials;     ///< the type's surface materials (may be empty)
+    std::span<const TextureImage> textures;         ///< their textures
+};
+
+/// How the characters are coloured and which overlays are drawn.
+struct DrawSettings {
+    DebugColour colour = DebugColour::Shaded;
+    uint8_t overlay = 0;  ///< OverlayBits; with any set, skins are left out so the inner layers show
+};
+
+/// The frame's draw lists and the renderer ids they refer to. One per renderer.
+class DrawListBuilder {
+public:
+    /// Forgets every registered id (a new renderer, or levels whose topologies changed).
+    void reset();
+    /// Clears `out` and fills it with the characters of `groups` (positions walk elements of the spans).
+    /// Proxies need no renderer; meshes need `renderer` for their topology ids (skipped when null).
+    /// Errors: the renderer refusing a topology, texture or material (the lists are then partial).
+    Status gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
+                  std::span<const Transform> transforms, std::span<const LodState> states,
+                  std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out);
+    /// The renderer id of `surface`'s topology for type `type`, registering it (and the type's
+    /// materials) on first use.
+    Result<uint32_t> topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface);
+    /// True when type `type`'s materials are registered (its meshes are drawn in their colours).
+    [[nodiscard]] bool textured(uint16_t type) const { return type < materials_.size() && !materials_[type].empty(); }
+
+private:
+    void overlays(const DrawType& draw, uint32_t id, const glm::mat4& world, uint8_t bits, RenderLists& out);
+
+    std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< SurfaceView::topology_key -> renderer id
+    std::vector<std::vector<uint32_t>> materials_;           ///< per type: renderer ids of its materials
+    std::vector<glm::vec3> muscle_scratch_;                  ///< one character's muscle surface (overlays)
+};
+
+/// The colour a character is drawn in: the debug palette of `mode`, else white over a textured type's
+/// materials, else the shaded proxy or skin tone.
+glm::vec4 character_colour(DebugColour mode, const LodState& state, const AnimLod& anim, bool proxy, bool textured = false);
+
+}  // namespace aloha
