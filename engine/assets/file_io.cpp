@@ -21,16 +21,12 @@ Result<Buffer> read_file(const std::string& path, size_t max_bytes) {
     std::error_code ec;
     const std::filesystem::file_status st = std::filesystem::status(path, ec);
     if (ec || !std::filesystem::exists(st)) {
-        Error e = make_error(path, "file not found");
-        e.code = ec ? ec.value() : ENOENT;
-        return e;
+        return make_error(ErrorKind::Io, path, "file not found", ec ? ec.value() : ENOENT);
     }
-    if (!std::filesystem::is_regular_file(st)) return make_error(path, "not a regular file");
+    if (!std::filesystem::is_regular_file(st)) return make_error(ErrorKind::Io, path, "not a regular file");
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (ec) {
-        Error e = make_error(path, "cannot read the file size: " + ec.message());
-        e.code = ec.value();
-        return e;
+        return make_error(ErrorKind::Io, path, "cannot read the file size: " + ec.message(), ec.value());
     }
     if (size > max_bytes)
         return make_error(path, "file is " + std::to_string(size) + " bytes; the limit is " +
@@ -38,22 +34,18 @@ Result<Buffer> read_file(const std::string& path, size_t max_bytes) {
     std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
     if (!f) {
         const int err = errno;
-        Error e = make_error(path, std::string("cannot open: ") + std::strerror(err));
-        e.code = err;
-        return e;
+        return make_error(ErrorKind::Io, path, std::string("cannot open: ") + std::strerror(err), err);
     }
     Buffer data;
     data.resize(static_cast<size_t>(size));
     const size_t got = size == 0 ? 0 : std::fread(data.data(), 1, data.size(), f.get());
     if (got != data.size()) {
         const int err = std::ferror(f.get()) ? errno : 0;
-        Error e = make_error(path, "read " + std::to_string(got) + " of " + std::to_string(size) +
-                                       " bytes" + (err != 0 ? std::string(": ") + std::strerror(err) : ""));
-        e.code = err;
-        return e;
+        return make_error(ErrorKind::Io, path, "read " + std::to_string(got) + " of " + std::to_string(size) +
+                                                   " bytes" + (err != 0 ? std::string(": ") + std::strerror(err) : ""), err);
     }
     // A file that grew since we asked for its size is read only up to that size: check for more.
-    if (std::fgetc(f.get()) != EOF) return make_error(path, "file changed size while being read");
+    if (std::fgetc(f.get()) != EOF) return make_error(ErrorKind::Io, path, "file changed size while being read");
     return data;
 }
 

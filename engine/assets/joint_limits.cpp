@@ -1,7 +1,6 @@
 #include "engine/assets/joint_limits.hpp"
 
-#include "engine/core/json_depth.hpp"
-#include "engine/core/text_position.hpp"
+#include "engine/core/json_reader.hpp"
 
 #include "engine/assets/file_io.hpp"
 
@@ -20,17 +19,9 @@ std::string type_of(const json& v) { return v.type_name(); }
 }  // namespace
 
 Result<JointLimitTable> parse_joint_limits(std::string_view text, const std::string& source_name) {
-    json doc;
-    if (Status deep = check_json_depth(text, source_name); !deep.ok()) return deep.error();
-    try {
-        doc = json::parse(text.begin(), text.end());
-    } catch (const json::out_of_range& e) {  // e.g. 1e999
-        return make_error(source_name, std::string("JSON number out of range: ") + e.what());
-    } catch (const json::parse_error& e) {
-        int line = 0, column = 0;
-        line_column_of(text, e.byte > 0 ? e.byte - 1 : 0, &line, &column);
-        return make_error(source_name, std::string("invalid JSON: ") + e.what(), line, column);
-    }
+    auto parsed = parse_json_text(text, source_name);
+    if (!parsed.ok()) return parsed.error();
+    const json& doc = parsed.value();
     auto fail = [&](const std::string& path, const std::string& msg) { return make_error(source_name, msg, 0, 0, path); };
     if (!doc.is_object()) return fail("", "top level must be an object, found " + type_of(doc));
     float to_radians = 3.14159265358979f / 180.0f;

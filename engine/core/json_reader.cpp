@@ -1,6 +1,7 @@
 #include "engine/core/json_reader.hpp"
 
 #include "engine/core/json_depth.hpp"
+#include "engine/core/text_position.hpp"
 
 #include <cmath>
 
@@ -152,36 +153,27 @@ void JsonObjectReader::reject_unknown_keys() {
         if (!known_.count(it.key())) error(it.key(), "unknown key '" + it.key() + "'");
 }
 
-Result<nlohmann::json> parse_json_text(const std::string& text, const std::string& file) {
+Result<nlohmann::json> parse_json_text(std::string_view text, const std::string& file, bool allow_comments) {
     if (Status deep = check_json_depth(text, file); !deep.ok()) return deep.error();
-    nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false, /*ignore_comments=*/false);
+    nlohmann::json j = nlohmann::json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false, allow_comments);
     if (!j.is_discarded()) return j;
     // Re-parse with exceptions to get the byte position of the syntax error.
+    int line = 0, column = 0;
     try {
-        const nlohmann::json again = nlohmann::json::parse(text);
+        const nlohmann::json again = nlohmann::json::parse(text.begin(), text.end(), nullptr, true, allow_comments);
         (void)again;
     } catch (const nlohmann::json::parse_error& e) {
-        const size_t byte = e.byte == 0 ? 0 : e.byte - 1;
-        int line = 1, column = 1;
-        for (size_t i = 0; i < byte && i < text.size(); ++i) {
-            if (text[i] == '\n') { ++line; column = 1; } else { ++column; }
-        }
+        line_column_of(text, e.byte == 0 ? 0 : e.byte - 1, &line, &column);  // e.byte: 1-based
         std::string what = e.what();
         const auto pos = what.find("syntax error");
         return make_error(file, "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)), line, column);
     } catch (const nlohmann::json::out_of_range& e) {
         // e.g. "number overflow parsing '1e999'": place it at the first occurrence of the literal.
         std::string what = e.what();
-        int line = 0, column = 0;
         const auto open = what.find('\''), close = what.rfind('\'');
         if (open != std::string::npos && close > open + 1) {
             const size_t at = text.find(what.substr(open + 1, close - open - 1));
-            if (at != std::string::npos) {
-                line = 1, column = 1;
-                for (size_t i = 0; i < at; ++i) {
-                    if (text[i] == '\n') { ++line; column = 1; } else { ++column; }
-                }
-            }
+            if (at != std::string::npos) line_column_of(text, at, &line, &column);
         }
         const auto pos = what.find("number overflow");
         return make_error(file, "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)), line, column);

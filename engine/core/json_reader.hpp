@@ -9,6 +9,7 @@
 
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace aloha {
@@ -56,7 +57,10 @@ private:
 glm::vec3 read_vec3(const nlohmann::json& value, const std::string& path, const std::string& file,
                     std::vector<Error>& errors, const glm::vec3& fallback);
 
-/// Parses JSON text; a syntax error becomes an Error with the file, line and column.
-Result<nlohmann::json> parse_json_text(const std::string& text, const std::string& file);
+/// Parses JSON text (nested at most as deep as check_json_depth allows; `//` and `/* */` comments
+/// when `allow_comments`): the one JSON front end of every data format (scenes, rules, muscle layouts,
+/// joint limits, humanoid definitions). A syntax error or an overflowing number becomes an Error
+/// "invalid JSON: ..." with the file, line and column.
+Result<nlohmann::json> parse_json_text(std::string_view text, const std::string& file, bool allow_comments = false);
 
 }  // namespace aloha

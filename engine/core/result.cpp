@@ -28,6 +28,19 @@ Error make_error(std::string file, std::string message, int line, int column, st
     return e;
 }
 
+Error make_error(ErrorKind kind, std::string file, std::string message, int64_t code) {
+    Error e = make_error(std::move(file), std::move(message));
+    e.kind = kind;
+    e.code = code;
+    return e;
+}
+
+Error option_error(std::string file, std::string option, std::string message) {
+    Error e = make_error(std::move(file), std::move(message), 0, 0, std::move(option));
+    e.kind = ErrorKind::Option;
+    return e;
+}
+
 std::string join_errors(const std::vector<Error>& errors) {
     std::string out;
     for (const Error& e : errors) {

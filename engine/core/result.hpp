@@ -10,6 +10,14 @@
 
 namespace aloha {
 
+/// What kind of problem an Error is, for callers that branch on it (retry, ask again, report).
+enum class ErrorKind : uint8_t {
+    Input = 0,  ///< a file's or text's content is wrong (syntax, schema, values): fix the input
+    Io,         ///< a file cannot be found, opened or read (`code` holds errno)
+    Option,     ///< a host option is out of range for the data (`path` names the option's field)
+    Gpu,        ///< the graphics device refused (`code` holds the VkResult)
+};
+
 /// One problem found in an input: which file, where in it (line/column and/or a JSON path),
 /// and what is wrong. `code` carries a VkResult or errno when one applies (0 otherwise).
 struct Error {
@@ -19,6 +27,7 @@ struct Error {
     std::string path;     ///< JSON path ("/characters/3/position") or other place, "" when unknown
     std::string message;  ///< what is wrong, in words a user can act on
     int64_t code = 0;     ///< VkResult / errno / other numeric code, 0 when none
+    ErrorKind kind = ErrorKind::Input;  ///< what kind of problem (make_error: Input)
 
     /// Formats as "file:line:column: path: message" leaving out the parts that are unknown.
     [[nodiscard]] std::string to_string() const;
@@ -27,6 +36,13 @@ struct Error {
 /// Builds an Error for `file` at optional `line`/`column` with `message`.
 [[nodiscard]] Error make_error(std::string file, std::string message, int line = 0, int column = 0,
                                std::string path = {});
+
+/// Builds an Error of `kind` for `file` with `message` (and `code`: errno, VkResult).
+[[nodiscard]] Error make_error(ErrorKind kind, std::string file, std::string message, int64_t code = 0);
+
+/// Builds an ErrorKind::Option error: host option `option` (the options struct's field name) does not
+/// fit the data in `file`. Hosts say how the option was set (a command-line flag, a menu).
+[[nodiscard]] Error option_error(std::string file, std::string option, std::string message);
 
 /// A value or an Error. Requires T to be movable. Check `ok()` before `value()`.
 template <class T>

@@ -43,6 +43,7 @@ const char* vk_result_name(VkResult result) {
 
 Error vk_error(std::string_view call, VkResult result) {
     Error e;
+    e.kind = ErrorKind::Gpu;
     e.path = "vulkan";
     const char* name = vk_result_name(result);
     e.message = std::string(call) + " failed: " +
@@ -53,6 +54,7 @@ Error vk_error(std::string_view call, VkResult result) {
 
 Error gpu_error(std::string message, int64_t code) {
     Error e;
+    e.kind = ErrorKind::Gpu;
     e.path = "vulkan";
     e.message = std::move(message);
     e.code = code;

@@ -177,8 +177,8 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
         uint64_t crowd_total = 0;
         for (const auto& c : scene_.crowds) crowd_total += c.count;
         if (crowd_total == 0 || *options.characters < placed)
-            return make_error(scene.file, "--characters " + std::to_string(*options.characters) +
-                                              ": the scene has no crowd to rescale to that size");
+            return option_error(scene.file, "characters", std::to_string(*options.characters) +
+                                                              " characters: the scene has no crowd to rescale to that size");
         uint64_t left = *options.characters - placed;
         for (size_t i = 0; i < scene_.crowds.size(); ++i) {
             auto& c = scene_.crowds[i];
@@ -201,10 +201,10 @@ Status World::load(const SceneDesc& scene, const WorldOptions& options) {
         for (const auto& rt : types_) need += uint64_t(rt->count) * rt->geometry->bytes_per_character(0);
         const uint64_t have = available_memory_bytes();
         if (have > 0 && need > have * 8 / 10)
-            return make_error(scene.file, "--lod off puts all " + std::to_string(character_count()) + " characters at level '" +
-                                              table.geom_levels[0].name + "': " + std::to_string(need >> 20) +
-                                              " MiB of geometry, more than 80% of the " + std::to_string(have >> 20) +
-                                              " MiB available; use --characters to profile fewer");
+            return option_error(scene.file, "lod", "LOD off puts all " + std::to_string(character_count()) +
+                                                       " characters at level '" + table.geom_levels[0].name + "': " +
+                                                       std::to_string(need >> 20) + " MiB of geometry, more than 80% of the " +
+                                                       std::to_string(have >> 20) + " MiB available; fewer characters would fit");
         // All of them enter level 0 on the first frame: allocate once rather than by doubling.
         for (const auto& rt : types_) rt->geometry->reserve(0, rt->count);
     }
@@ -231,12 +231,12 @@ Status World::apply_rule_settings() {
     const std::string name = options_.tier ? *options_.tier : scene_.tier;
     const int named = name.empty() ? -1 : table.find_tier(name);
     tier_ = resolve_tier(table, named, options_.hardware ? &*options_.hardware : nullptr);
-    if (named >= 0) tier_.reason = options_.tier ? "named by the host (--tier)" : "named by the scene";
+    if (named >= 0) tier_.reason = options_.tier ? "named by the host" : "named by the scene";
     if (name.empty() || named >= 0) return {};
     std::string list;
     for (const auto& t : table.tiers) list += (list.empty() ? "" : ", ") + t;
     const std::string message = "tier '" + name + "' is not one of the tiers of " + table.source + " (" + list + ")";
-    if (options_.tier) return make_error("--tier", message);
+    if (options_.tier) return option_error("", "tier", message);
     return make_error(scene_.file, message, 0, 0, "/tier");
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <thread>
+#include <utility>
 
 namespace aloha::tool {
 
@@ -38,6 +39,20 @@ HardwareInfo hardware_info(const gpu::Context* context, unsigned threads) {
     hw.gpu_memory_mb = bytes >> 20;
     return hw;
 }
+
+namespace {
+
+// The World names an option it cannot honour by its field (ErrorKind::Option, path "characters");
+// the tool says which flag set it, and what to do.
+Error name_flag(Error e) {
+    if (e.kind != ErrorKind::Option) return e;
+    if (e.path == "lod") e.message += "; use --characters to profile fewer";
+    e.path = e.path == "lod" ? "--lod off" : "--" + e.path;
+    if (e.file.empty()) std::swap(e.file, e.path);
+    return e;
+}
+
+}  // namespace
 
 Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool render) {
     auto session = std::make_unique<Session>();
@@ -84,7 +99,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
         }
     }
     auto world = World::create(session->scene, wo);
-    if (!world.ok()) return world.error();
+    if (!world.ok()) return name_flag(world.error());
     session->world = std::move(world.value());
     if (!render) return session;
     auto renderer = CrowdRenderer::create(*session->context);

@@ -4,8 +4,7 @@
 #include "systems/lod/rule_parse_helpers.hpp"
 #include "systems/lod/rule_table.hpp"
 
-#include "engine/core/json_depth.hpp"
-#include "engine/core/text_position.hpp"
+#include "engine/core/json_reader.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -222,29 +221,12 @@ Result<RuleTable> parse_rules(std::string_view text, const std::string& source_n
     parser.in.source = source_name;
     parser.text = text;
     parser.table.source = source_name;
-    json root;
-    if (Status deep = check_json_depth(text, source_name); !deep.ok()) {
-        if (all_errors) all_errors->push_back(deep.error());
-        return deep.error();
+    auto parsed = parse_json_text(text, source_name, /*allow_comments=*/true);
+    if (!parsed.ok()) {
+        if (all_errors) all_errors->push_back(parsed.error());
+        return parsed.error();
     }
-    try {
-        root = json::parse(text.begin(), text.end(), nullptr, true, /*ignore_comments=*/true);
-    } catch (const json::out_of_range& e) {  // e.g. 1e999: a number no double holds
-        Error err = make_error(source_name, std::string("JSON number out of range: ") + e.what());
-        if (all_errors) all_errors->push_back(err);
-        return err;
-    } catch (const json::parse_error& e) {
-        int line = 0;
-        int column = 0;
-        line_column_of(text, e.byte > 0 ? e.byte - 1 : 0, &line, &column);  // e.byte: 1-based
-        std::string what = e.what();
-        const size_t colon = what.find("syntax error");
-        Error err = make_error(source_name, "JSON " + (colon == std::string::npos ? what : what.substr(colon)),
-                               line, column);
-        if (all_errors) all_errors->push_back(err);
-        return err;
-    }
-    parser.parse(root);
+    parser.parse(parsed.value());
     if (!parser.in.errors.empty()) {
         if (all_errors) all_errors->insert(all_errors->end(), parser.in.errors.begin(), parser.in.errors.end());
         return parser.in.errors.front();

@@ -1,7 +1,6 @@
 #include "systems/geometry/muscle/muscle_loader.hpp"
 
-#include "engine/core/json_depth.hpp"
-#include "engine/core/text_position.hpp"
+#include "engine/core/json_reader.hpp"
 
 #include <filesystem>
 
@@ -179,18 +178,9 @@ Result<std::vector<MuscleDef>> load_muscle_defs(const std::string& path) {
     std::stringstream buffer;
     buffer << in.rdbuf();
     const std::string text = buffer.str();
-    json doc;
-    if (Status deep = check_json_depth(text, path); !deep.ok()) return deep.error();
-    try {
-        doc = json::parse(text);
-    } catch (const json::out_of_range& e) {  // e.g. 1e999
-        return make_error(path, std::string("JSON number out of range: ") + e.what());
-    } catch (const json::parse_error& e) {
-        int line = 0, column = 0;
-        line_column_of(text, e.byte > 0 ? e.byte - 1 : 0, &line, &column);
-        return make_error(path, std::string("JSON syntax error: ") + e.what(), line, column);
-    }
-    return parse_muscle_defs(doc, path);
+    auto doc = parse_json_text(text, path);
+    if (!doc.ok()) return doc.error();
+    return parse_muscle_defs(doc.value(), path);
 }
 
 void scale_muscle_defs(std::vector<MuscleDef>& defs, float length, float girth, float fat) {

@@ -23,6 +23,17 @@ TEST(Result, StatusDefaultsToSuccess) {
     EXPECT_EQ(f.error().to_string(), "device lost");
 }
 
+TEST(Error, KindsLetCallersBranch) {
+    EXPECT_EQ(make_error("a.json", "bad").kind, ErrorKind::Input);
+    const Error io = make_error(ErrorKind::Io, "a.json", "file not found", 2);
+    EXPECT_EQ(io.kind, ErrorKind::Io);
+    EXPECT_EQ(io.to_string(), "a.json: file not found (code 2)");
+    const Error option = option_error("s.json", "characters", "5 characters: no crowd");
+    EXPECT_EQ(option.kind, ErrorKind::Option);
+    EXPECT_EQ(option.path, "characters");  // the field, for the host to name its own flag or menu
+    EXPECT_EQ(option.to_string(), "s.json: characters: 5 characters: no crowd");
+}
+
 TEST(StateHasher, SameBytesSameHashDifferentBytesDifferentHash) {
     StateHasher a, b, c;
     a.add(1.5f);

@@ -45,6 +45,40 @@ TEST(World, SameSceneSameHashAcrossRunsAndThreadCounts) {
     EXPECT_NE(state_hash(*a), state_hash(*d));  // the hash really covers the motion
 }
 
+TEST(World, PlanIsDerivedFromEachSystemsDeclaredAccess) {
+    auto w = make_world(small_crowd(20));
+    ASSERT_TRUE(w);
+    // Every system touches what the one before it writes, so each is its own pass: occlusion writes
+    // LodAttributes that the rules read; render_prepare writes the draw lists and renderer tables that
+    // render reads. The parallelism is inside the systems (parallel_for), not between them.
+    const std::vector<std::vector<std::string>> expected{{"lod_attributes"}, {"lod_occlusion"}, {"lod_rules"},
+                                                         {"lod_resolve"},    {"motion"},        {"muscle"},
+                                                         {"spring_skin"},    {"render_prepare"}, {"render"}};
+    EXPECT_EQ(w->scheduler().passes(), expected);
+    const std::string plan = w->scheduler().describe();
+    EXPECT_NE(plan.find("render_prepare (reads: "), std::string::npos) << plan;
+    EXPECT_NE(plan.find("RendererTablesResource"), std::string::npos) << plan;  // declared, not hidden
+}
+
+TEST(World, OptionErrorsNameTheFieldNotACommandLineFlag) {
+    SceneDesc s = small_crowd(10);
+    s.crowds.clear();
+    WorldOptions o;
+    o.characters = 20;
+    auto w = World::create(s, o);
+    ASSERT_FALSE(w.ok());
+    EXPECT_EQ(w.error().kind, ErrorKind::Option);
+    EXPECT_EQ(w.error().path, "characters");
+    EXPECT_EQ(w.error().to_string().find("--"), std::string::npos) << w.error().to_string();
+    WorldOptions t;
+    t.tier = "no_such_tier";
+    auto v = World::create(small_crowd(10), t);
+    ASSERT_FALSE(v.ok());
+    EXPECT_EQ(v.error().kind, ErrorKind::Option);
+    EXPECT_EQ(v.error().path, "tier");
+    EXPECT_NE(v.error().message.find("no_such_tier"), std::string::npos);
+}
+
 TEST(World, CharactersStayGroupedByTypeAndLevel) {
     auto w = make_world(small_crowd(500));
     ASSERT_TRUE(w);
