@@ -120,24 +120,35 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     }
     if (ranked_.empty()) return step;
     std::sort(ranked_.begin(), ranked_.end());
+    // In order, until the wanted change is reached. A step that would carry the time beyond the far
+    // edge of the band (one character whose level costs more than the band: a hero's dynamic walk, say)
+    // is passed over for the finer ones after it. Only when the finer ones cannot reach the wanted
+    // change is the first passed-over step taken that lands nearer the target by more than the band:
+    // the step back could never satisfy that too, so the pair cannot alternate.
+    const double band = band_ms();
+    const double sign = over ? -1.0 : 1.0;  // the way the time moves
+    auto step_ms = [&](size_t l) { return over ? saving(l) : extra(l); };
+    auto off_target = [&](double ms) { return predicted + sign * ms - target; };  // after changing by ms
     double changed_ms = 0.0;
     uint32_t changed = 0;
-    for (const auto& [score, i] : ranked_) {
-        const size_t l = headed(i);
+    auto take = [&](uint32_t i, double ms) {
         uint8_t& demotion = geometric ? states[i].budget_demotion : states[i].anim_demotion;
-        if (over) {
-            changed_ms += saving(l);
-            ++demotion, ++changed;
-            if (changed_ms >= wanted) break;
-        } else {
-            // In order: stop at the first that does not fit, but take it when it lands nearer the target
-            // than not taking it (a coarse step, one dynamic walker say, must not leave the time far under).
-            const double e = extra(l);
-            const bool fits = changed_ms + e <= wanted;
-            if (!fits && std::fabs(predicted + changed_ms + e - target) >= std::fabs(predicted + changed_ms - target)) break;
-            changed_ms += e;
-            --demotion, ++changed;
-            if (!fits) break;
+        demotion = static_cast<uint8_t>(over ? demotion + 1 : demotion - 1);
+        changed_ms += ms, ++changed;
+    };
+    passed_.clear();
+    for (const auto& [score, i] : ranked_) {
+        if (changed_ms >= wanted) break;
+        const double ms = step_ms(headed(i));
+        if (sign * off_target(changed_ms + ms) > band) passed_.push_back(i);
+        else take(i, ms);
+    }
+    const double left = std::fabs(off_target(changed_ms));
+    for (size_t k = 0; changed_ms < wanted && left > band && k < passed_.size(); ++k) {
+        const double ms = step_ms(headed(passed_[k]));
+        if (std::fabs(off_target(changed_ms + ms)) + band < left) {
+            take(passed_[k], ms);
+            break;
         }
     }
     if (changed == 0) return step;

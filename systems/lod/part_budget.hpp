@@ -32,9 +32,12 @@ namespace aloha {
 ///    in order of significance per millisecond saved (least first), summing the predicted saving
 ///    (marginal cost of the level it is headed for - that of one level poorer) until the wanted saving
 ///    is reached; characters whose demotion would save under 1% of the band are passed over. Under: it
-///    promotes demoted characters, most significance per millisecond first, while the predicted extra
-///    cost fits (the first that does not fit is still taken when it lands nearer the target than
-///    leaving it). Then it waits settle_frames.
+///    promotes demoted characters, most significance per millisecond first, until the wanted extra cost
+///    is reached. Either way a step that would carry the time beyond the far edge of the band (one
+///    character whose level step costs more than the band) is passed over for finer ones; only when
+///    those cannot reach the wanted change is the first passed-over step taken that lands nearer the
+///    target by more than the band (its undoing never could, so coarse steps do not oscillate). Then it
+///    waits settle_frames.
 /// Only characters not `always_full`, not headed for Hidden, and either held min_seconds at their level
 /// or with a switch pending are touched; at most max_demotion levels each.
 class PartBudget {
@@ -78,6 +81,7 @@ private:
     std::vector<uint32_t> counts_;
     std::vector<uint8_t> last_level_;                 // each character's level at the last update
     std::vector<std::pair<float, uint32_t>> ranked_;  // (score, index) scratch
+    std::vector<uint32_t> passed_;                    // candidates passed over as too coarse (scratch)
 };
 
 }  // namespace aloha

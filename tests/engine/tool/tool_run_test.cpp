@@ -309,3 +309,37 @@ TEST(Tool, ProfileMotionMetricsReportsSkateAndPopsPerLevel) {
     EXPECT_NEAR(m["overall"]["walked_m"].get<double>(), walked, 1e-6 * walked);
     EXPECT_GT(walked, 0.0);  // the crowd walks
 }
+
+// The budget parts in the report: each active part's time against its target over every frame and
+// from where it settled, level changes per second over both; the single total as its own mode.
+TEST(Tool, ProfileReportsBudgetPartsSettledAndLevelChanges) {
+    const fs::path out = temp_dir("budget_parts");
+    auto report_of = [&](const std::string& extra, const std::string& name) {
+        const RunResult r = run("profile " + kScenes + "plaza_budget.json --no-render --frames 40 --warmup 2 --characters 60 "
+                                "--quiet " + extra + " --out " + (out / name).string());
+        EXPECT_EQ(r.code, 0) << r.output;
+        EXPECT_NE(r.output.find("level changes per second"), std::string::npos) << r.output;
+        std::ifstream in(out / name / "report.json");
+        return std::make_pair(nlohmann::json::parse(in), r.output);
+    };
+    // Targets of 1 µs: out of reach (every character demoted as far as it goes still costs more), so
+    // neither part ever settles and the report says so.
+    const auto [parts, printed] = report_of("--budget-animation-ms 0.001 --budget-geometry-ms 0.001", "parts");
+    EXPECT_EQ(parts["budget"]["mode"], "parts");
+    for (const char* part : {"animation", "geometry"}) {
+        const nlohmann::json& p = parts["budget"][part];
+        EXPECT_TRUE(p["active"].get<bool>()) << part;
+        EXPECT_NEAR(p["target_ms"].get<double>(), 0.001, 1e-9) << part;  // a float in the report
+        ASSERT_TRUE(p.contains("settled")) << part;
+        EXPECT_TRUE(p["settled"].is_null()) << part;
+    }
+    EXPECT_TRUE(parts["level_changes_per_second_settled"].is_null());
+    EXPECT_NE(printed.find("never settled"), std::string::npos) << printed;  // 1 µs is out of reach
+    const auto [single, single_printed] = report_of("--budget-single-ms 1000", "single");
+    EXPECT_EQ(single["budget"]["mode"], "total");
+    EXPECT_FALSE(single["budget"]["animation"]["active"].get<bool>());
+    // 1 s is far over what 60 characters cost: settled at the first measured frame.
+    EXPECT_EQ(single["budget"]["settled_from_frame"], 0);
+    EXPECT_NEAR(single["level_changes_per_second_settled"]["seconds"].get<double>(), 40 * 0.0166667, 1e-4);  // scene dt
+    fs::remove_all(out);
+}
