@@ -254,7 +254,11 @@ void World::regroup() {
     auto refs = group.span<CharacterRef>();
     auto geom = group.span<GeomLod>();
     for (size_t i = 0; i < n; ++i) sort_keys_[i] = (static_cast<uint32_t>(refs[i].type) << 8) | geom[i].level;
-    group.partition_by_key(sort_keys_);
+    const bool moved = group.partition_by_key(sort_keys_);
+    if (!moved && ids_.size() == n) {  // nobody changed place: only the ranges' bounds may have moved
+        key_ranges(sort_keys_, ranges_);
+        return;
+    }
     ids_.resize(n);
     for (size_t i = 0; i < n; ++i) {
         sort_keys_[i] = (static_cast<uint32_t>(refs[i].type) << 8) | geom[i].level;

@@ -68,6 +68,9 @@ struct WorldOptions {
     uint8_t overlay = 0;                   ///< OverlayBits: bones, muscle outlines, fat springs
     bool keep_refined_surfaces = true;     ///< false (runs with no renderer): subdivided skins are
                                            ///< computed each frame but not kept (see GeometryController)
+    bool pose_every_character = false;     ///< true: every character's pose is current every frame, seen or
+                                           ///< not (tools that read every pose: motion metrics, export);
+                                           ///< false: poses nobody reads are left out (PoseUse)
 };
 
 /// The draw lists one frame produces (Skin phase), in world space, ready for the renderer.
@@ -189,6 +192,7 @@ private:
     Status apply_rule_settings();
     void register_systems();
     void regroup();
+    void mark_pose_use(SystemContext& ctx);  ///< fills pose_use_ for this frame (motion system)
     void gather_render_lists();
     void gather_overlays(const CharacterRuntime& rt, uint32_t id, const glm::mat4& world);
     static constexpr uint32_t kNoTopology = 0xFFFFFFFFu;
@@ -216,6 +220,7 @@ private:
     std::vector<std::unique_ptr<CharacterRuntime>> types_;
     std::vector<uint32_t> sort_keys_;
     std::vector<uint32_t> due_ids_;                  ///< per-frame scratch: characters needing geometry work
+    std::vector<uint8_t> pose_use_;                  ///< per-frame scratch: PoseUse per element (motion)
     std::vector<uint32_t> ids_;                      ///< group position -> character id in its type
     std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< geometry topology key -> renderer id
     std::vector<uint32_t> changed_;

@@ -5,6 +5,8 @@
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <functional>
 
@@ -28,6 +30,40 @@ uint64_t now_ns() {
         std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
 }
 }  // namespace
+
+void World::mark_pose_use(SystemContext& ctx) {
+    // Which poses the stages after motion read this frame (the skin stage's rules below, per (type, level)
+    // range as the type draws it): hidden characters none, proxies and linear-blend skins only when posed
+    // or morphing, layered levels every frame.
+    auto g = character_group(registry_);
+    pose_use_.resize(g.size());
+    if (options_.pose_every_character || first_frame_) {
+        std::fill(pose_use_.begin(), pose_use_.end(), static_cast<uint8_t>(PoseUse::EveryFrame));
+        return;
+    }
+    auto refs = g.span<CharacterRef>();
+    auto geom = g.span<GeomLod>();
+    auto states = g.span<LodState>();
+    const bool bones = (options_.overlay & kOverlayBones) != 0;
+    for (const KeyRange& r : ranges_) {
+        CharacterRuntime& rt = *types_[refs[r.begin].type];
+        const GeomMethod method = rt.geometry->level(geom[r.begin].level).method;
+        const bool every = method == GeomMethod::Layered || method == GeomMethod::Subdivided || (bones && method != GeomMethod::Hidden);
+        const PoseUse whole = method == GeomMethod::Hidden ? PoseUse::Unseen : every ? PoseUse::EveryFrame : PoseUse::AtUpdates;
+        if (whole != PoseUse::AtUpdates) {
+            std::fill(pose_use_.begin() + static_cast<std::ptrdiff_t>(r.begin), pose_use_.begin() + static_cast<std::ptrdiff_t>(r.end),
+                      static_cast<uint8_t>(whole));
+            continue;
+        }
+        ctx.parallel_for(r.end - r.begin, kLodGrain, [&](size_t b, size_t e) {
+            for (size_t i = r.begin + b; i < r.begin + e; ++i) {
+                const bool morphing = states[i].seconds_at_geom == 0.0f || states[i].geomorph_left_s > 0.0f ||
+                                      rt.geometry->geomorph_frames_left(refs[i].id) > 0;
+                pose_use_[i] = static_cast<uint8_t>(morphing ? PoseUse::EveryFrame : PoseUse::AtUpdates);
+            }
+        });
+    }
+}
 
 void World::register_systems() {
     const std::vector<ComponentTypeId> everything_in_group =
@@ -53,7 +89,7 @@ void World::register_systems() {
     // Occlusion by the crowd itself: a coarse depth grid of nearer characters' cores (systems/lod/occlusion.hpp).
     if (options_.occlusion) {
         scheduler_.add({"lod_occlusion", Phase::Rules, reads<Transform, Bounds, GeomLod, CameraResource>(), writes<LodAttributes>(),
-                        [this](SystemContext&) {
+                        [this](SystemContext& ctx) {
                             auto g = character_group(registry_);
                             OcclusionJob job;
                             job.transforms = g.span<Transform>();
@@ -62,7 +98,8 @@ void World::register_systems() {
                             job.camera = camera_;
                             job.grid = &occlusion_grid_;
                             job.attributes = g.span<LodAttributes>();
-                            job.Run();
+                            job.Rasterise();  // pass 1 fills the grid; pass 2 only reads it, in parallel chunks
+                            ctx.parallel_for(g.size(), kLodGrain, [&](size_t b, size_t e) { (void)job.Test(b, e); });
                         }});
     }
 
@@ -114,18 +151,40 @@ void World::register_systems() {
             caps.dt = dt;
             caps.keep_bonus = table.hysteresis.band;
             caps.scratch = &caps_scratch_;
+            caps.run_chunks = [&ctx](size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn) {
+                ctx.parallel_for(count, grain, fn);
+            };
             if (options_.lod) caps.Run();
-            LodResolveJob job;
-            job.table = &table;
-            job.requests = g.span<LodRequest>();
-            job.states = g.span<LodState>();
-            job.geom = g.span<GeomLod>();
-            job.anim = g.span<AnimLod>();
-            job.changed_indices = changed_;
-            job.snap = first_frame_;
-            job.dt = dt;
-            job.switch_counts = switches_;
-            const size_t changed = job.Run();
+            // The resolver in fixed blocks on both cores: each block lists its changes in its own part of
+            // changed_ and counts its switches; the lists are then packed in block order (same as serial).
+            const size_t n = g.size(), blocks = (n + kLodGrain - 1) / kLodGrain;
+            std::vector<std::array<uint32_t, 3>> block_out(blocks);  // changed, geometric, animation switches
+            ctx.parallel_for(blocks, 1, [&](size_t kb, size_t ke) {
+                for (size_t k = kb; k < ke; ++k) {
+                    const size_t b = k * kLodGrain, e = std::min(n, b + kLodGrain);
+                    LodResolveJob job;
+                    job.table = &table;
+                    job.requests = g.span<LodRequest>().subspan(b, e - b);
+                    job.states = g.span<LodState>().subspan(b, e - b);
+                    job.geom = g.span<GeomLod>().subspan(b, e - b);
+                    job.anim = g.span<AnimLod>().subspan(b, e - b);
+                    job.changed_indices = std::span<uint32_t>(changed_).subspan(b, e - b);
+                    job.index_base = static_cast<uint32_t>(b);
+                    job.snap = first_frame_;
+                    job.dt = dt;
+                    block_out[k] = {0, 0, 0};
+                    job.switch_counts = &block_out[k][1];
+                    block_out[k][0] = static_cast<uint32_t>(job.Run());
+                }
+            });
+            size_t changed = 0;
+            for (size_t k = 0; k < blocks; ++k) {
+                const auto from = changed_.begin() + static_cast<std::ptrdiff_t>(k * kLodGrain);
+                std::copy(from, from + block_out[k][0], changed_.begin() + static_cast<std::ptrdiff_t>(changed));
+                changed += block_out[k][0];
+                switches_[0] += block_out[k][1];
+                switches_[1] += block_out[k][2];
+            }
             // Marshal level switches to the geometric controller (geomorph from the old surface).
             auto refs = g.span<CharacterRef>();
             auto states = g.span<LodState>();
@@ -153,9 +212,10 @@ void World::register_systems() {
         scheduler_.add(std::move(resolve));
     }
 
-    scheduler_.add({"motion", Phase::Motion, reads<AnimLod, CharacterRef>(),
+    scheduler_.add({"motion", Phase::Motion, reads<AnimLod, CharacterRef, GeomLod, LodState>(),
                     writes<MotionState, Transform, Velocity, PoseResource>(), [this](SystemContext& ctx) {
                         auto g = character_group(registry_);
+                        mark_pose_use(ctx);
                         for (auto& rt : types_) {
                             rt->motion->set_level_timing(anim_level_ns_);  // per-level time for the animation budget
                             MotionUpdateJob job;
@@ -166,6 +226,7 @@ void World::register_systems() {
                             job.transforms = g.span<Transform>();
                             job.velocities = g.span<Velocity>();
                             job.element_of_character = rt->element_of_character;
+                            job.pose_use = pose_use_;
                             job.grain = 64;  // pose evaluation in parallel chunks (bit-identical to serial)
                             job.run_chunks = [&ctx](size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn) {
                                 ctx.parallel_for(count, grain, fn);
