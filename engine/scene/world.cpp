@@ -278,9 +278,11 @@ void World::regroup() {
     // Keep the group itself sorted by (type, level), so the grouped loops walk memory in order and
     // every index the World hands out (explain, the group spans) is both element and position.
     group_keys(group.span<CharacterRef>(), group.span<GeomLod>(), groups_.keys);
-    group.partition_by_key(groups_.keys);
+    const bool moved = group.partition_by_key(groups_.keys);
     group_by_level(group.span<CharacterRef>(), group.span<GeomLod>(), groups_);
     const auto refs = group.span<CharacterRef>();
+    if (!moved && elements_mapped_ == refs.size()) return;  // nobody changed place: elements still hold
+    elements_mapped_ = refs.size();
     for (size_t e = 0; e < refs.size(); ++e) types_[refs[e].type]->element_of_character[refs[e].id] = static_cast<uint32_t>(e);
 }
 

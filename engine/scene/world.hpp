@@ -68,6 +68,9 @@ struct WorldOptions {
     uint8_t overlay = 0;                   ///< OverlayBits: bones, muscle outlines, fat springs
     bool keep_refined_surfaces = true;     ///< false (runs with no renderer): subdivided skins are
                                            ///< computed each frame but not kept (see GeometryController)
+    bool pose_every_character = false;     ///< true: every character's pose is current every frame, seen or
+                                           ///< not (tools that read every pose: motion metrics, export);
+                                           ///< false: poses nobody reads are left out (PoseUse)
 };
 
 /// Hosts a scene's characters and systems. Not copyable; one thread drives step().
@@ -162,6 +165,8 @@ private:
     void register_systems();
     void regroup();
     void refresh_type_views();
+    /// Fills pose_use_ for this frame (motion system): which poses the later stages read.
+    void mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs, std::span<const LodState> states);
 
     SceneDesc scene_;
     WorldOptions options_;
@@ -189,6 +194,8 @@ private:
     std::vector<DrawType> draw_types_;               ///< per type: what the draw lists need
     std::vector<uint32_t> due_ids_;                  ///< per-frame scratch: characters needing geometry work
     std::vector<uint32_t> changed_;
+    std::vector<uint8_t> pose_use_;                  ///< per-frame scratch: PoseUse per element (motion)
+    size_t elements_mapped_ = SIZE_MAX;              ///< characters element_of_character was last filled for
     DrawListBuilder draws_;                          ///< draw lists and the renderer's topology cache
     RenderLists lists_;
     CrowdRenderer* renderer_ = nullptr;

@@ -7,6 +7,8 @@
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
 
+#include <algorithm>
+#include <array>
 #include <functional>
 #include <type_traits>
 
@@ -43,6 +45,36 @@ constexpr size_t kLodGrain = 2048;
 
 }  // namespace
 
+void World::mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs, std::span<const LodState> states) {
+    // Which poses the stages after motion read this frame (the skin stage's rules below, per (type, level)
+    // range as the type draws it): hidden characters none, proxies and linear-blend skins only when posed
+    // or morphing, layered levels every frame. The group is kept sorted, so positions are elements.
+    pose_use_.resize(refs.size());
+    if (options_.pose_every_character || first_frame_ || !groups_.in_place()) {
+        std::fill(pose_use_.begin(), pose_use_.end(), static_cast<uint8_t>(PoseUse::EveryFrame));
+        return;
+    }
+    const bool bones = (options_.overlay & kOverlayBones) != 0;
+    for (const LevelRange& r : groups_.ranges) {
+        CharacterRuntime& rt = *types_[r.type];
+        const GeomMethod method = rt.geometry->level(r.level).method;
+        const bool every = method == GeomMethod::Layered || method == GeomMethod::Subdivided || (bones && method != GeomMethod::Hidden);
+        const PoseUse whole = method == GeomMethod::Hidden ? PoseUse::Unseen : every ? PoseUse::EveryFrame : PoseUse::AtUpdates;
+        if (whole != PoseUse::AtUpdates) {
+            std::fill(pose_use_.begin() + static_cast<std::ptrdiff_t>(r.begin), pose_use_.begin() + static_cast<std::ptrdiff_t>(r.end),
+                      static_cast<uint8_t>(whole));
+            continue;
+        }
+        ctx.parallel_for(r.end - r.begin, kLodGrain, [&](size_t b, size_t e) {
+            for (size_t i = r.begin + b; i < r.begin + e; ++i) {
+                const bool morphing = states[i].seconds_at_geom == 0.0f || states[i].geomorph_left_s > 0.0f ||
+                                      rt.geometry->geomorph_frames_left(refs[i].id) > 0;
+                pose_use_[i] = static_cast<uint8_t>(morphing ? PoseUse::EveryFrame : PoseUse::AtUpdates);
+            }
+        });
+    }
+}
+
 void World::register_systems() {
     auto source = [this] { return FrameSource{character_group(registry_)}; };
 
@@ -66,7 +98,7 @@ void World::register_systems() {
     if (options_.occlusion) {
         using OcclusionAccess = Access<Reads<Transform, Bounds, GeomLod, CameraResource>, Writes<LodAttributes>>;
         scheduler_.add(make_system<OcclusionAccess>("lod_occlusion", Phase::Rules, source,
-                                                    [this](SystemContext&, const OcclusionAccess& a) {
+                                                    [this](SystemContext& ctx, const OcclusionAccess& a) {
             OcclusionJob job;
             job.transforms = a.read<Transform>();
             job.bounds = a.read<Bounds>();
@@ -74,7 +106,8 @@ void World::register_systems() {
             job.camera = camera_;
             job.grid = &occlusion_grid_;
             job.attributes = a.write<LodAttributes>();
-            job.Run();
+            job.Rasterise();  // pass 1 fills the grid; pass 2 only reads it, in parallel chunks
+            ctx.parallel_for(job.attributes.size(), kLodGrain, [&](size_t b, size_t e) { (void)job.Test(b, e); });
         }));
     }
 
@@ -127,18 +160,40 @@ void World::register_systems() {
         caps.dt = dt;
         caps.keep_bonus = table.hysteresis.band;
         caps.scratch = &caps_scratch_;
+        caps.run_chunks = [&ctx](size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn) {
+            ctx.parallel_for(count, grain, fn);
+        };
         if (options_.lod) caps.Run();
-        LodResolveJob job;
-        job.table = &table;
-        job.requests = a.read<LodRequest>();
-        job.states = states;
-        job.geom = a.write<GeomLod>();
-        job.anim = a.write<AnimLod>();
-        job.changed_indices = changed_;
-        job.snap = first_frame_;
-        job.dt = dt;
-        job.switch_counts = switches_;
-        const size_t changed = job.Run();
+        // The resolver in fixed blocks on both cores: each block lists its changes in its own part of
+        // changed_ and counts its switches; the lists are then packed in block order (same as serial).
+        const size_t n = states.size(), blocks = (n + kLodGrain - 1) / kLodGrain;
+        std::vector<std::array<uint32_t, 3>> block_out(blocks);  // changed, geometric, animation switches
+        ctx.parallel_for(blocks, 1, [&](size_t kb, size_t ke) {
+            for (size_t k = kb; k < ke; ++k) {
+                const size_t b = k * kLodGrain, e = std::min(n, b + kLodGrain);
+                LodResolveJob job;
+                job.table = &table;
+                job.requests = a.read<LodRequest>().subspan(b, e - b);
+                job.states = states.subspan(b, e - b);
+                job.geom = a.write<GeomLod>().subspan(b, e - b);
+                job.anim = a.write<AnimLod>().subspan(b, e - b);
+                job.changed_indices = std::span<uint32_t>(changed_).subspan(b, e - b);
+                job.index_base = static_cast<uint32_t>(b);
+                job.snap = first_frame_;
+                job.dt = dt;
+                block_out[k] = {0, 0, 0};
+                job.switch_counts = &block_out[k][1];
+                block_out[k][0] = static_cast<uint32_t>(job.Run());
+            }
+        });
+        size_t changed = 0;
+        for (size_t k = 0; k < blocks; ++k) {
+            const auto from = changed_.begin() + static_cast<std::ptrdiff_t>(k * kLodGrain);
+            std::copy(from, from + block_out[k][0], changed_.begin() + static_cast<std::ptrdiff_t>(changed));
+            changed += block_out[k][0];
+            switches_[0] += block_out[k][1];
+            switches_[1] += block_out[k][2];
+        }
         // Marshal level switches to the geometric controllers (geomorph from the old surface).
         apply_level_switches(geometry_types_, a.read<CharacterRef>(), states, a.read<GeomLod>(),
                              std::span<const uint32_t>(changed_.data(), changed), first_frame_, ctx.dt());
@@ -151,8 +206,9 @@ void World::register_systems() {
         stats.Run();
     }));
 
-    using MotionAccess = Access<Reads<AnimLod, CharacterRef>, Writes<MotionState, Transform, Velocity, PoseResource>>;
+    using MotionAccess = Access<Reads<AnimLod, CharacterRef, LodState, GroupingResource>, Writes<MotionState, Transform, Velocity, PoseResource>>;
     scheduler_.add(make_system<MotionAccess>("motion", Phase::Motion, source, [this](SystemContext& ctx, const MotionAccess& a) {
+        mark_pose_use(ctx, a.read<CharacterRef>(), a.read<LodState>());
         for (auto& rt : types_) {
             rt->motion->set_level_timing(anim_level_ns_);  // per-level time for the animation budget
             MotionUpdateJob job;
@@ -163,6 +219,7 @@ void World::register_systems() {
             job.transforms = a.write<Transform>();
             job.velocities = a.write<Velocity>();
             job.element_of_character = rt->element_of_character;
+            job.pose_use = pose_use_;
             job.grain = 64;  // pose evaluation in parallel chunks (bit-identical to serial)
             job.run_chunks = [&ctx](size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn) {
                 ctx.parallel_for(count, grain, fn);

@@ -63,17 +63,32 @@ size_t LevelCapJob::Run() const {
     for (const bool geometric : {true, false}) {
         const Dimension d = geometric ? geometry_of(t) : animation_of(t);
         if (d.last_capped < 0) continue;
-        // Rank every character whose starting point is a capped level or richer.
+        // Rank every character whose starting point is a capped level or richer (in blocks when a runner is
+        // given; the sort below orders them wholly, so the blocks' order does not matter).
+        auto rank = [&](size_t begin, size_t end, std::vector<std::pair<float, uint32_t>>& out) {
+            for (size_t i = begin; i < end; ++i) {
+                const LodTargets start = uncapped_outcome(t, requests[i], states[i], snap, dt);
+                const int level = geometric ? start.geom : start.anim;
+                if (level > d.last_capped || d.hidden[static_cast<size_t>(level)]) continue;
+                float score = t.significance.evaluate(attributes[i]);
+                const int current = geometric ? states[i].geom_level : states[i].anim_level;
+                if (current <= level) score += std::fabs(score) * keep_bonus;  // incumbent
+                if (states[i].always_full) score = FLT_MAX;
+                out.emplace_back(-score, static_cast<uint32_t>(i));
+            }
+        };
         sc.ranked.clear();
-        for (size_t i = 0; i < states.size(); ++i) {
-            const LodTargets start = uncapped_outcome(t, requests[i], states[i], snap, dt);
-            const int level = geometric ? start.geom : start.anim;
-            if (level > d.last_capped || d.hidden[static_cast<size_t>(level)]) continue;
-            float score = t.significance.evaluate(attributes[i]);
-            const int current = geometric ? states[i].geom_level : states[i].anim_level;
-            if (current <= level) score += std::fabs(score) * keep_bonus;  // incumbent
-            if (states[i].always_full) score = FLT_MAX;
-            sc.ranked.emplace_back(-score, static_cast<uint32_t>(i));
+        constexpr size_t kGrain = 4096;
+        if (run_chunks && states.size() > kGrain) {
+            const size_t blocks = (states.size() + kGrain - 1) / kGrain;
+            if (sc.blocks.size() < blocks) sc.blocks.resize(blocks);
+            run_chunks(states.size(), kGrain, [&](size_t b, size_t e) {
+                sc.blocks[b / kGrain].clear();
+                rank(b, e, sc.blocks[b / kGrain]);
+            });
+            for (size_t k = 0; k < blocks; ++k) sc.ranked.insert(sc.ranked.end(), sc.blocks[k].begin(), sc.blocks[k].end());
+        } else {
+            rank(0, states.size(), sc.ranked);
         }
         std::sort(sc.ranked.begin(), sc.ranked.end());
         // used[L] = characters placed at level L or richer, for every capped L.

@@ -7,6 +7,7 @@
 #include "systems/lod/rule_table.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <utility>
@@ -18,6 +19,7 @@ namespace aloha {
 struct LevelCapScratch {
     std::vector<std::pair<float, uint32_t>> ranked;  ///< (-score, index): most significant first
     std::vector<uint32_t> used;                      ///< characters placed at each level
+    std::vector<std::vector<std::pair<float, uint32_t>>> blocks;  ///< candidates per block (run_chunks)
 };
 
 /// Places characters under the caps of `table`, most significant first.
@@ -39,6 +41,9 @@ struct LevelCapJob {
     float dt = 0.0f;                               ///< the resolver's dt this frame (seconds, >= 0)
     float keep_bonus = 0.1f;                       ///< relative significance bonus of incumbents, >= 0
     LevelCapScratch* scratch = nullptr;            ///< required
+    /// Optional: runs fn(begin, end) over [0, count) in chunks [k * grain, (k + 1) * grain), possibly
+    /// concurrently (a host scheduler's parallel_for); empty = one serial pass. Results do not depend on it.
+    std::function<void(size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn)> run_chunks{};
 
     /// Checks table, sizes and scratch; appends one message per failure to `errors` when given.
     bool Validate(std::vector<std::string>* errors = nullptr) const;

@@ -55,14 +55,7 @@ struct Projector {
     }
 };
 
-}  // namespace
-
-size_t OcclusionJob::Run() const {
-    OcclusionGrid& g = *grid;
-    const float cell = params.cell_px;
-    g.resize(camera.viewport_px, cell);
-    constexpr float kFar = std::numeric_limits<float>::infinity();
-    std::fill(g.depth.begin(), g.depth.end(), kFar);
+Projector make_projector(const LodCamera& camera) {
     Projector pr;
     pr.view_proj = camera.projection * camera.view;
     pr.depth_row = -glm::vec4(camera.view[0][2], camera.view[1][2], camera.view[2][2], camera.view[3][2]);
@@ -70,9 +63,28 @@ size_t OcclusionJob::Run() const {
     pr.fx = camera.projection[0][0] * pr.half_viewport.x;
     pr.near_plane = camera.near_plane;
     pr.perspective = camera.projection[2][3] != 0.0f;
-    // The screen-horizontal segment through an axis point stays inside a vertical cylinder only when the
-    // camera's right vector is horizontal (no roll); otherwise no core is used and nothing is occluded.
-    const bool level_camera = std::fabs(camera.view[1][0]) < 1e-3f;
+    return pr;
+}
+
+// The screen-horizontal segment through an axis point stays inside a vertical cylinder only when the
+// camera's right vector is horizontal (no roll); otherwise no core is used and nothing is occluded.
+bool level_camera_of(const LodCamera& camera) { return std::fabs(camera.view[1][0]) < 1e-3f; }
+
+}  // namespace
+
+size_t OcclusionJob::Run() const {
+    Rasterise();
+    return Test(0, transforms.size());
+}
+
+void OcclusionJob::Rasterise() const {
+    OcclusionGrid& g = *grid;
+    const float cell = params.cell_px;
+    g.resize(camera.viewport_px, cell);
+    constexpr float kFar = std::numeric_limits<float>::infinity();
+    std::fill(g.depth.begin(), g.depth.end(), kFar);
+    const Projector pr = make_projector(camera);
+    const bool level_camera = level_camera_of(camera);
     const Bounds default_bounds{};
 
     // Pass 1: cores of every visible character, inner rectangles, whole cells only.
@@ -104,10 +116,18 @@ size_t OcclusionJob::Run() const {
         rasterise_core(t.position, h, params.neck_y0, params.neck_y1, params.neck_radius);
         rasterise_core(t.position, h, params.head_y0, params.head_y1, params.head_radius);
     }
+}
 
+size_t OcclusionJob::Test(size_t begin, size_t end) const {
+    const OcclusionGrid& g = *grid;
+    const float cell = params.cell_px;
+    constexpr float kFar = std::numeric_limits<float>::infinity();
+    const Projector pr = make_projector(camera);
+    const bool level_camera = level_camera_of(camera);
+    const Bounds default_bounds{};
     // Pass 2: bounds boxes, outer rectangles, every cell touched.
     size_t full = 0;
-    for (size_t i = 0; i < transforms.size(); ++i) {
+    for (size_t i = begin; i < end && i < transforms.size(); ++i) {
         LodAttributes& a = attributes[i];
         a.occluded = 0.0f;
         if (!a.visible || !level_camera) continue;

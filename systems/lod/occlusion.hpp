@@ -66,7 +66,13 @@ struct OcclusionJob {
     /// Checks sizes, grid and parameters; appends one message per failure to `errors` when given.
     bool Validate(std::vector<std::string>* errors = nullptr) const;
     /// Writes attributes[i].occluded for every i; returns how many are fully occluded. Requires Validate().
+    /// The same as Rasterise() then Test(0, n).
     size_t Run() const;
+    /// Pass 1 alone: sizes and fills the grid. Requires Validate().
+    void Rasterise() const;
+    /// Pass 2 alone for characters [begin, end) after Rasterise(); returns how many are fully occluded.
+    /// Disjoint ranges may run concurrently (the grid is only read).
+    size_t Test(size_t begin, size_t end) const;
 };
 
 }  // namespace aloha

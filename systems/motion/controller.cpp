@@ -16,15 +16,6 @@ constexpr float kTurnRate = 6.0f;  // rad/s: how fast a walker turns to face its
 
 bool is_live(RequestKind k) { return k == RequestKind::PlayClip || k == RequestKind::Walk; }
 
-// What of an AnimLod shapes the pose: level, walk method, IK solver and iterations, update interval.
-int64_t anim_signature(const AnimLod& l) {
-    return static_cast<int64_t>(l.level) | static_cast<int64_t>(l.walk) << 8 | static_cast<int64_t>(l.ik) << 16 |
-           static_cast<int64_t>(l.ik_iterations) << 24 | static_cast<int64_t>(l.update_interval) << 32;
-}
-
-// Seconds an animation level change is inertialized over: the entered level's cross-fade time.
-float transition_seconds(const AnimLod& lod) { return lod.crossfade_s; }
-
 glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
 
 // Turns `rotation` about Y towards facing `dir` (unit, horizontal) by at most `max_angle` radians.
@@ -41,7 +32,7 @@ glm::quat turn_towards(const glm::quat& rotation, const glm::vec3& dir, float ma
 }  // namespace
 
 MotionController::MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity)
-    : skeleton_(&skeleton), clips_(&clips), chars_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
+    : skeleton_(&skeleton), clips_(&clips), chars_(capacity), queues_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
       snapshot_(skeleton.joint_count(), capacity, nullptr), scratch_(skeleton.joint_count(), 1, nullptr),
       keys_(skeleton.joint_count()), inertia_(skeleton.joint_count()) {
     active_.reserve(capacity);
@@ -105,7 +96,7 @@ bool MotionController::push_request(uint32_t character, const MotionRequest& req
     if (character >= chars_.size()) return false;
     Character& ch = chars_[character];
     if (ch.count >= kQueueCapacity) return false;
-    ch.queue[(ch.head + ch.count) % kQueueCapacity] = request;
+    queues_[character][(ch.head + ch.count) % kQueueCapacity] = request;
     ++ch.count;
     activate(character);
     return true;
@@ -121,7 +112,7 @@ bool MotionController::interrupt(uint32_t character, const MotionRequest& reques
 }
 
 void MotionController::begin_fade(uint32_t c, Character& ch, float seconds, bool live_prev) {
-    if (!(seconds > 0.0f)) {
+    if (!(seconds > 0.0f) || ch.stale) {  // a stale pose was never shown: nothing to fade from
         ch.fade_left = 0.0f;
         return;
     }
@@ -142,7 +133,7 @@ void MotionController::start_next(uint32_t c, Character& ch) {
     MotionRequest next;  // Rest (forever) when the queue is empty
     next.crossfade_s = 0.0f;
     if (ch.count > 0) {
-        next = ch.queue[ch.head];
+        next = queues_[c][ch.head];
         ch.head = static_cast<uint8_t>((ch.head + 1) % kQueueCapacity);
         --ch.count;
     }
@@ -259,141 +250,6 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
     if (r.duration >= 0.0f && ch.request_time >= r.duration) ch.done = 1;
 }
 
-void MotionController::update_slots(uint32_t c, Character& ch) {
-    uint8_t want = 0;
-    const RequestKind k = ch.cur.req.kind;
-    if (k == RequestKind::Reach) want = 1u << static_cast<unsigned>(MethodSlot::Reach);
-    if (k == RequestKind::LookAt) want = 1u << static_cast<unsigned>(MethodSlot::LookAt);
-    if (k == RequestKind::Walk && ch.has_walk_method && ch.walk_method == WalkMethod::Dynamic)
-        want = 1u << static_cast<unsigned>(MethodSlot::DynamicWalk);
-    const uint8_t dropped = static_cast<uint8_t>(ch.slots_in_use & ~want);
-    for (size_t s = 0; s < releases_.size(); ++s)
-        if ((dropped >> s) & 1u && releases_[s]) releases_[s](hook_users_[s], c);
-    ch.slots_in_use = want;
-}
-
-size_t MotionController::begin_update(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
-                                      std::span<Transform> transforms, std::span<Velocity> velocities,
-                                      std::span<const uint32_t> element_of_character) {
-    due_.clear();
-    between_.clear();
-    lods_ = lods;
-    transforms_ = transforms;
-    velocities_ = velocities;
-    const bool mapped = !element_of_character.empty();
-    assert(dt >= 0.0f);
-    assert(!mapped || element_of_character.size() >= chars_.size());
-    for (size_t k = active_.size(); k-- > 0;) {  // backwards: swap-removal only moves visited entries
-        const uint32_t c = active_[k];
-        const uint32_t e = mapped ? element_of_character[c] : c;
-        assert(e < lods.size() && e < states.size() && e < transforms.size() && e < velocities.size());
-        Character& ch = chars_[c];
-        const AnimLod& lod = lods[e];
-        MotionState& st = states[e];
-        Transform& x = transforms[e];
-        Velocity& v = velocities[e];
-
-        // Switch first: requests that ended last frame, or a queued request pre-empting one that would
-        // run forever; the request started is then advanced by this frame's dt like any other.
-        bool switched = false;
-        for (size_t guard = 0; guard <= kQueueCapacity; ++guard) {
-            const MotionRequest& r = ch.cur.req;
-            const bool ends_by_itself = (r.kind == RequestKind::PlayClip && !r.loop) ||
-                                        (r.kind == RequestKind::Walk && r.path != 0xFFFF);
-            const bool preempted = ch.count > 0 && r.duration < 0.0f && !ends_by_itself;
-            if (!ch.cur.done && !preempted) break;
-            if (ch.count == 0 && r.kind == RequestKind::Rest && r.duration < 0.0f) break;
-            start_next(c, ch);
-            switched = true;
-        }
-        if (!switched && ch.cur.req.kind == RequestKind::Walk && ch.has_walk_method)
-            sync_walk_clock(ch.cur, ch.walk_method, walk_method(lod));
-        // Requests that end during this frame hand over at the start of the next one.
-        advance(ch.cur, lod, dt, &x, &v);
-        if (ch.fade_left > 0.0f) {
-            if (!ch.fade_snapshot) advance(ch.prev, lod, dt, nullptr, nullptr);
-            ch.fade_left = std::max(0.0f, ch.fade_left - dt);
-        }
-        if (ch.cur.req.kind == RequestKind::Walk) {
-            ch.walk_method = walk_method(lod);
-            ch.has_walk_method = 1;
-        } else {
-            ch.has_walk_method = 0;
-            if (ch.cur.req.kind != RequestKind::Walk && switched) v.linear = glm::vec3(0.0f);
-        }
-        update_slots(c, ch);
-        advance_overlay(ch.overlay, lod, dt);
-
-        // An animation level change (walk method, IK, update interval) is inertialized from the pose
-        // shown now; the character is posed at once so the change never waits for its update phase.
-        const bool posing = ch.cur.req.kind != RequestKind::Rest || ch.overlay.on;
-        const int64_t signature = anim_signature(lod);
-        const bool level_changed = ch.last_anim >= 0 && ch.last_anim != signature;
-        ch.last_anim = signature;
-        // Any level change is posed at once (even without a transition), so a throttled character's
-        // keys restart on the new level's schedule instead of holding the old span's last key.
-        const bool level_start = level_changed && posing && !switched;
-        if (ch.inertial_slot >= 0 && ch.inertial_done) {
-            inertia_.release(static_cast<uint32_t>(ch.inertial_slot));
-            ch.inertial_slot = -1;
-        }
-        if (level_start && transition_seconds(lod) > 0.0f) {
-            if (ch.inertial_slot < 0) ch.inertial_slot = static_cast<int32_t>(inertia_.acquire());
-            ch.inertial_pending = 1;
-            ch.inertial_done = 0;
-            ch.inertial_elapsed = 0.0f;
-            ch.inertial_total = transition_seconds(lod);
-        } else if (ch.inertial_slot >= 0) {
-            ch.inertial_elapsed += dt;
-        }
-
-        ch.since_posed += dt;
-        ++st.frames_since_update;
-        // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
-        const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
-        const bool on_phase = (frame_ + c) % interval == 0;
-        if (posing && (switched || level_start || on_phase || (ch.overlay.on && ch.overlay.needs_pose()))) {
-            due_.push_back(Due{c, e, ch.since_posed, switched});
-            st.frames_since_update = 0;
-            ch.since_posed = 0.0f;
-            // Throttled clip playback and kinematic walks are shown interpolated between this update and
-            // the next (a held pose would slide with the placement and jump at the next update).
-            const bool interpolate = interval > 1 && (clip_driven(ch, lod) || kinematic_walking(ch, lod)) && ch.fade_left <= 0.0f;
-            if (interpolate && ch.keys_slot < 0) ch.keys_slot = static_cast<int32_t>(keys_.acquire());
-            if (!interpolate && ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
-            // The end key is the next scheduled update's pose: a forced pose off the schedule (a switch,
-            // a transition start) spans only the frames left to it, so the keys join without a step.
-            const uint64_t to_next = interval - (frame_ + c) % interval;
-            ch.keys_span = static_cast<float>(to_next) * dt;
-        } else if (ch.keys_slot >= 0 && ch.cur.req.kind != RequestKind::Rest) {
-            between_.push_back(Due{c, e, ch.since_posed, false});
-        }
-
-        st.active = ch.cur.req.kind;
-        st.time = ch.cur.time;
-        st.phase = ch.cur.walk.phase;
-        st.request_time = ch.cur.request_time;
-        st.pose_slot = c;
-        st.path_cursor = ch.cur.path_cursor;
-        const bool resting =
-            ch.cur.req.kind == RequestKind::Rest && ch.cur.req.duration < 0.0f && ch.count == 0 && !ch.overlay.on;
-        st.at_rest = resting ? 1 : 0;
-        if (resting) {
-            v.linear = glm::vec3(0.0f);
-            if (ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
-            if (ch.inertial_slot >= 0) inertia_.release(static_cast<uint32_t>(ch.inertial_slot)), ch.inertial_slot = -1;
-            ch.last_anim = -1;  // a level change while resting shows nothing: no transition on waking
-            const uint32_t moved = active_.back();
-            active_[k] = moved;
-            chars_[moved].active_index = static_cast<int32_t>(k);
-            active_.pop_back();
-            ch.active_index = -1;
-        }
-    }
-    ++frame_;
-    return due_.size();
-}
-
 bool MotionUpdateJob::Validate(std::vector<std::string>* errors) const {
     bool ok = true;
     auto fail = [&](const std::string& m) { ok = false; if (errors) errors->push_back("MotionUpdateJob: " + m); };
@@ -411,6 +267,16 @@ bool MotionUpdateJob::Validate(std::vector<std::string>* errors) const {
     check(states.size(), "states");
     check(transforms.size(), "transforms");
     check(velocities.size(), "velocities");
+    if (!pose_use.empty()) {
+        const size_t elements = std::min({lods.size(), states.size(), transforms.size(), velocities.size()});
+        if (pose_use.size() < elements)
+            fail("pose_use has " + std::to_string(pose_use.size()) + " entries, fewer than the spans (" + std::to_string(elements) + ")");
+        for (size_t i = 0; i < pose_use.size(); ++i)
+            if (pose_use[i] > static_cast<uint8_t>(PoseUse::EveryFrame)) {
+                fail("pose_use[" + std::to_string(i) + "] = " + std::to_string(pose_use[i]) + " is not a PoseUse");
+                break;
+            }
+    }
     if (!element_of_character.empty()) {
         if (element_of_character.size() < n) {
             fail("element_of_character has " + std::to_string(element_of_character.size()) +
@@ -434,6 +300,7 @@ bool MotionUpdateJob::Validate(std::vector<std::string>* errors) const {
 }
 
 size_t MotionUpdateJob::Run() const {
+    controller->set_pose_use(pose_use);
     if (grain > 0)
         return controller->update_parallel(dt, lods, states, transforms, velocities, element_of_character, grain, run_chunks);
     return controller->update(dt, lods, states, transforms, velocities, element_of_character);

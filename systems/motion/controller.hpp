@@ -16,14 +16,27 @@
 #include "systems/motion/sampling.hpp"
 #include "systems/motion/throttle_keys.hpp"
 
+#include <algorithm>
 #include <array>
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace aloha {
+
+/// How much of a character's pose the stages after motion read this frame (MotionUpdateJob::pose_use).
+/// A pose nobody reads is not written: a character is only ever shown posed as if it had been all along.
+enum class PoseUse : uint8_t {
+    Unseen = 0,      ///< nothing reads it (e.g. geometry hidden): stateless clip poses are left stale and
+                     ///< posed at once, on a fresh key span, when the character is seen again
+    AtUpdates = 1,   ///< read on the frames it is posed only (rigid proxies, linear-blend skins): not
+                     ///< interpolated between throttled updates, no interpolation keys taken (posed at
+                     ///< once, on a fresh key span, when it is read every frame again)
+    EveryFrame = 2,  ///< read every frame (layered skins, geomorphs, metrics): interpolated between updates
+};
 
 /// Methods that other modules implement and the controller dispatches to.
 enum class MethodSlot : uint8_t { Reach = 0, LookAt = 1, DynamicWalk = 2, Count = 3 };
@@ -134,12 +147,20 @@ public:
     void evaluate_due(size_t begin, size_t end, size_t worker = 0);
     /// Sets the number of scratch slots for concurrent evaluate_due calls (at least 1). Not during an update.
     void set_worker_slots(size_t count);
+    /// Active characters per block of update_parallel's phase 1 (blocks run concurrently; default 2048,
+    /// at least 1). Results do not depend on it. Not during an update.
+    void set_step_block(size_t count) { step_block_ = std::max<size_t>(1, count); }
     /// Scratch slots available to evaluate_due.
     [[nodiscard]] size_t worker_slots() const { return workers_; }
     /// Where evaluate_due adds the wall time (ns) of each work item, by the character's AnimLod::level
     /// (levels past the end are not timed); empty (the default) times nothing. The frame budget's
     /// animation part learns its per-level costs from it. The span must outlive the updates.
     void set_level_timing(std::span<uint64_t> level_ns) { level_ns_ = level_ns; }
+    /// What the next updates may leave out, per element (indexed like the update's spans; values
+    /// PoseUse). Empty (the default): every pose is read every frame. The span must outlive the updates.
+    void set_pose_use(std::span<const uint8_t> use) { pose_use_ = use; }
+    /// Characters whose pooled pose is stale (left out while PoseUse::Unseen).
+    [[nodiscard]] bool stale(uint32_t character) const { return chars_[character].stale != 0; }
     /// Characters due in the last begin_update, in evaluation order.
     [[nodiscard]] size_t due_count() const { return due_.size(); }
     /// Work items of the last begin_update for evaluate_due: the due characters, then the throttled
@@ -198,14 +219,16 @@ private:
         /// faded out and the pose beneath must be shown once exactly).
         [[nodiscard]] bool needs_pose() const { return first || (cleared && presence <= 0.0f && !shown_zero); }
     };
+    // Fields every update reads first; the channel faded from (read only while fading) last. The request
+    // queue (read only when a request starts) lives apart in queues_: phase 1 walks every active
+    // character each frame, so its stride is what the frame streams through memory.
     struct Character {
-        Channel cur, prev;
+        Channel cur;
         float fade_left = 0.0f, fade_total = 0.0f;
         float since_posed = 0.0f;
         uint8_t fade_snapshot = 0;   // fade from the snapshot pose (else from the live prev channel)
         uint8_t has_walk_method = 0;
         WalkMethod walk_method = WalkMethod::ClipPlayback;
-        std::array<MotionRequest, kQueueCapacity> queue{};
         uint8_t head = 0, count = 0;
         int32_t active_index = -1;
         uint8_t slots_in_use = 0;    // bit per MethodSlot used by the current request
@@ -218,6 +241,9 @@ private:
         uint8_t inertial_done = 0;     // posed with the offset gone: the slot is released at the next update
         int64_t last_anim = -1;        // anim_signature of the AnimLod at the last update (-1 before the first)
         uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the rest pose)
+        uint8_t stale = 0;             // posing skipped while unseen: the pool's pose (and keys) are old
+        uint8_t keys_stale = 0;        // posed without its interpolation keys (read at updates only)
+        Channel prev;                  // the request faded from (while fade_left > 0 and !fade_snapshot)
     };
     struct Due {
         uint32_t character;
@@ -234,6 +260,16 @@ private:
                   Velocity& velocity, float posed_dt, bool primary, bool first);
     void pose_one(const Due& d, size_t worker);
     void update_slots(uint32_t c, Character& ch);
+    // Phase 1's output of one block of active_ (blocks run concurrently, merged in order afterwards).
+    struct StepBlock {
+        std::vector<Due> due, between;
+        std::vector<uint32_t> resting;  // active_ positions to remove, descending
+    };
+    size_t begin_update_blocks(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
+                               std::span<Transform> transforms, std::span<Velocity> velocities,
+                               std::span<const uint32_t> element_of_character, const ChunkRunner* run_chunks);
+    void step_active(size_t k, float dt, std::span<MotionState> states, std::span<const uint32_t> element_of_character,
+                     StepBlock& out);
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
     bool clip_driven(const Character& ch, const AnimLod& lod) const;
     // True when `ch` walks by the kinematic walk at `lod` (its pose predictable one interval ahead
@@ -261,6 +297,7 @@ private:
     std::array<MethodRelease, 3> releases_{};
     std::vector<std::vector<glm::vec3>> paths_;
     std::vector<Character> chars_;
+    std::vector<std::array<MotionRequest, kQueueCapacity>> queues_;  // per character: queued requests (ring at head)
     std::vector<uint32_t> active_;
     PosePool pool_;      // slot i = character i
     PosePool snapshot_;  // slot i = pose character i fades from
@@ -269,6 +306,9 @@ private:
     uint64_t frame_ = 0;  // updates so far (phase of throttled characters)
     std::vector<Due> due_;
     std::vector<Due> between_;  // throttled characters shown interpolated this frame
+    std::vector<StepBlock> blocks_;  // phase 1 scratch per block of active_
+    size_t step_block_ = 2048;       // active characters per block of phase 1
+    std::mutex slots_mutex_;         // keys_, inertia_ and method releases while phase 1 runs in blocks
     ThrottleKeys keys_;
     InertialOffsets inertia_;
     void settle_inertia(Character& ch, const PoseView& pose, float elapsed);
@@ -277,6 +317,7 @@ private:
     std::span<Transform> transforms_;
     std::span<Velocity> velocities_;
     std::span<uint64_t> level_ns_;  // per AnimLod level: ns of work items (empty = not timed)
+    std::span<const uint8_t> pose_use_;  // per element: PoseUse (empty = EveryFrame for all)
 };
 
 /// Job form of MotionController::update over spans of characters (index = character id, or
@@ -291,6 +332,7 @@ struct MotionUpdateJob {
     std::span<const uint32_t> element_of_character{};  ///< optional: element of character c (distinct, in range)
     size_t grain = 0;                        ///< 0 = serial; else parallel chunks of this many characters
     MotionController::ChunkRunner run_chunks{};  ///< optional: who runs the chunks (default: TBB)
+    std::span<const uint8_t> pose_use{};     ///< optional, per element: PoseUse (empty = every pose read every frame)
 
     /// True when the job can run; appends one message per failure to `errors` when given.
     bool Validate(std::vector<std::string>* errors = nullptr) const;

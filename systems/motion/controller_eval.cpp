@@ -94,7 +94,11 @@ void MotionController::pose_one(const Due& d, size_t worker) {
         inertia_.hold(static_cast<uint32_t>(ch.inertial_slot), skeleton_->parents().data(), std::as_const(pool_).view(c).model);
     evaluate(c, ch.cur, lod, out, x, v, d.posed_dt, true, d.started);
     ch.shown = 1;
-    if (ch.keys_slot >= 0) {
+    // Keys are only taken for a pose read every frame; one read at updates only shows this pose (the keys'
+    // start) until its next update, so the pose one interval ahead is not evaluated.
+    const bool keyed = pose_use_.empty() || pose_use_[d.element] == static_cast<uint8_t>(PoseUse::EveryFrame);
+    ch.keys_stale = ch.keys_slot >= 0 && !keyed ? 1 : 0;
+    if (ch.keys_slot >= 0 && keyed) {
         // Key poses for the frames until the next update: now, and one interval ahead.
         const uint32_t slot = static_cast<uint32_t>(ch.keys_slot);
         apply_overlay(c, ch, lod, out, x, v, d.posed_dt, true);
@@ -182,7 +186,11 @@ size_t MotionController::update_parallel(float dt, std::span<const AnimLod> lods
                                          std::span<Transform> transforms, std::span<Velocity> velocities,
                                          std::span<const uint32_t> element_of_character, size_t grain,
                                          const ChunkRunner& run_chunks) {
-    const size_t due = begin_update(dt, lods, states, transforms, velocities, element_of_character);
+    const ChunkRunner tbb_chunks = [](size_t count, size_t g, const std::function<void(size_t, size_t)>& fn) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, g), [&](const tbb::blocked_range<size_t>& r) { fn(r.begin(), r.end()); });
+    };
+    const size_t due = begin_update_blocks(dt, lods, states, transforms, velocities, element_of_character,
+                                           run_chunks ? &run_chunks : &tbb_chunks);
     const size_t work = work_count();
     if (grain == 0) grain = 64;
     if (work <= grain) {

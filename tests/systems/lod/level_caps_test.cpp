@@ -1,6 +1,7 @@
 // Level caps: never exceeded on any frame (also while characters move through thresholds under time
 // hysteresis), filled in significance order, always_full characters placed first, hidden requests
-// never raised, and caps that would leave characters nowhere to go refused by the loader.
+// never raised, and caps that would leave characters nowhere to go refused by the loader; ranking in blocks
+// changes nothing.
 #include "systems/lod/level_caps.hpp"
 #include "tests/systems/lod/lod_crowd_sim.hpp"
 
@@ -62,6 +63,28 @@ TEST(LevelCaps, NeverExceededWhileTheCrowdMoves) {
     for (const LodRequest& r : sim.req) want_rich += r.geom_level == 0;
     EXPECT_GT(want_rich, size_t{2 * kRichCap});
     EXPECT_GT(sim.switches[0], 0u);
+}
+
+// The host ranks candidates in blocks on several threads: blocks run in any order give what one pass gives.
+TEST(LevelCaps, RankedInBlocksAsInOnePass) {
+    const RuleTable t = must_parse(capped_rules());
+    Lcg rnd;
+    CrowdSim sim = random_crowd(t, 10000, rnd);  // more than one block of 4096
+    for (int f = 0; f < 3; ++f) sim.frame();
+    std::vector<LodState> serial = sim.states, blocked = sim.states;
+    LevelCapScratch a, b;
+    LevelCapJob one{&t, sim.req, sim.attrs, serial, false, sim.dt, t.hysteresis.band, &a};
+    LevelCapJob split{&t, sim.req, sim.attrs, blocked, false, sim.dt, t.hysteresis.band, &b};
+    size_t chunks = 0;
+    split.run_chunks = [&](size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn) {
+        for (size_t k = (count + grain - 1) / grain; k-- > 0;) fn(k * grain, std::min(count, (k + 1) * grain)), ++chunks;
+    };
+    EXPECT_EQ(one.Run(), split.Run());
+    EXPECT_GT(chunks, 2u);
+    for (size_t i = 0; i < serial.size(); ++i) {
+        ASSERT_EQ(serial[i].cap_geom_level, blocked[i].cap_geom_level) << i;
+        ASSERT_EQ(serial[i].cap_anim_level, blocked[i].cap_anim_level) << i;
+    }
 }
 
 TEST(LevelCaps, FilledInSignificanceOrder) {

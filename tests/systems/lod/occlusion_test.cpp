@@ -1,7 +1,8 @@
 // OcclusionJob: a character straight behind a wider one is hidden, one beside it is not, a partly
 // covered one gets a fraction; nobody hides themselves; a rolled camera estimates nothing. On a dense
 // crowd with the default cores, every character marked fully occluded is checked independently: rays
-// from the eye to points all over its bounds box must each hit a nearer character's core cylinder.
+// from the eye to points all over its bounds box must each hit a nearer character's core cylinder. Pass 2
+// in chunks (as the host runs it) gives what one run gives.
 #include "systems/lod/occlusion.hpp"
 
 #include <gtest/gtest.h>
@@ -175,6 +176,26 @@ TEST(Occlusion, EveryFullyOccludedCharacterIsReallyHiddenByCores) {
     EXPECT_EQ(checked, full);
     // The front row is never hidden.
     for (size_t x = 0; x < 30; ++x) EXPECT_LT(s.a[x].occluded, 1.0f) << x;
+}
+
+// The host runs pass 2 in chunks, concurrently: Rasterise() then Test() over any split of the crowd gives
+// exactly what Run() gives.
+TEST(Occlusion, PassTwoInChunksEqualsOneRun) {
+    Scene s;
+    for (int z = 0; z < 40; ++z)
+        for (int x = 0; x < 30; ++x) s.add({0.5f * (x - 15) + 0.1f * (z % 3), 0.0f, -0.5f * z}, 1.55f + 0.013f * ((x * 7 + z) % 31), 0.2f);
+    const LodCamera cam = make_lod_camera({0, 1.7f, 4}, {0, 1.2f, -20}, glm::radians(50.0f), {1280, 720}, 0.1f, 500.0f);
+    OcclusionParams p;
+    p.enter_margin_px = 0.0f;
+    const size_t full = s.run(cam, p);
+    ASSERT_GT(full, 0u);  // a dense crowd hides part of itself
+    const std::vector<LodAttributes> whole = s.a;
+    OcclusionJob job{s.t, s.b, s.g, cam, p, &s.grid, s.a};
+    job.Rasterise();
+    size_t chunked = 0;
+    for (size_t b = 0; b < s.t.size(); b += 37) chunked += job.Test(b, std::min(s.t.size(), b + 37));
+    EXPECT_EQ(chunked, full);
+    for (size_t i = 0; i < s.t.size(); ++i) EXPECT_EQ(s.a[i].occluded, whole[i].occluded) << i;
 }
 
 TEST(Occlusion, ValidateListsEveryProblem) {

@@ -78,6 +78,7 @@ TEST(MotionIntegration, ParallelChunksEqualSerialBitForBit) {
     std::vector<uint32_t> order(kCount);
     for (size_t i = 0; i < kCount; ++i) order[i] = static_cast<uint32_t>(kCount - 1 - i);  // reversed host order
     Host ha(a, {}), hb(b, order), hc(c, {});
+    b.mc->set_step_block(5), c.mc->set_step_block(7);  // phase 1 in blocks too (default: 2048 characters)
     tbb::task_arena three(3);  // another thread count (oversubscribed on small machines: still correct)
     size_t posed_total = 0;
     for (int frame = 0; frame < 50; ++frame) {

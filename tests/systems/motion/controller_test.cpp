@@ -1,5 +1,5 @@
 // Motion controller: request queue order and durations, cross-fade continuity, throttled updates,
-// resting characters untouched, walking root motion along a path.
+// resting characters untouched, walking root motion along a path, poses nobody reads left out.
 #include "systems/motion/controller.hpp"
 #include "tests/systems/motion/motion_test_util.hpp"
 
@@ -145,6 +145,56 @@ TEST(MotionController, UpdateIntervalPosesEveryNFramesWhileTimeAdvances) {
     // The pose shown is the clip at the time of the last update (frame 9: t = 10 dt).
     const float t = 10.0f * kDt;
     EXPECT_NEAR(glm::angle(mc.poses().view(0).rotations[1]), std::abs(0.6f * std::sin(6.2831853f * t)), 2e-3f);
+}
+
+bool same_model(const ConstPoseView& a, const ConstPoseView& b) { return std::equal(a.model.begin(), a.model.end(), b.model.begin()); }
+
+// PoseUse: an unseen clip pose is left stale while its clock runs and posed exactly when seen again; a pose
+// read at updates only is not interpolated (nor keyed) between them and is posed at once when read every frame
+// again; from the next scheduled update on everything is as if every pose had been read every frame (`ref`).
+TEST(MotionController, PosesNobodyReadsAreLeftOutAndCurrentWhenSeen) {
+    Fixture f(2), g(2);
+    for (Fixture* x : {&f, &g}) x->lods[0].update_interval = x->lods[1].update_interval = 4;
+    MotionController mc(f.sk, f.clips, 2), ref(g.sk, g.clips, 2);
+    for (uint32_t c = 0; c < 2; ++c) {
+        ASSERT_TRUE(mc.push_request(c, play(f.swing, -1.0f)));
+        ASSERT_TRUE(ref.push_request(c, play(g.swing, -1.0f)));
+    }
+    std::vector<uint8_t> use(2, static_cast<uint8_t>(PoseUse::EveryFrame));
+    mc.set_pose_use(use);
+    std::vector<glm::mat4> held, last_update;
+    for (int frame = 0; frame < 26; ++frame) {
+        use[0] = static_cast<uint8_t>(frame == 0 || frame >= 18 ? PoseUse::EveryFrame : frame < 10 ? PoseUse::Unseen : PoseUse::AtUpdates);
+        f.step(mc);
+        g.step(ref);
+        ASSERT_EQ(f.states[0].time, g.states[0].time) << frame;  // the clock runs, seen or not
+        EXPECT_TRUE(same_model(mc.poses().view(1), ref.poses().view(1))) << frame;
+        const ConstPoseView pose = mc.poses().view(0);
+        if (frame == 0) held.assign(pose.model.begin(), pose.model.end());
+        if (frame > 0 && frame < 10) {
+            EXPECT_TRUE(std::equal(held.begin(), held.end(), pose.model.begin())) << frame;  // left out
+            EXPECT_EQ(mc.stale(0), frame >= 4) << frame;  // stale from its first update left out (frame 4)
+        }
+        if (frame == 10 || frame == 18) {  // seen again / read every frame again: posed at once, at the clock's time
+            EXPECT_FALSE(mc.stale(0));
+            EXPECT_EQ(f.states[0].frames_since_update, 0);
+            EXPECT_NEAR(glm::angle(pose.rotations[1]), std::abs(0.6f * std::sin(6.2831853f * f.states[0].time)), 2e-3f);
+        }
+        if (frame >= 10 && frame < 18) {
+            if (f.states[0].frames_since_update == 0) last_update.assign(pose.model.begin(), pose.model.end());
+            EXPECT_TRUE(std::equal(last_update.begin(), last_update.end(), pose.model.begin())) << frame;  // not interpolated
+        }
+        if ((frame >= 12 && frame < 18) || frame >= 20) {  // back on the schedule
+            EXPECT_EQ(f.states[0].frames_since_update, g.states[0].frames_since_update) << frame;
+        }
+        if (frame >= 20) {
+            EXPECT_TRUE(same_model(pose, ref.poses().view(0))) << frame;  // keyed and interpolated as ever
+        }
+    }
+    std::vector<uint8_t> bad(2, 7);
+    MotionUpdateJob job{&mc, kDt, f.lods, f.states, f.xs, f.vs};
+    job.pose_use = bad;
+    EXPECT_FALSE(job.Validate());
 }
 
 TEST(MotionController, RestingCharactersAreNotIterated) {
