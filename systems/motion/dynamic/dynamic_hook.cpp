@@ -1,5 +1,7 @@
 #include "systems/motion/dynamic/dynamic_hook.hpp"
 
+#include "systems/motion/inertialize.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,6 +14,34 @@ glm::mat4 rigid_frame(const Transform& t) {
     glm::mat4 m = glm::mat4_cast(glm::normalize(t.rotation));
     m[3] = glm::vec4(t.position, 1.0f);
     return m;
+}
+
+// After a hand-back: the kinematic pose in `pose` plus the decaying offset from the last simulated pose.
+void apply_fallback(const DynamicHookContext& cx, DynamicCharacter& dc, float dt, const PoseView& pose) {
+    dc.fallback_elapsed += dt;
+    const float w = inertial_weight(dc.fallback_elapsed, cx.fallback_seconds);
+    if (w <= 0.0f) return;
+    const glm::quat id(1.0f, 0.0f, 0.0f, 0.0f);
+    for (size_t j = 0; j < pose.rotations.size(); ++j) {
+        pose.rotations[j] = glm::normalize(glm::slerp(id, dc.offset_rotations[j], w) * pose.rotations[j]);
+        pose.translations[j] += w * dc.offset_translations[j];
+    }
+}
+
+// The simulation came apart this step: show the kinematic pose (saved before the step) and keep
+// the last simulated pose shown as an offset that decays (inertialization).
+void hand_back(const DynamicHookContext& cx, DynamicCharacter& dc, const PoseView& pose) {
+    for (size_t j = 0; j < pose.rotations.size(); ++j) {
+        pose.rotations[j] = dc.target[j];
+        pose.translations[j] = dc.kinematic_translations[j];
+        glm::quat q = dc.shown_rotations[j] * glm::inverse(pose.rotations[j]);
+        if (q.w < 0.0f) q = -q;  // the shorter arc
+        dc.offset_rotations[j] = glm::normalize(q);
+        dc.offset_translations[j] = dc.shown_translations[j] - pose.translations[j];
+    }
+    dc.diverged = 1;
+    dc.fallback_elapsed = 0.0f;
+    apply_fallback(cx, dc, 0.0f, pose);
 }
 
 void dynamic_hook(void* user, MethodContext& m) {
@@ -30,10 +60,22 @@ void dynamic_hook(void* user, MethodContext& m) {
             return;
         }
         dc.target.resize(n);
+        dc.kinematic_translations.resize(n);
+        dc.offset_rotations.resize(n);
+        dc.offset_translations.resize(n);
+        dc.shown_rotations.assign(m.pose.rotations.begin(), m.pose.rotations.end());
+        dc.shown_translations.assign(m.pose.translations.begin(), m.pose.translations.end());
         dc.initialised = 1;
+        dc.diverged = 0;
         dc.steps = 0;
     }
+    if (dc.diverged) {  // handed back: the kinematic pose, the last simulated one decaying into it
+        apply_fallback(cx, dc, m.dt, m.pose);
+        return;
+    }
     std::copy(m.pose.rotations.begin(), m.pose.rotations.end(), dc.target.begin());
+    std::copy(m.pose.translations.begin(), m.pose.translations.end(), dc.kinematic_translations.begin());
+    const glm::quat pelvis_target = glm::normalize(glm::quat_cast(glm::mat3(frame)) * m.pose.rotations[0]);
     // Targets and output are expressed in the character's current frame; the bodies live in the
     // world, so moving the frame each step is only a change of coordinates.
     dc.state.root_world = frame;
@@ -52,7 +94,13 @@ void dynamic_hook(void* user, MethodContext& m) {
         dc.push_left = std::max(0.0f, dc.push_left - h);
         step_dynamic_walk(sk, dc.target, root_local, h, dc.state, m.pose, nullptr);
         ++dc.steps;
+        if (dynamic_walk_diverged(dc.state, pelvis_target, cx.guard)) {
+            hand_back(cx, dc, m.pose);
+            return;
+        }
     }
+    std::copy(m.pose.rotations.begin(), m.pose.rotations.end(), dc.shown_rotations.begin());
+    std::copy(m.pose.translations.begin(), m.pose.translations.end(), dc.shown_translations.begin());
 }
 
 void dynamic_release(void* user, uint32_t character) {
@@ -66,11 +114,28 @@ void dynamic_release(void* user, uint32_t character) {
 bool push_dynamic_walker(DynamicHookContext& context, uint32_t character, const glm::vec3& impulse) {
     if (character >= context.characters.size()) return false;
     DynamicCharacter& dc = context.characters[character];
-    if (!dc.initialised || dc.failed || dc.state.bodies.empty()) return false;
+    if (!dc.initialised || dc.failed || dc.diverged || dc.state.bodies.empty()) return false;
     if (!std::isfinite(impulse.x + impulse.y + impulse.z)) return false;
     dc.push_force = impulse / kDynamicPushSeconds;
     dc.push_left = kDynamicPushSeconds;
     return true;
+}
+
+bool dynamic_walk_diverged(const DynamicWalkState& state, const glm::quat& pelvis_target, const DynamicGuard& guard) {
+    if (state.bodies.empty()) return false;
+    for (const DynamicBody& b : state.bodies) {
+        const float speed = glm::length(b.v);
+        if (!std::isfinite(speed + b.x.x + b.x.y + b.x.z + b.q.w) || speed > guard.max_body_speed) return true;
+    }
+    if (max_constraint_error(state) > guard.max_joint_gap) return true;
+    glm::quat d = state.bodies[0].q * glm::inverse(pelvis_target);
+    if (d.w < 0.0f) d = -d;
+    return 2.0f * std::acos(std::clamp(d.w, -1.0f, 1.0f)) > guard.max_pelvis_tilt;
+}
+
+size_t DynamicHookContext::diverged() const {
+    return static_cast<size_t>(std::count_if(characters.begin(), characters.end(),
+                                             [](const DynamicCharacter& c) { return c.initialised != 0 && c.diverged != 0; }));
 }
 
 size_t DynamicHookContext::simulated() const {

@@ -21,16 +21,41 @@ struct DynamicCharacter {
     uint32_t steps = 0;                  ///< simulation steps taken since initialisation
     glm::vec3 push_force{0.0f};          ///< force (N, world) of a push on the pelvis under way
     float push_left = 0.0f;              ///< seconds the push still lasts
+    uint8_t diverged = 0;                ///< 1 once the divergence guard handed the character back to kinematic walking
+    float fallback_elapsed = 0.0f;       ///< seconds since the hand-back (the offset decays over DynamicHookContext::fallback_seconds)
+    std::vector<glm::quat> shown_rotations;     ///< local rotations of the last simulated pose shown (joint count)
+    std::vector<glm::vec3> shown_translations;  ///< local translations of the last simulated pose shown
+    std::vector<glm::quat> offset_rotations;    ///< after a hand-back: shown * inverse(kinematic) per joint
+    std::vector<glm::vec3> offset_translations; ///< after a hand-back: shown - kinematic per joint
+    std::vector<glm::vec3> kinematic_translations;  ///< scratch: the kinematic pose's translations before a step
 };
+
+/// Divergence guard of the dynamic walk (a safety net, not part of the simulation): after every step
+/// the simulated pose is checked, and a character whose simulation has come apart is handed back to
+/// the kinematic walk it was tracking, with the pose it showed last inertialized into it.
+struct DynamicGuard {
+    float max_joint_gap = 0.02f;     ///< m: a point constraint pulled further apart than this (a healthy step keeps it under 1 mm)
+    float max_pelvis_tilt = 0.7854f; ///< rad: pelvis orientation further than this from the gait's (45 degrees)
+    float max_body_speed = 12.0f;    ///< m/s: any link faster than this (a swing foot at a brisk walk moves about 5 m/s)
+};
+
+/// True when `state` has come apart against the guard's bounds: a non-finite value, a joint gap, a
+/// pelvis tilted from `pelvis_target` (world rotation of the gait's pelvis) or a link too fast.
+[[nodiscard]] bool dynamic_walk_diverged(const DynamicWalkState& state, const glm::quat& pelvis_target,
+                                         const DynamicGuard& guard);
 
 /// Settings and per-character state of the dynamic walk hook. Must outlive the controller it is
 /// registered with; change settings before registering.
 struct DynamicHookContext {
     DynamicWalkSettings settings;        ///< passed to init_dynamic_walk
     float max_step = 1.0f / 60.0f;       ///< longest simulation step (s); longer posed intervals are split
+    DynamicGuard guard;                  ///< bounds of the divergence guard
+    float fallback_seconds = 0.2f;       ///< inertialization time of a hand-back to the kinematic walk
     std::vector<DynamicCharacter> characters;  ///< per character (controller capacity), filled by registration
     /// Number of characters simulated now.
     [[nodiscard]] size_t simulated() const;
+    /// Number of characters the divergence guard handed back to the kinematic walk (while at the dynamic level).
+    [[nodiscard]] size_t diverged() const;
 };
 
 /// Seconds over which push_dynamic_walker spreads its impulse (a shove, not a bullet: the joint

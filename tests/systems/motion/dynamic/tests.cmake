@@ -4,5 +4,6 @@ aloha_test(dynamic_tests
           ${CMAKE_CURRENT_LIST_DIR}/dynamic_long_test.cpp
           ${CMAKE_CURRENT_LIST_DIR}/dynamic_hook_test.cpp
           ${CMAKE_CURRENT_LIST_DIR}/dynamic_push_test.cpp
+          ${CMAKE_CURRENT_LIST_DIR}/dynamic_guard_test.cpp
   LIBS aloha::motion
   LABELS motion dynamic)
