@@ -8,6 +8,9 @@ Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* tar
     renderer_ = renderer;
     target_ = target;
     draws_.reset();
+    std::vector<std::string> pass_names;  // each level's name labels its GPU pass
+    for (const auto& level : rules_.table().geom_levels) pass_names.push_back(level.name);
+    draws_.set_pass_names(std::move(pass_names));
     return {};
 }
 

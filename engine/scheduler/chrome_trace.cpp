@@ -48,7 +48,9 @@ std::string chrome_trace_json(std::span<const TraceEvent> events, std::span<cons
     auto name_of = [&](uint32_t system) {
         return system < names.size() ? names[system] : "system " + std::to_string(system);
     };
-    auto track = [](const TraceEvent& e) { return e.kind == TraceKind::System ? kSystemTrackBase + e.system : e.thread; };
+    auto track = [](const TraceEvent& e) {
+        return e.kind == TraceKind::System ? kSystemTrackBase + e.system : e.kind == TraceKind::Gpu ? kGpuTrack : e.thread;
+    };
     auto declare = [&](uint32_t tid, const std::string& name, uint32_t sort_index) {
         out += ",\n{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":1,\"tid\":" + std::to_string(tid) + ",\"args\":{\"name\":";
         append_escaped(out, name);
@@ -56,18 +58,22 @@ std::string chrome_trace_json(std::span<const TraceEvent> events, std::span<cons
                ",\"args\":{\"sort_index\":" + std::to_string(sort_index) + "}}";
     };
     std::set<uint32_t> systems, threads;
+    bool gpu = false;
     for (const TraceEvent& e : events) {
         if (e.kind == TraceKind::System)
             systems.insert(e.system);
+        else if (e.kind == TraceKind::Gpu)
+            gpu = true;
         else
             threads.insert(e.thread);
     }
     for (const uint32_t s : systems) declare(kSystemTrackBase + s, "system: " + name_of(s), s);
     for (const uint32_t t : threads) declare(t, "worker " + std::to_string(t), kSystemTrackBase + t);
+    if (gpu) declare(kGpuTrack, "GPU passes", kGpuTrack);
     for (const TraceEvent& e : events) {
         out += ",\n{\"name\":";
         append_escaped(out, name_of(e.system));
-        out += std::string(",\"cat\":\"") + (e.kind == TraceKind::System ? "system" : "work") +
+        out += std::string(",\"cat\":\"") + (e.kind == TraceKind::System ? "system" : e.kind == TraceKind::Gpu ? "gpu" : "work") +
                "\",\"ph\":\"X\",\"pid\":1,\"tid\":" + std::to_string(track(e)) + ",\"ts\":";
         append_micros(out, e.begin_ns);
         out += ",\"dur\":";

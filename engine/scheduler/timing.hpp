@@ -58,9 +58,10 @@ private:
     uint64_t total_ = 0;
 };
 
-/// What a trace event spans: a whole system run, or one thread's share of a system's parallel_for
-/// (from the first chunk it ran to the end of its last).
-enum class TraceKind : uint8_t { System, Work };
+/// What a trace event spans: a whole system run, one thread's share of a system's parallel_for
+/// (from the first chunk it ran to the end of its last), or a GPU pass (timestamps placed on the CPU clock
+/// by whoever adds them; `system` then indexes the names after the scheduler's).
+enum class TraceKind : uint8_t { System, Work, Gpu };
 
 /// One system run (or one thread's work inside it): which system, on which arena thread, when
 /// (ns since the scheduler started).

@@ -33,7 +33,8 @@ bool accepts(const std::string& command, const std::string& option) {
     if (command == "profile")
         return option == "--frames" || option == "--warmup" || option == "--out" || option == "--fidelity" ||
                option == "--no-render" || option == "--colour" || option == "--force" || option == "--quiet" ||
-               option == "--compare-lod" || option == "--compare-frames" || option == "--motion-metrics";
+               option == "--compare-lod" || option == "--compare-frames" || option == "--motion-metrics" ||
+               option == "--gpu-passes";
     if (command == "scale")
         return option == "--counts" || option == "--frames" || option == "--warmup" || option == "--out" ||
                option == "--force" || option == "--quiet" || option == "--no-render";
@@ -132,6 +133,7 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
         if (a == "--quiet") { o.quiet = true; continue; }
         if (a == "--compare-lod") { o.compare_lod = true; continue; }
         if (a == "--motion-metrics") { o.motion_metrics = true; continue; }
+        if (a == "--gpu-passes") { o.gpu_passes = true; continue; }
         if (o.command == "export" && (a == "--joints" || a == "--characters" || a == "--frames")) {
             auto v = take();
             if (!v.ok()) return v.error();
@@ -270,7 +272,9 @@ std::string help_text(const std::string& command) {
                "  --compare-lod      also run the scene with LOD off (CPU systems) and report the slowdown ratio\n"
                "  --compare-frames K frames of that LOD-off run (default 10)\n"
                "  --motion-metrics   foot skate and pops per animation level and update interval (report.json and the\n"
-               "                     printed table; see docs/MOTION.md for the contact thresholds)\n" + common;
+               "                     printed table; see docs/MOTION.md for the contact thresholds)\n"
+               "  --gpu-passes       GPU timestamps after every pass (each level's meshes, proxies, lines, resolve) in\n"
+               "                     report.json, trace.json and the table; on lavapipe each flushes (docs/PERFORMANCE.md)\n" + common;
     if (command == "export")
         return "aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B] [options]\n"
                "  Runs the scene headless (no rendering) and writes every joint's world position per frame, with each\n"

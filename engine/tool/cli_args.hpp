@@ -45,6 +45,7 @@ struct CliOptions {
     uint32_t compare_frames = 10;      ///< --compare-frames K: frames of the LOD-off run
     std::vector<uint32_t> counts;      ///< --counts A,B,...: crowd sizes (scale)
     bool motion_metrics = false;       ///< --motion-metrics: foot skate and pops per animation level (profile)
+    bool gpu_passes = false;           ///< --gpu-passes: per-pass GPU timestamps (profile)
     std::string joints;                ///< --joints FILE.csv: where export writes joint positions
     /// export --characters LIST: inclusive ranges of spawn indices ("0,5,10-20"); empty = every character
     std::vector<std::pair<uint32_t, uint32_t>> character_ranges;

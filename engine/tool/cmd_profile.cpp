@@ -5,6 +5,7 @@
 #include "engine/scene/world_diagnostics.hpp"
 #include "engine/tool/fidelity.hpp"
 #include "engine/tool/motion_recorder.hpp"
+#include "engine/tool/profile_gpu.hpp"
 #include "engine/tool/profile_lod.hpp"
 #include "engine/tool/session.hpp"
 #include "engine/tool/stats.hpp"
@@ -32,6 +33,7 @@ struct FrameRecord {
     std::array<uint32_t, 3> walk_methods{};
     FidelityFrame fidelity;
     LodSample lod;
+    GpuSample gpu;
 };
 
 void progress(size_t done, size_t total, bool tty, const std::string& label) {
@@ -46,8 +48,8 @@ void progress(size_t done, size_t total, bool tty, const std::string& label) {
 }
 
 template <class Get>
-std::vector<double> series_of(const std::vector<FrameRecord>& records, Get get) {
-    std::vector<double> v;
+auto series_of(const std::vector<FrameRecord>& records, Get get) {
+    std::vector<std::decay_t<decltype(get(records.front()))>> v;
     for (const auto& r : records) v.push_back(get(r));
     return v;
 }
@@ -164,6 +166,7 @@ int run_profile(const CliOptions& options) {
         r.geom_methods = st.per_geom_method;
         r.walk_methods = st.per_walk_method;
         r.lod = sample_lod(world);
+        if (s.renderer) r.gpu = sample_gpu(*s.renderer);
         if (fidelity) {
             auto fr = fidelity->measure();
             if (!fr.ok()) {
@@ -218,6 +221,7 @@ int run_profile(const CliOptions& options) {
     report["render_ms"] = to_json(rnd);
     report["gpu_ms"] = render ? to_json(gpu) : nlohmann::json(nullptr);
     report["frame_ms"] = to_json(frame);
+    if (render) report["render_passes"] = gpu_report(series_of(records, [](const FrameRecord& r) { return r.gpu; }));
     nlohmann::json levels;
     std::vector<std::string> gnames, anames;
     for (const auto& l : table.geom_levels) gnames.push_back(l.name);
@@ -279,7 +283,12 @@ int run_profile(const CliOptions& options) {
         }
     }
     // ---- trace.json
-    if (Status st = write_chrome_trace(out + "/trace.json", trace, sched.names()); !st.ok()) {
+    std::vector<std::string> trace_names = sched.names();
+    const auto render_system = std::find(trace_names.begin(), trace_names.end(), "render");
+    if (render && render_system != trace_names.end())
+        add_gpu_trace(series_of(records, [](const FrameRecord& r) { return r.gpu; }),
+                      static_cast<uint32_t>(render_system - trace_names.begin()), trace, trace_names);
+    if (Status st = write_chrome_trace(out + "/trace.json", trace, trace_names); !st.ok()) {
         print_error(st.error().to_string());
         return 1;
     }
@@ -315,7 +324,10 @@ int run_profile(const CliOptions& options) {
     for (uint32_t i = 0; i < systems; ++i)
         row(sched.names()[i], summarize(series([&](const FrameRecord& r) { return r.system_ms[i]; })));
     row("= CPU systems", cpu);
-    if (render) row("GPU (timestamps)", gpu);
+    if (render) {
+        row("GPU (timestamps)", gpu);
+        std::cout << gpu_table(report["render_passes"]);
+    }
     row("= whole frame", frame);
     if (options.compare_lod) {
         if (compare.contains("error")) std::cout << "LOD off: " << compare["error"].get<std::string>() << "\n";

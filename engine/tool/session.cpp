@@ -105,7 +105,9 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     if (!world.ok()) return name_flag(world.error());
     session->world = std::move(world.value());
     if (!render) return session;
-    auto renderer = CrowdRenderer::create(*session->context);
+    RendererOptions ro;
+    ro.pass_timestamps = options.gpu_passes;
+    auto renderer = CrowdRenderer::create(*session->context, ro);
     if (!renderer.ok()) return renderer.error();
     session->renderer = std::move(renderer.value());
     auto target = gpu::OffscreenTarget::create(*session->context, session->scene.width, session->scene.height);

@@ -130,7 +130,8 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
     bool double_sided = false;
     for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;
     auto id = renderer.register_topology(draw.geometry->level_indices(surface.level), static_cast<uint32_t>(surface.positions.size()),
-                                         /*cull_back_faces=*/!double_sided, surface_materials);
+                                         /*cull_back_faces=*/!double_sided, surface_materials,
+                                         surface.level < pass_names_.size() ? std::string_view(pass_names_[surface.level]) : "meshes");
     if (!id.ok()) return id.error();
     topologies_.emplace_back(surface.topology_key, id.value());
     return id.value();

@@ -15,7 +15,10 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
+#include <vector>
 #include <utility>
+#include <string>
 #include <vector>
 
 namespace aloha {
@@ -51,6 +54,10 @@ class DrawListBuilder {
 public:
     /// Forgets every registered id (a new renderer, or levels whose topologies changed).
     void reset();
+    /// Names the GPU pass each geometric level's meshes are drawn in (index: level; e.g. the rule file's
+    /// level names); levels without a name are drawn in the pass "meshes". Takes effect for topologies
+    /// registered after the call (call reset() first to relabel registered ones).
+    void set_pass_names(std::vector<std::string> names) { pass_names_ = std::move(names); }
     /// Clears `out` and fills it with the characters of `groups` (positions walk elements of the spans).
     /// Proxies need no renderer; meshes need `renderer` for their topology ids (skipped when null).
     /// Errors: the renderer refusing a topology, texture or material (the lists are then partial).
@@ -69,6 +76,7 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< SurfaceView::topology_key -> renderer id
     std::vector<std::vector<uint32_t>> materials_;           ///< per type: renderer ids of its materials
     std::vector<glm::vec3> muscle_scratch_;                  ///< one character's muscle surface (overlays)
+    std::vector<std::string> pass_names_;                    ///< per geometric level: its GPU pass label
 };
 
 /// The colour a character is drawn in: the debug palette of `mode`, else white over a textured type's

@@ -55,13 +55,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
         VkFenceCreateInfo fi{};
         fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
         ALOHA_VK_RETURN(vkCreateFence(dev, &fi, nullptr, &s.fence));
-        if (ctx_.timestamps_supported()) {
-            VkQueryPoolCreateInfo qi{};
-            qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-            qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-            qi.queryCount = 2;
-            ALOHA_VK_RETURN(vkCreateQueryPool(dev, &qi, nullptr, &s.queries));
-        }
+        if (Status q = ensure_queries(s, 2); !q) return q;
         Result<VkDescriptorSet> set = pipes_.allocate_set();
         if (!set) return set.error();
         s.set = set.value();
@@ -80,6 +74,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
         if (!st) return st;
     }
     growth_events_ = 0;  // initial allocations are not growth
+    for (const char* fixed : {"proxies", "lines", "resolve"}) pass_id(fixed);
     return init_materials();
 }
 
@@ -153,16 +148,46 @@ Status CrowdRenderer::ensure_proxy_indices(Slot& slot, uint32_t boxes) {
     return {};
 }
 
+Status CrowdRenderer::ensure_queries(Slot& slot, uint32_t count) {
+    if (!ctx_.timestamps_supported() || slot.query_capacity >= count) return {};
+    if (slot.queries != VK_NULL_HANDLE) vkDestroyQueryPool(ctx_.device(), slot.queries, nullptr);  // slot retired
+    slot.queries = VK_NULL_HANDLE;
+    VkQueryPoolCreateInfo qi{};
+    qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qi.queryCount = count;
+    ALOHA_VK_RETURN(vkCreateQueryPool(ctx_.device(), &qi, nullptr, &slot.queries));
+    slot.query_capacity = count;
+    return {};
+}
+
+uint32_t CrowdRenderer::pass_id(std::string_view name) {
+    for (uint32_t i = 0; i < pass_names_.size(); ++i)
+        if (pass_names_[i] == name) return i;
+    pass_names_.emplace_back(name);
+    return static_cast<uint32_t>(pass_names_.size() - 1);
+}
+
 Status CrowdRenderer::retire(Slot& slot) {
     if (!slot.pending) return {};
     ALOHA_VK_RETURN(vkWaitForFences(ctx_.device(), 1, &slot.fence, VK_TRUE, UINT64_MAX));
     slot.pending = false;
     if (slot.queries != VK_NULL_HANDLE && slot.frame + 1 > last_completed_frame_) {
-        uint64_t ticks[2] = {0, 0};
-        const VkResult r = vkGetQueryPoolResults(ctx_.device(), slot.queries, 0, 2, sizeof(ticks), ticks,
-                                                 sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+        // Query 0 starts the frame; query k + 1 ends timed pass k (or the frame, without pass timestamps).
+        const uint32_t count = 1 + std::max<uint32_t>(1, static_cast<uint32_t>(slot.passes.size()));
+        std::vector<uint64_t> ticks(count, 0);
+        const VkResult r = vkGetQueryPoolResults(ctx_.device(), slot.queries, 0, count, ticks.size() * sizeof(uint64_t),
+                                                 ticks.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
         if (r != VK_SUCCESS) return gpu::vk_error("vkGetQueryPoolResults", r);
-        last_gpu_ms_ = double(ticks[1] - ticks[0]) * double(ctx_.timestamp_period_ns()) * 1e-6;
+        const double to_ms = double(ctx_.timestamp_period_ns()) * 1e-6;
+        auto since_start = [&](uint32_t q) { return ticks[q] >= ticks[0] ? double(ticks[q] - ticks[0]) * to_ms : 0.0; };
+        last_gpu_ms_ = since_start(count - 1);
+        last_passes_.clear();
+        for (uint32_t k = 0; k < slot.passes.size(); ++k) {
+            const PassRecord& p = slot.passes[k];
+            last_passes_.push_back({pass_names_[p.name], since_start(k), since_start(k + 1) - since_start(k), p.draws,
+                                    p.instances, p.triangles});
+        }
         last_completed_frame_ = slot.frame + 1;
     }
     return {};

@@ -17,6 +17,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace aloha {
@@ -95,6 +96,21 @@ struct RendererOptions {
     uint32_t initial_vertices = 1u << 16;              ///< initial per-frame vertex capacity
     uint32_t initial_instances = 1u << 12;             ///< initial per-frame instance capacity
     uint32_t initial_line_segments = 1u << 12;         ///< initial per-frame line capacity
+    bool pass_timestamps = false;                      ///< a GPU timestamp after every pass (see GpuPassTime);
+                                                       ///< on lavapipe each one flushes the binned scene, which
+                                                       ///< costs a little (docs/PERFORMANCE.md gives the figure)
+};
+
+/// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
+/// one per mesh pass label (register_topology's `pass`: all topologies with that label, drawn together),
+/// "proxies", "lines" and "resolve" (end of the render pass: tiles written out, layout transition).
+struct GpuPassTime {
+    std::string name;        ///< pass label
+    double begin_ms = 0.0;   ///< start, ms after the frame's first timestamp
+    double ms = 0.0;         ///< duration (timestamp after the pass minus the one before)
+    uint32_t draws = 0;      ///< draw calls recorded in the pass
+    uint64_t instances = 0;  ///< characters (meshes) or boxes (proxies) or segments (lines) drawn
+    uint64_t triangles = 0;  ///< triangles submitted (before culling and clipping)
 };
 
 /// Draws crowd frames on a gpu::Context. Not thread-safe; destroy before the Context.
@@ -112,9 +128,11 @@ public:
     /// max index + 1. `cull_back_faces`: the mesh is closed and wound counter-clockwise seen from outside,
     /// so back faces are skipped (about half the raster work). Returns the id for DeformableMesh::topology.
     /// `surface` (optional) gives its materials: the index list is then reordered by material, one draw
-    /// per material.
+    /// per material. `pass` labels the GPU pass it is drawn in (e.g. its LOD level's name): topologies are
+    /// drawn grouped by label, in the order labels were first registered.
     [[nodiscard]] Result<uint32_t> register_topology(std::span<const uint32_t> indices, uint32_t vertex_count = 0,
-                                                     bool cull_back_faces = false, const TopologySurface& surface = {});
+                                                     bool cull_back_faces = false, const TopologySurface& surface = {},
+                                                     std::string_view pass = "meshes");
     /// Uploads a texture (RGBA8, rows top to bottom, colours as stored: sRGB-encoded) once; returns its id.
     /// Errors: empty or inconsistent image, Vulkan failures.
     [[nodiscard]] Result<uint32_t> register_texture(const TextureImage& image);
@@ -137,6 +155,8 @@ public:
 
     /// GPU time of the most recently completed frame in ms (timestamp queries); -1 when unavailable.
     [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
+    /// Per-pass GPU times of the most recently completed frame; empty without pass_timestamps.
+    [[nodiscard]] std::span<const GpuPassTime> last_gpu_passes() const { return last_passes_; }
     /// CPU time of the last frame's upload (copies into mapped buffers) in ms.
     [[nodiscard]] double last_upload_ms() const { return last_upload_ms_; }
     /// Bytes copied into GPU-visible buffers by the last frame.
@@ -162,6 +182,12 @@ private:
         bool cull_back_faces = false;
         gpu::Buffer uvs;              // empty without UVs
         std::vector<Range> ranges;    // empty without materials
+        uint32_t pass = 0;            // index into pass_names_
+    };
+    struct PassRecord {  // what a slot's command buffer drew in one timed pass
+        uint32_t name = 0;            // index into pass_names_
+        uint32_t draws = 0;
+        uint64_t instances = 0, triangles = 0;
     };
     struct Material {
         glm::vec4 colour{1.0f};       // display-space base colour
@@ -171,6 +197,8 @@ private:
         VkCommandBuffer cmd = VK_NULL_HANDLE;
         VkFence fence = VK_NULL_HANDLE;
         VkQueryPool queries = VK_NULL_HANDLE;
+        uint32_t query_capacity = 0;
+        std::vector<PassRecord> passes;  // timed passes recorded (query k + 1 ends pass k)
         VkDescriptorSet set = VK_NULL_HANDLE;
         gpu::Buffer positions, normals, instances, lines, lighting;
         gpu::Buffer proxy_indices;  // fill_box_batch_indices for proxy_capacity boxes (rewritten on growth)
@@ -188,6 +216,9 @@ private:
     uint64_t upload(const FrameInput& frame, Slot& slot);
     Status record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot);
     Status init_materials();
+    Status ensure_queries(Slot& slot, uint32_t count);
+    uint32_t pass_id(std::string_view name);
+    void end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass);
 
     gpu::Context& ctx_;
     RendererOptions options_;
@@ -206,6 +237,9 @@ private:
     std::vector<uint32_t> group_count_;
     std::vector<uint32_t> group_vertex_base_;
     std::vector<uint32_t> group_cursor_;
+    std::vector<std::string> pass_names_;             // mesh pass labels, then fixed ones, by first use
+    std::vector<uint32_t> draw_order_;                // topologies by pass (stable): the recording order
+    std::vector<GpuPassTime> last_passes_;
     uint64_t frame_index_ = 0;
     double last_gpu_ms_ = -1.0;
     double last_upload_ms_ = 0.0;

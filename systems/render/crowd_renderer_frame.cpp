@@ -60,6 +60,13 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
            frame.lines.size() * 2 * sizeof(gpu::LineVertex);
 }
 
+void CrowdRenderer::end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass) {
+    if (!options_.pass_timestamps || slot.queries == VK_NULL_HANDLE) return;
+    // Bottom of pipe: on lavapipe this flushes the binned scene, so the pass's rasterisation is inside it.
+    slot.passes.push_back(pass);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.queries, static_cast<uint32_t>(slot.passes.size()));
+}
+
 Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot) {
     VkCommandBuffer cmd = slot.cmd;
     ALOHA_VK_RETURN(vkResetCommandBuffer(cmd, 0));
@@ -67,8 +74,13 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     bi.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     ALOHA_VK_RETURN(vkBeginCommandBuffer(cmd, &bi));
+    slot.passes.clear();
+    if (options_.pass_timestamps) {
+        // One query to start, one after every pass: at most every label, then the frame's end.
+        if (Status q = ensure_queries(slot, static_cast<uint32_t>(pass_names_.size()) + 2); !q) return q;
+    }
     if (slot.queries != VK_NULL_HANDLE) {
-        vkCmdResetQueryPool(cmd, slot.queries, 0, 2);
+        vkCmdResetQueryPool(cmd, slot.queries, 0, slot.query_capacity);
         vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.queries, 0);
     }
     VkClearValue clears[2]{};
@@ -99,8 +111,19 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 2, sets, 0, nullptr);
     }
     VkPipeline bound = VK_NULL_HANDLE;
-    for (size_t t = 0; t < topologies_.size(); ++t) {
+    PassRecord pass;
+    bool in_pass = false;
+    for (const uint32_t t : draw_order_) {
         if (group_count_[t] == 0) continue;
+        if (in_pass && pass.name != topologies_[t].pass) {
+            end_pass(cmd, slot, pass);
+            pass = {};
+        }
+        in_pass = true;
+        pass.name = topologies_[t].pass;
+        pass.instances += group_count_[t];
+        pass.triangles += uint64_t(topologies_[t].index_count / 3) * group_count_[t];
+        const uint32_t draws_before = draws;
         const VkPipeline want = topologies_[t].cull_back_faces ? pipes_.mesh_culled() : pipes_.mesh();
         if (want != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, want);
@@ -114,6 +137,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
             vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
             vkCmdDrawIndexed(cmd, topo.index_count, group_count_[t], 0, 0, 0);
             ++draws;
+            pass.draws += draws - draws_before;
             continue;
         }
         for (const Range& r : topo.ranges) {  // one draw per material, every instance of the topology
@@ -127,7 +151,9 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
             ++draws;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
+        pass.draws += draws - draws_before;
     }
+    if (in_pass) end_pass(cmd, slot, pass);
     if (!frame.proxies.empty()) {
         // Box mode: one indexed, non-instanced draw of all proxies (see shaders/lit_mesh.vert), back faces
         // culled (boxes are closed and wound counter-clockwise from outside).
@@ -138,6 +164,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         vkCmdBindIndexBuffer(cmd, slot.proxy_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cmd, kBoxIndexCount * static_cast<uint32_t>(frame.proxies.size()), 1, 0, 0, 0);
         ++draws;
+        end_pass(cmd, slot, {pass_id("proxies"), 1, frame.proxies.size(), uint64_t(kBoxIndexCount / 3) * frame.proxies.size()});
     }
     if (!frame.lines.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.lines());
@@ -146,9 +173,12 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDraw(cmd, static_cast<uint32_t>(frame.lines.size() * 2), 1, 0, 0);
         ++draws;
+        end_pass(cmd, slot, {pass_id("lines"), 1, frame.lines.size(), 0});
     }
     vkCmdEndRenderPass(cmd);
-    if (slot.queries != VK_NULL_HANDLE)
+    if (options_.pass_timestamps)
+        end_pass(cmd, slot, {pass_id("resolve"), 0, 0, 0});
+    else if (slot.queries != VK_NULL_HANDLE)
         vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.queries, 1);
     ALOHA_VK_RETURN(vkEndCommandBuffer(cmd));
     last_draw_count_ = draws;

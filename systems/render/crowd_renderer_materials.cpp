@@ -68,7 +68,7 @@ Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& materia
 }
 
 Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indices, uint32_t vertex_count, bool cull_back_faces,
-                                                 const TopologySurface& surface) {
+                                                 const TopologySurface& surface, std::string_view pass) {
     if (indices.empty() || indices.size() % 3 != 0)
         return gpu::gpu_error("register_topology: index count " + std::to_string(indices.size()) + " is not a non-zero multiple of 3");
     const uint32_t max_index = *std::max_element(indices.begin(), indices.end());
@@ -131,8 +131,14 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
     t.index_count = static_cast<uint32_t>(indices.size());
     t.vertex_count = vertex_count;
     t.cull_back_faces = cull_back_faces;
+    t.pass = pass_id(pass);
     topologies_.push_back(std::move(t));
-    return static_cast<uint32_t>(topologies_.size() - 1);
+    const uint32_t id = static_cast<uint32_t>(topologies_.size() - 1);
+    // Recording order: by pass, in the order passes were first named (a stable insertion).
+    const auto at = std::find_if(draw_order_.begin(), draw_order_.end(),
+                                 [&](uint32_t other) { return topologies_[other].pass > topologies_[id].pass; });
+    draw_order_.insert(at, id);
+    return id;
 }
 
 }  // namespace aloha

@@ -63,6 +63,27 @@ TEST(Trace, TimesAreMicroseconds) {
     EXPECT_EQ(e["args"]["frame"], 7);
 }
 
+// GPU passes (TraceKind::Gpu) go on one track of their own, named "GPU passes", category "gpu", named after
+// the entry of `names` they index.
+TEST(Trace, GpuPassesGetTheirOwnTrack) {
+    const std::vector<TraceEvent> events{{0, 0, 1'000, 2'000, 3, TraceKind::System},
+                                         {1, 0, 1'200, 1'900, 3, TraceKind::Gpu}};
+    const std::vector<std::string> names{"render", "gpu: skinned"};
+    const nlohmann::json j = nlohmann::json::parse(chrome_trace_json(events, names));
+    bool named = false, seen = false;
+    for (const auto& e : j["traceEvents"]) {
+        if (e["ph"] == "M" && e["name"] == "thread_name" && e["tid"] == kGpuTrack) named = e["args"]["name"] == "GPU passes";
+        if (e["ph"] == "X" && e["name"] == "gpu: skinned") {
+            seen = true;
+            EXPECT_EQ(e["tid"], kGpuTrack);
+            EXPECT_EQ(e["cat"], "gpu");
+            EXPECT_DOUBLE_EQ(e["dur"].get<double>(), 0.7);
+        }
+    }
+    EXPECT_TRUE(named);
+    EXPECT_TRUE(seen);
+}
+
 // A system whose parallel_for keeps both threads busy shows up on its own track and, per frame, on
 // one track per thread that ran its chunks, each span inside the system's run.
 TEST(Trace, ParallelWorkGetsOneTrackPerThread) {
