@@ -1,6 +1,8 @@
 // Nearest-muscle-point binding of a mesh and its per-frame placement.
 #include "systems/geometry/spring_skin/skin_binding.hpp"
 
+#include "systems/geometry/body_skin/surface_map.hpp"  // closest_barycentric
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,38 +12,6 @@ namespace aloha {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
-
-// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5);
-// returns barycentric weights of a, b, c.
-glm::vec3 closest_barycentric(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-    const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
-    const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0.0f && d2 <= 0.0f) return {1, 0, 0};
-    const glm::vec3 bp = p - b;
-    const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0.0f && d4 <= d3) return {0, 1, 0};
-    const float vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
-        const float v = d1 / (d1 - d3);
-        return {1 - v, v, 0};
-    }
-    const glm::vec3 cp = p - c;
-    const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0.0f && d5 <= d6) return {0, 0, 1};
-    const float vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
-        const float w = d2 / (d2 - d6);
-        return {1 - w, 0, w};
-    }
-    const float va = d3 * d6 - d5 * d4;
-    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
-        const float w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return {0, 1 - w, w};
-    }
-    const float denom = 1.0f / (va + vb + vc);
-    const float v = vb * denom, w = vc * denom;
-    return {1 - v - w, v, w};
-}
 
 // One grid triangle with its corners' vertex indices and continuous (ring, column) coordinates.
 struct ParamTriangle {
