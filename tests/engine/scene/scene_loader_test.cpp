@@ -173,6 +173,17 @@ TEST(SceneLoader, CharacterOverlayIsReadWithItsWeight) {
     EXPECT_EQ(c.requests.size(), 1u);
 }
 
+TEST(SceneLoader, AlwaysFullIsReadPerCharacterAndMustBeABoolean) {
+    const std::string head = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [)";
+    auto r = parse(head + R"({"always_full": true}, {"importance": 0.5}]})");
+    ASSERT_TRUE(r.ok()) << message_of(r);
+    EXPECT_TRUE(r.value().characters.at(0).always_full);
+    EXPECT_FALSE(r.value().characters.at(1).always_full);  // documented default: false
+    auto bad = parse(head + R"({"always_full": "yes"}]})");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(message_of(bad).find("/characters/0/always_full"), std::string::npos) << message_of(bad);
+}
+
 }  // namespace
 }  // namespace aloha
 
