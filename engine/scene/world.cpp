@@ -315,10 +315,7 @@ void World::step() {
             clamp_lod_states(rules_.table(), group.span<LodState>());
             const std::vector<GeomLod> levels = geom_levels(rules_.table());
             for (auto& rt : types_) rt->geometry->set_levels(rt->usable_levels(levels));
-            draws_.reset();  // level topologies may have changed: register again on demand
-            std::vector<std::string> pass_names;  // each level's name labels its GPU pass
-            for (const auto& level : rules_.table().geom_levels) pass_names.push_back(level.name);
-            draws_.set_pass_names(std::move(pass_names));
+            reset_draws();  // level topologies may have changed: register again on demand
             (void)apply_rule_settings();  // budget and tier too; a tier the new file lacks falls back to its own
         }
     }

@@ -165,6 +165,8 @@ private:
     void register_systems();
     void regroup();
     void refresh_type_views();
+    /// Forgets the registered draw topologies and labels each level's GPU pass with its rule-file name.
+    void reset_draws();
     /// Fills pose_use_ for this frame (motion system): which poses the later stages read.
     void mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs, std::span<const LodState> states);
 
@@ -195,6 +197,7 @@ private:
     std::vector<uint32_t> due_ids_;                  ///< per-frame scratch: characters needing geometry work
     std::vector<uint32_t> changed_;
     std::vector<uint8_t> pose_use_;                  ///< per-frame scratch: PoseUse per element (motion)
+    std::vector<std::array<uint32_t, 3>> resolve_blocks_;  ///< per-frame scratch: the resolver's per-block counts
     size_t elements_mapped_ = SIZE_MAX;              ///< characters element_of_character was last filled for
     DrawListBuilder draws_;                          ///< draw lists and the renderer's topology cache
     RenderLists lists_;

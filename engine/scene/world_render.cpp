@@ -7,11 +7,15 @@ namespace aloha {
 Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target) {
     renderer_ = renderer;
     target_ = target;
+    reset_draws();
+    return {};
+}
+
+void World::reset_draws() {
     draws_.reset();
     std::vector<std::string> pass_names;  // each level's name labels its GPU pass
     for (const auto& level : rules_.table().geom_levels) pass_names.push_back(level.name);
     draws_.set_pass_names(std::move(pass_names));
-    return {};
 }
 
 void World::frame_settings(FrameInput& frame) const {

@@ -167,7 +167,8 @@ void World::register_systems() {
         // The resolver in fixed blocks on both cores: each block lists its changes in its own part of
         // changed_ and counts its switches; the lists are then packed in block order (same as serial).
         const size_t n = states.size(), blocks = (n + kLodGrain - 1) / kLodGrain;
-        std::vector<std::array<uint32_t, 3>> block_out(blocks);  // changed, geometric, animation switches
+        std::vector<std::array<uint32_t, 3>>& block_out = resolve_blocks_;  // changed, geometric, animation switches
+        block_out.resize(blocks);
         ctx.parallel_for(blocks, 1, [&](size_t kb, size_t ke) {
             for (size_t k = kb; k < ke; ++k) {
                 const size_t b = k * kLodGrain, e = std::min(n, b + kLodGrain);

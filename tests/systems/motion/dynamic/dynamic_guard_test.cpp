@@ -1,10 +1,8 @@
 // The divergence guard of the dynamic walk (a safety net): a healthy walk never trips it; a
 // simulation that comes apart is handed back to the kinematic walk it tracked, inertialized from the
 // pose shown last, and ends on exactly the kinematic walker's pose.
-#include "systems/motion/dynamic/dynamic_hook.hpp"
 #include "systems/motion/inertialize.hpp"
-#include "tests/systems/motion/ik/humanoid.hpp"
-#include "tests/systems/motion/walk_request.hpp"
+#include "tests/systems/motion/dynamic/two_walkers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,36 +13,11 @@
 namespace aloha {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+constexpr float kDt = test::TwoWalkers::kDt;  // the fixture's step
 
 // Character 0 walks with `method0`, character 1 kinematically (the reference), the same walk.
-struct GuardScene {
-    GuardScene(WalkMethod method0, float speed) {
-        mc.set_walk_rig(resolve_walk_rig(sk, "humanoid").value());
-        register_dynamic_walk_hook(mc, dyn);
-        lods[0].walk = method0;
-        lods[1].walk = WalkMethod::Kinematic;
-        EXPECT_TRUE(mc.push_request(0, test::straight_walk(speed)));
-        EXPECT_TRUE(mc.push_request(1, test::straight_walk(speed)));
-    }
-    void step() { mc.update(kDt, lods, states, xs, vs); }
-    // World position of joint j of character c.
-    glm::vec3 joint(uint32_t c, size_t j) const {
-        return xs[c].position + xs[c].rotation * glm::vec3(mc.poses().view(c).model[j][3]);
-    }
-    std::vector<glm::vec3> joints(uint32_t c) const {
-        std::vector<glm::vec3> out(static_cast<size_t>(sk.joint_count()));
-        for (size_t j = 0; j < out.size(); ++j) out[j] = joint(c, j);
-        return out;
-    }
-    Skeleton sk = test::make_humanoid(true);
-    ClipLibrary clips;
-    MotionController mc{sk, clips, 2};
-    DynamicHookContext dyn;
-    std::vector<AnimLod> lods{2};
-    std::vector<MotionState> states{2};
-    std::vector<Transform> xs{2};
-    std::vector<Velocity> vs{2};
+struct GuardScene : test::TwoWalkers {
+    GuardScene(WalkMethod method0, float speed) : TwoWalkers(method0, WalkMethod::Kinematic, speed) {}
 };
 
 float largest_move(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {

@@ -1,8 +1,6 @@
 // A push on the pelvis during the walk: the dynamic walker is knocked aside and recovers (its
 // balance aid pulls the pelvis back to the gait's path), the kinematic walker has nothing to push.
-#include "systems/motion/dynamic/dynamic_hook.hpp"
-#include "tests/systems/motion/ik/humanoid.hpp"
-#include "tests/systems/motion/walk_request.hpp"
+#include "tests/systems/motion/dynamic/two_walkers.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,30 +11,11 @@
 namespace aloha {
 namespace {
 
-constexpr float kDt = 1.0f / 60.0f;
+constexpr float kDt = test::TwoWalkers::kDt;  // the fixture's step
 
 // Two characters with the same walk: 0 is pushed, 1 is not (the reference).
-struct PushScene {
-    explicit PushScene(WalkMethod method) {
-        mc.set_walk_rig(resolve_walk_rig(sk, "humanoid").value());
-        register_dynamic_walk_hook(mc, dyn);
-        lods[0].walk = lods[1].walk = method;
-        EXPECT_TRUE(mc.push_request(0, test::straight_walk(1.2f)));
-        EXPECT_TRUE(mc.push_request(1, test::straight_walk(1.2f)));
-    }
-    void step() { mc.update(kDt, lods, states, xs, vs); }
-    // World pelvis of character c.
-    glm::vec3 pelvis(uint32_t c) const {
-        return xs[c].position + xs[c].rotation * glm::vec3(mc.poses().view(c).model[0][3]);
-    }
-    Skeleton sk = test::make_humanoid(true);
-    ClipLibrary clips;
-    MotionController mc{sk, clips, 2};
-    DynamicHookContext dyn;
-    std::vector<AnimLod> lods{2};
-    std::vector<MotionState> states{2};
-    std::vector<Transform> xs{2};
-    std::vector<Velocity> vs{2};
+struct PushScene : test::TwoWalkers {
+    explicit PushScene(WalkMethod method) : TwoWalkers(method, method, 1.2f) {}
 };
 
 TEST(DynamicPush, DynamicWalkerIsKnockedAsideAndRecovers) {
