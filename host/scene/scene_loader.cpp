@@ -313,11 +313,7 @@ Result<SceneDesc> parse_scene(const std::string& text, const std::string& file) 
     root.reject_unknown_keys();
     if (errors.empty() && character_count(scene) == 0)
         errors.push_back(make_error(scene.file, "scene has no characters (add 'characters' or 'crowds')", 0, 0, "/"));
-    if (!errors.empty()) {
-        Error e = errors.front();
-        if (errors.size() > 1) e.message += " (and " + std::to_string(errors.size() - 1) + " more:\n" + join_errors(std::vector<Error>(errors.begin() + 1, errors.end())) + ")";
-        return e;
-    }
+    if (!errors.empty()) return first_and_rest(errors);
     return scene;
 }
 
