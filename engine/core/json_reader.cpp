@@ -148,23 +148,33 @@ void JsonObjectReader::renamed(const char* old_key, const char* new_key, const s
     if (has(old_key)) error(old_key, std::string("'") + old_key + "' was replaced by '" + new_key + "'" + (why.empty() ? "" : " (" + why + ")"));
 }
 
-glm::vec3 read_vec3(const nlohmann::json& value, const std::string& path, const std::string& file,
-                    std::vector<Error>& errors, const glm::vec3& fallback, double bound) {
-    if (!value.is_array() || value.size() != 3) {
-        errors.push_back(make_error(file, "expected [x, y, z], got " + value.dump().substr(0, 40), 0, 0, path));
-        return fallback;
+namespace {
+// An array of N finite numbers within +-bound at `path` into out; false (recorded) otherwise.
+template <int N>
+bool read_vecn(const nlohmann::json& value, const std::string& path, const std::string& file, std::vector<Error>& errors,
+               double bound, glm::vec<N, float>& out) {
+    if (!value.is_array() || value.size() != N) {
+        errors.push_back(make_error(file, std::string("expected ") + (N == 3 ? "[x, y, z]" : "an array of " + std::to_string(N) + " numbers") +
+                                              ", got " + value.dump().substr(0, 40), 0, 0, path));
+        return false;
     }
-    glm::vec3 out;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < N; ++i) {
         const auto& c = value[static_cast<size_t>(i)];
         if (!c.is_number() || !std::isfinite(c.get<double>()) || std::abs(c.get<double>()) > bound) {
             errors.push_back(make_error(file, "expected a finite number within " + range_text(-bound, bound) + ", got " + c.dump(),
                                         0, 0, path + "/" + std::to_string(i)));
-            return fallback;
+            return false;
         }
         out[i] = c.get<float>();
     }
-    return out;
+    return true;
+}
+}  // namespace
+
+glm::vec3 read_vec3(const nlohmann::json& value, const std::string& path, const std::string& file,
+                    std::vector<Error>& errors, const glm::vec3& fallback, double bound) {
+    glm::vec3 out;
+    return read_vecn<3>(value, path, file, errors, bound, out) ? out : fallback;
 }
 
 glm::vec3 JsonObjectReader::vec3(const char* key, const glm::vec3& fallback, bool required, double bound) {
@@ -174,6 +184,16 @@ glm::vec3 JsonObjectReader::vec3(const char* key, const glm::vec3& fallback, boo
         return fallback;
     }
     return read_vec3(*v, child_path(key), file_, errors_, fallback, bound);
+}
+
+glm::vec2 JsonObjectReader::vec2(const char* key, const glm::vec2& fallback, bool required, double bound) {
+    const nlohmann::json* v = child(key);
+    if (!v) {
+        if (required && object_) error("", std::string("missing required key '") + key + "'");
+        return fallback;
+    }
+    glm::vec2 out;
+    return read_vecn<2>(*v, child_path(key), file_, errors_, bound, out) ? out : fallback;
 }
 
 void JsonObjectReader::reject_unknown_keys() {

@@ -47,6 +47,8 @@ public:
     bool boolean(const char* key, bool fallback);
     /// A string (non-empty when `required`).
     std::string string(const char* key, const std::string& fallback, bool required = false);
+    /// A 2-vector [a, b] of finite numbers within +-`bound`.
+    glm::vec2 vec2(const char* key, const glm::vec2& fallback, bool required = false, double bound = 1e7);
     /// A 3-vector [x, y, z] of finite numbers within +-`bound`.
     glm::vec3 vec3(const char* key, const glm::vec3& fallback, bool required = false, double bound = 1e7);
     /// A string among `names`: its index; `fallback` when absent (an error too when `required`).

@@ -17,74 +17,23 @@ namespace {
 
 using nlohmann::json;
 
-// Reads JSON values at a path, recording the first problem with its JSON path.
-struct Reader {
-    const std::string& file;
-    std::vector<Error> errors;
+// One anchor {joint, along, offset} of a muscle.
+void read_anchor(JsonObjectReader& muscle, const char* key, const std::string& file, std::vector<Error>& errors, MuscleAnchor& a) {
+    const json* v = muscle.child(key);
+    if (!v) return muscle.error("", std::string("missing required key '") + key + "'");
+    JsonObjectReader r(*v, muscle.child_path(key), file, errors);
+    a.joint = r.string("joint", "", true);
+    r.read("along", a.along, -10.0, 10.0);
+    a.offset = r.vec3("offset", a.offset, false, 10.0);
+    r.reject_unknown_keys();
+}
 
-    void fail(const std::string& path, const std::string& what) { errors.push_back(make_error(file, what, 0, 0, path)); }
-
-    bool number(const json& obj, const char* key, const std::string& path, float& out, bool required) {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            if (required) fail(path + "/" + key, std::string("missing required field '") + key + "'");
-            return false;
-        }
-        if (!it->is_number()) {
-            fail(path + "/" + key, std::string("'") + key + "' must be a number");
-            return false;
-        }
-        out = it->get<float>();
-        if (!std::isfinite(out)) fail(path + "/" + key, std::string("'") + key + "' is not finite");
-        return true;
-    }
-
-    template <int N>
-    bool vec(const json& obj, const char* key, const std::string& path, glm::vec<N, float>& out, bool required) {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            if (required) fail(path + "/" + key, std::string("missing required field '") + key + "'");
-            return false;
-        }
-        if (!it->is_array() || it->size() != N) {
-            fail(path + "/" + key, std::string("'") + key + "' must be an array of " + std::to_string(N) + " numbers");
-            return false;
-        }
-        for (int k = 0; k < N; ++k) {
-            const json& v = (*it)[static_cast<size_t>(k)];
-            if (!v.is_number()) {
-                fail(path + "/" + key + "/" + std::to_string(k), "must be a number");
-                return false;
-            }
-            out[k] = v.get<float>();
-        }
-        return true;
-    }
-
-    bool string(const json& obj, const char* key, const std::string& path, std::string& out) {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            fail(path + "/" + key, std::string("missing required field '") + key + "'");
-            return false;
-        }
-        if (!it->is_string() || it->get_ref<const std::string&>().empty()) {
-            fail(path + "/" + key, std::string("'") + key + "' must be a non-empty string");
-            return false;
-        }
-        out = it->get<std::string>();
-        return true;
-    }
-
-    void anchor(const json& obj, const char* key, const std::string& path, MuscleAnchor& a) {
-        const auto it = obj.find(key);
-        const std::string where = path + "/" + key;
-        if (it == obj.end()) return fail(where, std::string("missing required field '") + key + "'");
-        if (!it->is_object()) return fail(where, std::string("'") + key + "' must be an object {joint, along, offset}");
-        string(*it, "joint", where, a.joint);
-        number(*it, "along", where, a.along, false);
-        vec<3>(*it, "offset", where, a.offset, false);
-    }
-};
+// Super-ellipsoid exponents [a, b] (both given together).
+void read_exponents(JsonObjectReader& r, MuscleDef& d) {
+    const glm::vec2 ab = r.vec2("exponents", glm::vec2(d.exponent_a, d.exponent_b), false, 100.0);
+    d.exponent_a = ab.x;
+    d.exponent_b = ab.y;
+}
 
 }  // namespace
 
@@ -111,62 +60,48 @@ MuscleDef mirror_muscle(const MuscleDef& def, const std::string& mirror_name) {
 }
 
 Result<std::vector<MuscleDef>> parse_muscle_defs(const json& doc, const std::string& source_name) {
-    Reader r{source_name, {}};
+    std::vector<Error> errors;
     std::vector<MuscleDef> defs;
-    if (!doc.is_object()) return make_error(source_name, "top level must be an object with a 'muscles' array", 0, 0, "/");
-    if (doc.contains("version") && !(doc["version"].is_number_integer() && doc["version"].get<int>() == 1))
-        return make_error(source_name, "unsupported version (expected 1)", 0, 0, "/version");
+    JsonObjectReader top(doc, "", source_name, errors);
+    top.allow({"$schema", "description", "format", "skeleton", "units", "notes"});
+    top.integer("version", 1, 1, 1);  // the only version so far
     MuscleDef defaults;
-    if (const auto it = doc.find("defaults"); it != doc.end()) {
-        if (!it->is_object()) return make_error(source_name, "'defaults' must be an object", 0, 0, "/defaults");
-        glm::vec2 ab(defaults.exponent_a, defaults.exponent_b);
-        if (r.vec<2>(*it, "exponents", "/defaults", ab, false)) {
-            defaults.exponent_a = ab.x;
-            defaults.exponent_b = ab.y;
-        }
-        r.number(*it, "fat_thickness", "/defaults", defaults.fat_thickness, false);
+    if (const json* dj = top.child("defaults")) {
+        JsonObjectReader d(*dj, "/defaults", source_name, errors);
+        read_exponents(d, defaults);
+        d.read("fat_thickness", defaults.fat_thickness, 0.0, 1.0);
+        d.reject_unknown_keys();
     }
-    const auto list = doc.find("muscles");
-    if (list == doc.end()) return make_error(source_name, "missing required field 'muscles'", 0, 0, "/muscles");
-    if (!list->is_array()) return make_error(source_name, "'muscles' must be an array", 0, 0, "/muscles");
-    for (size_t i = 0; i < list->size(); ++i) {
-        const json& m = (*list)[i];
+    const json* list = top.child("muscles");
+    top.reject_unknown_keys();
+    if (top.is_object() && !list) top.error("", "missing required key 'muscles'");
+    else if (list && !list->is_array()) top.error("muscles", std::string("expected an array of muscles, got ") + list->type_name());
+    for (size_t i = 0; list && list->is_array() && i < list->size(); ++i) {
         const std::string path = "/muscles/" + std::to_string(i);
-        if (!m.is_object()) {
-            r.fail(path, "each muscle must be an object");
-            continue;
-        }
+        JsonObjectReader r((*list)[i], path, source_name, errors);
+        if (!r.is_object()) continue;
         MuscleDef d = defaults;
         d.source_path = path;
-        r.string(m, "name", path, d.name);
-        r.anchor(m, "origin", path, d.origin);
-        r.anchor(m, "insertion", path, d.insertion);
-        const bool has_radii = r.vec<2>(m, "radii", path, d.rest_radii, false);
-        const bool has_volume = r.number(m, "volume", path, d.volume, false);
-        if (has_radii == has_volume)
-            r.fail(path, "give exactly one of 'radii' [width, depth] (m) or 'volume' (m^3) with 'ratio'");
-        if (has_radii && (!(d.rest_radii.x > 0.0f) || !(d.rest_radii.y > 0.0f)))
-            r.fail(path + "/radii", "radii must be positive metres");
-        if (has_volume) r.number(m, "ratio", path, d.ratio, true);
-        glm::vec2 ab(d.exponent_a, d.exponent_b);
-        if (r.vec<2>(m, "exponents", path, ab, false)) {
-            d.exponent_a = ab.x;
-            d.exponent_b = ab.y;
-        }
-        r.number(m, "fat_thickness", path, d.fat_thickness, false);
-        r.vec<3>(m, "depth_axis", path, d.depth_axis, false);
+        d.name = r.string("name", "", true);
+        r.allow({"description"});
+        read_anchor(r, "origin", source_name, errors, d.origin);
+        read_anchor(r, "insertion", source_name, errors, d.insertion);
+        const bool has_radii = r.has("radii"), has_volume = r.has("volume");
+        if (has_radii == has_volume) r.error("", "give exactly one of 'radii' [width, depth] (m) or 'volume' (m^3) with 'ratio'");
+        d.rest_radii = r.vec2("radii", d.rest_radii, false, 10.0);
+        if (has_radii && (!(d.rest_radii.x > 0.0f) || !(d.rest_radii.y > 0.0f))) r.error("radii", "radii must be positive metres");
+        r.read("volume", d.volume, 1e-9, 10.0);
+        if (has_volume) d.ratio = static_cast<float>(r.number("ratio", d.ratio, 1e-3, 1e3, /*required=*/true));
+        read_exponents(r, d);
+        r.read("fat_thickness", d.fat_thickness, 0.0, 1.0);
+        d.depth_axis = r.vec3("depth_axis", d.depth_axis, false, 1e3);
+        const std::string mirror = r.string("mirror", "");
+        r.reject_unknown_keys();
         defs.push_back(d);
-        if (const auto mir = m.find("mirror"); mir != m.end()) {
-            if (!mir->is_string() || mir->get_ref<const std::string&>().empty()) r.fail(path + "/mirror", "'mirror' must be the name of the mirrored copy");
-            else defs.push_back(mirror_muscle(d, mir->get<std::string>()));
-        }
+        if (r.has("mirror") && mirror.empty()) r.error("mirror", "'mirror' must be the name of the mirrored copy");
+        else if (!mirror.empty()) defs.push_back(mirror_muscle(d, mirror));
     }
-    if (!r.errors.empty()) {
-        Error first = r.errors.front();
-        if (r.errors.size() > 1)
-            first.message += "\n" + join_errors(std::vector<Error>(r.errors.begin() + 1, r.errors.end()));
-        return first;
-    }
+    if (!errors.empty()) return first_and_rest(errors);
     return defs;
 }
 

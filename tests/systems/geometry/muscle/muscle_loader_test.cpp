@@ -105,7 +105,7 @@ TEST(MuscleLoader, ErrorsNameFileAndJsonPath) {
 
     doc = one_muscle();
     doc["muscles"][0].erase("insertion");
-    EXPECT_EQ(load_error(doc), "bad.json: /muscles/0/insertion: missing required field 'insertion'");
+    EXPECT_EQ(load_error(doc), "bad.json: /muscles/0: missing required key 'insertion'");
 
     doc = one_muscle();
     doc["muscles"][0].erase("radii");
@@ -123,7 +123,12 @@ TEST(MuscleLoader, ErrorsNameFileAndJsonPath) {
 
     doc = one_muscle();
     doc["muscles"][0]["fat_thickness"] = "thick";
-    EXPECT_EQ(load_error(doc), "bad.json: /muscles/0/fat_thickness: 'fat_thickness' must be a number");
+    EXPECT_EQ(load_error(doc), "bad.json: /muscles/0/fat_thickness: expected a number, got string");
+
+    doc = one_muscle();
+    doc["muscles"][0]["radius"] = 0.03;  // a typo is refused, naming the keys a muscle may have
+    EXPECT_NE(load_error(doc).find("/muscles/0/radius: unknown key 'radius' (allowed: name, description, origin"), std::string::npos)
+        << load_error(doc);
 }
 
 TEST(MuscleLoader, EveryBadEntryIsReported) {
