@@ -73,28 +73,24 @@ void Buffer::destroy() {
     size_ = 0;
 }
 
-Result<Image> Image::create(const Context& ctx, uint32_t width, uint32_t height, VkFormat format,
-                            VkImageUsageFlags usage, VkImageAspectFlags aspect) {
-    if (width == 0 || height == 0) return gpu_error("Image::create: width and height must be > 0");
-    Image im;
-    im.device_ = ctx.device();
-    im.format_ = format;
-    im.extent_ = {width, height};
+Status create_bound_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format, uint32_t mips,
+                          VkImageUsageFlags usage, VkImage* image, VkDeviceMemory* memory) {
+    const VkDevice device = ctx.device();
     VkImageCreateInfo ici{};
     ici.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
     ici.imageType = VK_IMAGE_TYPE_2D;
     ici.format = format;
     ici.extent = {width, height, 1};
-    ici.mipLevels = 1;
+    ici.mipLevels = mips;
     ici.arrayLayers = 1;
     ici.samples = VK_SAMPLE_COUNT_1_BIT;
     ici.tiling = VK_IMAGE_TILING_OPTIMAL;
     ici.usage = usage;
     ici.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    ALOHA_VK_RETURN(vkCreateImage(im.device_, &ici, nullptr, &im.image_));
+    ALOHA_VK_RETURN(vkCreateImage(device, &ici, nullptr, image));
     VkMemoryRequirements req{};
-    vkGetImageMemoryRequirements(im.device_, im.image_, &req);
+    vkGetImageMemoryRequirements(device, *image, &req);
     Result<uint32_t> type = ctx.find_memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     if (!type) type = ctx.find_memory_type(req.memoryTypeBits, 0);
     if (!type) return type.error();
@@ -102,8 +98,19 @@ Result<Image> Image::create(const Context& ctx, uint32_t width, uint32_t height,
     mai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
     mai.allocationSize = req.size;
     mai.memoryTypeIndex = type.value();
-    ALOHA_VK_RETURN(vkAllocateMemory(im.device_, &mai, nullptr, &im.memory_));
-    ALOHA_VK_RETURN(vkBindImageMemory(im.device_, im.image_, im.memory_, 0));
+    ALOHA_VK_RETURN(vkAllocateMemory(device, &mai, nullptr, memory));
+    ALOHA_VK_RETURN(vkBindImageMemory(device, *image, *memory, 0));
+    return {};
+}
+
+Result<Image> Image::create(const Context& ctx, uint32_t width, uint32_t height, VkFormat format,
+                            VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+    if (width == 0 || height == 0) return gpu_error("Image::create: width and height must be > 0");
+    Image im;
+    im.device_ = ctx.device();
+    im.format_ = format;
+    im.extent_ = {width, height};
+    if (Status st = create_bound_image(ctx, width, height, format, 1, usage, &im.image_, &im.memory_); !st) return st.error();
     VkImageViewCreateInfo vci{};
     vci.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
     vci.image = im.image_;

@@ -45,6 +45,12 @@ private:
     std::byte* mapped_ = nullptr;
 };
 
+/// Creates a 2D optimal-tiling image of `mips` levels and binds it to device-local memory (any memory type
+/// when none is device-local); on failure whatever was created is left in *image / *memory for the caller
+/// to destroy.
+[[nodiscard]] Status create_bound_image(const Context& ctx, uint32_t width, uint32_t height, VkFormat format, uint32_t mips,
+                                        VkImageUsageFlags usage, VkImage* image, VkDeviceMemory* memory);
+
 /// A 2D VkImage with device memory and one image view. Move-only.
 class Image {
 public:

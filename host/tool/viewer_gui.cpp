@@ -1,5 +1,6 @@
 #include "host/tool/viewer_gui.hpp"
 
+#include "engine/gpu/frame_sync.hpp"
 #include "engine/gpu/offscreen_target.hpp"
 #include "engine/gpu/vk_error.hpp"
 
@@ -54,16 +55,8 @@ Status GuiLayer::init(GLFWwindow* window, const gpu::WindowTarget& target) {
     const uint32_t images = std::max(target.image_count(), 2u);
     slots_.resize(images);
     for (Slot& s : slots_) {
-        VkCommandBufferAllocateInfo ai{};
-        ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-        ai.commandPool = ctx_.command_pool();
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        ALOHA_VK_RETURN(vkAllocateCommandBuffers(dev, &ai, &s.cmd));
-        VkFenceCreateInfo fi{};
-        fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-        fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-        ALOHA_VK_RETURN(vkCreateFence(dev, &fi, nullptr, &s.fence));
+        if (Status st = gpu::allocate_command_buffer(ctx_, &s.cmd); !st) return st;
+        if (Status st = gpu::create_fence(dev, /*signalled=*/true, &s.fence); !st) return st;
     }
 
     IMGUI_CHECKVERSION();

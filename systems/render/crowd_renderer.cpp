@@ -1,5 +1,6 @@
 #include "systems/render/crowd_renderer.hpp"
 
+#include "engine/gpu/frame_sync.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/proxy_mesh.hpp"
@@ -46,15 +47,8 @@ Status CrowdRenderer::init(const RendererOptions& options) {
 
     slots_.resize(options_.frames_in_flight);
     for (Slot& s : slots_) {
-        VkCommandBufferAllocateInfo ai{};
-        ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
-        ai.commandPool = ctx_.command_pool();
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        ALOHA_VK_RETURN(vkAllocateCommandBuffers(dev, &ai, &s.cmd));
-        VkFenceCreateInfo fi{};
-        fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
-        ALOHA_VK_RETURN(vkCreateFence(dev, &fi, nullptr, &s.fence));
+        if (Status st = gpu::allocate_command_buffer(ctx_, &s.cmd); !st) return st;
+        if (Status st = gpu::create_fence(dev, /*signalled=*/false, &s.fence); !st) return st;
         if (Status q = ensure_queries(s, 2); !q) return q;
         Result<VkDescriptorSet> set = pipes_.allocate_set();
         if (!set) return set.error();
