@@ -123,6 +123,7 @@ bool push_dynamic_walker(DynamicHookContext& context, uint32_t character, const 
 
 bool dynamic_walk_diverged(const DynamicWalkState& state, const glm::quat& pelvis_target, const DynamicGuard& guard) {
     if (state.bodies.empty()) return false;
+    if (state.failed_factorisations > 0) return true;
     for (const DynamicBody& b : state.bodies) {
         const float speed = glm::length(b.v);
         if (!std::isfinite(speed + b.x.x + b.x.y + b.x.z + b.q.w) || speed > guard.max_body_speed) return true;

@@ -40,7 +40,8 @@ struct DynamicGuard {
 };
 
 /// True when `state` has come apart against the guard's bounds: a non-finite value, a joint gap, a
-/// pelvis tilted from `pelvis_target` (world rotation of the gait's pelvis) or a link too fast.
+/// pelvis tilted from `pelvis_target` (world rotation of the gait's pelvis), a link too fast, or a
+/// constraint matrix that could not be factorised (state.failed_factorisations).
 [[nodiscard]] bool dynamic_walk_diverged(const DynamicWalkState& state, const glm::quat& pelvis_target,
                                          const DynamicGuard& guard);
 

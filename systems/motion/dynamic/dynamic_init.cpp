@@ -174,6 +174,8 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView pose, const glm
     s.matrix.assign(rows * rows, 0.0);
     s.work.assign(rows * (3 * s.contacts.size() + 2) + rows, 0.0);
     s.lambda.assign(rows, 0.0);
+    s.shift_position.assign(s.bodies.size(), glm::vec3(0.0f));
+    s.shift_rotation.assign(s.bodies.size(), glm::vec3(0.0f));
     if (s.bodies.size() < 2) return make_error(src, "skeleton has fewer than two rigid links longer than min_bone_length");
     state = std::move(s);
     return {};

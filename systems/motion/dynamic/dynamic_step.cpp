@@ -135,8 +135,9 @@ void build_rows(DynamicWalkState& s, float h, const glm::vec3& root_target, cons
 }
 
 // Solves (A + Gamma) lambda = rhs - J v for bilateral rows exactly (Cholesky) and contact rows by
-// projected Gauss-Seidel on their Schur complement, then applies the impulses.
-void solve_and_apply(DynamicWalkState& s, size_t n, size_t nb) {
+// projected Gauss-Seidel on their Schur complement, then applies the impulses. False (nothing
+// applied) when the bilateral block cannot be factorised.
+bool solve_and_apply(DynamicWalkState& s, size_t n, size_t nb) {
     for (size_t r = 0; r < n; ++r) {
         const float* d = &s.row_data[r * kRowFloats];
         const int* info = &s.row_info[r * 4];
@@ -176,7 +177,12 @@ void solve_and_apply(DynamicWalkState& s, size_t n, size_t nb) {
     double* rhs = s.lambda.data();
     for (size_t r = 0; r < n; ++r) rhs[r] = s.row_data[r * kRowFloats + 12] - velocity_along(s, r);
     for (size_t r = 0; r < nb; ++r) a[r * n + r] += 1e-9;  // keeps redundant rows factorisable
-    dyn::cholesky_factor(a, nb, n);
+    if (!dyn::cholesky_factor(a, nb, n)) {
+        // Not positive definite (a degenerate link): no impulses rather than a solve with a broken
+        // factor; counted so the divergence guard hands the character back.
+        ++s.failed_factorisations;
+        return false;
+    }
     dyn::cholesky_solve(a, nb, n, rhs);  // y = A_bb^-1 r_b
     const size_t nc = n - nb;
     if (nc > 0) {
@@ -230,12 +236,17 @@ void solve_and_apply(DynamicWalkState& s, size_t n, size_t nb) {
             b.v += l * glm::vec3(mj[6 * side], mj[6 * side + 1], mj[6 * side + 2]);
             b.w += l * glm::vec3(mj[6 * side + 3], mj[6 * side + 4], mj[6 * side + 5]);
         }
-    }
+    }    return true;
 }
 
 // Post-stabilisation (Cline & Pai): after integration, one linearised projection of the point
 // constraints back to C = 0 using the factor of this substep's bilateral system (motor and balance
 // rows get a zero right-hand side), applied as position/orientation displacements.
+// The displacement of a body is the SUM over rows of lambda_r M^-1 J_r^T, applied once: the rows'
+// rotations are individually large (up to ~0.04 rad on the light collar and hand links, cancelling
+// in the sum) and applying them one after another as finite rotations adds their commutators, an
+// error of order theta_r theta_s |r| that the next substep's projection amplifies until the body
+// comes apart (the plaza_budget divergence, docs/PERFORMANCE.md).
 void post_stabilise(DynamicWalkState& s, size_t n, size_t nb) {
     double* rhs = s.lambda.data();
     for (size_t r = 0; r < nb; ++r) rhs[r] = 0.0;
@@ -246,18 +257,24 @@ void post_stabilise(DynamicWalkState& s, size_t n, size_t nb) {
         for (int k = 0; k < 3; ++k) rhs[6 * (i - 1) + static_cast<size_t>(k)] = -c[k];
     }
     dyn::cholesky_solve(s.matrix.data(), nb, n, rhs);
+    std::fill(s.shift_position.begin(), s.shift_position.end(), glm::vec3(0.0f));
+    std::fill(s.shift_rotation.begin(), s.shift_rotation.end(), glm::vec3(0.0f));
     for (size_t r = 0; r < nb; ++r) {
         const auto l = static_cast<float>(rhs[r]);
         const float* mj = &s.row_mj[r * 12];
         const int* info = &s.row_info[r * 4];
         for (int side = 0; side < 2; ++side) {
             if (info[side] < 0) continue;
-            DynamicBody& b = s.bodies[static_cast<size_t>(info[side])];
-            b.x += l * glm::vec3(mj[6 * side], mj[6 * side + 1], mj[6 * side + 2]);
-            b.q = exp_rotvec(l * glm::vec3(mj[6 * side + 3], mj[6 * side + 4], mj[6 * side + 5])) * b.q;
+            const auto bi = static_cast<size_t>(info[side]);
+            s.shift_position[bi] += l * glm::vec3(mj[6 * side], mj[6 * side + 1], mj[6 * side + 2]);
+            s.shift_rotation[bi] += l * glm::vec3(mj[6 * side + 3], mj[6 * side + 4], mj[6 * side + 5]);
         }
     }
-    for (DynamicBody& b : s.bodies) b.q = glm::normalize(b.q);
+    for (size_t i = 0; i < s.bodies.size(); ++i) {
+        DynamicBody& b = s.bodies[i];
+        b.x += s.shift_position[i];
+        b.q = glm::normalize(exp_rotvec(s.shift_rotation[i]) * b.q);
+    }
 }
 
 }  // namespace
@@ -293,12 +310,12 @@ void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> targ
         build_rows(s, h, root_target, root_target_vel, rows, bilateral);
         for (DynamicBody& b : s.bodies) b.v += h * gravity;
         s.bodies[0].v += (h / s.bodies[0].mass) * s.pelvis_force;
-        solve_and_apply(s, rows.count, bilateral);
+        const bool solved = solve_and_apply(s, rows.count, bilateral);
         for (DynamicBody& b : s.bodies) {
             b.x += h * b.v;
             b.q = glm::normalize(exp_rotvec(h * b.w) * b.q);
         }
-        post_stabilise(s, rows.count, bilateral);
+        if (solved) post_stabilise(s, rows.count, bilateral);
     }
     // Output pose in the character frame.
     const glm::mat4 inv_root = glm::inverse(s.root_world);

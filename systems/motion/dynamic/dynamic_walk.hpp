@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -79,6 +80,9 @@ struct DynamicWalkState {
     std::vector<double> matrix;              ///< dense system
     std::vector<double> work;                ///< Schur complement / right-hand sides
     std::vector<double> lambda;              ///< impulses
+    std::vector<glm::vec3> shift_position;   ///< per body: post-stabilisation displacement of the COM
+    std::vector<glm::vec3> shift_rotation;   ///< per body: post-stabilisation rotation (world rotation vector)
+    uint32_t failed_factorisations = 0;      ///< substeps whose constraint matrix was not positive definite (no impulses applied)
 };
 
 /// Builds the bodies from `start_pose` (valid local pose and model matrices) placed in the world
@@ -89,7 +93,9 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView start_pose, con
 /// Advances the simulation by dt toward the kinematic target (local rotations per joint and the
 /// root joint's translation, both in the character frame) and writes the simulated pose
 /// (translations, rotations, scales, model matrices in the character frame). `out_root_world`
-/// (optional) receives the character frame, which stays where init placed it.
+/// (optional) receives the character frame, which stays where init placed it. A substep whose
+/// constraint matrix cannot be factorised applies no impulses and counts in
+/// state.failed_factorisations (the divergence guard hands such a character back).
 /// Requires init_dynamic_walk on the same skeleton, spans of the joint count, dt > 0.
 void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> target_local_rotations,
                        const glm::vec3& target_root_position, float dt, DynamicWalkState& state, PoseView out_pose,
