@@ -1,40 +1,31 @@
+// The dynamic walker's dense solves on Eigen: an in-place LLT of a row-major block (no copy, no
+// allocation) and the two triangular solves that use it.
 #include "systems/motion/dynamic/dense_solve.hpp"
 
-#include <cmath>
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 
 namespace aloha::dyn {
 
+namespace {
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using Block = Eigen::Map<RowMajor, 0, Eigen::OuterStride<>>;
+using ConstBlock = Eigen::Map<const RowMajor, 0, Eigen::OuterStride<>>;
+}  // namespace
+
 bool cholesky_factor(double* a, size_t n, size_t stride) {
-    for (size_t j = 0; j < n; ++j) {
-        double* rj = a + j * stride;
-        double d = rj[j];
-        for (size_t k = 0; k < j; ++k) d -= rj[k] * rj[k];
-        if (!(d > 0.0)) return false;
-        d = std::sqrt(d);
-        rj[j] = d;
-        const double inv = 1.0 / d;
-        for (size_t i = j + 1; i < n; ++i) {
-            double* ri = a + i * stride;
-            double s = ri[j];
-            for (size_t k = 0; k < j; ++k) s -= ri[k] * rj[k];
-            ri[j] = s * inv;
-        }
-    }
-    return true;
+    const auto size = static_cast<Eigen::Index>(n);
+    Block block(a, size, size, Eigen::OuterStride<>(static_cast<Eigen::Index>(stride)));
+    const Eigen::LLT<Eigen::Ref<RowMajor, 0, Eigen::OuterStride<>>> llt(block);  // factor written into `a`
+    return llt.info() == Eigen::Success;
 }
 
 void cholesky_solve(const double* l, size_t n, size_t stride, double* b) {
-    for (size_t i = 0; i < n; ++i) {
-        const double* ri = l + i * stride;
-        double s = b[i];
-        for (size_t k = 0; k < i; ++k) s -= ri[k] * b[k];
-        b[i] = s / ri[i];
-    }
-    for (size_t i = n; i-- > 0;) {
-        double s = b[i];
-        for (size_t k = i + 1; k < n; ++k) s -= l[k * stride + i] * b[k];
-        b[i] = s / l[i * stride + i];
-    }
+    const auto size = static_cast<Eigen::Index>(n);
+    const ConstBlock factor(l, size, size, Eigen::OuterStride<>(static_cast<Eigen::Index>(stride)));
+    Eigen::Map<Eigen::VectorXd> x(b, size);
+    factor.triangularView<Eigen::Lower>().solveInPlace(x);
+    factor.triangularView<Eigen::Lower>().transpose().solveInPlace(x);
 }
 
 }  // namespace aloha::dyn

@@ -134,6 +134,22 @@ void build_rows(DynamicWalkState& s, float h, const glm::vec3& root_target, cons
     }
 }
 
+// Calls change(body, linear, angular) with lambda_r M^-1 J_r^T for each body of rows [0, rows): the velocity
+// change of an impulse solve, or the displacement of a position projection.
+template <class Change>
+void for_each_row_change(const DynamicWalkState& s, const double* lambda, size_t rows, Change change) {
+    for (size_t r = 0; r < rows; ++r) {
+        const auto l = static_cast<float>(lambda[r]);
+        const float* mj = &s.row_mj[r * 12];
+        const int* info = &s.row_info[r * 4];
+        for (int side = 0; side < 2; ++side) {
+            if (info[side] < 0) continue;
+            change(static_cast<size_t>(info[side]), l * glm::vec3(mj[6 * side], mj[6 * side + 1], mj[6 * side + 2]),
+                   l * glm::vec3(mj[6 * side + 3], mj[6 * side + 4], mj[6 * side + 5]));
+        }
+    }
+}
+
 // Solves (A + Gamma) lambda = rhs - J v for bilateral rows exactly (Cholesky) and contact rows by
 // projected Gauss-Seidel on their Schur complement, then applies the impulses. False (nothing
 // applied) when the bilateral block cannot be factorised.
@@ -226,17 +242,11 @@ bool solve_and_apply(DynamicWalkState& s, size_t n, size_t nb) {
             for (size_t r = 0; r < nb; ++r) rhs[r] -= x[c * nb + r] * lc[c];
         for (size_t c = 0; c < nc; ++c) rhs[nb + c] = lc[c];
     }
-    for (size_t r = 0; r < n; ++r) {
-        const auto l = static_cast<float>(rhs[r]);
-        const float* mj = &s.row_mj[r * 12];
-        const int* info = &s.row_info[r * 4];
-        for (int side = 0; side < 2; ++side) {
-            if (info[side] < 0) continue;
-            DynamicBody& b = s.bodies[static_cast<size_t>(info[side])];
-            b.v += l * glm::vec3(mj[6 * side], mj[6 * side + 1], mj[6 * side + 2]);
-            b.w += l * glm::vec3(mj[6 * side + 3], mj[6 * side + 4], mj[6 * side + 5]);
-        }
-    }    return true;
+    for_each_row_change(s, rhs, n, [&](size_t body, const glm::vec3& linear, const glm::vec3& angular) {
+        s.bodies[body].v += linear;
+        s.bodies[body].w += angular;
+    });
+    return true;
 }
 
 // Post-stabilisation (Cline & Pai): after integration, one linearised projection of the point
@@ -259,17 +269,10 @@ void post_stabilise(DynamicWalkState& s, size_t n, size_t nb) {
     dyn::cholesky_solve(s.matrix.data(), nb, n, rhs);
     std::fill(s.shift_position.begin(), s.shift_position.end(), glm::vec3(0.0f));
     std::fill(s.shift_rotation.begin(), s.shift_rotation.end(), glm::vec3(0.0f));
-    for (size_t r = 0; r < nb; ++r) {
-        const auto l = static_cast<float>(rhs[r]);
-        const float* mj = &s.row_mj[r * 12];
-        const int* info = &s.row_info[r * 4];
-        for (int side = 0; side < 2; ++side) {
-            if (info[side] < 0) continue;
-            const auto bi = static_cast<size_t>(info[side]);
-            s.shift_position[bi] += l * glm::vec3(mj[6 * side], mj[6 * side + 1], mj[6 * side + 2]);
-            s.shift_rotation[bi] += l * glm::vec3(mj[6 * side + 3], mj[6 * side + 4], mj[6 * side + 5]);
-        }
-    }
+    for_each_row_change(s, rhs, nb, [&](size_t body, const glm::vec3& linear, const glm::vec3& angular) {
+        s.shift_position[body] += linear;
+        s.shift_rotation[body] += angular;
+    });
     for (size_t i = 0; i < s.bodies.size(); ++i) {
         DynamicBody& b = s.bodies[i];
         b.x += s.shift_position[i];
