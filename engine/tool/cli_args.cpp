@@ -34,7 +34,7 @@ bool accepts(const std::string& command, const std::string& option) {
         return option == "--frames" || option == "--warmup" || option == "--out" || option == "--fidelity" ||
                option == "--no-render" || option == "--colour" || option == "--force" || option == "--quiet" ||
                option == "--compare-lod" || option == "--compare-frames" || option == "--motion-metrics" ||
-               option == "--gpu-passes";
+               option == "--gpu-passes" || option == "--constant-fragments";
     if (command == "scale")
         return option == "--counts" || option == "--frames" || option == "--warmup" || option == "--out" ||
                option == "--force" || option == "--quiet" || option == "--no-render";
@@ -134,6 +134,7 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
         if (a == "--compare-lod") { o.compare_lod = true; continue; }
         if (a == "--motion-metrics") { o.motion_metrics = true; continue; }
         if (a == "--gpu-passes") { o.gpu_passes = true; continue; }
+        if (a == "--constant-fragments") { o.constant_fragments = true; continue; }
         if (o.command == "export" && (a == "--joints" || a == "--characters" || a == "--frames")) {
             auto v = take();
             if (!v.ok()) return v.error();
@@ -274,7 +275,9 @@ std::string help_text(const std::string& command) {
                "  --motion-metrics   foot skate and pops per animation level and update interval (report.json and the\n"
                "                     printed table; see docs/MOTION.md for the contact thresholds)\n"
                "  --gpu-passes       GPU timestamps after every pass (each level's meshes, proxies, lines, resolve) in\n"
-               "                     report.json, trace.json and the table; on lavapipe each flushes (docs/PERFORMANCE.md)\n" + common;
+               "                     report.json, trace.json and the table; on lavapipe each flushes (docs/PERFORMANCE.md)\n"
+               "  --constant-fragments  meshes and proxies drawn unlit with a constant-colour fragment shader, to\n"
+               "                     tell the fragment cost from the vertex and binning cost (profiling only)\n" + common;
     if (command == "export")
         return "aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B] [options]\n"
                "  Runs the scene headless (no rendering) and writes every joint's world position per frame, with each\n"
