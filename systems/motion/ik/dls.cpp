@@ -5,6 +5,10 @@
 #include "systems/motion/ik/ik_chain.hpp"
 #include "systems/motion/ik/joint_limits.hpp"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -19,32 +23,11 @@ constexpr int kMaxRows = 6;
 constexpr int kMaxCols = 3 * kMaxIkChain;
 constexpr int kMaxTries = 6;
 
-// Solves the SPD system a x = b (m <= 6) by Cholesky in place; returns false if not positive.
-bool cholesky_solve(float a[kMaxRows][kMaxRows], float* b, int m) {
-    for (int i = 0; i < m; ++i) {
-        for (int j = 0; j <= i; ++j) {
-            double s = a[i][j];
-            for (int k = 0; k < j; ++k) s -= static_cast<double>(a[i][k]) * a[j][k];
-            if (i == j) {
-                if (s <= 0.0) return false;
-                a[i][i] = static_cast<float>(std::sqrt(s));
-            } else {
-                a[i][j] = static_cast<float>(s / a[j][j]);
-            }
-        }
-    }
-    for (int i = 0; i < m; ++i) {
-        double s = b[i];
-        for (int k = 0; k < i; ++k) s -= static_cast<double>(a[i][k]) * b[k];
-        b[i] = static_cast<float>(s / a[i][i]);
-    }
-    for (int i = m; i-- > 0;) {
-        double s = b[i];
-        for (int k = i + 1; k < m; ++k) s -= static_cast<double>(a[k][i]) * b[k];
-        b[i] = static_cast<float>(s / a[i][i]);
-    }
-    return true;
-}
+// Fixed-capacity Eigen types: the solver never allocates (it runs per character per frame).
+using Jacobian = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxRows, kMaxCols>;
+using RowSquare = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxRows, kMaxRows>;
+using RowVector = Eigen::Matrix<float, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxRows, 1>;
+using ColVector = Eigen::Matrix<float, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxCols, 1>;
 
 // Forward kinematics of the chain from a fixed parent matrix into `model`.
 void chain_fk(const Skeleton& skeleton, std::span<const int> chain, const PoseView& pose, const glm::quat* local,
@@ -59,43 +42,32 @@ void chain_fk(const Skeleton& skeleton, std::span<const int> chain, const PoseVi
 }
 
 
-// dq = J^T (J J^T + lambda2 I)^-1 e over the active columns; false if the system is not SPD.
+// dq = J^T (J J^T + lambda2 I)^-1 e over the active columns (Eigen's Cholesky, LLT); false if the system
+// is not symmetric positive definite.
 bool dls_step(const float jac[kMaxRows][kMaxCols], const bool* active, int rows, int cols, float lambda2,
               const float* e, float* dq) {
-    float a[kMaxRows][kMaxRows];
-    float y[kMaxRows];
+    Jacobian j(rows, cols);
+    RowVector err(rows);
     for (int i = 0; i < rows; ++i) {
-        for (int j = 0; j <= i; ++j) {
-            double s = 0.0;
-            for (int c = 0; c < cols; ++c)
-                if (active[c]) s += static_cast<double>(jac[i][c]) * jac[j][c];
-            a[i][j] = a[j][i] = static_cast<float>(s);
-        }
-        a[i][i] += lambda2;
-        y[i] = e[i];
+        err(i) = e[i];
+        for (int c = 0; c < cols; ++c) j(i, c) = active[c] ? jac[i][c] : 0.0f;
     }
-    if (!cholesky_solve(a, y, rows)) return false;
-    for (int c = 0; c < cols; ++c) {
-        float s = 0.0f;
-        if (active[c])
-            for (int i = 0; i < rows; ++i) s += jac[i][c] * y[i];
-        dq[c] = s;
-    }
+    RowSquare a = j * j.transpose();
+    a.diagonal().array() += lambda2;
+    const Eigen::LLT<RowSquare> llt(a);
+    if (llt.info() != Eigen::Success) return false;
+    const RowVector y = llt.solve(err);
+    const ColVector step = j.transpose() * y;
+    for (int c = 0; c < cols; ++c) dq[c] = static_cast<float>(step(c));
     return true;
 }
 
 // Geometric-mean singular value of the 3x3 position block of J J^T: det^(1/6).
 float position_sigma(const float jac[kMaxRows][kMaxCols], int cols) {
-    double m[3][3];
+    Jacobian j(3, cols);
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            double s = 0.0;
-            for (int c = 0; c < cols; ++c) s += static_cast<double>(jac[i][c]) * jac[j][c];
-            m[i][j] = s;
-        }
-    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        for (int c = 0; c < cols; ++c) j(i, c) = jac[i][c];
+    const double det = static_cast<double>((j * j.transpose()).determinant());
     return static_cast<float>(std::pow(std::max(det, 0.0), 1.0 / 6.0));
 }
 

@@ -36,7 +36,7 @@ Stance stance_at(float t, float body_scale, float shift) {
 
 // Poses the idle stance at time t with both feet flat at `feet` (model space, yaw per foot).
 void pose_stance(PoseBuilder& pose, const WalkRig& rig, const HumanoidJoints& joints, const Stance& s, float root_yaw,
-                 const glm::vec3 feet[2], const float foot_yaw[2], float lift[2]) {
+                 const glm::vec3 feet[2], const float foot_yaw[2], const float lift[2]) {
     pose.reset();
     const glm::vec3 rest_root = pose.rest_position(rig.root);
     pose.translations[static_cast<size_t>(rig.root)] = glm::vec3(0.0f, rest_root.y, 0.0f) + s.root_offset;
@@ -62,23 +62,40 @@ glm::vec3 rest_foot(const PoseBuilder& pose, const WalkRig& rig, int side) {
 
 int key_count(float seconds) { return static_cast<int>(std::lround(seconds * kGeneratedKeyRate)); }
 
+// Both feet flat where they stand at rest, not turned, not lifted.
+struct StandingFeet {
+    glm::vec3 feet[2];
+    float yaw[2] = {0.0f, 0.0f};
+    float lift[2] = {0.0f, 0.0f};
+};
+
+// Records a clip standing on the rest feet: keys + 1 keys over `seconds`, each posed by
+// pose_at(t, body_scale, pose, feet).
+template <class PoseAt>
+RawAnimation record_standing(const Skeleton& skeleton, const WalkRig& rig, const std::string& name, float seconds, int keys,
+                             PoseAt pose_at) {
+    PoseBuilder pose(skeleton);
+    const float scale = rig.leg_length / 0.86f;
+    StandingFeet f;
+    f.feet[0] = rest_foot(pose, rig, 0);
+    f.feet[1] = rest_foot(pose, rig, 1);
+    ClipRecorder rec(skeleton, name);
+    for (int i = 0; i <= keys; ++i) {
+        const float t = seconds * static_cast<float>(i) / static_cast<float>(keys);
+        pose_at(t, scale, pose, f);
+        rec.add_key(t, pose);
+    }
+    return std::move(rec).finish();
+}
+
 }  // namespace
 
 RawAnimation make_idle_clip(const Skeleton& skeleton, const WalkRig& rig, const HumanoidJoints& joints,
                             const std::string& name) {
-    PoseBuilder pose(skeleton);
-    const float scale = rig.leg_length / 0.86f;
-    const glm::vec3 feet[2] = {rest_foot(pose, rig, 0), rest_foot(pose, rig, 1)};
-    const float yaw[2] = {0.0f, 0.0f};
-    float lift[2] = {0.0f, 0.0f};
-    ClipRecorder rec(skeleton, name);
     const int keys = key_count(kIdleSeconds) / 2;  // slow motion: 30 keys per second is plenty
-    for (int i = 0; i <= keys; ++i) {
-        const float t = kIdleSeconds * static_cast<float>(i) / static_cast<float>(keys);
-        pose_stance(pose, rig, joints, stance_at(t, scale, 0.03f), 0.0f, feet, yaw, lift);
-        rec.add_key(t, pose);
-    }
-    return std::move(rec).finish();
+    return record_standing(skeleton, rig, name, kIdleSeconds, keys, [&](float t, float scale, PoseBuilder& pose, const StandingFeet& f) {
+        pose_stance(pose, rig, joints, stance_at(t, scale, 0.03f), 0.0f, f.feet, f.yaw, f.lift);
+    });
 }
 
 RawAnimation make_turn_clip(const Skeleton& skeleton, const WalkRig& rig, const HumanoidJoints& joints,
@@ -123,18 +140,11 @@ RawAnimation make_turn_clip(const Skeleton& skeleton, const WalkRig& rig, const 
 
 RawAnimation make_wave_clip(const Skeleton& skeleton, const WalkRig& rig, const HumanoidJoints& joints,
                             const std::string& name) {
-    PoseBuilder pose(skeleton);
-    const float scale = rig.leg_length / 0.86f;
-    const glm::vec3 feet[2] = {rest_foot(pose, rig, 0), rest_foot(pose, rig, 1)};
-    const float yaw[2] = {0.0f, 0.0f};
-    float lift[2] = {0.0f, 0.0f};
-    ClipRecorder rec(skeleton, name);
-    const int keys = key_count(kWaveSeconds);
-    for (int i = 0; i <= keys; ++i) {
-        const float t = kWaveSeconds * static_cast<float>(i) / static_cast<float>(keys);
+    return record_standing(skeleton, rig, name, kWaveSeconds, key_count(kWaveSeconds), [&](float t, float scale, PoseBuilder& pose,
+                                                                                          const StandingFeet& f) {
         // Weight shift of the idle, scaled into the wave's length so the clip still loops.
         const Stance s = stance_at(t * kIdleSeconds / kWaveSeconds, scale, 0.01f);
-        pose_stance(pose, rig, joints, s, 0.0f, feet, yaw, lift);
+        pose_stance(pose, rig, joints, s, 0.0f, f.feet, f.yaw, f.lift);
         // Right arm: raised sideways, turned out so the elbow bends upwards, forearm waving.
         const float up = smoothstep(t / 0.6f) * (1.0f - smoothstep((t - (kWaveSeconds - 0.6f)) / 0.6f));
         const float wave = 20.0f * kDeg * std::sin(kTwoPi * 2.0f * (t - 0.6f)) * smoothstep((t - 0.4f) / 0.4f) *
@@ -142,9 +152,7 @@ RawAnimation make_wave_clip(const Skeleton& skeleton, const WalkRig& rig, const 
         const glm::quat arm = glm::angleAxis(-80.0f * kDeg * up, glm::vec3(0, 0, 1)) *
                               glm::angleAxis(-90.0f * kDeg * up, glm::vec3(0, 1, 0));
         pose_arm(pose, joints, 1, arm, 100.0f * kDeg * up + wave * up);
-        rec.add_key(t, pose);
-    }
-    return std::move(rec).finish();
+    });
 }
 
 }  // namespace aloha

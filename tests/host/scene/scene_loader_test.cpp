@@ -41,8 +41,8 @@ TEST(SceneLoader, SemanticErrorsNameTheJsonPath) {
     struct Case { std::string body; std::string path; std::string words; };
     const std::vector<Case> cases = {
         {R"("crowds": [{"count": 1000000000}]})", "/crowds/0/count", "at most"},
-        {R"("crowds": [{"count": -5}]})", "/crowds/0/count", "outside"},
-        {R"("crowds": [{"count": 10, "spacing": -1}]})", "/crowds/0/spacing", "outside"},
+        {R"("crowds": [{"count": -5}]})", "/crowds/0/count", "out of range"},
+        {R"("crowds": [{"count": 10, "spacing": -1}]})", "/crowds/0/spacing", "out of range"},
         {R"("crowds": [{"count": 10, "layout": "spiral"}]})", "/crowds/0/layout", "unknown layout"},
         {R"("characters": [{"position": [0, "a", 0]}]})", "/characters/0/position/1", "finite"},
         {R"("characters": [{"type": "robot"}]})", "/characters/0/type", "unknown character type"},
@@ -52,14 +52,14 @@ TEST(SceneLoader, SemanticErrorsNameTheJsonPath) {
         {R"("characters": [{}], "rules": "/etc/passwd"})", "/rules", "absolute"},
         {R"("characters": [{}], "rules": "missing_rules.json"})", "/rules", "does not exist"},
         {R"("characters": [{}], "colour": "red"})", "/colour", "unknown key"},
-        {R"("characters": [{}], "frames": 0})", "/frames", "outside"},
+        {R"("characters": [{}], "frames": 0})", "/frames", "out of range"},
         {R"("characters": [{}], "frames": 1.5})", "/frames", "integer"},
         {R"("characters": [{}], "dt": "fast"})", "/dt", "expected a number"},
         {R"("characters": [{}], "character_types": [{"name": "x"}]})", "/character_types/0", "exactly one"},
         {R"("crowds": []})", "/", "no characters"},
         {R"("characters": [{"overlay": {"type": "walk"}}]})", "/characters/0/overlay", "reach or a look_at"},
-        {R"("characters": [{"overlay": {"type": "reach", "target": [0, 1, 1], "weight": 2}}]})", "/characters/0/overlay/weight", "outside"},
-        {R"("characters": [{"overlay": {"type": "look_at"}}]})", "/characters/0/overlay/target", "missing"},
+        {R"("characters": [{"overlay": {"type": "reach", "target": [0, 1, 1], "weight": 2}}]})", "/characters/0/overlay/weight", "out of range"},
+        {R"("characters": [{"overlay": {"type": "look_at"}}]})", "/characters/0/overlay", "missing required key 'target'"},
     };
     for (const Case& c : cases) {
         auto r = parse(base + c.body);

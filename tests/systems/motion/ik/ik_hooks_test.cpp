@@ -110,7 +110,9 @@ TEST(IkHooks, LowLodIsCoarserThanHighLod) {
         sum_low += glm::length(low.world(wrist) - goal);
         sum_high += glm::length(high.world(wrist) - goal);
     }
-    EXPECT_GT(sum_low, 2.0f * sum_high);
+    // Regression guard, not derived: the straight arm's first steps go where rounding sends them, so the
+    // ratio moves with the arithmetic (hand-written Cholesky 3.0x, Eigen's LLT 2.0x, both converge below).
+    EXPECT_GT(sum_low, 1.5f * sum_high);
     // Warm starts let the cheap LOD converge over frames too (2 sweeps per frame accumulate).
     for (int frame = 0; frame < 30; ++frame) low.step();
     EXPECT_LE(glm::length(low.world(wrist) - goal), 1e-3f + 1e-4f);
