@@ -1,14 +1,18 @@
 #version 450
-// Lit mesh vertex shader with vertex pulling: positions and normals come from storage buffers so one
-// indexed, instanced draw covers every character that shares a topology (one instance per character).
-// Vertex i of instance k reads element vertex_base + k * vertex_stride + i (vertex_stride 0 = shared mesh).
-// Box mode (offsets.w == 1): one indexed, non-instanced draw for N unit boxes, with an index buffer of
-// box * 8 + corner; vertex i is corner i % 8 of box i / 8, its position computed from the corner bits
-// (bit 0: x, bit 1: y, bit 2: z; 0 = -0.5, 1 = +0.5) and no normal (the fragment shader derives flat face
-// normals). Lavapipe shades vertices on one thread and runs instances one by one, so 8 arithmetic corners
-// per box in one draw is far cheaper than N instances of a 24-vertex mesh.
-// Textured mode (offsets.w == 2): the vertex's texture coordinate is element gl_VertexIndex of the material
-// set's UV buffer (set 1, shared by every instance of the topology).
+// Lit mesh vertex shader with vertex pulling: positions and normals come from storage buffers. The mode bits
+// of offsets.w (gpu::LitMode) choose how a vertex finds its data:
+// - mesh (0): one indexed, instanced draw covers every character that shares a topology (one instance per
+//   character); vertex i of instance k reads element vertex_base + k * vertex_stride + i.
+// - boxes (1): one indexed, non-instanced draw for N unit boxes, with an index buffer of box * 8 + corner;
+//   vertex i is corner i % 8 of box i / 8, its position computed from the corner bits (bit 0: x, bit 1: y,
+//   bit 2: z; 0 = -0.5, 1 = +0.5) and no normal (the fragment shader derives flat face normals).
+// - textured (2): the vertex's texture coordinate is element gl_VertexIndex of the material set's
+//   UV buffer (set 1, shared by every character of the topology).
+// Compiled twice. Without VERTEX_LIT (for shaders/lit_mesh.frag, lit per pixel) the outputs are packed into
+// three interpolants, since lavapipe stores and sets up every interpolant of every binned triangle: normal
+// and u, world position and v, and the flat colour. With VERTEX_LIT (for shaders/lit_vertex.frag) the lighting
+// of shaders/lit_mesh.frag is evaluated here, at the vertex (Gouraud), and the outputs are the lit colour and
+// the UVs: on lavapipe each fragment then costs a multiply.
 
 layout(std430, set = 0, binding = 0) readonly buffer Positions { float positions[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Normals { float normals[]; };
@@ -17,26 +21,36 @@ struct Instance {
     vec4 colour;
 };
 layout(std430, set = 0, binding = 2) readonly buffer Instances { Instance instances[]; };
+layout(std430, set = 0, binding = 4) readonly buffer Lighting {
+    vec4 sky;
+    vec4 ground;
+    vec4 key;
+} lighting;
 layout(std430, set = 1, binding = 0) readonly buffer Uvs { vec2 uvs[]; };
 
 layout(push_constant) uniform Push {
     mat4 view_proj;     // clip-space (Vulkan convention) from world
     vec4 light;         // xyz: unit direction towards the light (world), w: ambient in [0,1]
     vec4 camera;        // xyz: camera position (world)
-    uvec4 offsets;      // x: vertex_base, y: vertex_stride, z: instance_base, w: 0 mesh, 1 boxes, 2 textured mesh
+    uvec4 offsets;      // x: vertex_base, y: vertex_stride, z: instance_base, w: mode bits (1 boxes, 2 textured)
     vec4 base_colour;   // the draw's material colour
 } pc;
 
-layout(location = 0) out vec3 v_normal;
-layout(location = 1) out vec3 v_world;
-layout(location = 2) out vec4 v_colour;
-layout(location = 3) out vec2 v_uv;
+#ifdef VERTEX_LIT
+layout(location = 0) out vec4 v_lit;        // rgb: colour * light (clamped after the texture), a: alpha
+layout(location = 1) out vec2 v_uv;         // texture coordinates
+#else
+layout(location = 0) out vec4 v_normal_u;   // xyz: normal (cofactor-transformed, not unit), w: texture u
+layout(location = 1) out vec4 v_world_v;    // xyz: world position, w: texture v
+layout(location = 2) flat out vec4 v_colour; // instance colour * material base colour
+#endif
 
 void main() {
+    const uint mode = pc.offsets.w;
     uint inst;
     vec3 p;
     vec3 n;
-    if (pc.offsets.w == 1u) {
+    if ((mode & 1u) != 0u) {
         inst = pc.offsets.z + uint(gl_VertexIndex) / 8u;
         uint c = uint(gl_VertexIndex) % 8u;
         p = vec3(float(c & 1u), float((c >> 1u) & 1u), float((c >> 2u) & 1u)) - 0.5;
@@ -49,13 +63,25 @@ void main() {
     }
     mat4 m = instances[inst].model;
     // Cofactor matrix = det * inverse-transpose: transforms normals correctly under non-uniform scale
-    // (proxy boxes); the sign of det is irrelevant because the fragment shader faces normals to the camera.
+    // (proxy boxes); the sign of det is irrelevant because the normal is turned to face the camera.
     mat3 a = mat3(m);
     mat3 cof = mat3(cross(a[1], a[2]), cross(a[2], a[0]), cross(a[0], a[1]));
     vec4 world = m * vec4(p, 1.0);
-    v_normal = cof * n;
-    v_world = world.xyz;
-    v_colour = instances[inst].colour * pc.base_colour;
-    v_uv = pc.offsets.w == 2u ? uvs[gl_VertexIndex] : vec2(0.0);
+    vec2 uv = (mode & 2u) != 0u ? uvs[gl_VertexIndex] : vec2(0.0);
+    vec4 colour = instances[inst].colour * pc.base_colour;
+#ifdef VERTEX_LIT
+    // The fragment shader's light, here (two-sided: the normal is turned to face the camera).
+    vec3 nn = normalize(cof * n);
+    if (dot(nn, pc.camera.xyz - world.xyz) < 0.0) nn = -nn;
+    float ambient = pc.light.w;
+    vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * nn.y);
+    float diffuse = max(dot(nn, pc.light.xyz), 0.0);
+    v_lit = vec4(colour.rgb * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse), colour.a);
+    v_uv = uv;
+#else
+    v_normal_u = vec4(cof * n, uv.x);
+    v_world_v = vec4(world.xyz, uv.y);
+    v_colour = colour;
+#endif
     gl_Position = pc.view_proj * world;
 }

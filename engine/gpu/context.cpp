@@ -1,5 +1,6 @@
 #include "engine/gpu/context.hpp"
 
+#include "engine/gpu/cpu_heap.hpp"
 #include "engine/gpu/device_choice.hpp"
 #include "engine/gpu/vk_error.hpp"
 
@@ -136,6 +137,7 @@ Status Context::init(const ContextOptions& options) {
     physical_ = physicals[picked.value()];
     vkGetPhysicalDeviceProperties(physical_, &props_);
     vkGetPhysicalDeviceMemoryProperties(physical_, &mem_props_);
+    if (options.keep_freed_heap && is_cpu_device()) (void)keep_freed_heap();
 
     uint32_t nf = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &nf, nullptr);

@@ -31,6 +31,9 @@ struct ContextOptions {
     /// Optional log to receive validation messages; it outlives the Context, so a test can check that
     /// destruction itself reported nothing. Null: the Context keeps its own.
     std::shared_ptr<struct ValidationLog> log;
+    /// On a CPU device (lavapipe), keep freed heap memory mapped (gpu::keep_freed_heap, process-wide): without
+    /// it the binner's per-frame memory is page-faulted in again every frame.
+    bool keep_freed_heap = true;
 };
 
 /// Thread-safe store of validation messages; the debug messenger writes into it.

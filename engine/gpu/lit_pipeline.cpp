@@ -6,8 +6,11 @@
 
 #include "shaders/line_frag.h"
 #include "shaders/line_vert.h"
+#include "shaders/lit_constant_frag.h"
 #include "shaders/lit_mesh_frag.h"
 #include "shaders/lit_mesh_vert.h"
+#include "shaders/lit_mesh_vertex_lit_vert.h"
+#include "shaders/lit_vertex_frag.h"
 
 #include <span>
 #include <utility>
@@ -124,7 +127,8 @@ glm::mat4 vulkan_clip_from_gl() {
     return m;
 }
 
-Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass render_pass, uint32_t max_sets) {
+Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass render_pass, uint32_t max_sets,
+                                         bool constant_fragments) {
     LitPipelines lp;
     lp.device_ = ctx.device();
     VkDescriptorSetLayoutBinding b[5]{};
@@ -132,7 +136,7 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         b[i].binding = i;
         b[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         b[i].descriptorCount = 1;
-        b[i].stageFlags = i == 4 ? VK_SHADER_STAGE_FRAGMENT_BIT : VK_SHADER_STAGE_VERTEX_BIT;
+        b[i].stageFlags = i == 4 ? VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT : VK_SHADER_STAGE_VERTEX_BIT;
     }
     VkDescriptorSetLayoutCreateInfo sli{};
     sli.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
@@ -167,18 +171,32 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     dpi.poolSizeCount = 1;
     dpi.pPoolSizes = &ps;
     ALOHA_VK_RETURN(vkCreateDescriptorPool(lp.device_, &dpi, nullptr, &lp.pool_));
+    const std::span<const uint32_t> mesh_frag =
+        constant_fragments ? std::span<const uint32_t>(k_lit_constant_frag_spv) : std::span<const uint32_t>(k_lit_mesh_frag_spv);
     Result<VkPipeline> mesh = make_pipeline(
         lp.device_, lp.layout_, render_pass,
-        {k_lit_mesh_vert_spv, k_lit_mesh_frag_spv, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
+        {k_lit_mesh_vert_spv, mesh_frag, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
          VK_CULL_MODE_NONE});
     if (!mesh) return mesh.error();
     lp.mesh_ = mesh.value();
     Result<VkPipeline> culled = make_pipeline(
         lp.device_, lp.layout_, render_pass,
-        {k_lit_mesh_vert_spv, k_lit_mesh_frag_spv, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
+        {k_lit_mesh_vert_spv, mesh_frag, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
          VK_CULL_MODE_BACK_BIT});
     if (!culled) return culled.error();
     lp.culled_ = culled.value();
+    // Profiling with constant fragments: the per-pixel vertex shader (its flat colour feeds lit_constant.frag).
+    const std::span<const uint32_t> vertex_vert =
+        constant_fragments ? std::span<const uint32_t>(k_lit_mesh_vert_spv) : std::span<const uint32_t>(k_lit_mesh_vertex_lit_vert_spv);
+    const std::span<const uint32_t> vertex_frag =
+        constant_fragments ? std::span<const uint32_t>(k_lit_constant_frag_spv) : std::span<const uint32_t>(k_lit_vertex_frag_spv);
+    for (const auto& [out, cull] : {std::pair{&lp.vertex_lit_, VK_CULL_MODE_NONE}, std::pair{&lp.vertex_lit_culled_, VK_CULL_MODE_BACK_BIT}}) {
+        Result<VkPipeline> p = make_pipeline(lp.device_, lp.layout_, render_pass,
+                                             {vertex_vert, vertex_frag, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
+                                              VK_COMPARE_OP_LESS, static_cast<VkCullModeFlags>(cull)});
+        if (!p) return p.error();
+        *out = p.value();
+    }
     Result<VkPipeline> lines = make_pipeline(
         lp.device_, lp.layout_, render_pass,
         {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL,
@@ -197,7 +215,9 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       material_pools_(std::exchange(o.material_pools_, {})),
       mesh_(std::exchange(o.mesh_, VK_NULL_HANDLE)),
       culled_(std::exchange(o.culled_, VK_NULL_HANDLE)),
-      lines_(std::exchange(o.lines_, VK_NULL_HANDLE)) {}
+      lines_(std::exchange(o.lines_, VK_NULL_HANDLE)),
+      vertex_lit_(std::exchange(o.vertex_lit_, VK_NULL_HANDLE)),
+      vertex_lit_culled_(std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE)) {}
 
 LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
     if (this != &o) {
@@ -211,6 +231,8 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         mesh_ = std::exchange(o.mesh_, VK_NULL_HANDLE);
         culled_ = std::exchange(o.culled_, VK_NULL_HANDLE);
         lines_ = std::exchange(o.lines_, VK_NULL_HANDLE);
+        vertex_lit_ = std::exchange(o.vertex_lit_, VK_NULL_HANDLE);
+        vertex_lit_culled_ = std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE);
     }
     return *this;
 }
@@ -220,6 +242,8 @@ void LitPipelines::destroy() {
     if (mesh_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, mesh_, nullptr);
     if (culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, culled_, nullptr);
     if (lines_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, lines_, nullptr);
+    if (vertex_lit_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_, nullptr);
+    if (vertex_lit_culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_culled_, nullptr);
     if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
     for (VkDescriptorPool p : material_pools_) vkDestroyDescriptorPool(device_, p, nullptr);
     material_pools_.clear();
@@ -228,7 +252,7 @@ void LitPipelines::destroy() {
     if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
     if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
     device_ = VK_NULL_HANDLE;
-    mesh_ = culled_ = lines_ = VK_NULL_HANDLE;
+    mesh_ = culled_ = lines_ = vertex_lit_ = vertex_lit_culled_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;

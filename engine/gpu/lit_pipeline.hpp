@@ -28,7 +28,7 @@ struct LitPush {
     glm::mat4 view_proj{1.0f};  ///< Vulkan clip space from world (see vulkan_clip_from_gl())
     glm::vec4 light{0.0f, 0.0f, 1.0f, 0.2f}; ///< xyz: unit direction towards the light, w: ambient in [0,1]
     glm::vec4 camera{0.0f};     ///< xyz: camera position in world space (normals are turned to face it)
-    glm::uvec4 offsets{0u};     ///< mesh: x vertex_base, y vertex_stride (0 = shared), z instance_base, w LitMode;
+    glm::uvec4 offsets{0u};     ///< mesh: x vertex_base, y vertex_stride (0 = shared), z instance_base, w LitMode bits;
                                 ///< lines: x first line vertex
     glm::vec4 base_colour{1.0f}; ///< the draw's material colour (display space), multiplies the albedo
 };
@@ -67,15 +67,16 @@ static_assert(sizeof(LineVertex) == 32, "LineVertex must match the shader's std4
 [[nodiscard]] glm::mat4 vulkan_clip_from_gl();
 
 /// Descriptor set layouts (set 0: bindings 0 positions float[], 1 normals float[], 2 LitInstance[],
-/// 3 LineVertex[], 4 LitLighting, all storage buffers; set 1, the material: 0 UVs vec2[] (storage buffer),
+/// 3 LineVertex[], 4 LitLighting (vertex and fragment stages), all storage buffers; set 1, the material: 0 UVs vec2[] (storage buffer),
 /// 1 base colour texture (combined image sampler)), the pipeline layout (sets 0, 1 + LitPush), the three
 /// pipelines and descriptor pools.
 class LitPipelines {
 public:
     /// Builds the pipelines for render passes compatible with `render_pass` (colour + D32 depth, see
-    /// create_render_pass); the pool holds `max_sets` descriptor sets.
+    /// create_render_pass); the pool holds `max_sets` descriptor sets. `constant_fragments`: the mesh and
+    /// vertex-lit pipelines use shaders/lit_constant.frag (unlit albedo, for profiling the fragment cost).
     [[nodiscard]] static Result<LitPipelines> create(const Context& ctx, VkRenderPass render_pass,
-                                                     uint32_t max_sets = 4);
+                                                     uint32_t max_sets = 4, bool constant_fragments = false);
     LitPipelines() = default;
     ~LitPipelines() { destroy(); }
     LitPipelines(LitPipelines&& other) noexcept;
@@ -88,6 +89,11 @@ public:
     /// The mesh pipeline with back faces culled, for closed meshes wound counter-clockwise seen from
     /// outside in a right-handed world (proxy boxes, closed skins); about halves the rasteriser's work.
     [[nodiscard]] VkPipeline mesh_culled() const { return culled_; }
+    /// The mesh pipeline lit per vertex (Gouraud: lit_mesh.vert built with VERTEX_LIT, lit_vertex.frag), no
+    /// culling; same push constants and modes (kLitMesh, kLitTexturedMesh).
+    [[nodiscard]] VkPipeline vertex_lit() const { return vertex_lit_; }
+    /// vertex_lit() with back faces culled.
+    [[nodiscard]] VkPipeline vertex_lit_culled() const { return vertex_lit_culled_; }
     /// Line-list pipeline: unlit vertex colour, depth test LESS_OR_EQUAL.
     [[nodiscard]] VkPipeline lines() const { return lines_; }
     /// Layout for vkCmdPushConstants (stages vertex + fragment, LitPush) and vkCmdBindDescriptorSets.
@@ -114,6 +120,8 @@ private:
     VkPipeline mesh_ = VK_NULL_HANDLE;
     VkPipeline culled_ = VK_NULL_HANDLE;
     VkPipeline lines_ = VK_NULL_HANDLE;
+    VkPipeline vertex_lit_ = VK_NULL_HANDLE;
+    VkPipeline vertex_lit_culled_ = VK_NULL_HANDLE;
 };
 
 }  // namespace aloha::gpu

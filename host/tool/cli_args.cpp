@@ -111,6 +111,9 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
     profile->add_flag("--gpu-passes", b.o.gpu_passes,
                       "GPU timestamps after every pass (each level's meshes, proxies, lines, resolve) in report.json, "
                       "trace.json and the table; on lavapipe each flushes (docs/PERFORMANCE.md)");
+    profile->add_flag("--constant-fragments", b.o.constant_fragments,
+                      "meshes and proxies drawn unlit with a constant-colour fragment shader, to tell the fragment "
+                      "cost from the vertex and binning cost (profiling only)");
     add_colour(*profile, b);
     add_common(*profile, b, false);
 

@@ -46,6 +46,7 @@ struct CliOptions {
     std::vector<uint32_t> counts;      ///< --counts A,B,...: crowd sizes (scale)
     bool motion_metrics = false;       ///< --motion-metrics: foot skate and pops per animation level (profile)
     bool gpu_passes = false;           ///< --gpu-passes: per-pass GPU timestamps (profile)
+    bool constant_fragments = false;   ///< --constant-fragments: unlit constant-colour fragments (profile)
     std::string joints;                ///< --joints FILE.csv: where export writes joint positions
     /// export --characters LIST: inclusive ranges of spawn indices ("0,5,10-20"); empty = every character
     std::vector<std::pair<uint32_t, uint32_t>> character_ranges;

@@ -107,6 +107,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     if (!render) return session;
     RendererOptions ro;
     ro.pass_timestamps = options.gpu_passes;
+    ro.constant_fragments = options.constant_fragments;
     auto renderer = CrowdRenderer::create(*session->context, ro);
     if (!renderer.ok()) return renderer.error();
     session->renderer = std::move(renderer.value());

@@ -129,9 +129,12 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
     // Double-sided materials (glTF doubleSided) need their back faces: no culling for the topology.
     bool double_sided = false;
     for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;
+    // The skinned level is for characters small on screen: lit per vertex (docs/PERFORMANCE.md).
+    const bool vertex_lighting = draw.geometry->level(surface.level).method == GeomMethod::SkinnedMesh;
     auto id = renderer.register_topology(draw.geometry->level_indices(surface.level), static_cast<uint32_t>(surface.positions.size()),
                                          /*cull_back_faces=*/!double_sided, surface_materials,
-                                         surface.level < pass_names_.size() ? std::string_view(pass_names_[surface.level]) : "meshes");
+                                         surface.level < pass_names_.size() ? std::string_view(pass_names_[surface.level]) : "meshes",
+                                         vertex_lighting);
     if (!id.ok()) return id.error();
     topologies_.emplace_back(surface.topology_key, id.value());
     return id.value();

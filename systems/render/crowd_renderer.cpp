@@ -41,7 +41,8 @@ Status CrowdRenderer::init(const RendererOptions& options) {
                                                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     if (!pass) return pass.error();
     compat_pass_ = pass.value();
-    Result<gpu::LitPipelines> pipes = gpu::LitPipelines::create(ctx_, compat_pass_, options_.frames_in_flight);
+    Result<gpu::LitPipelines> pipes = gpu::LitPipelines::create(ctx_, compat_pass_, options_.frames_in_flight,
+                                                                options_.constant_fragments);
     if (!pipes) return pipes.error();
     pipes_ = std::move(pipes).value();
 

@@ -99,6 +99,9 @@ struct RendererOptions {
     bool pass_timestamps = false;                      ///< a GPU timestamp after every pass (see GpuPassTime);
                                                        ///< on lavapipe each one flushes the binned scene, which
                                                        ///< costs a little (docs/PERFORMANCE.md gives the figure)
+    bool constant_fragments = false;                   ///< meshes and proxies drawn with a constant-colour fragment
+                                                       ///< shader (unlit albedo): profiling the fragment cost only
+                                                       ///< (validation then warns of unread vertex outputs)
 };
 
 /// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
@@ -129,10 +132,12 @@ public:
     /// so back faces are skipped (about half the raster work). Returns the id for DeformableMesh::topology.
     /// `surface` (optional) gives its materials: the index list is then reordered by material, one draw
     /// per material. `pass` labels the GPU pass it is drawn in (e.g. its LOD level's name): topologies are
-    /// drawn grouped by label, in the order labels were first registered.
+    /// drawn grouped by label, in the order labels were first registered. `vertex_lighting`: the light is
+    /// computed per vertex and interpolated (Gouraud) instead of per pixel, for characters small on screen:
+    /// on lavapipe the fragment work per triangle is then a multiply (docs/PERFORMANCE.md).
     [[nodiscard]] Result<uint32_t> register_topology(std::span<const uint32_t> indices, uint32_t vertex_count = 0,
                                                      bool cull_back_faces = false, const TopologySurface& surface = {},
-                                                     std::string_view pass = "meshes");
+                                                     std::string_view pass = "meshes", bool vertex_lighting = false);
     /// Uploads a texture (RGBA8, rows top to bottom, colours as stored: sRGB-encoded) once; returns its id.
     /// Errors: empty or inconsistent image, Vulkan failures.
     [[nodiscard]] Result<uint32_t> register_texture(const TextureImage& image);
@@ -183,6 +188,7 @@ private:
         gpu::Buffer uvs;              // empty without UVs
         std::vector<Range> ranges;    // empty without materials
         uint32_t pass = 0;            // index into pass_names_
+        bool vertex_lighting = false;  // lit per vertex (LitPipelines::vertex_lit), else per pixel
     };
     struct PassRecord {  // what a slot's command buffer drew in one timed pass
         uint32_t name = 0;            // index into pass_names_
@@ -237,6 +243,7 @@ private:
     std::vector<uint32_t> group_count_;
     std::vector<uint32_t> group_vertex_base_;
     std::vector<uint32_t> group_cursor_;
+    std::vector<float> depth_;                        // per mesh: distance ahead of the camera (draw order)
     std::vector<std::string> pass_names_;             // mesh pass labels, then fixed ones, by first use
     std::vector<uint32_t> draw_order_;                // topologies by pass (stable): the recording order
     std::vector<GpuPassTime> last_passes_;

@@ -1,10 +1,14 @@
 // CrowdRenderer per-frame work: grouping meshes by topology, copying into the mapped buffers, and
-// recording the command buffer (one indexed instanced draw per topology, one for proxies, one for lines).
+// recording the command buffer (one indexed instanced draw per topology and material, one for proxies, one for
+// lines).
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
 #include "systems/render/proxy_mesh.hpp"
 
+#include <glm/gtc/matrix_access.hpp>
+
+#include <algorithm>
 #include <cstring>
 
 namespace aloha {
@@ -26,6 +30,14 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
     group_cursor_.assign(group_start_.begin(), group_start_.end());
     order_.resize(frame.meshes.size());
     for (uint32_t i = 0; i < frame.meshes.size(); ++i) order_[group_cursor_[frame.meshes[i].topology]++] = i;
+    // Within a topology, nearest first: lavapipe draws the instances in order and skips the shading of 4x4
+    // blocks whose depth test fails, so near characters hide the far ones' fragments (ties by input order).
+    depth_.resize(frame.meshes.size());
+    const glm::vec4 forward = glm::row(frame.camera.view, 2);  // view-space z of a world point (negative ahead)
+    for (uint32_t i = 0; i < frame.meshes.size(); ++i) depth_[i] = -glm::dot(forward, frame.meshes[i].model[3]);
+    for (size_t t = 0; t < nt; ++t)
+        std::sort(order_.begin() + group_start_[t], order_.begin() + group_start_[t] + group_count_[t],
+                  [&](uint32_t a, uint32_t b) { return depth_[a] < depth_[b] || (depth_[a] == depth_[b] && a < b); });
 
     std::byte* pos = slot.positions.mapped();
     std::byte* nrm = slot.normals.mapped();
@@ -124,12 +136,13 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         pass.instances += group_count_[t];
         pass.triangles += uint64_t(topologies_[t].index_count / 3) * group_count_[t];
         const uint32_t draws_before = draws;
-        const VkPipeline want = topologies_[t].cull_back_faces ? pipes_.mesh_culled() : pipes_.mesh();
+        const Topology& topo = topologies_[t];
+        const VkPipeline want = topo.vertex_lighting ? (topo.cull_back_faces ? pipes_.vertex_lit_culled() : pipes_.vertex_lit())
+                                                     : (topo.cull_back_faces ? pipes_.mesh_culled() : pipes_.mesh());
         if (want != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, want);
             bound = want;
         }
-        const Topology& topo = topologies_[t];
         vkCmdBindIndexBuffer(cmd, topo.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
         if (!frame.materials || topo.ranges.empty()) {
             push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], gpu::kLitMesh);
@@ -143,8 +156,8 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         for (const Range& r : topo.ranges) {  // one draw per material, every instance of the topology
             const Material& m = materials_[r.material];
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
-            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t],
-                                      m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? gpu::kLitTexturedMesh : gpu::kLitMesh);
+            const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
+            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], textured);
             push.base_colour = m.colour;
             vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
             vkCmdDrawIndexed(cmd, r.index_count, group_count_[t], r.first_index, 0, 0);

@@ -68,7 +68,7 @@ Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& materia
 }
 
 Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indices, uint32_t vertex_count, bool cull_back_faces,
-                                                 const TopologySurface& surface, std::string_view pass) {
+                                                 const TopologySurface& surface, std::string_view pass, bool vertex_lighting) {
     if (indices.empty() || indices.size() % 3 != 0)
         return gpu::gpu_error("register_topology: index count " + std::to_string(indices.size()) + " is not a non-zero multiple of 3");
     const uint32_t max_index = *std::max_element(indices.begin(), indices.end());
@@ -128,6 +128,7 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
     if (!buf) return buf.error();
     buf.value().write(std::as_bytes(std::span<const uint32_t>(ordered)));
     t.indices = std::move(buf).value();
+    t.vertex_lighting = vertex_lighting;
     t.index_count = static_cast<uint32_t>(indices.size());
     t.vertex_count = vertex_count;
     t.cull_back_faces = cull_back_faces;

@@ -18,15 +18,6 @@ namespace {
 using test::kPixelsPerUnit;
 using test::kSceneSize;
 
-std::unique_ptr<gpu::Context> make_context() {
-    gpu::ContextOptions o;
-    o.validation = true;
-    o.device = "lavapipe";
-    Result<std::unique_ptr<gpu::Context>> c = gpu::Context::create(o);
-    EXPECT_TRUE(c.ok()) << c.error().to_string();
-    return c.ok() ? std::move(c).value() : nullptr;
-}
-
 struct Rendered {
     gpu::Rgba8Image image;
     uint32_t draws = 0;
@@ -67,7 +58,7 @@ Rendered render_scene(gpu::Context& ctx, float ambient, bool oblique = false) {
 uint32_t key(glm::u8vec4 c) { return uint32_t(c.r) << 16 | uint32_t(c.g) << 8 | c.b; }
 
 TEST(CrowdRenderer, UnlitSceneCoverageAndPaletteColours) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     const Rendered r = render_scene(*ctx, /*ambient=*/1.0f);
     ASSERT_EQ(r.image.pixels.size(), size_t(kSceneSize) * kSceneSize * 4);
@@ -113,7 +104,7 @@ TEST(CrowdRenderer, UnlitSceneCoverageAndPaletteColours) {
 }
 
 TEST(CrowdRenderer, LitSceneMatchesGoldenImage) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     const Rendered r = render_scene(*ctx, /*ambient=*/0.3f, /*oblique=*/true);
     ASSERT_EQ(r.image.width, kSceneSize);
@@ -133,7 +124,7 @@ TEST(CrowdRenderer, LitSceneMatchesGoldenImage) {
 // A topology registered with cull_back_faces hides triangles wound clockwise on screen (seen from behind);
 // one registered without it shows them (two-sided).
 TEST(CrowdRenderer, CulledTopologiesHideBackFaces) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     {
         Result<std::unique_ptr<CrowdRenderer>> r = CrowdRenderer::create(*ctx);
@@ -174,7 +165,7 @@ TEST(CrowdRenderer, CulledTopologiesHideBackFaces) {
 // the top-face pixels must cover the projected top quad (shoelace area +- perimeter + 1) around its
 // projected centroid (within 1 px), which a wrongly culled (bottom) face would not.
 TEST(CrowdRenderer, ProxyBoxShowsItsFrontFacesLitByTheFormula) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     {
         Result<std::unique_ptr<CrowdRenderer>> r = CrowdRenderer::create(*ctx);

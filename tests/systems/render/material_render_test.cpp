@@ -5,6 +5,7 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/lit_pipeline.hpp"
 #include "engine/gpu/png.hpp"
+#include "render_scene.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,15 +17,6 @@ namespace aloha {
 namespace {
 
 constexpr uint32_t kSize = 64;
-
-std::unique_ptr<gpu::Context> make_context() {
-    gpu::ContextOptions o;
-    o.validation = true;
-    o.device = "lavapipe";
-    Result<std::unique_ptr<gpu::Context>> c = gpu::Context::create(o);
-    EXPECT_TRUE(c.ok()) << c.error().to_string();
-    return c.ok() ? std::move(c).value() : nullptr;
-}
 
 // 2 x 2 texture, rows top to bottom: (red, green), (blue, grey).
 TextureImage quad_texture() {
@@ -78,7 +70,7 @@ Result<gpu::Rgba8Image> draw(CrowdRenderer& r, gpu::Context& ctx, const FrameInp
 // Left half: the texture (nearest, white base colour); right half: an untextured material with linear
 // factor (0.5, 0.25, 1), drawn as pow(f, 1/2.2) = (0.7297, 0.5325, 1) -> (186, 136, 255).
 TEST(MaterialRender, TexturedQuadShowsTextureColoursAndFactor) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     {
         Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
@@ -135,7 +127,7 @@ TEST(MaterialRender, TexturedQuadShowsTextureColoursAndFactor) {
 // The whole texture over the quad (u 0..1): four 32 x 32 blocks of its four texels; and the character
 // lighting (key light + hemisphere) gives lit_colour()'s prediction, within 1 LSB of rounding.
 TEST(MaterialRender, FullTextureAndCharacterLighting) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     {
         Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
@@ -175,7 +167,7 @@ TEST(MaterialRender, FullTextureAndCharacterLighting) {
 
 // Bad inputs are refused with messages, never drawn.
 TEST(MaterialRender, RegistrationErrors) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     {
         Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);

@@ -3,14 +3,29 @@
 // an orthographic camera of 32 pixels per world unit on a 128 x 128 target.
 #pragma once
 
+#include "engine/gpu/context.hpp"
 #include "systems/render/crowd_renderer.hpp"
 #include "systems/render/debug_colours.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <memory>
 
 #include <vector>
 
 namespace aloha::test {
+
+/// A lavapipe Context with validation on (render tests fail on any validation message); null, with a test
+/// failure, when it cannot be created.
+inline std::unique_ptr<gpu::Context> lavapipe_context() {
+    gpu::ContextOptions o;
+    o.validation = true;
+    o.device = "lavapipe";
+    Result<std::unique_ptr<gpu::Context>> c = gpu::Context::create(o);
+    EXPECT_TRUE(c.ok()) << c.error().to_string();
+    return c.ok() ? std::move(c).value() : nullptr;
+}
 
 inline constexpr uint32_t kSceneSize = 128;
 inline constexpr float kPixelsPerUnit = 32.0f;  // ortho [-2, 2] over 128 pixels

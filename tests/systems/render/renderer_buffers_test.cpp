@@ -8,20 +8,11 @@
 namespace aloha {
 namespace {
 
-std::unique_ptr<gpu::Context> make_context() {
-    gpu::ContextOptions o;
-    o.validation = true;
-    o.device = "lavapipe";
-    Result<std::unique_ptr<gpu::Context>> c = gpu::Context::create(o);
-    EXPECT_TRUE(c.ok()) << c.error().to_string();
-    return c.ok() ? std::move(c).value() : nullptr;
-}
-
 const std::vector<uint32_t> kGrid = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4, 3, 4, 7, 3, 7, 6, 4, 5, 8, 4, 8, 7};
 const std::vector<uint32_t> kTri = {0, 1, 2};
 
 TEST(CrowdRendererBuffers, GrowOnlyWhenExceeded) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     {
         RendererOptions opt;
@@ -59,7 +50,7 @@ TEST(CrowdRendererBuffers, GrowOnlyWhenExceeded) {
 }
 
 TEST(CrowdRendererBuffers, InvalidInputListsEveryProblem) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     Result<std::unique_ptr<CrowdRenderer>> r = CrowdRenderer::create(*ctx);
     ASSERT_TRUE(r.ok());
@@ -89,7 +80,7 @@ TEST(CrowdRendererBuffers, InvalidInputListsEveryProblem) {
 }
 
 TEST(CrowdRendererBuffers, RejectsBadTopologiesAndFormats) {
-    std::unique_ptr<gpu::Context> ctx = make_context();
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
     ASSERT_TRUE(ctx);
     Result<std::unique_ptr<CrowdRenderer>> r = CrowdRenderer::create(*ctx);
     ASSERT_TRUE(r.ok());

@@ -1,0 +1,11 @@
+#version 450
+// Constant-colour fragment shader for profiling (RendererOptions::constant_fragments): writes the
+// albedo unlit, reading one flat input instead of three, no texture and no lighting. Drawing with it
+// separates the fragment cost from the vertex and binning cost of the lit pipeline (docs/PERFORMANCE.md).
+
+layout(location = 2) flat in vec4 v_colour;
+layout(location = 0) out vec4 out_colour;
+
+void main() {
+    out_colour = v_colour;
+}

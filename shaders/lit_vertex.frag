@@ -1,0 +1,25 @@
+#version 450
+// Vertex-lit fragment shader: the light shaders/lit_mesh.vert (built with VERTEX_LIT) computed at the vertices,
+// interpolated, times the base colour texture in textured mode (offsets.w & 2), clamped to [0, 1] as
+// shaders/lit_mesh.frag does. Two interpolants instead of three and no lighting per pixel: for characters
+// small on screen, where lavapipe's cost per triangle dominates (docs/PERFORMANCE.md).
+
+layout(push_constant) uniform Push {
+    mat4 view_proj;
+    vec4 light;
+    vec4 camera;
+    uvec4 offsets;
+    vec4 base_colour;
+} pc;
+
+layout(set = 1, binding = 1) uniform sampler2D base_colour_texture;
+
+layout(location = 0) in vec4 v_lit;
+layout(location = 1) in vec2 v_uv;
+layout(location = 0) out vec4 out_colour;
+
+void main() {
+    vec4 lit = v_lit;
+    if ((pc.offsets.w & 2u) != 0u) lit *= texture(base_colour_texture, v_uv);
+    out_colour = vec4(clamp(lit.rgb, 0.0, 1.0), lit.a);
+}
