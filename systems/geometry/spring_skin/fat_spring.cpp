@@ -1,6 +1,8 @@
 // Fat springs: exact damped-oscillator step per frame with strain limiting (see fat_spring.hpp).
 #include "systems/geometry/spring_skin/fat_spring.hpp"
 
+#include "systems/geometry/spring_skin/fat_spring_step.hpp"
+
 #include "systems/geometry/surface_grid.hpp"
 
 #include <cmath>
@@ -8,32 +10,6 @@
 
 namespace aloha {
 namespace {
-
-// Transition matrix of d'' + 2 zeta w d' + w^2 d = 0 over dt: d1 = a d0 + b u0, u1 = c d0 + e u0.
-struct Transition {
-    float a, b, c, e;
-};
-
-Transition exact_transition(double omega, double zeta, double dt) {
-    Transition tr{};
-    if (std::abs(zeta - 1.0) < 1e-4) {  // critically damped
-        const double ex = std::exp(-omega * dt);
-        tr = {static_cast<float>(ex * (1.0 + omega * dt)), static_cast<float>(ex * dt),
-              static_cast<float>(-ex * omega * omega * dt), static_cast<float>(ex * (1.0 - omega * dt))};
-    } else if (zeta < 1.0) {  // under-damped
-        const double wd = omega * std::sqrt(1.0 - zeta * zeta);
-        const double ex = std::exp(-zeta * omega * dt), c = std::cos(wd * dt), s = std::sin(wd * dt);
-        tr = {static_cast<float>(ex * (c + zeta * omega * s / wd)), static_cast<float>(ex * s / wd),
-              static_cast<float>(-ex * omega * omega * s / wd), static_cast<float>(ex * (c - zeta * omega * s / wd))};
-    } else {  // over-damped: two real decaying modes
-        const double root = std::sqrt(zeta * zeta - 1.0);
-        const double r1 = -omega * (zeta - root), r2 = -omega * (zeta + root);
-        const double e1 = std::exp(r1 * dt), e2 = std::exp(r2 * dt), inv = 1.0 / (r1 - r2);
-        tr = {static_cast<float>((r1 * e2 - r2 * e1) * inv), static_cast<float>((e1 - e2) * inv),
-              static_cast<float>(r1 * r2 * (e2 - e1) * inv), static_cast<float>((r1 * e1 - r2 * e2) * inv)};
-    }
-    return tr;
-}
 
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 
@@ -95,14 +71,10 @@ bool FatSpringJob::Validate(std::vector<std::string>* errors) const {
 void FatSpringJob::Run() const {
     assert(Validate());
     const uint32_t V = grid_vertex_count(theta_steps, phi_steps);
-    const float wn = kTwoPi * params.normal_hz, wt = kTwoPi * params.lateral_hz;
-    const Transition trn = exact_transition(wn, params.normal_damping, params.dt);
-    const Transition trt = exact_transition(wt, 1.0, params.dt);
-    const float inv_dt = 1.0f / params.dt;
+    const SpringStepper stepper(params);
     const size_t muscles = thickness.size();
     for (size_t m = 0; m < muscles; ++m) {
         const float h = thickness[m];
-        const float max_dev = params.max_strain * h, max_rate = max_dev * wn;
         const size_t base = m * V;
         if (!state.initialised[m]) {  // start at rest
             for (size_t i = base; i < base + V; ++i) {
@@ -116,34 +88,67 @@ void FatSpringJob::Run() const {
         }
         for (size_t i = base; i < base + V; ++i) {
             const glm::vec3 n = muscle_normals[i];
-            const glm::vec3 rest = muscle_positions[i] + h * n;
-            const glm::vec3 w = (rest - state.prev_rest[i]) * inv_dt;
-            const glm::vec3 d0 = state.end[i] - state.prev_rest[i];
-            const glm::vec3 u0 = state.velocity[i] - w;
-            const float dn = glm::dot(d0, n), un = glm::dot(u0, n);
-            const glm::vec3 dl = d0 - dn * n, ul = u0 - un * n;
-            glm::vec3 d1 = (trn.a * dn + trn.b * un) * n + trt.a * dl + trt.b * ul;
-            glm::vec3 u1 = (trn.c * dn + trn.e * un) * n + trt.c * dl + trt.e * ul;
-            // Strain limiting: position on the ball |d| <= max_dev, outward relative velocity removed.
-            const float dlen2 = glm::dot(d1, d1);
-            if (dlen2 > max_dev * max_dev) {
-                const glm::vec3 dir = d1 / std::sqrt(dlen2);
-                d1 = max_dev * dir;
-                const float outward = glm::dot(u1, dir);
-                if (outward > 0.0f) u1 -= outward * dir;
-            }
-            const float ulen2 = glm::dot(u1, u1);
-            if (ulen2 > max_rate * max_rate) u1 *= max_rate / std::sqrt(ulen2);
-            if (!(std::isfinite(d1.x) && std::isfinite(d1.y) && std::isfinite(d1.z) && std::isfinite(u1.x) &&
-                  std::isfinite(u1.y) && std::isfinite(u1.z))) {  // non-finite input: restart at rest
-                d1 = glm::vec3(0.0f);
-                u1 = glm::vec3(0.0f);
-            }
-            state.end[i] = rest + d1;
-            state.velocity[i] = w + u1;
-            state.prev_rest[i] = rest;
+            stepper.step(muscle_positions[i] + h * n, n, h, state.end[i], state.velocity[i], state.prev_rest[i]);
         }
     }
+}
+
+
+SpringTransition exact_transition(double omega, double zeta, double dt) {
+    SpringTransition tr{};
+    if (std::abs(zeta - 1.0) < 1e-4) {  // critically damped
+        const double ex = std::exp(-omega * dt);
+        tr = {static_cast<float>(ex * (1.0 + omega * dt)), static_cast<float>(ex * dt),
+              static_cast<float>(-ex * omega * omega * dt), static_cast<float>(ex * (1.0 - omega * dt))};
+    } else if (zeta < 1.0) {  // under-damped
+        const double wd = omega * std::sqrt(1.0 - zeta * zeta);
+        const double ex = std::exp(-zeta * omega * dt), c = std::cos(wd * dt), s = std::sin(wd * dt);
+        tr = {static_cast<float>(ex * (c + zeta * omega * s / wd)), static_cast<float>(ex * s / wd),
+              static_cast<float>(-ex * omega * omega * s / wd), static_cast<float>(ex * (c - zeta * omega * s / wd))};
+    } else {  // over-damped: two real decaying modes
+        const double root = std::sqrt(zeta * zeta - 1.0);
+        const double r1 = -omega * (zeta - root), r2 = -omega * (zeta + root);
+        const double e1 = std::exp(r1 * dt), e2 = std::exp(r2 * dt), inv = 1.0 / (r1 - r2);
+        tr = {static_cast<float>((r1 * e2 - r2 * e1) * inv), static_cast<float>((e1 - e2) * inv),
+              static_cast<float>(r1 * r2 * (e2 - e1) * inv), static_cast<float>((r1 * e1 - r2 * e2) * inv)};
+    }
+    return tr;
+}
+
+SpringStepper::SpringStepper(const FatSpringParams& params)
+    : normal(exact_transition(kTwoPi * params.normal_hz, params.normal_damping, params.dt)),
+      lateral(exact_transition(kTwoPi * params.lateral_hz, 1.0, params.dt)),
+      inv_dt(1.0f / params.dt),
+      normal_omega(kTwoPi * params.normal_hz),
+      max_strain(params.max_strain) {}
+
+void SpringStepper::step(glm::vec3 rest, glm::vec3 n, float h, glm::vec3& end, glm::vec3& velocity, glm::vec3& prev_rest) const {
+    const float max_dev = max_strain * h, max_rate = max_dev * normal_omega;
+    const glm::vec3 w = (rest - prev_rest) * inv_dt;
+    const glm::vec3 d0 = end - prev_rest;
+    const glm::vec3 u0 = velocity - w;
+    const float dn = glm::dot(d0, n), un = glm::dot(u0, n);
+    const glm::vec3 dl = d0 - dn * n, ul = u0 - un * n;
+    glm::vec3 d1 = (normal.a * dn + normal.b * un) * n + lateral.a * dl + lateral.b * ul;
+    glm::vec3 u1 = (normal.c * dn + normal.e * un) * n + lateral.c * dl + lateral.e * ul;
+    // Strain limiting: position on the ball |d| <= max_dev, outward relative velocity removed.
+    const float dlen2 = glm::dot(d1, d1);
+    if (dlen2 > max_dev * max_dev) {
+        const glm::vec3 dir = d1 / std::sqrt(dlen2);
+        d1 = max_dev * dir;
+        const float outward = glm::dot(u1, dir);
+        if (outward > 0.0f) u1 -= outward * dir;
+    }
+    const float ulen2 = glm::dot(u1, u1);
+    if (ulen2 > max_rate * max_rate) u1 *= max_rate / std::sqrt(ulen2);
+    if (!(std::isfinite(d1.x) && std::isfinite(d1.y) && std::isfinite(d1.z) && std::isfinite(u1.x) && std::isfinite(u1.y) &&
+          std::isfinite(u1.z))) {  // non-finite input: restart at rest
+        d1 = glm::vec3(0.0f);
+        u1 = glm::vec3(0.0f);
+    }
+    end = rest + d1;
+    velocity = w + u1;
+    prev_rest = rest;
 }
 
 float fat_spring_energy(const FatSpringParams& params, glm::vec3 end, glm::vec3 velocity, glm::vec3 rest_end,

@@ -1,0 +1,174 @@
+// Multi-muscle skin binding and the blended fat springs (see blend_binding.hpp).
+#include "systems/geometry/body_skin/blend_binding.hpp"
+
+#include "systems/geometry/muscle/superellipsoid.hpp"
+#include "systems/geometry/spring_skin/fat_spring_step.hpp"
+#include "systems/geometry/surface_grid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+
+namespace aloha {
+namespace {
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// A sampled influence: point and frame of muscle m at param.
+GridFrame frame_of(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, uint32_t T, uint32_t P, uint32_t m,
+                   GridParam param) {
+    const size_t V = grid_vertex_count(T, P);
+    return sample_grid_frame(positions.subspan(m * V, V), normals.subspan(m * V, V), T, P, param);
+}
+
+}  // namespace
+
+GridParam superellipsoid_param(glm::vec3 q, glm::vec3 radii, float a, float b) {
+    const glm::vec3 s = q / radii;
+    if (glm::dot(s, s) < 1e-20f) return {};
+    // Scale s onto the surface (F homogeneous: F(s / r) = 1 with r = F(s)^(A/2)).
+    const glm::vec3 as = glm::abs(s);
+    const float F = std::pow(std::pow(as.x, 2.0f / b) + std::pow(as.y, 2.0f / b), b / a) + std::pow(as.z, 2.0f / a);
+    const glm::vec3 u = s / std::pow(F, 0.5f * a);
+    // x = cos(phi)^A cos(theta)^B, y = cos(phi)^A sin(theta)^B, z = sin(phi)^A (unit radii).
+    const float theta = std::atan2(signed_pow(u.y, 1.0f / b), signed_pow(u.x, 1.0f / b));
+    const float cos_phi = std::pow(std::pow(std::abs(u.x), 2.0f / b) + std::pow(std::abs(u.y), 2.0f / b), 0.5f * b / a);
+    const float phi = std::atan2(signed_pow(u.z, 1.0f / a), cos_phi);
+    return {theta, phi};
+}
+
+bool BlendBindJob::Validate(std::vector<std::string>* errors) const {
+    bool ok = true;
+    auto fail = [&](std::string message) {
+        ok = false;
+        if (errors) errors->push_back("BlendBindJob: " + std::move(message));
+    };
+    if (theta_steps < 3 || phi_steps < 2) fail("tessellation needs T >= 3 and P >= 2");
+    if (!(spread > 0.0f && std::isfinite(spread))) fail("spread must be > 0");
+    const size_t M = centres.size();
+    if (M == 0) fail("no muscles");
+    if (rotations.size() != M || radii.size() != M || exponents.size() != M) fail("shape spans differ in size");
+    if (theta_steps >= 3 && phi_steps >= 2 && muscle_positions.size() != M * grid_vertex_count(theta_steps, phi_steps))
+        fail("muscle_positions must hold one grid per muscle");
+    if (muscle_normals.size() != muscle_positions.size()) fail("muscle_normals size differs from muscle_positions");
+    if (bindings.size() != skin_positions.size()) fail("bindings size differs from skin_positions");
+    for (size_t i = 0; i < skin_positions.size(); ++i) {
+        if (!finite(skin_positions[i])) {
+            fail("skin vertex " + std::to_string(i) + " is not finite");
+            break;
+        }
+    }
+    return ok;
+}
+
+void BlendBindJob::Run() const {
+    assert(Validate());
+    const uint32_t M = static_cast<uint32_t>(centres.size());
+    constexpr int K = kBlendInfluences;
+    struct Candidate {
+        float distance;
+        uint32_t muscle;
+        GridParam param;
+    };
+    std::vector<Candidate> all(M);
+    for (size_t i = 0; i < skin_positions.size(); ++i) {
+        const glm::vec3 p = skin_positions[i];
+        for (uint32_t m = 0; m < M; ++m) {
+            const glm::vec3 q = glm::conjugate(rotations[m]) * (p - centres[m]);
+            const GridParam param = superellipsoid_param(q, radii[m], exponents[m].x, exponents[m].y);
+            const size_t V = grid_vertex_count(theta_steps, phi_steps);
+            const glm::vec3 point = sample_grid(muscle_positions.subspan(m * V, V), theta_steps, phi_steps, param);
+            all[m] = {glm::length(p - point), m, param};
+        }
+        const size_t keep = std::min<size_t>(K + 1, M);
+        std::partial_sort(all.begin(), all.begin() + static_cast<ptrdiff_t>(keep), all.end(),
+                          [](const Candidate& a, const Candidate& b) { return a.distance < b.distance || (a.distance == b.distance && a.muscle < b.muscle); });
+        // Kernels relative to the nearest (the common factor cancels in the normalisation).
+        const float d0 = all[0].distance;
+        const float cut = keep > static_cast<size_t>(K) ? std::exp(-(all[K].distance - d0) / spread) : 0.0f;
+        BlendBinding& out = bindings[i];
+        out = BlendBinding{};
+        float sum = 0.0f;
+        const int used = static_cast<int>(std::min<size_t>(K, M));
+        for (int k = 0; k < used; ++k) {
+            out.muscle[k] = all[k].muscle;
+            out.param[k] = all[k].param;
+            out.weight[k] = std::max(std::exp(-(all[k].distance - d0) / spread) - cut, 0.0f);
+            sum += out.weight[k];
+        }
+        if (!(sum > 1e-12f)) {  // equidistant set: the nearest alone
+            out.weight[0] = 1.0f;
+            sum = 1.0f;
+        }
+        for (int k = 0; k < used; ++k) {
+            out.weight[k] /= sum;
+            const GridFrame f = frame_of(muscle_positions, muscle_normals, theta_steps, phi_steps, out.muscle[k], out.param[k]);
+            const glm::vec3 d = p - f.point;
+            out.offset[k] = {glm::dot(d, f.tangent), glm::dot(d, f.bitangent), glm::dot(d, f.normal)};
+        }
+    }
+}
+
+bool BlendSpringJob::Validate(std::vector<std::string>* errors) const {
+    bool ok = true;
+    auto fail = [&](std::string message) {
+        ok = false;
+        if (errors) errors->push_back("BlendSpringJob: " + std::move(message));
+    };
+    if (theta_steps < 3 || phi_steps < 2) fail("tessellation needs T >= 3 and P >= 2");
+    if (muscle_count == 0) fail("muscle_count must be > 0");
+    if (theta_steps >= 3 && phi_steps >= 2 && muscle_positions.size() != size_t{muscle_count} * grid_vertex_count(theta_steps, phi_steps))
+        fail("muscle_positions must hold muscle_count grids");
+    if (muscle_normals.size() != muscle_positions.size()) fail("muscle_normals size differs from muscle_positions");
+    if (!(std::isfinite(params.dt) && params.dt > 0.0f)) fail("params.dt must be finite and > 0");
+    if (!(params.normal_hz > 0.0f && params.lateral_hz > 0.0f && params.normal_damping >= 0.0f && params.max_strain > 0.0f))
+        fail("spring frequencies, damping and strain limit must be positive");
+    const size_t n = bindings.size();
+    if (state.end.size() != n) fail("state.end needs one entry per binding");
+    if (springs && (state.velocity.size() != n || state.prev_rest.size() != n || state.initialised.size() != 1))
+        fail("spring state needs velocity and prev_rest per binding and one initialised flag");
+    for (size_t i = 0; i < n; ++i) {
+        bool bad = false;
+        for (int k = 0; k < kBlendInfluences; ++k) bad |= bindings[i].weight[k] > 0.0f && bindings[i].muscle[k] >= muscle_count;
+        if (bad) {
+            fail("binding " + std::to_string(i) + " names a muscle past " + std::to_string(muscle_count));
+            break;
+        }
+    }
+    return ok;
+}
+
+void BlendSpringJob::Run() const {
+    assert(Validate());
+    const uint32_t T = theta_steps, P = phi_steps;
+    const SpringStepper stepper(params);
+    const bool start = springs && !state.initialised[0];
+    for (size_t i = 0; i < bindings.size(); ++i) {
+        const BlendBinding& b = bindings[i];
+        glm::vec3 root(0.0f), rest(0.0f);
+        for (int k = 0; k < kBlendInfluences; ++k) {
+            if (b.weight[k] <= 0.0f) continue;
+            const GridFrame f = frame_of(muscle_positions, muscle_normals, T, P, b.muscle[k], b.param[k]);
+            root += b.weight[k] * f.point;
+            rest += b.weight[k] * (f.point + b.offset[k].x * f.tangent + b.offset[k].y * f.bitangent + b.offset[k].z * f.normal);
+        }
+        if (!springs) {
+            state.end[i] = rest;
+            continue;
+        }
+        if (start) {
+            state.end[i] = rest;
+            state.prev_rest[i] = rest;
+            state.velocity[i] = glm::vec3(0.0f);
+            continue;
+        }
+        const glm::vec3 axis = rest - root;
+        const float h = glm::length(axis);
+        const glm::vec3 n = h > 1e-6f ? axis / h : glm::vec3(0.0f, 0.0f, 1.0f);
+        stepper.step(rest, n, h, state.end[i], state.velocity[i], state.prev_rest[i]);
+    }
+    if (start) state.initialised[0] = 1;
+}
+
+}  // namespace aloha

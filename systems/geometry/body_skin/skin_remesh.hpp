@@ -1,0 +1,38 @@
+// Turning the dense polygonised body surface into a skin of a given resolution: edge-collapse
+// simplification (meshoptimizer), tangential relaxation with projection back onto the field's zero
+// set (even triangles without losing the shape), and the topology checks the skin must pass (one
+// component, every edge in exactly two triangles).
+#pragma once
+
+#include "systems/geometry/body_skin/skin_field.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+/// Topology of a triangle list: connected components (over shared edges) and edges that are not
+/// shared by exactly two triangles.
+struct SurfaceTopology {
+    uint32_t components = 0;          ///< connected components of the used vertices
+    uint32_t boundary_edges = 0;      ///< edges in one triangle
+    uint32_t non_manifold_edges = 0;  ///< edges in three or more triangles
+    uint32_t degenerate_triangles = 0;///< triangles repeating a vertex
+    /// One connected closed 2-manifold: one component, every edge in exactly two triangles.
+    [[nodiscard]] bool closed_connected() const {
+        return components == 1 && boundary_edges == 0 && non_manifold_edges == 0 && degenerate_triangles == 0;
+    }
+};
+
+/// Counts components and edge valences of `indices` (triangles over `vertex_count` vertices).
+[[nodiscard]] SurfaceTopology analyse_surface(std::span<const uint32_t> indices, size_t vertex_count);
+
+/// Simplifies `dense` to about `target_triangles` triangles (meshopt_simplify, error bound free),
+/// drops unused vertices, then relaxes: `iterations` rounds of moving every vertex half way to the
+/// mean of its neighbours within the tangent plane, each followed by Newton projection onto the
+/// zero set of `field`. The result keeps the input's orientation.
+[[nodiscard]] TriangleSurface simplify_and_relax(const TriangleSurface& dense, const SampledField& field,
+                                                 uint32_t target_triangles, int iterations = 4);
+
+}  // namespace aloha

@@ -1,0 +1,34 @@
+// Correspondence between two triangle surfaces of the same shape (two resolutions of one skin): every
+// vertex of the target is located on the source as a triangle and barycentric weights, so a quantity
+// on the source (its current, deformed positions) can be read at the target's vertices. Used to
+// geomorph between levels whose skins differ and to compare a level with a reference level.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+/// Target vertex i = sum_k bary[i][k] * source[corners[i][k]].
+struct SurfaceMap {
+    std::vector<glm::uvec3> corners;  ///< source vertex indices per target vertex
+    std::vector<glm::vec3> bary;      ///< barycentric weights (sum 1)
+
+    /// Evaluates the map on `source` values (one per source vertex) into `out` (one per target vertex).
+    void apply(std::span<const glm::vec3> source, std::span<glm::vec3> out) const;
+};
+
+/// Closest point of triangle (a, b, c) to p as barycentric weights of a, b, c (Ericson 5.1.5).
+[[nodiscard]] glm::vec3 closest_barycentric(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c);
+
+/// Maps every target vertex onto the source surface: the closest point among the triangles around the
+/// source vertices within a few hash cells (a uniform grid of the source vertices with cell = the
+/// mean source edge length), falling back to all triangles when none is found. Requires a non-empty
+/// source triangle list.
+[[nodiscard]] SurfaceMap map_surface(std::span<const glm::vec3> source_positions, std::span<const uint32_t> source_indices,
+                                     std::span<const glm::vec3> target_positions);
+
+}  // namespace aloha
