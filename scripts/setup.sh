@@ -12,7 +12,7 @@ PACKAGES=(
   libglfw3-dev                                  # the viewer window
   libtinygltf-dev                               # glTF characters
   libosd-dev                                    # OpenSubdiv Catmull-Clark refinement
-  libmeshoptimizer-dev                          # simplification of the generated body skin
+  libmeshoptimizer-dev                          # vertex-cache order of the generated body skin
   nlohmann-json3-dev                            # scene and rule files
   libtbb-dev                                    # scheduler thread pool / parallel loops
   libimgui-dev                                  # viewer overlay
