@@ -251,11 +251,11 @@ const SkinLayer& CharacterGeometry::skin_layer(uint32_t theta_steps, uint32_t ph
     auto& slot = skin_layers_[{theta_steps, phi_steps}];
     if (slot) return *slot;
     if (mesh_) {
-        slot = std::make_unique<SkinLayer>(build_mesh_skin(mesh_rest_positions_, mesh_->indices, muscles_, rest_model_, tab));
+        slot = std::make_unique<SkinLayer>(build_mesh_skin(mesh_rest_positions_, mesh_->indices, muscles_, skeleton_.parents(), rest_model_, tab));
     } else {
         if (!body_surface_)
             body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_));
-        slot = std::make_unique<SkinLayer>(build_generated_skin(*body_surface_, muscles_, rest_model_, tab, *grid));
+        slot = std::make_unique<SkinLayer>(build_generated_skin(*body_surface_, muscles_, skeleton_.parents(), rest_model_, tab, *grid));
     }
     return *slot;
 }

@@ -39,14 +39,49 @@ RestMuscles rest_muscles(const MuscleSet& muscles, std::span<const glm::mat4> re
     return r;
 }
 
+// Field group of every joint: 0 for the trunk (the chain from the root to the highest joint at rest:
+// pelvis, spine, neck, head), 1, 2, ... for each limb (a subtree hanging off the trunk chain: legs,
+// arms), numbered in joint order. Limbs blend with the trunk but not with each other, so a hand
+// hanging by the thigh or two thighs side by side stay separate surfaces instead of a blended web.
+std::vector<uint8_t> limb_groups(std::span<const int16_t> parents, std::span<const glm::mat4> rest_model) {
+    const size_t n = parents.size();
+    size_t top = 0;
+    for (size_t j = 1; j < n; ++j)
+        if (rest_model[j][3].y > rest_model[top][3].y) top = j;
+    std::vector<uint8_t> trunk(n, 0);
+    for (int j = static_cast<int>(top); j >= 0; j = parents[static_cast<size_t>(j)]) trunk[static_cast<size_t>(j)] = 1;
+    std::vector<uint8_t> group(n, 0);
+    uint8_t next = 1;
+    for (size_t j = 0; j < n; ++j) {  // parents come before their children
+        const int p = parents[j];
+        if (trunk[j] || p < 0) continue;
+        group[j] = trunk[static_cast<size_t>(p)] ? (next < 255 ? next++ : next) : group[static_cast<size_t>(p)];
+    }
+    return group;
+}
+
+// Group of every muscle: its joints' limb when origin and insertion are on the same limb, else the
+// trunk's (a muscle from the trunk onto a limb, e.g. pectoralis, joins the two).
+std::vector<uint8_t> muscle_groups(const MuscleSet& muscles, std::span<const uint8_t> joint_group) {
+    std::vector<uint8_t> out(static_cast<size_t>(muscles.size()));
+    for (size_t m = 0; m < out.size(); ++m) {
+        const uint8_t go = joint_group[static_cast<size_t>(muscles.origin_joint[m])];
+        const uint8_t gi = joint_group[static_cast<size_t>(muscles.insertion_joint[m])];
+        out[m] = go == gi ? gi : 0;
+    }
+    return out;
+}
+
 // Binds `layer.rest_positions` to the rest muscles at the tables' (T, P).
-void bind_layer(SkinLayer& layer, const MuscleSet& muscles, std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables) {
+void bind_layer(SkinLayer& layer, const MuscleSet& muscles, std::span<const int16_t> parents, std::span<const glm::mat4> rest_model,
+                const SuperEllipsoidTables& tables) {
     const RestMuscles r = rest_muscles(muscles, rest_model, &tables);
+    const std::vector<uint8_t> groups = muscle_groups(muscles, limb_groups(parents, rest_model));
     layer.theta_steps = tables.theta_steps();
     layer.phi_steps = tables.phi_steps();
     layer.bindings.resize(layer.rest_positions.size());
     const BlendBindJob bind{layer.theta_steps, layer.phi_steps, kBindSpread, r.centres, r.rotations, r.radii, muscles.exponents,
-                            r.positions, r.normals, layer.rest_positions, layer.bindings};
+                            r.positions, r.normals, layer.rest_positions, layer.bindings, groups};
     assert(bind.Validate());
     bind.Run();
     layer.dominant_muscle.resize(layer.bindings.size());
@@ -69,43 +104,18 @@ uint32_t nearest_grid_vertex(uint32_t T, uint32_t P, GridParam param) {
     return grid_ring_vertex(T, ring, t);
 }
 
-// Field group of every joint: 1, 2, ... for the legs (the branches off the root, counted in joint
-// order, that reach the lowest 15 % of the rest skeleton's height), 0 for the rest (trunk, arms, head).
-std::vector<uint8_t> leg_groups(std::span<const int16_t> parents, std::span<const glm::mat4> rest_model) {
-    const size_t n = parents.size();
-    float lo = FLT_MAX, hi = -FLT_MAX;
-    for (const glm::mat4& m : rest_model) lo = std::min(lo, m[3].y), hi = std::max(hi, m[3].y);
-    std::vector<int> branch(n, -1);  // the root's child each joint descends from (-1: a root)
-    for (size_t j = 0; j < n; ++j) {
-        const int p = parents[j];
-        if (p >= 0) branch[j] = parents[static_cast<size_t>(p)] < 0 ? static_cast<int>(j) : branch[static_cast<size_t>(p)];
-    }
-    std::vector<uint8_t> leg(n, 0);
-    for (size_t j = 0; j < n; ++j)
-        if (branch[j] >= 0 && rest_model[j][3].y < lo + 0.15f * (hi - lo)) leg[static_cast<size_t>(branch[j])] = 1;
-    std::vector<uint8_t> group(n, 0), id(n, 0);
-    uint8_t next = 1;
-    for (size_t j = 0; j < n; ++j)
-        if (leg[j] && branch[j] == static_cast<int>(j)) id[j] = next++;
-    for (size_t j = 0; j < n; ++j)
-        if (branch[j] >= 0) group[j] = id[static_cast<size_t>(branch[j])];
-    return group;
-}
-
 }  // namespace
 
 BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleton, std::span<const glm::mat4> rest_model,
                                std::span<const float> proxy_radii) {
     const RestMuscles r = rest_muscles(muscles, rest_model, nullptr);
     const std::span<const int16_t> parents = skeleton.parents();
-    const std::vector<uint8_t> group = leg_groups(parents, rest_model);
+    const std::vector<uint8_t> group = limb_groups(parents, rest_model);
     BodyField field;
     field.blend = kBodySkinBlend;
-    for (size_t m = 0; m < r.centres.size(); ++m) {
+    for (size_t m = 0; m < r.centres.size(); ++m)
         field.ellipsoids.push_back({r.centres[m], r.rotations[m], r.radii[m] + glm::vec3(muscles.fat_thickness[m]), muscles.exponents[m]});
-        const uint8_t go = group[static_cast<size_t>(muscles.origin_joint[m])], gi = group[static_cast<size_t>(muscles.insertion_joint[m])];
-        field.ellipsoid_group.push_back(go == gi ? gi : 0);
-    }
+    field.ellipsoid_group = muscle_groups(muscles, group);
     for (size_t j = 0; j < parents.size(); ++j) {
         if (parents[j] < 0) continue;
         const glm::vec3 a(rest_model[static_cast<size_t>(parents[j])][3]), b(rest_model[j][3]);
@@ -119,7 +129,8 @@ BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleto
     return out;
 }
 
-SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles, std::span<const glm::mat4> rest_model,
+SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles, std::span<const int16_t> parents,
+                               std::span<const glm::mat4> rest_model,
                                const SuperEllipsoidTables& tables, const GeneratedBindMesh& generated) {
     const uint32_t T = tables.theta_steps(), P = tables.phi_steps(), V = grid_vertex_count(T, P);
     const auto M = static_cast<uint32_t>(muscles.size());
@@ -128,7 +139,7 @@ SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles
     SkinLayer layer;
     layer.rest_positions = std::move(skin.positions);
     layer.indices = std::move(skin.indices);
-    bind_layer(layer, muscles, rest_model, tables);
+    bind_layer(layer, muscles, parents, rest_model, tables);
     // LBS weights: the grid mesh's weights at each influence's nearest grid vertex, blended by the
     // binding weights, the four largest kept and renormalised.
     const size_t n = layer.rest_positions.size();
@@ -162,11 +173,11 @@ SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles
 }
 
 SkinLayer build_mesh_skin(std::span<const glm::vec3> rest_positions, std::span<const uint32_t> indices, const MuscleSet& muscles,
-                          std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables) {
+                          std::span<const int16_t> parents, std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables) {
     SkinLayer layer;
     layer.rest_positions.assign(rest_positions.begin(), rest_positions.end());
     layer.indices.assign(indices.begin(), indices.end());
-    bind_layer(layer, muscles, rest_model, tables);
+    bind_layer(layer, muscles, parents, rest_model, tables);
     return layer;
 }
 

@@ -58,16 +58,17 @@ struct SkinLayer {
                                              std::span<const glm::mat4> rest_model, std::span<const float> proxy_radii);
 
 /// The generated skin at the tables' (T, P): `body` simplified to M * V(T, P) triangles and relaxed,
-/// bound to the rest muscles, with LBS weights blended from `generated` (the per-muscle grid mesh at the
+/// bound to the rest muscles (influences restricted to compatible limbs of the skeleton `parents`), with LBS weights blended from `generated` (the per-muscle grid mesh at the
 /// same (T, P)) by the binding weights.
-[[nodiscard]] SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles,
+[[nodiscard]] SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles, std::span<const int16_t> parents,
                                              std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables,
                                              const GeneratedBindMesh& generated);
 
 /// An authored mesh's skin layer at the tables' (T, P): its rest positions and triangles, bound to the
 /// rest muscles (no LBS data: the mesh has its own).
 [[nodiscard]] SkinLayer build_mesh_skin(std::span<const glm::vec3> rest_positions, std::span<const uint32_t> indices,
-                                        const MuscleSet& muscles, std::span<const glm::mat4> rest_model,
+                                        const MuscleSet& muscles, std::span<const int16_t> parents,
+                                        std::span<const glm::mat4> rest_model,
                                         const SuperEllipsoidTables& tables);
 
 }  // namespace aloha
