@@ -18,6 +18,8 @@ function(aloha_library_defaults target short)
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${short} OUTPUT_NAME aloha_${short})
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+    $<BUILD_INTERFACE:${ALOHA_PREFIXED_INCLUDE_DIR}>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/aloha>)
   target_compile_features(${target} PUBLIC cxx_std_20)
   aloha_warnings(${target})
@@ -34,6 +36,8 @@ function(aloha_interface_defaults target short)
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${short})
   target_include_directories(${target} INTERFACE
     $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+    $<BUILD_INTERFACE:${ALOHA_PREFIXED_INCLUDE_DIR}>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/aloha>)
   target_compile_features(${target} INTERFACE cxx_std_20)
   install(TARGETS ${target} EXPORT alohaTargets)
@@ -51,11 +55,12 @@ function(aloha_test_asset_defaults target)
     ALOHA_DEFAULT_TEST_ASSETS="${PROJECT_SOURCE_DIR}/../shared/assets")
 endfunction()
 
-# aloha_test(<name> SOURCES ... LIBS ...): a GoogleTest executable registered with CTest.
+# aloha_test(<name> SOURCES ... LIBS ...): a GoogleTest executable registered with CTest; its main() is
+# tests/common/test_main.cpp (target aloha_test_main, made in tests/CMakeLists.txt).
 function(aloha_test name)
   cmake_parse_arguments(T "" "" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${T_SOURCES})
-  target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main)
+  target_link_libraries(${name} PRIVATE ${T_LIBS} aloha_test_main GTest::gtest)
   aloha_warnings(${name})
   aloha_test_asset_defaults(${name})
   include(GoogleTest)

@@ -9,5 +9,5 @@ cmake --build --preset release --target aloha_tool
 SCENE="${1:-data/scenes/crowd_1k.json}"
 OUT="${OUT:-out/profile}"
 # --force: this script owns out/profile and refreshes it on every run.
-./build/release/engine/tool/aloha profile "$SCENE" --out "$OUT" --force "${@:2}"
+./build/release/host/tool/aloha profile "$SCENE" --out "$OUT" --force "${@:2}"
 echo "main: report in $OUT/report.json, picture in $OUT/last_frame.png"

@@ -11,7 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build/release}
 out=${2:-out/motion}
-aloha="$build/engine/tool/aloha"
+aloha="$build/host/tool/aloha"
 [ -x "$aloha" ] || { echo "motion_metrics.sh: $aloha not built (cmake --preset release && cmake --build build/release)" >&2; exit 1; }
 mkdir -p "$out"
 frames=600

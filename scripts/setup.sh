@@ -13,6 +13,7 @@ PACKAGES=(
   libtinygltf-dev                               # glTF characters
   libosd-dev                                    # OpenSubdiv Catmull-Clark refinement
   libmeshoptimizer-dev                          # vertex-cache order of the generated body skin
+  libcli11-dev                                  # the aloha tool's command line (subcommands, checks, help)
   nlohmann-json3-dev                            # scene and rule files
   libtbb-dev                                    # scheduler thread pool / parallel loops
   libimgui-dev                                  # viewer overlay

@@ -3,10 +3,10 @@
 # trousers, shoes; systems/geometry/controller/body_texture.hpp) at each mesh level of the default
 # rules (the proxy level draws boxes, not the mesh), into docs/images/textured_<level>.png. Each picture uses a copy of the default rules whose only
 # rule puts every character at that level (written to a temporary folder, never committed).
-# Usage: scripts/textured_levels.sh [path/to/aloha] (default build/dev/engine/tool/aloha).
+# Usage: scripts/textured_levels.sh [path/to/aloha] (default build/dev/host/tool/aloha).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-aloha="${1:-build/dev/engine/tool/aloha}"
+aloha="${1:-build/dev/host/tool/aloha}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 for level in skinned layered_low layered_high subdivided; do

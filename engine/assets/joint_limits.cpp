@@ -14,71 +14,51 @@ namespace {
 
 using nlohmann::json;
 
-std::string type_of(const json& v) { return v.type_name(); }
+// One joint's {min, max} (angles in the file's units) into `limit` (radians); problems into `in`.
+void read_joint(JsonObjectReader& r, float to_radians, double bound, JointLimit& limit) {
+    limit.limited = true;
+    const glm::vec3 lo = r.vec3("min", glm::vec3(0.0f), /*required=*/true, bound);
+    const glm::vec3 hi = r.vec3("max", glm::vec3(0.0f), /*required=*/true, bound);
+    r.reject_unknown_keys();
+    limit.min_angles = lo * to_radians;
+    limit.max_angles = hi * to_radians;
+    for (int a = 0; a < 3; ++a)
+        if (lo[a] > hi[a]) r.error("", std::string("min exceeds max on axis ") + "XYZ"[a]);
+}
 
 }  // namespace
 
 Result<JointLimitTable> parse_joint_limits(std::string_view text, const std::string& source_name) {
     auto parsed = parse_json_text(text, source_name);
     if (!parsed.ok()) return parsed.error();
-    const json& doc = parsed.value();
-    auto fail = [&](const std::string& path, const std::string& msg) { return make_error(source_name, msg, 0, 0, path); };
-    if (!doc.is_object()) return fail("", "top level must be an object, found " + type_of(doc));
-    float to_radians = 3.14159265358979f / 180.0f;
-    float bound = 180.0f;
-    for (const auto& [key, value] : doc.items()) {
-        if (key == "$schema" || key == "description") {
-            if (!value.is_string()) return fail("/" + key, "must be a string, found " + type_of(value));
-        } else if (key == "units") {
-            if (value == "radians") {
-                to_radians = 1.0f;
-                bound = 3.14159265f;
-            } else if (value != "degrees") {
-                return fail("/units", "must be \"degrees\" or \"radians\", found " + value.dump());
-            }
-        } else if (key == "euler_order") {
-            if (value != "XYZ") return fail("/euler_order", "only \"XYZ\" is supported, found " + value.dump());
-        } else if (key != "joints") {
-            return fail("/" + key, "unknown key (expected $schema, description, units, euler_order, joints)");
-        }
-    }
-    if (!doc.contains("joints")) return fail("/joints", "missing");
-    const json& joints = doc["joints"];
-    if (!joints.is_object()) return fail("/joints", "must be an object keyed by joint name, found " + type_of(joints));
+    std::vector<Error> errors;
+    JsonObjectReader doc(parsed.value(), "", source_name, errors);
+    doc.string("$schema", "");
+    doc.string("description", "");
+    const int units = doc.choice("units", {"degrees", "radians"}, 0);
+    const float to_radians = units == 1 ? 1.0f : 3.14159265358979f / 180.0f;
+    const double bound = units == 1 ? 3.14159265 : 180.0;
+    doc.choice("euler_order", {"XYZ"}, 0);  // the only order supported
     JointLimitTable table;
     table.source = source_name;
-    for (const auto& [name, entry] : joints.items()) {
-        const std::string where = "/joints/" + name;
-        if (name.empty()) return fail(where, "empty joint name");
-        if (!entry.is_object()) return fail(where, "must be an object with min and max, found " + type_of(entry));
-        for (const auto& [key, unused] : entry.items()) {
-            (void)unused;
-            if (key != "min" && key != "max") return fail(where + "/" + key, "unknown key (expected min, max)");
+    const json* joints = doc.child("joints");
+    doc.reject_unknown_keys();
+    if (doc.is_object() && !joints) doc.error("", "missing required key 'joints'");
+    if (joints && !joints->is_object())
+        doc.error("joints", std::string("expected an object keyed by joint name, got ") + joints->type_name());
+    for (auto it = joints && joints->is_object() ? joints->begin() : json::const_iterator(); joints && joints->is_object() && it != joints->end(); ++it) {
+        const std::string where = "/joints/" + it.key();
+        if (it.key().empty()) {
+            doc.error("joints/", "empty joint name");
+            continue;
         }
+        JsonObjectReader r(it.value(), where, source_name, errors);
         JointLimit limit;
-        limit.limited = true;
-        for (const char* which : {"min", "max"}) {
-            const std::string wp = where + "/" + which;
-            if (!entry.contains(which)) return fail(wp, "missing");
-            const json& arr = entry[which];
-            if (!arr.is_array() || arr.size() != 3) return fail(wp, "must be an array of 3 numbers [x, y, z]");
-            for (size_t a = 0; a < 3; ++a) {
-                const json& v = arr[a];
-                const std::string ap = wp + "/" + std::to_string(a);
-                if (!v.is_number()) return fail(ap, "must be a number, found " + type_of(v) + " " + v.dump());
-                const double d = v.get<double>();
-                if (!std::isfinite(d) || std::abs(d) > bound)
-                    return fail(ap, "angle " + v.dump() + " is outside [-" + std::to_string(bound) + ", " + std::to_string(bound) + "]");
-                glm::vec3& target = std::string(which) == "min" ? limit.min_angles : limit.max_angles;
-                target[static_cast<int>(a)] = static_cast<float>(d) * to_radians;
-            }
-        }
-        for (int a = 0; a < 3; ++a)
-            if (limit.min_angles[a] > limit.max_angles[a])
-                return fail(where, std::string("min exceeds max on axis ") + "XYZ"[a]);
-        table.names.push_back(name);
+        read_joint(r, to_radians, bound, limit);
+        table.names.push_back(it.key());
         table.limits.push_back(limit);
     }
+    if (!errors.empty()) return first_and_rest(errors);
     return table;
 }
 

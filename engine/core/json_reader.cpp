@@ -9,29 +9,40 @@ namespace aloha {
 
 namespace {
 const char* type_name(const nlohmann::json& v) { return v.type_name(); }
+
+std::string range_text(double lo, double hi) { return "[" + json_number_text(lo) + ", " + json_number_text(hi) + "]"; }
 }  // namespace
+
+std::string json_number_text(double value) { return nlohmann::json(value).dump(); }
 
 JsonObjectReader::JsonObjectReader(const nlohmann::json& value, std::string path, const std::string& file,
                                    std::vector<Error>& errors)
     : path_(std::move(path)), file_(file), errors_(errors) {
     if (value.is_object()) object_ = &value;
-    else errors_.push_back(make_error(file_, std::string("expected an object, found ") + type_name(value), 0, 0,
+    else errors_.push_back(make_error(file_, std::string("expected an object, got ") + type_name(value), 0, 0,
                                       path_.empty() ? "/" : path_));
 }
 
-void JsonObjectReader::error(const std::string& sub_path, const std::string& message) {
+void JsonObjectReader::error(const std::string& sub_path, const std::string& message) { error_at(0, 0, sub_path, message); }
+
+void JsonObjectReader::error_at(int line, int column, const std::string& sub_path, const std::string& message) {
     std::string p = path_;
     if (!sub_path.empty()) p += "/" + sub_path;
-    errors_.push_back(make_error(file_, message, 0, 0, p.empty() ? "/" : p));
+    errors_.push_back(make_error(file_, message, line, column, p.empty() ? "/" : p));
 }
 
 bool JsonObjectReader::has(const char* key) {
-    known_.insert(key);
+    allow({key});
     return object_ && object_->contains(key);
 }
 
+void JsonObjectReader::allow(std::initializer_list<const char*> keys) {
+    for (const char* k : keys)
+        if (known_.insert(k).second) known_order_.push_back(k);
+}
+
 const nlohmann::json* JsonObjectReader::child(const char* key) {
-    known_.insert(key);
+    allow({key});
     if (!object_) return nullptr;
     auto it = object_->find(key);
     return it == object_->end() ? nullptr : &*it;
@@ -40,11 +51,11 @@ const nlohmann::json* JsonObjectReader::child(const char* key) {
 double JsonObjectReader::number(const char* key, double fallback, double lo, double hi, bool required) {
     const nlohmann::json* v = child(key);
     if (!v) {
-        if (required && object_) error(key, "required number is missing");
+        if (required && object_) error("", std::string("missing required key '") + key + "'");
         return fallback;
     }
     if (!v->is_number()) {
-        error(key, std::string("expected a number, found ") + type_name(*v));
+        error(key, std::string("expected a number, got ") + type_name(*v));
         return fallback;
     }
     const double d = v->get<double>();
@@ -53,7 +64,7 @@ double JsonObjectReader::number(const char* key, double fallback, double lo, dou
         return fallback;
     }
     if (d < lo || d > hi) {
-        error(key, "value " + std::to_string(d) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        error(key, "value " + v->dump() + " is out of range " + range_text(lo, hi));
         return fallback;
     }
     return d;
@@ -62,43 +73,40 @@ double JsonObjectReader::number(const char* key, double fallback, double lo, dou
 int64_t JsonObjectReader::integer(const char* key, int64_t fallback, int64_t lo, int64_t hi, bool required) {
     const nlohmann::json* v = child(key);
     if (!v) {
-        if (required && object_) error(key, "required integer is missing");
+        if (required && object_) error("", std::string("missing required key '") + key + "'");
         return fallback;
     }
+    const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     if (v->is_number_float()) {
         const double d = v->get<double>();
         if (!std::isfinite(d) || d != std::floor(d)) {
-            error(key, "expected an integer, found " + v->dump());
+            error(key, "expected an integer, got " + v->dump());
             return fallback;
         }
         if (d < static_cast<double>(lo) || d > static_cast<double>(hi)) {
-            error(key, "value " + v->dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+            error(key, "value " + v->dump() + " is out of range " + range);
             return fallback;
         }
         return static_cast<int64_t>(d);
     }
     if (!v->is_number_integer()) {
-        error(key, std::string("expected an integer, found ") + type_name(*v));
+        error(key, std::string("expected an integer, got ") + type_name(*v));
         return fallback;
     }
     // Unsigned values beyond int64 range are rejected as out of range.
-    if (v->is_number_unsigned() && v->get<uint64_t>() > static_cast<uint64_t>(hi)) {
-        error(key, "value " + v->dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if ((v->is_number_unsigned() && v->get<uint64_t>() > static_cast<uint64_t>(hi)) || v->get<int64_t>() < lo ||
+        v->get<int64_t>() > hi) {
+        error(key, "value " + v->dump() + " is out of range " + range);
         return fallback;
     }
-    const int64_t i = v->get<int64_t>();
-    if (i < lo || i > hi) {
-        error(key, "value " + std::to_string(i) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-        return fallback;
-    }
-    return i;
+    return v->get<int64_t>();
 }
 
 bool JsonObjectReader::boolean(const char* key, bool fallback) {
     const nlohmann::json* v = child(key);
     if (!v) return fallback;
     if (!v->is_boolean()) {
-        error(key, std::string("expected true or false, found ") + type_name(*v));
+        error(key, std::string("expected true or false, got ") + type_name(*v));
         return fallback;
     }
     return v->get<bool>();
@@ -107,30 +115,51 @@ bool JsonObjectReader::boolean(const char* key, bool fallback) {
 std::string JsonObjectReader::string(const char* key, const std::string& fallback, bool required) {
     const nlohmann::json* v = child(key);
     if (!v) {
-        if (required && object_) error(key, "required string is missing");
+        if (required && object_) error("", std::string("missing required key '") + key + "'");
         return fallback;
     }
     if (!v->is_string()) {
-        error(key, std::string("expected a string, found ") + type_name(*v));
+        error(key, std::string("expected a string, got ") + type_name(*v));
         return fallback;
     }
     std::string s = v->get<std::string>();
-    if (required && s.empty()) error(key, "string must not be empty");
+    if (required && s.empty()) error(key, "expected a non-empty string");
     return s;
 }
 
+int JsonObjectReader::choice(const char* key, std::initializer_list<const char*> names, int fallback, bool required) {
+    const nlohmann::json* v = child(key);
+    if (!v) {
+        if (required && object_) error("", std::string("missing required key '") + key + "'");
+        return fallback;
+    }
+    std::string list;
+    int i = 0;
+    for (const char* n : names) {
+        if (v->is_string() && v->get<std::string>() == n) return i;
+        list += std::string(list.empty() ? "" : ", ") + n;
+        ++i;
+    }
+    error(key, "unknown value " + v->dump() + " (allowed: " + list + ")");
+    return fallback;
+}
+
+void JsonObjectReader::renamed(const char* old_key, const char* new_key, const std::string& why) {
+    if (has(old_key)) error(old_key, std::string("'") + old_key + "' was replaced by '" + new_key + "'" + (why.empty() ? "" : " (" + why + ")"));
+}
+
 glm::vec3 read_vec3(const nlohmann::json& value, const std::string& path, const std::string& file,
-                    std::vector<Error>& errors, const glm::vec3& fallback) {
+                    std::vector<Error>& errors, const glm::vec3& fallback, double bound) {
     if (!value.is_array() || value.size() != 3) {
-        errors.push_back(make_error(file, "expected [x, y, z], found " + value.dump().substr(0, 40), 0, 0, path));
+        errors.push_back(make_error(file, "expected [x, y, z], got " + value.dump().substr(0, 40), 0, 0, path));
         return fallback;
     }
     glm::vec3 out;
     for (int i = 0; i < 3; ++i) {
         const auto& c = value[static_cast<size_t>(i)];
-        if (!c.is_number() || !std::isfinite(c.get<double>()) || std::abs(c.get<double>()) > 1e7) {
-            errors.push_back(make_error(file, "component is not a finite number within +-1e7", 0, 0,
-                                        path + "/" + std::to_string(i)));
+        if (!c.is_number() || !std::isfinite(c.get<double>()) || std::abs(c.get<double>()) > bound) {
+            errors.push_back(make_error(file, "expected a finite number within " + range_text(-bound, bound) + ", got " + c.dump(),
+                                        0, 0, path + "/" + std::to_string(i)));
             return fallback;
         }
         out[i] = c.get<float>();
@@ -138,19 +167,22 @@ glm::vec3 read_vec3(const nlohmann::json& value, const std::string& path, const 
     return out;
 }
 
-glm::vec3 JsonObjectReader::vec3(const char* key, const glm::vec3& fallback, bool required) {
+glm::vec3 JsonObjectReader::vec3(const char* key, const glm::vec3& fallback, bool required, double bound) {
     const nlohmann::json* v = child(key);
     if (!v) {
-        if (required && object_) error(key, "required [x, y, z] is missing");
+        if (required && object_) error("", std::string("missing required key '") + key + "'");
         return fallback;
     }
-    return read_vec3(*v, child_path(key), file_, errors_, fallback);
+    return read_vec3(*v, child_path(key), file_, errors_, fallback, bound);
 }
 
 void JsonObjectReader::reject_unknown_keys() {
     if (!object_) return;
+    std::string allowed;
+    for (const std::string& k : known_order_) allowed += (allowed.empty() ? "" : ", ") + k;
     for (auto it = object_->begin(); it != object_->end(); ++it)
-        if (!known_.count(it.key())) error(it.key(), "unknown key '" + it.key() + "'");
+        if (!known_.count(it.key()))
+            error(it.key(), "unknown key '" + it.key() + "'" + (allowed.empty() ? std::string() : " (allowed: " + allowed + ")"));
 }
 
 Result<nlohmann::json> parse_json_text(std::string_view text, const std::string& file, bool allow_comments) {

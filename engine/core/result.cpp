@@ -1,5 +1,7 @@
 #include "engine/core/result.hpp"
 
+#include <cassert>
+
 namespace aloha {
 
 std::string Error::to_string() const {
@@ -16,6 +18,15 @@ std::string Error::to_string() const {
     out += message;
     if (code != 0) out += " (code " + std::to_string(code) + ")";
     return out;
+}
+
+Error first_and_rest(const std::vector<Error>& errors) {
+    assert(!errors.empty() && "first_and_rest needs at least one error");
+    Error e = errors.front();
+    if (errors.size() > 1)
+        e.message += " (and " + std::to_string(errors.size() - 1) + " more:\n" +
+                     join_errors(std::vector<Error>(errors.begin() + 1, errors.end())) + ")";
+    return e;
 }
 
 Error make_error(std::string file, std::string message, int line, int column, std::string path) {

@@ -84,4 +84,8 @@ private:
 /// Joins several errors into one multi-line message (used by Validate()-style checks).
 [[nodiscard]] std::string join_errors(const std::vector<Error>& errors);
 
+/// One Error carrying every problem a loader found: the first, its message followed by
+/// "(and N more: ...)" listing the others. Requires a non-empty `errors`.
+[[nodiscard]] Error first_and_rest(const std::vector<Error>& errors);
+
 }  // namespace aloha

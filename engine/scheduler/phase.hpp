@@ -1,32 +1,26 @@
-// The phases of an ALOHA frame, run in declaration order, and helpers to use them generically.
+// Phases as data: the host that owns a frame names its phases (a PhaseList, in run order) and gives them
+// to its Scheduler; a system names its phase by position in that list. The scheduler knows no phase
+// names of its own.
 #pragma once
 
-#include <array>
-#include <cstddef>
+#include <compare>
 #include <cstdint>
-#include <string_view>
+#include <string>
+#include <vector>
 
 namespace aloha {
 
-/// A frame is these phases in this order; structural changes are applied between them.
-enum class Phase : uint8_t { Attributes, Rules, Resolve, Motion, Tessellate, Skin, Render };
+/// A phase of the host's frame: its position in the host's PhaseList (0 runs first).
+struct Phase {
+    uint8_t index = 0;
+    constexpr auto operator<=>(const Phase&) const = default;
+};
 
-/// Number of phases.
-inline constexpr size_t kPhaseCount = 7;
+/// The host's phases by name, in run order (1 to 255 of them, names unique and non-empty). Structural
+/// changes are applied between phases (Scheduler::set_between_phases).
+using PhaseList = std::vector<std::string>;
 
-/// Every phase, in run order.
-inline constexpr std::array<Phase, kPhaseCount> kAllPhases{
-    Phase::Attributes, Phase::Rules, Phase::Resolve, Phase::Motion,
-    Phase::Tessellate, Phase::Skin,  Phase::Render};
-
-/// Position of `p` in the run order (0 = Attributes).
-constexpr size_t phase_index(Phase p) { return static_cast<size_t>(p); }
-
-/// The phase's name as written in docs and traces ("Attributes", ...); "?" when out of range.
-constexpr std::string_view phase_name(Phase p) {
-    constexpr std::array<std::string_view, kPhaseCount> names{
-        "Attributes", "Rules", "Resolve", "Motion", "Tessellate", "Skin", "Render"};
-    return phase_index(p) < kPhaseCount ? names[phase_index(p)] : std::string_view("?");
-}
+/// Largest number of phases a PhaseList may hold.
+inline constexpr size_t kMaxPhases = 255;
 
 }  // namespace aloha

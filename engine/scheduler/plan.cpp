@@ -37,17 +37,22 @@ std::string quoted_type(ComponentTypeId id) { return "'" + std::string(type_name
 
 }  // namespace
 
-std::vector<Pass> derive_passes(std::span<const SystemDesc> systems, std::vector<std::string>& errors) {
+std::vector<Pass> derive_passes(std::span<const SystemDesc> systems, const PhaseList& phases, std::vector<std::string>& errors) {
     const size_t n = systems.size();
+    if (phases.empty() || phases.size() > kMaxPhases)
+        errors.push_back("the host declares " + std::to_string(phases.size()) + " phases; 1 to " + std::to_string(kMaxPhases) + " are needed");
+    std::set<std::string> phase_names;
+    for (const std::string& p : phases)
+        if (p.empty() || !phase_names.insert(p).second) errors.push_back("phase names must be unique and non-empty ('" + p + "')");
     std::set<std::string> seen;
     for (size_t i = 0; i < n; ++i) {
         const SystemDesc& s = systems[i];
         if (s.name.empty()) errors.push_back("system #" + std::to_string(i) + " has an empty name");
         else if (!seen.insert(s.name).second) errors.push_back("two systems are named '" + s.name + "'");
         if (!s.run) errors.push_back("system '" + s.name + "' has no run function");
-        if (phase_index(s.phase) >= kPhaseCount) {
-            errors.push_back("system '" + s.name + "' has an unknown phase " +
-                             std::to_string(phase_index(s.phase)));
+        if (s.phase.index >= phases.size()) {
+            errors.push_back("system '" + s.name + "' has phase " + std::to_string(s.phase.index) + " but the host declares " +
+                             std::to_string(phases.size()));
         }
     }
     if (!errors.empty()) return {};
@@ -63,7 +68,9 @@ std::vector<Pass> derive_passes(std::span<const SystemDesc> systems, std::vector
     }
 
     std::vector<Pass> plan;
-    for (const Phase phase : kAllPhases) {
+    for (size_t pi = 0; pi < phases.size(); ++pi) {
+        const Phase phase{static_cast<uint8_t>(pi)};
+        const std::string& phase_name = phases[pi];
         std::vector<uint32_t> members;  // add() order
         for (uint32_t i = 0; i < n; ++i) {
             if (systems[i].phase == phase) members.push_back(i);
@@ -82,7 +89,7 @@ std::vector<Pass> derive_passes(std::span<const SystemDesc> systems, std::vector
                 if (a < b && first_common(writes[sa], writes[sb], type)) {
                     errors.push_back("systems '" + systems[sa].name + "' and '" + systems[sb].name +
                                      "' both write " + quoted_type(type) + " in phase " +
-                                     std::string(phase_name(phase)) +
+                                     phase_name +
                                      "; give the type one writer per phase or move one system to "
                                      "another phase");
                     continue;
@@ -115,7 +122,7 @@ std::vector<Pass> derive_passes(std::span<const SystemDesc> systems, std::vector
             for (uint32_t k = 0; k < m; ++k) {
                 if (indegree[k] > 0) names += (names.empty() ? "'" : ", '") + systems[members[k]].name + "'";
             }
-            errors.push_back("systems " + names + " of phase " + std::string(phase_name(phase)) +
+            errors.push_back("systems " + names + " of phase " + phase_name +
                              " read what each other writes (a cycle); split them across phases");
             continue;
         }

@@ -24,7 +24,9 @@ std::string type_list(const std::vector<ComponentTypeId>& ids) {
 
 }  // namespace
 
-Scheduler::Scheduler(unsigned threads) : epoch_(std::chrono::steady_clock::now()) { set_threads(threads); }
+Scheduler::Scheduler(PhaseList phases, unsigned threads) : phases_(std::move(phases)), epoch_(std::chrono::steady_clock::now()) {
+    set_threads(threads);
+}
 
 Scheduler::~Scheduler() = default;
 
@@ -37,7 +39,7 @@ uint32_t Scheduler::add(SystemDesc desc) {
 
 Status Scheduler::build() {
     std::vector<std::string> errors;
-    std::vector<Pass> plan = derive_passes(systems_, errors);
+    std::vector<Pass> plan = derive_passes(systems_, phases_, errors);
     if (!errors.empty()) {
         std::string message = "cannot schedule systems:";
         for (const std::string& e : errors) message += "\n  " + e;
@@ -95,7 +97,8 @@ void Scheduler::run_frame(float dt) {
     const uint64_t frame_begin = now_ns();
     arena_->execute([&] {
         size_t p = 0;
-        for (const Phase phase : kAllPhases) {
+        for (size_t pi = 0; pi < phases_.size(); ++pi) {
+            const Phase phase{static_cast<uint8_t>(pi)};
             for (; p < plan_.size() && plan_[p].phase == phase; ++p) {
                 const std::vector<uint32_t>& pass = plan_[p].systems;
                 if (pass.size() == 1) {
@@ -143,8 +146,9 @@ std::string Scheduler::describe() const {
     std::string out = "scheduler: " + std::to_string(systems_.size()) + " systems, " +
                       std::to_string(plan_.size()) + " passes, " + std::to_string(threads_) + " threads\n";
     size_t p = 0;
-    for (const Phase phase : kAllPhases) {
-        out += "phase " + std::string(phase_name(phase)) + "\n";
+    for (size_t pi = 0; pi < phases_.size(); ++pi) {
+        const Phase phase{static_cast<uint8_t>(pi)};
+        out += "phase " + phases_[pi] + "\n";
         for (size_t k = 0; p < plan_.size() && plan_[p].phase == phase; ++p, ++k) {
             out += "  pass " + std::to_string(k) + ":\n";
             for (const uint32_t i : plan_[p].systems) {

@@ -24,22 +24,25 @@ namespace aloha {
 
 /// One pass: systems of one phase that run together (their access sets do not conflict).
 struct Pass {
-    Phase phase = Phase::Attributes;
+    Phase phase;
     std::vector<uint32_t> systems;  ///< system indices, in add() order
 };
 
-/// Orders and runs systems. Typical use: add() systems, build(), then run_frame(dt) every frame.
+/// Orders and runs systems. Typical use: construct with the host's phases, add() systems, build(), then
+/// run_frame(dt) every frame.
 class Scheduler {
 public:
-    /// Creates a scheduler with `threads` threads (0 = oneTBB's default concurrency).
-    explicit Scheduler(unsigned threads = 0);
+    /// Creates a scheduler running the host's `phases` (in order) with `threads` threads (0 = oneTBB's
+    /// default concurrency). build() checks the list (1 to kMaxPhases unique, non-empty names).
+    explicit Scheduler(PhaseList phases, unsigned threads = 0);
     ~Scheduler();
     Scheduler(const Scheduler&) = delete;
     Scheduler& operator=(const Scheduler&) = delete;
 
     /// Adds a system; returns its index. Invalidates the plan (call build() again).
     uint32_t add(SystemDesc desc);
-    /// Derives the passes. Fails (listing every problem) on empty/duplicate names, missing run
+    /// Derives the passes. Fails (listing every problem) on a bad phase list, a system's phase outside it,
+    /// empty/duplicate names, missing run
     /// functions, two systems of one phase writing the same type (message names both and the
     /// type), or a read/write cycle inside a phase.
     Status build();
@@ -64,6 +67,8 @@ public:
     /// skipped for dead targets. Call it from the between-phases hook.
     size_t apply_commands(Registry& registry);
 
+    /// The host's phases, in run order.
+    [[nodiscard]] const PhaseList& phases() const { return phases_; }
     /// The derived passes, phases in order.
     [[nodiscard]] const std::vector<Pass>& plan() const { return plan_; }
     /// The derived passes as lists of system names.
@@ -82,7 +87,7 @@ public:
     /// Wall time of the system called `name`, or nullptr when there is none.
     [[nodiscard]] const TimingRing* timings(const std::string& name) const;
     /// Sum of the last frame's run times (ns) of the systems in phases before `phase` (e.g.
-    /// Phase::Render: every CPU system), systems of one pass each counted; 0 before the first frame.
+    /// the host's render phase: every CPU system), systems of one pass each counted; 0 before the first frame.
     [[nodiscard]] uint64_t latest_ns_before(Phase phase) const;
     /// Wall time of whole frames (ns), including between-phase hooks.
     [[nodiscard]] const TimingRing& frame_timings() const { return frame_timings_; }
@@ -95,6 +100,7 @@ private:
     void run_system(uint32_t index, float dt);
     [[nodiscard]] uint64_t now_ns() const;
 
+    PhaseList phases_;
     std::vector<SystemDesc> systems_;
     std::vector<std::string> names_;
     std::vector<Pass> plan_;
@@ -113,8 +119,8 @@ private:
     bool built_ = false;
 };
 
-/// Derives passes for `systems` (see Scheduler::build); on failure `errors` gets every problem.
-[[nodiscard]] std::vector<Pass> derive_passes(std::span<const SystemDesc> systems,
+/// Derives passes for `systems` in the host's `phases` (see Scheduler::build); on failure `errors` gets every problem.
+[[nodiscard]] std::vector<Pass> derive_passes(std::span<const SystemDesc> systems, const PhaseList& phases,
                                               std::vector<std::string>& errors);
 
 }  // namespace aloha

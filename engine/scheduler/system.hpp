@@ -29,7 +29,7 @@ class SystemContext;
 /// reading. `run` must be callable.
 struct SystemDesc {
     std::string name;                      ///< unique, used in messages, timings and traces
-    Phase phase = Phase::Attributes;       ///< phase the system runs in
+    Phase phase;                           ///< phase the system runs in (position in the host's PhaseList)
     std::vector<ComponentTypeId> reads;    ///< types only read
     std::vector<ComponentTypeId> writes;   ///< types written (and possibly read)
     std::function<void(SystemContext&)> run;  ///< the system body

@@ -9,65 +9,49 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <initializer_list>
 #include <set>
 
 namespace aloha {
 namespace {
 
 using nlohmann::json;
-using lod_detail::JsonChecker;
 using lod_detail::RawBox;
+using lod_detail::RuleFile;
 
 struct Parser {
-    JsonChecker in;
+    RuleFile in;
     RuleTable table;
     std::string_view text;
 
     void err(const std::string& path, std::string message) { in.err(path, std::move(message)); }
-    void check_keys(const json& obj, const std::string& path, std::initializer_list<const char*> allowed) {
-        in.check_keys(obj, path, allowed);
-    }
-    template <class T>
-    void number(const json& obj, const char* key, const std::string& path, double lo, double hi, bool integer, T* out) {
-        in.number(obj, key, path, lo, hi, integer, out);
-    }
-    std::string string(const json& obj, const char* key, const std::string& path) { return in.string(obj, key, path); }
-    int choice(const json& obj, const char* key, const std::string& path, std::initializer_list<const char*> names,
-               int fallback, bool required) {
-        return in.choice(obj, key, path, names, fallback, required);
-    }
 
     void parse_geom_level(const json& j, const std::string& p) {
         GeomLevelDef d;
         if (!j.is_object()) return err(p, "expected an object describing a geometric level");
-        check_keys(j, p, {"name", "description", "method", "theta_steps", "phi_steps", "subdivision", "layers",
-                          "geomorph_s", "geomorph_frames", "max_characters"});
-        in.renamed_key(j, p, "geomorph_frames", "geomorph_s");
-        d.name = string(j, "name", p);
+        JsonObjectReader r = in.object(j, p);
+        d.name = r.string("name", "", true);
+        r.allow({"description"});
         d.method = static_cast<GeomMethod>(
-            choice(j, "method", p, {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided"}, 1, true));
+            r.choice("method", {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided"}, 1, true));
         constexpr uint8_t kDefaultLayers[] = {0, kLayerSkeleton, kLayerSkeleton | kLayerSkin,
                                               kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin,
                                               kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin};
         d.layers = kDefaultLayers[static_cast<int>(d.method)];
-        number(j, "theta_steps", p, 3, 1024, true, &d.theta_steps);
-        number(j, "phi_steps", p, 2, 1024, true, &d.phi_steps);
-        number(j, "subdivision", p, 0, 4, true, &d.subdiv_level);
-        number(j, "geomorph_s", p, 0.0, 10.0, false, &d.geomorph_s);
-        number(j, "max_characters", p, 0, 1.0e9, true, &d.max_characters);
-        if (j.contains("layers")) {
-            const json& l = j["layers"];
-            if (!l.is_array()) err(p + "/layers", "expected an array of layer names");
+        r.read("theta_steps", d.theta_steps, 3, 1024);
+        r.read("phi_steps", d.phi_steps, 2, 1024);
+        r.read("subdivision", d.subdiv_level, 0, 4);
+        if (const json* l = r.child("layers")) {
+            if (!l->is_array()) err(p + "/layers", "expected an array of layer names");
             d.layers = 0;
-            for (size_t i = 0; l.is_array() && i < l.size(); ++i) {
+            for (size_t i = 0; l->is_array() && i < l->size(); ++i) {
                 const std::string lp = p + "/layers/" + std::to_string(i);
-                const std::string n = l[i].is_string() ? l[i].get<std::string>() : "";
+                const json& item = (*l)[i];
+                const std::string n = item.is_string() ? item.get<std::string>() : "";
                 if (n == "skeleton") d.layers |= kLayerSkeleton;
                 else if (n == "muscle") d.layers |= kLayerMuscle;
                 else if (n == "fat") d.layers |= kLayerFat;
                 else if (n == "skin") d.layers |= kLayerSkin;
-                else err(lp, "unknown layer " + l[i].dump() + " (allowed: skeleton, muscle, fat, skin)");
+                else err(lp, "unknown layer " + item.dump() + " (allowed: skeleton, muscle, fat, skin)");
             }
             // Each method draws a fixed set of layers; only the fat springs of the muscle methods can
             // be peeled off (skin at the springs' rest ends).
@@ -77,6 +61,10 @@ struct Parser {
                 err(p + "/layers", all == needed ? "this method's layers are fixed: give its default or leave the key out"
                                                  : "layered and subdivided levels need skeleton, muscle and skin; fat is optional");
         }
+        r.read("geomorph_s", d.geomorph_s, 0.0, 10.0);
+        r.renamed("geomorph_frames", "geomorph_s", lod_detail::kSecondsNotFrames);
+        r.read("max_characters", d.max_characters, 0, 1.0e9);
+        r.reject_unknown_keys();
         if (d.method == GeomMethod::Subdivided && d.subdiv_level == 0)
             err(p + "/subdivision", "method 'subdivided' needs subdivision >= 1");
         if (!d.name.empty() && table.find_geom_level(d.name) >= 0)
@@ -87,18 +75,19 @@ struct Parser {
     void parse_anim_level(const json& j, const std::string& p) {
         AnimLevelDef d;
         if (!j.is_object()) return err(p, "expected an object describing an animation level");
-        check_keys(j, p, {"name", "description", "walk", "ik", "ik_iterations", "ik_tolerance", "update_interval",
-                          "crossfade_s", "crossfade_frames", "max_characters"});
-        in.renamed_key(j, p, "crossfade_frames", "crossfade_s");
-        d.name = string(j, "name", p);
-        d.walk = static_cast<WalkMethod>(choice(j, "walk", p, {"clip", "kinematic", "dynamic"}, 0, true));
-        d.ik = static_cast<IkSolver>(choice(j, "ik", p, {"none", "ccd", "dls"}, 0, false));
+        JsonObjectReader r = in.object(j, p);
+        d.name = r.string("name", "", true);
+        r.allow({"description"});
+        d.walk = static_cast<WalkMethod>(r.choice("walk", {"clip", "kinematic", "dynamic"}, 0, true));
+        d.ik = static_cast<IkSolver>(r.choice("ik", {"none", "ccd", "dls"}, 0));
         if (d.ik != IkSolver::None) d.ik_iterations = 4;
-        number(j, "ik_iterations", p, 0, 255, true, &d.ik_iterations);
-        number(j, "ik_tolerance", p, 1e-7, 1.0, false, &d.ik_tolerance);
-        number(j, "update_interval", p, 1, 255, true, &d.update_interval);
-        number(j, "crossfade_s", p, 0.0, 10.0, false, &d.crossfade_s);
-        number(j, "max_characters", p, 0, 1.0e9, true, &d.max_characters);
+        r.read("ik_iterations", d.ik_iterations, 0, 255);
+        r.read("ik_tolerance", d.ik_tolerance, 1e-7, 1.0);
+        r.read("update_interval", d.update_interval, 1, 255);
+        r.read("crossfade_s", d.crossfade_s, 0.0, 10.0);
+        r.renamed("crossfade_frames", "crossfade_s", lod_detail::kSecondsNotFrames);
+        r.read("max_characters", d.max_characters, 0, 1.0e9);
+        r.reject_unknown_keys();
         if (d.ik != IkSolver::None && d.ik_iterations == 0)
             err(p + "/ik_iterations", "an IK solver needs ik_iterations >= 1");
         if (!d.name.empty() && table.find_anim_level(d.name) >= 0)
@@ -112,16 +101,19 @@ struct Parser {
         r.json_path = p;
         boxes->clear();
         if (!j.is_object()) return err(p, "expected a rule object {name, when, then}");
-        check_keys(j, p, {"name", "description", "when", "then"});
-        r.name = string(j, "name", p);
+        JsonObjectReader rr = in.object(j, p);
+        r.name = rr.string("name", "", true);
+        rr.allow({"description", "when"});
         if (!r.name.empty() && table.find_rule(r.name) >= 0) err(p + "/name", "duplicate rule name '" + r.name + "'");
-        if (!j.contains("then") || !j["then"].is_object()) {
+        const json* then = rr.child("then");
+        rr.reject_unknown_keys();
+        if (!then || !then->is_object()) {
             err(p, "missing 'then' object {\"geometry\": level, \"animation\": level}");
         } else {
-            const json& t = j["then"];
-            check_keys(t, p + "/then", {"geometry", "animation"});
-            const std::string g = string(t, "geometry", p + "/then");
-            const std::string a = string(t, "animation", p + "/then");
+            JsonObjectReader t = in.object(*then, p + "/then");
+            const std::string g = t.string("geometry", "", true);
+            const std::string a = t.string("animation", "", true);
+            t.reject_unknown_keys();
             const int gi = table.find_geom_level(g);
             const int ai = table.find_anim_level(a);
             if (!g.empty() && gi < 0) err(p + "/then/geometry", "unknown geometric level '" + g + "'");
@@ -159,9 +151,11 @@ struct Parser {
 
     void parse(const json& root) {
         if (!root.is_object()) return err("", "the rule file must be a JSON object");
-        check_keys(root, "", {"$schema", "description", "tiers", "default_tier", "hysteresis", "budget",
-                              "significance", "geometric_levels", "animation_levels", "rules"});
-        lod_detail::parse_settings(root, text, in, table);
+        JsonObjectReader top = in.object(root, "");
+        top.allow({"$schema", "description"});
+        lod_detail::parse_settings(top, text, in, table);
+        top.allow({"geometric_levels", "animation_levels", "rules"});
+        top.reject_unknown_keys();
         for (const char* key : {"geometric_levels", "animation_levels", "rules"}) {
             if (!root.contains(key) || !root[key].is_array() || root[key].empty())
                 err("/" + std::string(key), "missing or empty array '" + std::string(key) + "'");

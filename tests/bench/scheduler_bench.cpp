@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/scheduler/scheduler.hpp"
+#include "tests/engine/scheduler/test_phases.hpp"
 
 namespace {
 
@@ -15,10 +16,10 @@ struct Slot {};
 
 // Seven phases x range(0) independent systems each (one pass per phase).
 void BM_EmptyFrame(benchmark::State& state) {
-    aloha::Scheduler s(unsigned(state.range(1)));
+    aloha::Scheduler s(aloha::test::test_phases(), unsigned(state.range(1)));
     const std::vector<aloha::ComponentTypeId> none;
     int k = 0;
-    for (const aloha::Phase p : aloha::kAllPhases) {
+    for (const aloha::Phase p : aloha::test::kTestPhases) {
         for (int64_t i = 0; i < state.range(0); ++i) {
             s.add(aloha::SystemDesc{"s" + std::to_string(k++), p, {},
                                     {aloha::named_type_id("slot" + std::to_string(i))},
@@ -33,9 +34,9 @@ void BM_EmptyFrame(benchmark::State& state) {
 }
 
 void BM_ParallelFor(benchmark::State& state) {
-    aloha::Scheduler s(unsigned(state.range(1)));
+    aloha::Scheduler s(aloha::test::test_phases(), unsigned(state.range(1)));
     std::vector<float> data(size_t(state.range(0)), 1.0f);
-    s.add(aloha::SystemDesc{"work", aloha::Phase::Motion, {}, {}, [&](aloha::SystemContext& ctx) {
+    s.add(aloha::SystemDesc{"work", aloha::test::TestPhase::Motion, {}, {}, [&](aloha::SystemContext& ctx) {
         ctx.parallel_for(data.size(), 4096, [&](size_t b, size_t e) {
             for (size_t i = b; i < e; ++i) data[i] = std::sqrt(data[i] * 1.0001f + 0.5f);
         });

@@ -1,6 +1,6 @@
 // libFuzzer target: scene files (parse_scene). The scene is anchored in the repository's data/scenes
 // folder so builtin: names and relative paths resolve against real files, as they would for a user.
-#include "engine/scene/scene_loader.hpp"
+#include "host/scene/scene_loader.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -5,7 +5,7 @@
 #define MINI_GAME_NO_MAIN
 #include "tests/install/consumer/main.cpp"
 
-#include "engine/scene/world.hpp"
+#include "host/scene/world.hpp"
 
 #include <gtest/gtest.h>
 

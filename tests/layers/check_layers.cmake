@@ -1,8 +1,6 @@
 # The include-layer check: layers only look down (foundations <- systems <- host), docs/ARCHITECTURE.md.
 # Run as: cmake -DSOURCE_DIR=<repo> -P check_layers.cmake. Fails listing every include that looks up.
-#
-# The host folders are listed here by their current paths; when the host moves to its own top-level
-# folder (issue 16, item 4) only HOST_DIRS changes.
+# The host (scene files, World, the aloha tool) lives in host/, one layer above systems/.
 # (-D overrides are for the check's own test on a planted tree.)
 if(NOT DEFINED FOUNDATION_DIRS)
   set(FOUNDATION_DIRS engine/core engine/ecs engine/scheduler engine/anim engine/assets engine/gpu components)
@@ -11,7 +9,7 @@ if(NOT DEFINED SYSTEM_DIRS)
   set(SYSTEM_DIRS systems)
 endif()
 if(NOT DEFINED HOST_DIRS)
-  set(HOST_DIRS engine/scene engine/tool)
+  set(HOST_DIRS host)
 endif()
 if(NOT DEFINED MIN_FILES)
   set(MIN_FILES 100)  # the repository has several hundred: fewer means the wrong folder was given

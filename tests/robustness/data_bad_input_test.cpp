@@ -111,7 +111,7 @@ TEST(RulesBadInput, FolderIsNamedAsAFolder) {
 // nlohmann::json::out_of_range (406), which parse_rules does not catch. Fix: systems/lod/rule_parser.cpp
 // parse_rules(): add `catch (const json::out_of_range& e)` after the parse_error handler returning
 // make_error(source_name, std::string("JSON ") + e.what(), line, column) with the position of the
-// literal (as engine/scene/json_reader.cpp parse_json_text does), or catch json::exception.
+// literal (as host/scene/json_reader.cpp parse_json_text does), or catch json::exception.
 TEST(RulesBadInput, NumberOverflowIsAnError) {
     EXPECT_TRUE(refused(parse_rules(R"({"hysteresis": {"band": 1e999}})", "rules.json"), "R12 1e999", "rules.json",
                         {"number overflow"}));

@@ -7,7 +7,7 @@
 #include "engine/assets/bvh_loader.hpp"
 #include "engine/assets/gltf_loader.hpp"
 #include "engine/assets/joint_limits.hpp"
-#include "engine/scene/scene_loader.hpp"
+#include "host/scene/scene_loader.hpp"
 #include "systems/lod/rule_table.hpp"
 
 #include <gtest/gtest.h>
@@ -72,7 +72,7 @@ std::string nested(int depth) { return std::string(static_cast<size_t>(depth), '
 
 // Regression (found while fuzzing, fixed): 100000 nested arrays where a value is expected overflow the stack (SIGSEGV; found with the
 // ASan fuzz builds): nlohmann's dump() and copy constructor and tinygltf's JSON-to-Value conversion
-// recurse once per level. Sites: engine/scene/json_reader.cpp (messages "found " + value.dump()),
+// recurse once per level. Sites: host/scene/json_reader.cpp (messages "found " + value.dump()),
 // engine/assets/joint_limits.cpp ("found ... " + v.dump()), systems/lod/rule_parser.cpp:216 (`const
 // json when = ...` copies the tree; use a reference) and rule_conditions.cpp (recursive compile), and
 // tinygltf (extras). Fix: one helper, e.g. engine/core `Status check_json_depth(std::string_view text,

@@ -2,7 +2,7 @@
 // names the file, the place (line/column or JSON path) and the problem. Rows are tagged S1, S2, ...
 #include "bad_input.hpp"
 
-#include "engine/scene/scene_loader.hpp"
+#include "host/scene/scene_loader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -127,7 +127,7 @@ TEST(SceneBadInput, PathsThatEscapeTheSceneFolder) {
 
 // Regression (found while fuzzing, fixed): resolve_scene_path checks containment lexically, so a symbolic link inside the scene's
 // folder that points elsewhere is followed (the loader would read /etc/passwd through it). Fix:
-// engine/scene/scene_loader.cpp resolve_scene_path(): compare fs::weakly_canonical(folder) with
+// host/scene/scene_loader.cpp resolve_scene_path(): compare fs::weakly_canonical(folder) with
 // fs::weakly_canonical(full) in is_inside() (canonical paths resolve links) before accepting.
 TEST(SceneBadInput, SymlinkThatEscapesTheSceneFolder) {
     TempDir dir("scene_symlink");

@@ -59,14 +59,19 @@ void expect_error(const std::string& text, const std::string& path, const std::s
 
 TEST(JointLimits, BadInputs) {
     expect_error(R"({"joints": {"Knee": {"min": [10, 0, 0], "max": [5, 0, 0]}}})", "/joints/Knee", "min exceeds max on axis X");
-    expect_error(R"({"joints": {"Knee": {"min": [0, "ten", 0], "max": [5, 0, 0]}}})", "/joints/Knee/min/1", "must be a number");
-    expect_error(R"({"joints": {"Knee": {"min": [0, 0], "max": [5, 0, 0]}}})", "/joints/Knee/min", "array of 3 numbers");
-    expect_error(R"({"joints": {"Knee": {"max": [5, 0, 0]}}})", "/joints/Knee/min", "missing");
-    expect_error(R"({"joints": {"Knee": {"min": [0, 0, 0], "max": [500, 0, 0]}}})", "/joints/Knee/max/0", "outside");
+    expect_error(R"({"joints": {"Knee": {"min": [0, "ten", 0], "max": [5, 0, 0]}}})", "/joints/Knee/min/1", "expected a finite number");
+    expect_error(R"({"joints": {"Knee": {"min": [0, 0], "max": [5, 0, 0]}}})", "/joints/Knee/min", "expected [x, y, z]");
+    expect_error(R"({"joints": {"Knee": {"max": [5, 0, 0]}}})", "/joints/Knee", "missing required key 'min'");
+    expect_error(R"({"joints": {"Knee": {"min": [0, 0, 0], "max": [500, 0, 0]}}})", "/joints/Knee/max/0", "within [-180.0, 180.0], got 500");
     expect_error(R"({"joints": {"Knee": {"min": [0, 0, 0], "max": [5, 0, 0], "mx": 1}}})", "/joints/Knee/mx", "unknown key");
     expect_error(R"({"units": "grads", "joints": {}})", "/units", "degrees");
     expect_error(R"({"joint": {}})", "/joint", "unknown key");
-    expect_error(R"([1, 2])", "", "top level must be an object");
+    expect_error(R"([1, 2])", "/", "expected an object, got array");
+    // Every problem of a file is reported in one error (the first, then "and N more").
+    Result<JointLimitTable> two = parse_joint_limits(R"({"units": "grads", "joints": {"Knee": {"min": [1, 0, 0], "max": [0, 0, 0]}}})", "limits.json");
+    ASSERT_FALSE(two.ok());
+    EXPECT_NE(two.error().message.find("and 1 more"), std::string::npos) << two.error().to_string();
+    EXPECT_NE(two.error().message.find("min exceeds max on axis X"), std::string::npos) << two.error().to_string();
     expect_error("{\n  \"joints\": {\n    \"Knee\": {\"min\": [0, 0, 0,]}\n  }\n}", "", "invalid JSON", 3);
 }
 

@@ -1,6 +1,7 @@
 // Access: a system gets const spans of what it reads and mutable spans of what it writes, and the
 // scheduler's plan is derived from the same declaration (the negative case is access_compile_fail.cpp).
 #include "engine/scheduler/access.hpp"
+#include "tests/engine/scheduler/test_phases.hpp"
 #include "engine/scheduler/scheduler.hpp"
 
 #include <gtest/gtest.h>
@@ -50,17 +51,17 @@ TEST(Access, DeclaredIdsAreTheScheduleAndThePlanFollowsThem) {
     auto source = [&arrays]() -> Arrays& { return arrays; };
     using HeatAccess = Access<Reads<Speed>, Writes<Heat>>;        // reads what MoveAccess writes
     using ClockAccess = Access<Reads<>, Writes<Position, ClockTag>>;  // writes what MoveAccess reads
-    Scheduler s(1);
+    Scheduler s(test::test_phases(), 1);
     int runs = 0;
-    s.add(make_system<HeatAccess>("heat", Phase::Motion, source, [&](SystemContext&, const HeatAccess& a) {
+    s.add(make_system<HeatAccess>("heat", test::TestPhase::Motion, source, [&](SystemContext&, const HeatAccess& a) {
         a.write<Heat>()[0].t += a.read<Speed>()[0].v;
         ++runs;
     }));
-    s.add(make_system<MoveAccess>("move", Phase::Motion, source, [&](SystemContext&, const MoveAccess& a) {
+    s.add(make_system<MoveAccess>("move", test::TestPhase::Motion, source, [&](SystemContext&, const MoveAccess& a) {
         a.write<Speed>()[0].v = a.read<Position>()[0].x;
         ++runs;
     }));
-    s.add(make_system<ClockAccess>("clock", Phase::Motion, source, [&](SystemContext&, const ClockAccess& a) {
+    s.add(make_system<ClockAccess>("clock", test::TestPhase::Motion, source, [&](SystemContext&, const ClockAccess& a) {
         a.write<Position>()[0].x = 10.0f;
         ++runs;
     }));

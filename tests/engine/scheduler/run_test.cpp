@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "engine/scheduler/scheduler.hpp"
+#include "tests/engine/scheduler/test_phases.hpp"
 
 namespace aloha {
 namespace {
@@ -31,7 +32,7 @@ bool WaitBounded(std::latch& latch) {
 }
 
 TEST(Run, SystemsOfOnePassRunConcurrentlyWithTwoThreads) {
-    Scheduler s(2);
+    Scheduler s(test::test_phases(), 2);
     std::latch both(2);
     std::atomic<int> met{0};
     auto body = [&](SystemContext&) {
@@ -39,8 +40,8 @@ TEST(Run, SystemsOfOnePassRunConcurrentlyWithTwoThreads) {
         // Only possible if the other system is running at the same time.
         if (WaitBounded(both)) met.fetch_add(1);
     };
-    s.add(SystemDesc{"left", Phase::Motion, {}, writes<Left>(), body});
-    s.add(SystemDesc{"right", Phase::Motion, {}, writes<Right>(), body});
+    s.add(SystemDesc{"left", test::TestPhase::Motion, {}, writes<Left>(), body});
+    s.add(SystemDesc{"right", test::TestPhase::Motion, {}, writes<Right>(), body});
     ASSERT_TRUE(s.build().ok());
     ASSERT_EQ(s.plan().size(), 1u);
     s.run_frame(0.016f);
@@ -52,11 +53,11 @@ TEST(Run, SystemsOfOnePassRunConcurrentlyWithTwoThreads) {
 // Sum of sin(i) over 1e6 terms: per-chunk partial sums added in chunk order, so the float
 // rounding sequence is fixed by (count, grain) alone and the bits must match for any thread count.
 double ReduceWithThreads(unsigned threads, std::vector<double>& out_partials) {
-    Scheduler s(threads);
+    Scheduler s(test::test_phases(), threads);
     constexpr size_t kCount = 1'000'000;
     constexpr size_t kGrain = 4096;
     double result = 0;
-    s.add(SystemDesc{"reduce", Phase::Attributes, {}, {}, [&](SystemContext& ctx) {
+    s.add(SystemDesc{"reduce", test::TestPhase::Attributes, {}, {}, [&](SystemContext& ctx) {
         std::vector<double> partial(SystemContext::chunk_count(kCount, kGrain), 0.0);
         ctx.parallel_for(kCount, kGrain, [&](size_t begin, size_t end) {
             double acc = 0;
@@ -85,9 +86,9 @@ TEST(Run, ParallelForIsDeterministicAcrossThreadCounts) {
 }
 
 TEST(Run, ParallelForCoversEveryIndexOnce) {
-    Scheduler s(2);
+    Scheduler s(test::test_phases(), 2);
     std::vector<int> hits(10007, 0);
-    s.add(SystemDesc{"cover", Phase::Skin, {}, {}, [&](SystemContext& ctx) {
+    s.add(SystemDesc{"cover", test::TestPhase::Skin, {}, {}, [&](SystemContext& ctx) {
         ctx.parallel_for(hits.size(), 100, [&](size_t b, size_t e) {
             for (size_t i = b; i < e; ++i) ++hits[i];
         });
@@ -100,44 +101,44 @@ TEST(Run, ParallelForCoversEveryIndexOnce) {
 
 // The CPU total the World's frame budget steers: the latest run times of the systems before a phase.
 TEST(Run, LatestTimeBeforeAPhaseSumsThoseSystemsOnly) {
-    Scheduler s(1);
+    Scheduler s(test::test_phases(), 1);
     auto spin = [](SystemContext&) {
         const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(50);
         while (std::chrono::steady_clock::now() < until) {
         }
     };
-    s.add(SystemDesc{"attributes", Phase::Attributes, {}, writes<Left>(), spin});
-    s.add(SystemDesc{"motion", Phase::Motion, reads<Left>(), writes<Right>(), spin});
-    s.add(SystemDesc{"render", Phase::Render, reads<Right>(), {}, spin});
+    s.add(SystemDesc{"attributes", test::TestPhase::Attributes, {}, writes<Left>(), spin});
+    s.add(SystemDesc{"motion", test::TestPhase::Motion, reads<Left>(), writes<Right>(), spin});
+    s.add(SystemDesc{"render", test::TestPhase::Render, reads<Right>(), {}, spin});
     ASSERT_TRUE(s.build().ok());
-    EXPECT_EQ(s.latest_ns_before(Phase::Render), 0u);  // nothing run yet
+    EXPECT_EQ(s.latest_ns_before(test::TestPhase::Render), 0u);  // nothing run yet
     for (int f = 0; f < 3; ++f) s.run_frame(0.1f);
     const uint64_t a = s.timings(0).latest(), m = s.timings(1).latest(), r = s.timings(2).latest();
     EXPECT_GE(r, 50'000u);  // the render system did run, and is left out below
-    EXPECT_EQ(s.latest_ns_before(Phase::Render), a + m);
-    EXPECT_EQ(s.latest_ns_before(Phase::Motion), a);
-    EXPECT_EQ(s.latest_ns_before(Phase::Attributes), 0u);
+    EXPECT_EQ(s.latest_ns_before(test::TestPhase::Render), a + m);
+    EXPECT_EQ(s.latest_ns_before(test::TestPhase::Motion), a);
+    EXPECT_EQ(s.latest_ns_before(test::TestPhase::Attributes), 0u);
 }
 
 TEST(Run, HookAfterEveryPhaseAndTimingsEveryFrame) {
-    Scheduler s(2);
+    Scheduler s(test::test_phases(), 2);
     std::vector<Phase> seen;
     s.set_between_phases([&](Phase p) { seen.push_back(p); });
     std::vector<TraceEvent> sunk;
     s.set_trace_sink([&](const TraceEvent& e) { sunk.push_back(e); });
     std::vector<uint64_t> frames_seen;
-    s.add(SystemDesc{"a", Phase::Attributes, {}, writes<Left>(), [&](SystemContext& ctx) {
+    s.add(SystemDesc{"a", test::TestPhase::Attributes, {}, writes<Left>(), [&](SystemContext& ctx) {
         frames_seen.push_back(ctx.frame());
         EXPECT_FLOAT_EQ(ctx.dt(), 0.5f);
         EXPECT_EQ(ctx.system_name(), "a");
     }});
-    s.add(SystemDesc{"b", Phase::Render, reads<Left>(), {}, [](SystemContext&) {}});
-    s.add(SystemDesc{"c", Phase::Render, reads<Left>(), {}, [](SystemContext&) {}});
+    s.add(SystemDesc{"b", test::TestPhase::Render, reads<Left>(), {}, [](SystemContext&) {}});
+    s.add(SystemDesc{"c", test::TestPhase::Render, reads<Left>(), {}, [](SystemContext&) {}});
     ASSERT_TRUE(s.build().ok());
     constexpr int kFrames = 10;
     for (int f = 0; f < kFrames; ++f) s.run_frame(0.5f);
-    ASSERT_EQ(seen.size(), kPhaseCount * kFrames);
-    for (size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], kAllPhases[i % kPhaseCount]);
+    ASSERT_EQ(seen.size(), test::kTestPhases.size() * kFrames);
+    for (size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], test::kTestPhases[i % test::kTestPhases.size()]);
     EXPECT_EQ(frames_seen, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
     for (uint32_t i = 0; i < 3; ++i) {
         EXPECT_EQ(s.timings(i).size(), size_t(kFrames));
@@ -157,14 +158,14 @@ TEST(Run, HookAfterEveryPhaseAndTimingsEveryFrame) {
 
 TEST(Run, PerSystemCommandBuffersApplyBetweenPhases) {
     Registry reg;
-    Scheduler s(2);
+    Scheduler s(test::test_phases(), 2);
     s.set_between_phases([&](Phase) { s.apply_commands(reg); });
-    s.add(SystemDesc{"spawner", Phase::Attributes, {}, writes<Counter>(), [](SystemContext& ctx) {
+    s.add(SystemDesc{"spawner", test::TestPhase::Attributes, {}, writes<Counter>(), [](SystemContext& ctx) {
         const Entity e = ctx.commands().spawn();
         ctx.commands().add<Counter>(e, Counter{int(ctx.frame())});
     }});
     size_t counted = 0;
-    s.add(SystemDesc{"counter", Phase::Rules, reads<Counter>(), {}, [&](SystemContext&) {
+    s.add(SystemDesc{"counter", test::TestPhase::Rules, reads<Counter>(), {}, [&](SystemContext&) {
         counted = reg.storage<Counter>().size();
     }});
     ASSERT_TRUE(s.build().ok());

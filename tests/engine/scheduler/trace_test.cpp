@@ -11,16 +11,17 @@
 
 #include "engine/scheduler/chrome_trace.hpp"
 #include "engine/scheduler/scheduler.hpp"
+#include "tests/engine/scheduler/test_phases.hpp"
 
 namespace aloha {
 namespace {
 
 TEST(Trace, JsonParsesWithExpectedEvents) {
-    Scheduler s(2);
+    Scheduler s(test::test_phases(), 2);
     std::vector<TraceEvent> all;
     s.set_trace_sink([&](const TraceEvent& e) { all.push_back(e); });
-    s.add(SystemDesc{"lod \"attributes\"", Phase::Attributes, {}, {}, [](SystemContext&) {}});
-    s.add(SystemDesc{"render", Phase::Render, {}, {}, [](SystemContext&) {}});
+    s.add(SystemDesc{"lod \"attributes\"", test::TestPhase::Attributes, {}, {}, [](SystemContext&) {}});
+    s.add(SystemDesc{"render", test::TestPhase::Render, {}, {}, [](SystemContext&) {}});
     ASSERT_TRUE(s.build().ok());
     for (int f = 0; f < 3; ++f) s.run_frame(0.01f);
     const std::string path = ::testing::TempDir() + "aloha_trace_test.json";
@@ -87,17 +88,17 @@ TEST(Trace, GpuPassesGetTheirOwnTrack) {
 // A system whose parallel_for keeps both threads busy shows up on its own track and, per frame, on
 // one track per thread that ran its chunks, each span inside the system's run.
 TEST(Trace, ParallelWorkGetsOneTrackPerThread) {
-    Scheduler s(2);
+    Scheduler s(test::test_phases(), 2);
     std::vector<TraceEvent> all;
     s.set_trace_sink([&](const TraceEvent& e) { all.push_back(e); });
-    s.add(SystemDesc{"spin", Phase::Motion, {}, {}, [](SystemContext& ctx) {
+    s.add(SystemDesc{"spin", test::TestPhase::Motion, {}, {}, [](SystemContext& ctx) {
                          ctx.parallel_for(64, 1, [](size_t, size_t) {
                              const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(200);
                              while (std::chrono::steady_clock::now() < until) {
                              }
                          });
                      }});
-    s.add(SystemDesc{"serial", Phase::Render, {}, {}, [](SystemContext&) {}});
+    s.add(SystemDesc{"serial", test::TestPhase::Render, {}, {}, [](SystemContext&) {}});
     ASSERT_TRUE(s.build().ok());
     constexpr int kFrames = 4;
     for (int f = 0; f < kFrames; ++f) s.run_frame(0.01f);
@@ -138,9 +139,9 @@ TEST(Trace, ParallelWorkGetsOneTrackPerThread) {
 // A sink set after untraced frames gets only its own frames' events, work included (the per-thread
 // spans are sized at build, before any sink).
 TEST(Trace, SinkSetLaterGetsOnlyItsOwnFrames) {
-    Scheduler s(2);
+    Scheduler s(test::test_phases(), 2);
     int calls = 0;
-    s.add(SystemDesc{"spin", Phase::Motion, {}, {}, [&](SystemContext& ctx) {
+    s.add(SystemDesc{"spin", test::TestPhase::Motion, {}, {}, [&](SystemContext& ctx) {
                          ctx.parallel_for(8, 1, [](size_t, size_t) {});
                          ++calls;
                      }});

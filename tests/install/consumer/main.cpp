@@ -1,14 +1,14 @@
 // mini_game: a game with its own entity store (a plain array per component, index = entity) places a
 // scene file's characters, runs ALOHA's systems and frame glue on its spans, renders the last frame.
 // Walked through in docs/INTEGRATION.md. Usage: mini_game SCENE.json OUT.png
-#include "engine/gpu/context.hpp"
-#include "engine/gpu/png.hpp"
-#include "engine/scene/character_runtime.hpp"
-#include "engine/scene/scene_loader.hpp"
-#include "systems/lod/attributes.hpp"
-#include "systems/lod/resolver.hpp"
-#include "systems/lod/rule_eval.hpp"
-#include "systems/lod/tier.hpp"
+#include "aloha/engine/gpu/context.hpp"
+#include "aloha/engine/gpu/png.hpp"
+#include "aloha/host/scene/character_runtime.hpp"
+#include "aloha/host/scene/scene_loader.hpp"
+#include "aloha/systems/lod/attributes.hpp"
+#include "aloha/systems/lod/resolver.hpp"
+#include "aloha/systems/lod/rule_eval.hpp"
+#include "aloha/systems/lod/tier.hpp"
 #include <cstdio>
 using namespace aloha;
 
@@ -62,7 +62,7 @@ struct MiniGame {
 #ifndef MINI_GAME_NO_MAIN
 int fail(const Error& e) { return std::fprintf(stderr, "mini_game: %s\n", e.to_string().c_str()), 1; }
 int main(int argc, char** argv) {
-    MiniGame game;
+    MiniGame game; set_data_directory(MINI_GAME_DATA_DIR);  // the installed data (relocatable, from alohaConfig)
     if (Status st = argc == 3 ? game.load(argv[1]) : make_error("mini_game", "usage: mini_game SCENE.json OUT.png"); !st.ok()) return fail(st.error());
     while (game.frame < game.scene.frames) game.step();
     auto ctx = gpu::Context::create({}); if (!ctx.ok()) return fail(ctx.error());

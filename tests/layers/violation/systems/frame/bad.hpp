@@ -1,3 +1,3 @@
 // Planted violation for the layer check: a system including the host.
 #pragma once
-#include "engine/scene/world.hpp"
+#include "host/scene/world.hpp"

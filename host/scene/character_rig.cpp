@@ -1,0 +1,78 @@
+#include "host/scene/character_rig.hpp"
+
+#include "engine/anim/humanoid_fit.hpp"
+#include "engine/assets/humanoid_definition.hpp"
+#include "engine/assets/joint_limits.hpp"
+#include "systems/geometry/muscle/muscle_loader.hpp"
+#include "systems/geometry/muscle/muscle_retarget.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace aloha {
+
+Result<NormalisedRig> normalise_file_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format,
+                                         const std::string& file) {
+    NormalisedRig rig;
+    auto map = map_humanoid(original, desc.humanoid_map, desc.scene_file, desc.pointer + "/humanoid_map");
+    if (!map.ok()) return map.error();
+    rig.map = std::move(map.value());
+    auto frame = detect_rig_frame(original, rig.map, format, desc.scale, file);
+    if (!frame.ok()) return frame.error();
+    rig.frame = std::move(frame.value());
+    rig.change = normalise_rig(original, rig.frame);
+    auto skeleton = build_skeleton(rig.change.skeleton, file);
+    if (!skeleton.ok()) return skeleton.error();
+    rig.skeleton = std::move(skeleton.value());
+    return rig;
+}
+
+void normalise_mesh(CharacterMesh& mesh, const RigNormalisation& change) {
+    const glm::mat4 g = change.global();
+    const glm::mat4 g_inv = glm::inverse(g);
+    const glm::mat3 a = glm::mat3_cast(change.axes);
+    for (glm::vec3& p : mesh.positions) p = glm::vec3(g * glm::vec4(p, 1.0f));
+    for (glm::vec3& n : mesh.normals) n = a * n;
+    for (size_t j = 0; j < mesh.inverse_bind.size(); ++j)
+        mesh.inverse_bind[j] = glm::inverse(change.correction(static_cast<int>(j))) * mesh.inverse_bind[j] * g_inv;
+}
+
+Status add_canonical_layers(CharacterType& type, const CharacterTypeDesc& desc, const std::string& file) {
+    auto def = load_humanoid_definition(desc.canonical);
+    if (!def.ok()) return def.error();
+    const float height = std::clamp(type.frame.height, 0.5f, 2.5f);
+    auto reference = build_skeleton(humanoid_skeleton(def.value(), HumanoidBody{height, 0.5f}), desc.canonical);
+    if (!reference.ok()) return reference.error();
+    auto reference_map = map_humanoid(reference.value());
+    if (!reference_map.ok()) return reference_map.error();
+    const CanonicalFit fit = fit_canonical(type.skeleton, type.map, reference.value(), reference_map.value());
+
+    const std::string limits = desc.limits.empty() ? def.value().limits : desc.limits;
+    if (!limits.empty()) {
+        auto table = load_joint_limits(limits);
+        if (!table.ok()) return table.error();
+        std::vector<std::string> skipped;
+        if (Status s = apply_mapped_joint_limits(type.skeleton, table.value(), type.map, fit, &skipped); !s.ok()) return s;
+        if (!skipped.empty()) {
+            std::string list;
+            for (const std::string& s : skipped) list += (list.empty() ? "" : ", ") + s;
+            type.notes.push_back("joint limits left free where the rest bone is turned more than 30 degrees from the reference humanoid's: " + list);
+        }
+    }
+    if (desc.muscles.empty() && type.mesh) return {};  // muscles are fitted to the mesh instead
+    const std::string muscles = desc.muscles.empty() ? def.value().muscles : desc.muscles;
+    auto defs = load_muscle_defs(muscles);
+    if (!defs.ok()) return defs.error();
+    if (desc.muscles.empty()) scale_muscle_defs(defs.value(), height / def.value().reference_height, 1.0f, 1.0f);
+    const std::vector<MuscleDef> placed = retarget_muscle_defs(defs.value(), type.skeleton, type.map, fit);
+    auto set = resolve_muscles(placed, type.skeleton, muscles);
+    if (!set.ok()) return set.error();
+    type.muscles = std::move(set.value());
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "muscles: %d from the canonical layout, placed on the mapped bones (%s)",
+                  type.muscles.size(), file.c_str());
+    type.notes.push_back(buf);
+    return {};
+}
+
+}  // namespace aloha

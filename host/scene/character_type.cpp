@@ -1,0 +1,264 @@
+#include "host/scene/character_type.hpp"
+
+#include "engine/assets/bvh_loader.hpp"
+#include "engine/assets/gltf_loader.hpp"
+#include "engine/assets/humanoid_definition.hpp"
+#include "engine/assets/joint_limits.hpp"
+#include "host/scene/character_rig.hpp"
+#include "systems/geometry/controller/body_texture.hpp"
+#include "systems/geometry/controller/gltf_character_mesh.hpp"
+#include "systems/geometry/muscle/muscle_fit.hpp"
+#include "systems/geometry/muscle/muscle_loader.hpp"
+#include "systems/motion/library/loop_cut.hpp"
+#include "systems/motion/library/motion_library.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cstdio>
+
+namespace aloha {
+
+namespace {
+
+// A copy of `clip` whose root stays over the origin horizontally (keeps its height): idlers dance in place.
+RawAnimation in_place(const RawAnimation& clip, const std::string& name) {
+    RawAnimation out = clip;
+    out.name = name;
+    if (!out.tracks.empty() && !out.tracks[0].translations.values.empty()) {
+        auto& v = out.tracks[0].translations.values;
+        for (auto& p : v) p.x = 0.0f, p.z = 0.0f;
+    }
+    return out;
+}
+
+// Height and radius of the rest pose from the joints' model positions.
+void measure(CharacterType& type) {
+    const auto model = rest_model_matrices(type.skeleton);
+    glm::vec3 lo(FLT_MAX), hi(-FLT_MAX);
+    for (const auto& m : model) {
+        lo = glm::min(lo, glm::vec3(m[3]));
+        hi = glm::max(hi, glm::vec3(m[3]));
+    }
+    type.height = std::max(0.5f, (hi.y - lo.y) * 1.08f);  // joints stop short of the skull and soles
+    type.radius = std::max(0.2f, 0.5f * std::max(hi.x - lo.x, hi.z - lo.z));
+}
+
+Status add_clip(CharacterType& type, const RawAnimation& raw, const std::string& file) {
+    auto id = type.clips.add(raw, type.skeleton);
+    if (!id.ok()) {
+        Error e = id.error();
+        if (e.file.empty()) e.file = file;
+        return e;
+    }
+    return {};
+}
+
+// A file's take used as the walk: cut to its best loop (a walk of at least 0.5 m/s), or left out of
+// walking with a note when it does not loop (the kinematic walk then walks the type).
+void add_walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file) {
+    auto cut = find_best_loop(take, type.skeleton, 0.6f, 0.5f, file);
+    if (!cut.ok()) {
+        type.notes.push_back("no clip walk: " + cut.error().message);
+        return;
+    }
+    auto id = type.clips.add(cut_loop(take, type.skeleton, cut.value(), type.name + ".loop"), type.skeleton);
+    if (!id.ok()) {
+        type.notes.push_back("no clip walk: " + id.error().message);
+        return;
+    }
+    type.gait_clips.push_back(id.value());
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "walk loop cut from '%s' at %.2f-%.2f s (seam %.1f cm, %.2f m/s)", take.name.c_str(),
+                  static_cast<double>(cut.value().start), static_cast<double>(cut.value().end),
+                  static_cast<double>(100.0f * cut.value().pose_error), static_cast<double>(cut.value().velocity_error));
+    type.notes.push_back(buf);
+}
+
+// The file's skeleton mapped and normalised into `type`; `change` says how (for its clips and mesh).
+Status adopt_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format, const std::string& file,
+                 CharacterType& type, RigNormalisation& change) {
+    auto rig = normalise_file_rig(original, desc, format, file);
+    if (!rig.ok()) return rig.error();
+    type.skeleton = std::move(rig.value().skeleton);
+    type.map = std::move(rig.value().map);
+    type.frame = std::move(rig.value().frame);
+    change = std::move(rig.value().change);
+    return {};
+}
+
+Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
+    BvhOptions options;
+    options.unit_scale = 1.0f;  // file units: the rig's units are detected from its height
+    auto bvh = load_bvh(desc.bvh, options);
+    if (!bvh.ok()) return bvh.error();
+    auto original = build_skeleton(bvh.value().skeleton, desc.bvh);
+    if (!original.ok()) return original.error();
+    RigNormalisation change;
+    if (Status s = adopt_rig(original.value(), desc, RigFormat::Bvh, desc.bvh, type, change); !s.ok()) return s;
+    RawAnimation mocap = bvh.value().animation;
+    normalise_clip(mocap, original.value(), change);
+    mocap.name = desc.name + ".mocap";
+    if (Status s = add_clip(type, mocap, desc.bvh); !s.ok()) return s;
+    if (Status s = add_clip(type, in_place(mocap, desc.name + ".inplace"), desc.bvh); !s.ok()) return s;
+    type.mocap_clip = 0;
+    type.inplace_clip = 1;
+    add_walk_loop(type, mocap, desc.bvh);
+    return {};
+}
+
+Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
+    auto gltf = load_gltf_character(desc.gltf);
+    if (!gltf.ok()) return gltf.error();
+    GltfCharacter& g = gltf.value();
+    auto original = build_skeleton(g.skeleton, desc.gltf);
+    if (!original.ok()) return original.error();
+    RigNormalisation change;
+    if (Status s = adopt_rig(original.value(), desc, RigFormat::Gltf, desc.gltf, type, change); !s.ok()) return s;
+    type.notes = g.notes;
+    for (size_t i = 0; i < g.clips.size(); ++i) {
+        RawAnimation clip = g.clips[i];
+        normalise_clip(clip, original.value(), change);
+        clip.name = g.clip_names[i];
+        if (Status s = add_clip(type, clip, desc.gltf); !s.ok()) return s;
+        if (i == 0) {
+            type.mocap_clip = 0;
+            if (Status s2 = add_clip(type, in_place(clip, desc.name + ".inplace"), desc.gltf); !s2.ok()) return s2;
+            type.inplace_clip = 1;
+            add_walk_loop(type, clip, desc.gltf);
+        }
+    }
+    if (!g.meshes.empty()) {
+        type.mesh = character_mesh_from_gltf(g, original.value());
+        normalise_mesh(*type.mesh, change);
+        type.materials = gltf_surface_materials(g);
+        type.textures = std::move(g.textures);
+    }
+    return {};
+}
+
+// The project's humanoid: skeleton built for the type's height and build, its muscle layout scaled
+// to that body, its joint limits, and the generated motion library (clips named by clip_prefix).
+Status load_from_humanoid(const CharacterTypeDesc& desc, CharacterType& type) {
+    auto def = load_humanoid_definition(desc.humanoid);
+    if (!def.ok()) return def.error();
+    const HumanoidBody body{desc.height, desc.build};
+    if (Status s = validate_humanoid_body(body, desc.humanoid, "type '" + desc.name + "'"); !s.ok()) return s;
+    auto skeleton = build_skeleton(humanoid_skeleton(def.value(), body), desc.humanoid);
+    if (!skeleton.ok()) return skeleton.error();
+    type.skeleton = std::move(skeleton.value());
+    const std::string limits = desc.limits.empty() ? def.value().limits : desc.limits;
+    if (!limits.empty()) {
+        auto table = load_joint_limits(limits);
+        if (!table.ok()) return table.error();
+        if (Status s = apply_joint_limits(type.skeleton, table.value()); !s.ok()) return s.error();
+    }
+    const std::string muscles = desc.muscles.empty() ? def.value().muscles : desc.muscles;
+    if (muscles.empty()) return make_error(desc.humanoid, "the humanoid definition names no muscle layout", 0, 0, "/muscles");
+    auto defs = load_muscle_defs(muscles);
+    if (!defs.ok()) return defs.error();
+    // Girth 0.9-1.1 and fat 0.4-1.6 times the layout's from slim to heavy; lengths follow height.
+    scale_muscle_defs(defs.value(), desc.height / def.value().reference_height, 0.9f + 0.2f * desc.build,
+                      0.4f + 1.2f * desc.build);
+    auto set = resolve_muscles(defs.value(), type.skeleton, muscles);
+    if (!set.ok()) return set.error();
+    type.muscles = std::move(set.value());
+    auto rig = resolve_walk_rig(type.skeleton, desc.humanoid);
+    if (!rig.ok()) return rig.error();
+    stand_rig_on_rest_ground(rig.value(), type.skeleton);
+    type.rig = std::move(rig.value());
+    const std::string prefix = desc.clip_prefix.empty() ? desc.name : desc.clip_prefix;
+    const MotionLibrary lib = make_motion_library(type.skeleton, *type.rig, prefix);
+    for (const RawAnimation& gait : lib.gaits) {
+        auto id = type.clips.add(gait, type.skeleton);
+        if (!id.ok()) return id.error();
+        type.gait_clips.push_back(id.value());
+    }
+    for (const RawAnimation* clip : {&lib.idle, &lib.turn, &lib.wave}) {
+        auto id = type.clips.add(*clip, type.skeleton);
+        if (!id.ok()) return id.error();
+        if (clip == &lib.idle) type.idle_clip = id.value();
+    }
+    return {};
+}
+
+// A type without an authored mesh shows the skin generated from its muscles, with the generated
+// body texture (skin, shirt, trousers, shoes; see body_texture.hpp).
+void use_generated_look(CharacterType& type) {
+    if (type.mesh) return;
+    type.materials = {body_material()};
+    type.textures = {make_body_texture()};
+}
+
+}  // namespace
+
+int find_clip(const CharacterType& type, const std::string& name) {
+    if (name.empty()) return type.idle_clip >= 0 ? type.idle_clip : type.inplace_clip;
+    return type.clips.find(name);
+}
+
+Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
+    CharacterType type;
+    type.name = desc.name;
+    if (!desc.humanoid.empty()) {
+        if (Status s = load_from_humanoid(desc, type); !s.ok()) return s.error();
+        auto map = map_humanoid(type.skeleton);
+        if (!map.ok()) return map.error();
+        type.map = std::move(map.value());
+        type.frame.units = "metres (built-in humanoid)";
+        type.frame.height = desc.height;
+        measure(type);
+        use_generated_look(type);
+        return type;
+    }
+    Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
+    if (!loaded.ok()) return loaded.error();
+    const std::string& file = desc.bvh.empty() ? desc.gltf : desc.bvh;
+    for (const std::string& note : type.frame.notes) type.notes.push_back(note);
+    if (type.map.humanoid) {
+        if (Status s = add_canonical_layers(type, desc, file); !s.ok()) return s.error();
+    } else {
+        if (!desc.limits.empty()) {
+            auto limits = load_joint_limits(desc.limits);
+            if (!limits.ok()) return limits.error();
+            if (Status s = apply_joint_limits(type.skeleton, limits.value()); !s.ok()) return s.error();
+        }
+        std::string missing;
+        for (const std::string& m : type.map.missing) missing += (missing.empty() ? "" : ", ") + m;
+        type.notes.push_back("not a humanoid (no " + missing + "): no canonical muscles, limits or reach; add a 'humanoid_map' if it is one");
+        if (!desc.muscles.empty()) {
+            auto muscles = load_muscle_set(desc.muscles, type.skeleton);
+            if (!muscles.ok()) return muscles.error();
+            type.muscles = std::move(muscles.value());
+        }
+    }
+    auto rig = resolve_walk_rig(type.skeleton, type.map, file);
+    if (rig.ok()) type.rig = std::move(rig.value());
+    else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
+    if (type.rig && type.skeleton.parents()[static_cast<size_t>(type.rig->root)] >= 0) {
+        // The dynamic walk simulates from the skeleton's root joint: a joint above the pelvis (an
+        // Unreal "root" on the ground) becomes its root body, and the pelvis tracks its gait looser.
+        int top = type.rig->root;
+        while (type.skeleton.parents()[static_cast<size_t>(top)] >= 0) top = type.skeleton.parents()[static_cast<size_t>(top)];
+        type.notes.push_back("dynamic walk approximate: the skeleton's root '" + type.skeleton.names()[static_cast<size_t>(top)] +
+                             "' is above the pelvis '" + type.skeleton.names()[static_cast<size_t>(type.rig->root)] +
+                             "' and is simulated as the root body: the pelvis follows the gait more loosely (docs/CHARACTERS.md)");
+    }
+    if (type.muscles.size() == 0 && type.mesh && type.map.humanoid) {
+        std::vector<glm::mat4> bind_model;
+        for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));
+        const std::vector<glm::ivec4> joints = widen_joints(type.mesh->joints);
+        MuscleFitOptions options;
+        options.source_name = desc.gltf;
+        auto muscles = fit_muscles_per_bone(type.skeleton, bind_model, type.mesh->positions, joints, type.mesh->weights, options);
+        if (!muscles.ok()) return muscles.error();
+        type.muscles = std::move(muscles.value());
+    } else if (type.muscles.size() == 0) {
+        type.notes.push_back(std::string("layered levels refused: muscles are laid out for humanoids and this type is none; ") +
+                             (type.mesh ? "drawn with its skinned mesh at those levels" : "drawn as rigid proxies (it has no mesh)"));
+    }
+    measure(type);
+    use_generated_look(type);
+    return type;
+}
+
+}  // namespace aloha

@@ -1,0 +1,96 @@
+#include "host/scene/scene_desc.hpp"
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace aloha {
+
+namespace {
+
+// splitmix64: small, fast, fully deterministic across platforms.
+struct SplitMix {
+    uint64_t state;
+    uint64_t next() {
+        uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    float uniform(float lo, float hi) {  // [lo, hi)
+        const float u = static_cast<float>(next() >> 40) * (1.0f / 16777216.0f);
+        return lo + (hi - lo) * u;
+    }
+};
+
+}  // namespace
+
+CameraKey sample_camera(const CameraDesc& camera, float t) {
+    const auto& k = camera.keys;
+    if (k.size() == 1 || t <= k.front().time) return k.front();
+    if (t >= k.back().time) return k.back();
+    size_t i = 1;
+    while (k[i].time < t) ++i;
+    const float a = (t - k[i - 1].time) / (k[i].time - k[i - 1].time);
+    CameraKey out;
+    out.time = t;
+    out.position = glm::mix(k[i - 1].position, k[i].position, a);
+    out.target = glm::mix(k[i - 1].target, k[i].target, a);
+    return out;
+}
+
+uint64_t character_count(const SceneDesc& scene) {
+    uint64_t n = scene.characters.size();
+    for (const auto& c : scene.crowds) n += c.count;
+    return n;
+}
+
+std::vector<CharacterDesc> expand_characters(const SceneDesc& scene, uint64_t seed_override) {
+    std::vector<CharacterDesc> out = scene.characters;
+    out.reserve(static_cast<size_t>(character_count(scene)));
+    for (size_t ci = 0; ci < scene.crowds.size(); ++ci) {
+        const CrowdDesc& crowd = scene.crowds[ci];
+        SplitMix rng{(seed_override ? seed_override : crowd.seed) * 0x100000001B3ull + ci};
+        const uint32_t side = static_cast<uint32_t>(std::ceil(std::sqrt(static_cast<double>(crowd.count))));
+        for (uint32_t i = 0; i < crowd.count; ++i) {
+            CharacterDesc c;
+            c.type = crowd.type;
+            if (!crowd.variant_types.empty())
+                c.type = crowd.variant_types[static_cast<size_t>(rng.next() % crowd.variant_types.size())];
+            if (crowd.layout == CrowdDesc::Layout::Grid) {
+                const float x = (static_cast<float>(i % side) - 0.5f * static_cast<float>(side - 1)) * crowd.spacing;
+                const float z = (static_cast<float>(i / side) - 0.5f * static_cast<float>(side - 1)) * crowd.spacing;
+                c.position = crowd.center + glm::vec3(x, 0.0f, z);
+            } else {
+                const float r = crowd.radius * std::sqrt(rng.uniform(0.0f, 1.0f));
+                const float a = rng.uniform(0.0f, glm::two_pi<float>());
+                c.position = crowd.center + glm::vec3(r * std::cos(a), 0.0f, r * std::sin(a));
+            }
+            c.heading_deg = rng.uniform(0.0f, 360.0f);
+            c.importance = rng.uniform(crowd.importance_min, crowd.importance_max);
+            const float pick = rng.uniform(0.0f, 1.0f);
+            RequestDesc req;
+            if (pick < crowd.mix.walk) {
+                req.request.kind = RequestKind::Walk;
+                req.request.speed = rng.uniform(crowd.speed_min, crowd.speed_max);
+                const float h = glm::radians(c.heading_deg);
+                req.request.target = glm::vec3(std::sin(h), 0.0f, std::cos(h));
+            } else if (pick < crowd.mix.walk + crowd.mix.idle) {
+                req.request.kind = RequestKind::PlayClip;
+                req.request.loop = 1;
+                req.request.start_time = rng.uniform(0.0f, 8.0f);
+                req.clip = crowd.clip;
+            } else {
+                req.request.kind = RequestKind::Reach;
+                req.effector = rng.uniform(0.0f, 1.0f) < 0.5f ? "RightWrist" : "LeftWrist";
+                req.request.target = c.position + glm::vec3(rng.uniform(-0.5f, 0.5f), rng.uniform(0.9f, 1.6f), rng.uniform(-0.5f, 0.5f));
+            }
+            c.requests.push_back(req);
+            out.push_back(std::move(c));
+        }
+    }
+    return out;
+}
+
+}  // namespace aloha

@@ -1,0 +1,94 @@
+// Fidelity support for the profiler: the frame as it would look at full detail, and how far each
+// character's LOD skin is from its full-detail skin on screen.
+#include "host/scene/character_runtime.hpp"
+#include "host/scene/world_diagnostics.hpp"
+#include "systems/geometry/spring_skin/skin_mesh.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace aloha {
+
+namespace {
+
+// Pixel position of a world point (OpenGL-convention perspective camera: clip w = view depth); false when
+// nearer than the near plane, where the renderer clips it (and the division would blow a millimetre up
+// into millions of pixels).
+bool to_pixels(const glm::mat4& view_proj, const glm::vec3& p, const glm::vec2& viewport, float near_plane, glm::vec2& out) {
+    const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
+    if (!(c.w >= near_plane)) return false;
+    out = glm::vec2((c.x / c.w * 0.5f + 0.5f) * viewport.x, (0.5f - c.y / c.w * 0.5f) * viewport.y);
+    return true;
+}
+
+}  // namespace
+
+uint8_t reference_level(const RuleTable& table) {
+    for (size_t l = 0; l < table.geom_levels.size(); ++l)
+        if (table.geom_lod(static_cast<uint8_t>(l)).method == GeomMethod::Layered) return static_cast<uint8_t>(l);
+    return 0;
+}
+
+Status reference_frame(World& host, ReferenceFrame& out) {
+    CrowdRenderer* renderer = host.renderer();
+    if (!renderer) return make_error("", "the fidelity check's reference frame needs an attached renderer");
+    out.meshes.clear();
+    out.deviation_sum.assign(host.rules().table().geom_levels.size(), 0.0);
+    out.deviation_max.assign(out.deviation_sum.size(), 0.0);
+    out.deviation_count.assign(out.deviation_sum.size(), 0);
+    out.switches = 0;
+    auto g = character_group(host.registry());
+    auto refs = g.span<CharacterRef>();
+    auto transforms = g.span<Transform>();
+    auto attributes = g.span<LodAttributes>();
+    auto states = g.span<LodState>();
+    const uint8_t picture_level = reference_level(host.rules().table());
+    const LodCamera& camera = host.camera();
+    const glm::mat4 view_proj = camera.projection * camera.view;
+    const glm::vec2 viewport = camera.viewport_px;
+    size_t used = 0;
+    for (size_t i = 0; i < g.size(); ++i) {
+        if (!attributes[i].visible) continue;
+        if (states[i].seconds_at_geom == 0.0f && host.frame() > 0) ++out.switches;
+        const CharacterRuntime& rt = host.runtime(refs[i].type);
+        const PoseSource poses = rt.poses();
+        const glm::mat4 world = world_matrix(transforms[i]);
+        // Screen-space deviation of the displayed control surface from the richest level's.
+        rt.geometry->deviation_pairs(poses, refs[i].id, 0, out.current_scratch, out.reference_scratch);
+        const uint8_t level = states[i].geom_level;
+        for (size_t k = 0; k < out.current_scratch.size(); ++k) {
+            glm::vec2 a, b;
+            if (!to_pixels(view_proj, glm::vec3(world * glm::vec4(out.current_scratch[k], 1.0f)), viewport, camera.near_plane, a) ||
+                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, camera.near_plane, b))
+                continue;
+            const double d = glm::length(a - b);
+            out.deviation_sum[level] += d;
+            out.deviation_max[level] = std::max(out.deviation_max[level], d);
+            ++out.deviation_count[level];
+        }
+        // The full-detail picture: every visible character at the richest layered level.
+        if (used == out.positions.size()) {
+            out.positions.emplace_back();
+            out.normals.emplace_back();
+        }
+        auto& pos = out.positions[used];
+        auto& nrm = out.normals[used];
+        rt.geometry->reference_surface(poses, refs[i].id, picture_level, pos);
+        if (pos.empty()) continue;
+        const std::span<const uint32_t> indices = rt.geometry->level_indices(picture_level);
+        nrm.assign(pos.size(), glm::vec3(0.0f));
+        accumulate_vertex_normals(pos, indices, nrm);
+        SurfaceView view;
+        view.level = picture_level;
+        view.topology_key = rt.geometry->topology_key(picture_level);
+        view.positions = pos;
+        auto topology = host.draw_lists().topology(*renderer, refs[i].type, host.draw_types()[refs[i].type], view);
+        if (!topology.ok()) return topology.error();
+        // The shaded colouring's instance colour: white over the type's materials, skin tone without.
+        out.meshes.push_back({topology.value(), pos, nrm, world,
+                              host.draw_lists().textured(refs[i].type) ? glm::vec4(1.0f) : glm::vec4(0.86f, 0.68f, 0.56f, 1.0f)});
+        ++used;
+    }
+    return {};
+}
+
+}  // namespace aloha

@@ -1,0 +1,27 @@
+// The World's renderer hook-up (draw lists: systems/frame/draw_lists.hpp).
+#include "host/scene/character_runtime.hpp"
+#include "host/scene/world.hpp"
+
+namespace aloha {
+
+Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target) {
+    renderer_ = renderer;
+    target_ = target;
+    reset_draws();
+    return {};
+}
+
+void World::reset_draws() {
+    draws_.reset();
+    std::vector<std::string> pass_names;  // each level's name labels its GPU pass
+    for (const auto& level : rules_.table().geom_levels) pass_names.push_back(level.name);
+    draws_.set_pass_names(std::move(pass_names));
+}
+
+void World::frame_settings(FrameInput& frame) const {
+    frame.camera = render_camera();
+    set_character_lighting(frame);
+    frame.materials = options_.colour == DebugColour::Shaded;
+}
+
+}  // namespace aloha

@@ -1,0 +1,238 @@
+// The aloha command line on CLI11: one CLI::App with a subcommand per command, each declaring the options
+// it accepts with their checks (cli_checks.hpp). CLI11's exceptions stop at parse_cli, which returns them as
+// Error values naming the argument; nothing here runs per frame.
+#include "host/tool/cli_args.hpp"
+
+#include "host/tool/cli_checks.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <set>
+
+namespace aloha::tool {
+
+namespace {
+
+const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "export", "validate"};
+
+// What the subcommands write into: CliOptions plus the text of options converted after the parse.
+struct Bindings {
+    CliOptions o;
+    std::string lod = "on", budget, occlusion = "on", counts, characters, frames, frame_range, selection;
+    std::string warmup, frame, width, height, threads, seed, compare_frames;
+    std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
+};
+
+// Options every simulating command shares (not `validate`); `export` has no viewport or overlay and
+// reads --characters as a selection, not a crowd size.
+void add_common(CLI::App& c, Bindings& b, bool is_export) {
+    c.add_option("--threads", b.threads, "worker threads (0 = all cores)")->check(whole_number(0, 256));
+    c.add_option("--seed", b.seed, "override every crowd's seed")->check(whole_number_u64());
+    c.add_option("--lod", b.lod, "LOD on (rules) or off (every character at the top level)")->check(on_off());
+    c.add_option("--budget-ms", b.budget_ms,
+                 "CPU frame budget: lower detail where least noticed to fit X ms (the rule file's animation/geometry "
+                 "split kept, scaled to X; without a split one total)")->check(milliseconds());
+    c.add_option("--budget-animation-ms", b.budget_animation_ms, "the motion system's budget (overrides the rule file's)")
+        ->check(milliseconds());
+    c.add_option("--budget-geometry-ms", b.budget_geometry_ms,
+                 "the muscle + spring_skin systems' budget (overrides the rule file's)")->check(milliseconds());
+    c.add_option("--budget-single-ms", b.budget_single_ms,
+                 "one total for the CPU systems, geometry and animation demoted together (the single-total "
+                 "controller), whatever the rule file's budget says")->check(milliseconds());
+    c.add_option("--budget", b.budget, "run the rule file's budget or not (default: as the file says)")->check(on_off());
+    c.add_option("--tier", b.o.tier, "hardware tier of the rules (default: the rule file's default_tier, or auto)")
+        ->check(non_empty());
+    c.add_option("--occlusion", b.occlusion, "estimate which characters the crowd hides (default on)")->check(on_off());
+    c.add_option("--device", b.o.device, "lavapipe | gpu | device index (default: a real GPU if present, else lavapipe)")
+        ->check(non_empty());
+    c.add_flag("--validation", b.o.validation, "enable Vulkan validation layers");
+    if (is_export) return;
+    c.add_option("--characters", b.characters, "rescale the scene's crowds to N characters in all")
+        ->check(whole_number(1, 1'000'000));
+    c.add_option("--width", b.width, "override the viewport width")->check(whole_number(16, 8192));
+    c.add_option("--height", b.height, "override the viewport height")->check(whole_number(16, 8192));
+    c.add_option("--overlay", b.o.overlay, "draw bones, muscles and/or springs over the characters (e.g. bones,springs)")
+        ->check(member_list({"bones", "muscles", "springs"}));
+}
+
+void add_colour(CLI::App& c, Bindings& b) {
+    c.add_option("--colour", b.o.colour, "shaded | level | rule | method")
+        ->check(one_of({"shaded", "level", "rule", "method"}));
+}
+
+void add_frames(CLI::App& c, Bindings& b, const std::string& what) {
+    c.add_option("--frames", b.frames, what)->check(whole_number(1, 10'000'000));
+}
+
+// The whole command line; `b` receives the values.
+std::unique_ptr<CLI::App> make_app(Bindings& b) {
+    auto app = std::make_unique<CLI::App>("aloha: adaptive level of detail for crowds of layered virtual humans", "aloha");
+    app->require_subcommand(0, 1);
+    auto command = [&](const std::string& name, const std::string& synopsis, const std::string& about) {
+        CLI::App* c = app->add_subcommand(name, synopsis + "\n  " + about);
+        c->add_option("scene", b.o.scene, "scene file");
+        return c;
+    };
+    CLI::App* render = command("render", "aloha render SCENE --frame N --out frame.png [options]",
+                               "Simulates frames 0..N headless and writes frame N as PNG.");
+    render->add_option("--frame", b.frame, "frame to write (default: the last)")->check(whole_number(0, 10'000'000));
+    render->add_option("--out", b.o.out, "PNG path (default frame.png; refuses to overwrite without --force)")->check(non_empty());
+    render->add_flag("--force", b.o.force, "allow overwriting the output");
+    add_colour(*render, b);
+    add_common(*render, b, false);
+
+    CLI::App* view = command("view", "aloha view SCENE [options]",
+                             "Opens a window (GLFW) with orbit/fly camera and an overlay of timings, the LOD histogram "
+                             "and live rules.");
+    add_frames(*view, b, "close after N frames (for tests)");
+    view->add_option("--out", b.o.out, "save the last frame as PNG")->check(non_empty());
+    add_colour(*view, b);
+    add_common(*view, b, false);
+
+    CLI::App* profile = command("profile", "aloha profile SCENE [--frames N] [--warmup W] [--out DIR] [options]",
+                                "Runs headless and writes report.json, frames.csv, trace.json (Perfetto), "
+                                "frame_times.svg, last_frame.png.");
+    add_frames(*profile, b, "measured frames (default: the scene's)");
+    profile->add_option("--warmup", b.warmup, "frames run before measuring (default 30)")->check(whole_number(0, 1'000'000));
+    profile->add_option("--out", b.o.out, "output folder (default out/profile; existing reports are kept unless --force)")
+        ->check(non_empty());
+    profile->add_flag("--force", b.o.force, "allow overwriting existing reports");
+    profile->add_flag("--fidelity", b.o.fidelity,
+                      "also render each frame at full detail and report screen-space deviation, PSNR, popping");
+    profile->add_flag("--no-render", b.o.no_render, "CPU systems only (refined skins are computed each frame, not kept)");
+    profile->add_flag("--quiet", b.o.quiet, "no progress bar");
+    profile->add_flag("--compare-lod", b.o.compare_lod, "also run the scene with LOD off (CPU systems) and report the slowdown ratio");
+    profile->add_option("--compare-frames", b.compare_frames, "frames of that LOD-off run (default 10)")
+        ->check(whole_number(1, 100'000));
+    profile->add_flag("--motion-metrics", b.o.motion_metrics,
+                      "foot skate and pops per animation level and update interval (report.json and the printed "
+                      "table; see docs/MOTION.md for the contact thresholds)");
+    profile->add_flag("--gpu-passes", b.o.gpu_passes,
+                      "GPU timestamps after every pass (each level's meshes, proxies, lines, resolve) in report.json, "
+                      "trace.json and the table; on lavapipe each flushes (docs/PERFORMANCE.md)");
+    add_colour(*profile, b);
+    add_common(*profile, b, false);
+
+    CLI::App* scale = command("scale", "aloha scale SCENE --counts 1000,2000,5000,10000,20000 [--frames N] [--warmup W] [--out DIR]",
+                              "Rescales the scene's crowds to each count, profiles the CPU systems (and the render "
+                              "unless --no-render) and writes scaling.json, scaling.csv and scaling.svg.");
+    scale->add_option("--counts", b.counts, "crowd sizes, comma-separated whole numbers in [1, 1000000]")
+        ->check(count_list());
+    add_frames(*scale, b, "measured frames per count (default: the scene's)");
+    scale->add_option("--warmup", b.warmup, "frames run before measuring (default 30)")->check(whole_number(0, 1'000'000));
+    scale->add_option("--out", b.o.out, "output folder")->check(non_empty());
+    scale->add_flag("--force", b.o.force, "allow overwriting existing reports");
+    scale->add_flag("--quiet", b.o.quiet, "no progress bar");
+    scale->add_flag("--no-render", b.o.no_render, "CPU systems only");
+    add_common(*scale, b, false);
+
+    CLI::App* exp = command("export", "aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B] [options]",
+                            "Runs the scene headless (no rendering) and writes every joint's world position per "
+                            "frame, with each character's animation level, update interval, method and whether a "
+                            "transition is under way.");
+    exp->add_option("--joints", b.o.joints, "CSV path (refuses to overwrite without --force)")->check(non_empty());
+    exp->add_option("--characters", b.selection, "spawn indices and inclusive ranges, e.g. 0,5,10-20 (default: every character)")
+        ->check(index_ranges());
+    exp->add_option("--frames", b.frame_range,
+                    "frames A to B-1, 0 = the first frame run (default: 0 to the scene's frames); a single N means 0:N")
+        ->check(frame_range());
+    exp->add_flag("--force", b.o.force, "allow overwriting the output");
+    add_common(*exp, b, true);
+
+    command("validate", "aloha validate SCENE",
+            "Checks the scene, its rule file and every asset it names; exits 1 and prints every problem found.");
+    return app;
+}
+
+// Converts what the checks already accepted into CliOptions.
+void convert(Bindings& b) {
+    CliOptions& o = b.o;
+    auto u32 = [](const std::string& s) { return static_cast<uint32_t>(std::stoul(s)); };
+    auto ms = [](const std::string& s, std::optional<double>& out) { if (!s.empty()) out = std::stod(s); };
+    o.lod = b.lod == "on";
+    o.occlusion = b.occlusion == "on";
+    if (!b.budget.empty()) o.budget = b.budget == "on";
+    ms(b.budget_ms, o.budget_ms);
+    ms(b.budget_single_ms, o.budget_single_ms);
+    ms(b.budget_animation_ms, o.budget_animation_ms);
+    ms(b.budget_geometry_ms, o.budget_geometry_ms);
+    if (!b.frames.empty()) o.frames = u32(b.frames);
+    if (!b.warmup.empty()) o.warmup = u32(b.warmup);
+    if (!b.frame.empty()) o.frame = u32(b.frame);
+    if (!b.width.empty()) o.width = u32(b.width);
+    if (!b.height.empty()) o.height = u32(b.height);
+    if (!b.threads.empty()) o.threads = u32(b.threads);
+    if (!b.compare_frames.empty()) o.compare_frames = u32(b.compare_frames);
+    if (!b.characters.empty()) o.characters = u32(b.characters);
+    if (!b.seed.empty()) o.seed = std::stoull(b.seed);
+    if (!b.counts.empty()) o.counts = parse_count_list(b.counts);
+    if (!b.selection.empty()) o.character_ranges = parse_index_ranges(b.selection);
+    if (!b.frame_range.empty()) o.frame_range = parse_frame_range(b.frame_range);
+}
+
+// CLI11's "not expected" list as our message: the first stray option, else the stray argument.
+Error extras_error(const CLI::App& command, const std::string& scene) {
+    const std::vector<std::string> extras = command.remaining();
+    for (const std::string& e : extras)
+        if (e.rfind("-", 0) == 0)
+            return cli_error("option '" + e.substr(0, e.find('=')) + "' is not known to 'aloha " + command.get_name() + "'");
+    const std::string first = extras.empty() ? std::string() : extras.front();
+    return cli_error("unexpected argument '" + first + "' (the scene is already '" + scene + "')");
+}
+
+// CLI11's "NAME: problem" as "option 'NAME' problem"; a missing value as "option 'NAME' needs a value".
+Error parse_error(const CLI::ParseError& e) {
+    const std::string what = e.what();
+    const size_t colon = what.find(": ");
+    if (what.rfind("--", 0) != 0 || colon == std::string::npos) return cli_error(what);
+    const std::string name = what.substr(0, colon);
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) return cli_error("option '" + name + "' needs a value");
+    return cli_error("option '" + name + "' " + what.substr(colon + 2));
+}
+
+}  // namespace
+
+Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
+    CliOptions help;
+    help.command = "help";
+    if (args.empty() || args[0] == "--help" || args[0] == "-h") return help;
+    if (args[0] == "help") {
+        if (args.size() > 2) return cli_error("unexpected argument '" + args[2] + "' ('aloha help' takes one command)");
+        if (args.size() == 2) help.scene = args[1];
+        return help;
+    }
+    if (!kCommands.count(args[0]))
+        return cli_error("unknown command '" + args[0] + "' (expected render, view, profile, scale, export or validate; try --help)");
+    Bindings b;
+    b.o.command = args[0];
+    auto app = make_app(b);
+    CLI::App* command = app->get_subcommand(args[0]);
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 consumes from the back
+    try {
+        app->parse(reversed);
+    } catch (const CLI::CallForHelp&) {
+        b.o.help = true;
+        return b.o;
+    } catch (const CLI::ExtrasError&) {
+        return extras_error(*command, b.o.scene);
+    } catch (const CLI::ParseError& e) {
+        return parse_error(e);
+    }
+    convert(b);
+    const CliOptions& o = b.o;
+    if (o.scene.empty()) return cli_error("'aloha " + o.command + "' needs a scene file");
+    if (o.command == "scale" && o.counts.empty()) return cli_error("'aloha scale' needs --counts A,B,...");
+    if (o.command == "export" && o.joints.empty()) return cli_error("'aloha export' needs --joints FILE.csv");
+    return b.o;
+}
+
+std::string help_text(const std::string& command) {
+    Bindings b;
+    auto app = make_app(b);
+    if (kCommands.count(command)) return app->get_subcommand(command)->help();
+    app->footer("'aloha COMMAND --help' describes a command's options.");
+    return app->help();
+}
+
+}  // namespace aloha::tool

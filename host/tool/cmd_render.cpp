@@ -1,0 +1,79 @@
+// `aloha render` and `aloha validate`.
+#include "host/scene/character_report.hpp"
+#include "host/scene/character_type.hpp"
+#include "host/scene/scene_loader.hpp"
+#include "host/tool/commands.hpp"
+#include "host/tool/session.hpp"
+#include "systems/lod/rule_table.hpp"
+
+#include <iostream>
+
+namespace aloha::tool {
+
+int run_render(const CliOptions& options) {
+    const std::string out = options.out.empty() ? "frame.png" : options.out;
+    if (!check_can_write(out, options.force)) return 1;
+    auto session = open_session(options, /*render=*/true);
+    if (!session.ok()) {
+        print_error(session.error().to_string());
+        return 1;
+    }
+    Session& s = *session.value();
+    const uint32_t last = options.frame.value_or(s.scene.frames - 1);
+    for (uint32_t f = 0; f <= last; ++f) {
+        s.world->step();
+        if (!s.world->render_status().ok()) {
+            print_error(s.world->render_status().error().to_string());
+            return 1;
+        }
+    }
+    if (Status st = save_frame(s, out); !st.ok()) {
+        print_error(st.error().to_string());
+        return 1;
+    }
+    if (Status v = check_validation(s); !v.ok()) {
+        print_error(v.error().to_string());
+        return 1;
+    }
+    std::cout << "wrote frame " << last << " of " << options.scene << " (" << s.world->character_count()
+              << " characters, " << s.scene.width << "x" << s.scene.height << ") to " << out << "\n";
+    return 0;
+}
+
+int run_validate(const CliOptions& options) {
+    auto scene = load_scene(options.scene);
+    if (!scene.ok()) {
+        std::cerr << scene.error().to_string() << "\n";
+        return 1;
+    }
+    int problems = 0;
+    std::vector<Error> rule_errors;
+    auto rules = load_rules(scene.value().rules, &rule_errors);
+    if (!rules.ok()) {
+        for (const Error& e : rule_errors.empty() ? std::vector<Error>{rules.error()} : rule_errors)
+            std::cerr << e.to_string() << "\n";
+        ++problems;
+    } else {
+        for (const Error& w : rules.value().warnings) std::cerr << "warning: " << w.to_string() << "\n";
+    }
+    for (const CharacterTypeDesc& t : scene.value().types) {
+        auto type = load_character_type(t);
+        if (!type.ok()) {
+            std::cerr << type.error().to_string() << "\n";
+            ++problems;
+        } else {
+            std::cout << "character type '" << t.name << "' ("
+                      << (t.humanoid.empty() ? (t.bvh.empty() ? t.gltf : t.bvh) : t.humanoid) << "):\n";
+            for (const std::string& line : character_report(type.value())) std::cout << "  " << line << "\n";
+        }
+    }
+    if (problems) {
+        std::cerr << options.scene << ": " << problems << " problem(s)\n";
+        return 1;
+    }
+    std::cout << options.scene << ": ok (" << character_count(scene.value()) << " characters, "
+              << scene.value().types.size() << " character type(s), rules " << scene.value().rules << ")\n";
+    return 0;
+}
+
+}  // namespace aloha::tool

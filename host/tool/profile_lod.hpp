@@ -1,0 +1,47 @@
+// The profiler's view of the LOD controls: per-frame samples of the budget parts, level switches and
+// occlusion, and their summary for report.json and the printed table.
+#pragma once
+
+#include "host/scene/world.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace aloha::tool {
+
+/// One frame's LOD-control figures.
+struct LodSample {
+    double animation_ms = 0;      ///< the animation part's measured time (motion)
+    double geometry_ms = 0;       ///< the geometry part's measured time (muscle + spring_skin)
+    uint32_t geom_switches = 0;   ///< characters that switched geometric level
+    uint32_t anim_switches = 0;   ///< characters that switched animation level
+    double cpu_ms = 0;            ///< the CPU systems' time (what a single-total budget steers)
+    uint32_t visible = 0;         ///< characters in the view frustum
+    uint32_t occluded = 0;        ///< of those, fully occluded by the crowd
+    std::array<uint32_t, 5> occlusion_histogram{};  ///< visible characters by occluded: 0, <0.5, <0.9, <1, 1
+};
+
+/// Where a series of measured times has settled on `target`: the first index at which its moving
+/// average (weight 0.1 per frame, starting at the first value) is within `tolerance` * `target` of
+/// the target, or (with `under`) no more than that above it; `values.size()` when it never is.
+[[nodiscard]] size_t settled_from(std::span<const double> values, double target, double tolerance, bool under = false);
+
+/// Reads the figures of the frame `world` just ran.
+[[nodiscard]] LodSample sample_lod(const World& world);
+
+/// report.json's "tier", "budget", "level_changes_per_second" and "occlusion" members from the
+/// measured frames (`dt` seconds each), added to `report`. Each active budget part gets its time over
+/// every measured frame and, under "settled", over the frames from where its controller settled
+/// (settled_from, 10% of the target); level changes per second are given over every measured frame
+/// and over the settled frames (from where every active controller had settled).
+void add_lod_report(const World& world, const std::vector<LodSample>& samples, double dt, nlohmann::json& report);
+
+/// Lines for the printed summary (tier, budget parts against their targets, switches, occlusion).
+[[nodiscard]] std::string lod_summary(const nlohmann::json& report);
+
+}  // namespace aloha::tool

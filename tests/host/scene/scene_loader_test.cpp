@@ -1,0 +1,217 @@
+#include "host/scene/scene_loader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace aloha {
+namespace {
+
+const std::string kScenes = std::string(ALOHA_SOURCE_DIR) + "/data/scenes/";
+
+// A scene placed in the repository's scene folder so builtin and relative paths resolve.
+Result<SceneDesc> parse(const std::string& text) { return parse_scene(text, kScenes + "test_inline.json"); }
+
+std::string message_of(const Result<SceneDesc>& r) { return r.ok() ? std::string() : r.error().to_string(); }
+
+TEST(SceneLoader, ShippedScenesLoad) {
+    for (const char* name : {"closeup.json", "crowd_1k.json", "crowd_10k.json"}) {
+        auto scene = load_scene(kScenes + name);
+        ASSERT_TRUE(scene.ok()) << scene.error().to_string();
+        EXPECT_FALSE(scene.value().camera.keys.empty());
+        EXPECT_FALSE(scene.value().types.empty());
+    }
+    auto crowd = load_scene(kScenes + "crowd_10k.json");
+    ASSERT_TRUE(crowd.ok());
+    EXPECT_EQ(character_count(crowd.value()), 10000u);
+    EXPECT_EQ(crowd.value().camera.keys.size(), 4u);
+}
+
+TEST(SceneLoader, SyntaxErrorNamesLineAndColumn) {
+    auto r = parse("{\n  \"camera\": {\n    \"position\": [0, 1, 2,]\n  }\n}");
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().line, 3);
+    EXPECT_GT(r.error().column, 0);
+    EXPECT_NE(r.error().file.find("test_inline.json"), std::string::npos);
+}
+
+TEST(SceneLoader, SemanticErrorsNameTheJsonPath) {
+    const std::string base = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, )";
+    struct Case { std::string body; std::string path; std::string words; };
+    const std::vector<Case> cases = {
+        {R"("crowds": [{"count": 1000000000}]})", "/crowds/0/count", "at most"},
+        {R"("crowds": [{"count": -5}]})", "/crowds/0/count", "outside"},
+        {R"("crowds": [{"count": 10, "spacing": -1}]})", "/crowds/0/spacing", "outside"},
+        {R"("crowds": [{"count": 10, "layout": "spiral"}]})", "/crowds/0/layout", "unknown layout"},
+        {R"("characters": [{"position": [0, "a", 0]}]})", "/characters/0/position/1", "finite"},
+        {R"("characters": [{"type": "robot"}]})", "/characters/0/type", "unknown character type"},
+        {R"("characters": [{"requests": [{"type": "fly"}]}]})", "/characters/0/requests/0/type", "unknown request"},
+        {R"("characters": [{"requests": [{"type": "walk", "path": "nowhere"}]}]})", "/characters/0/requests/0/path", "unknown path"},
+        {R"("characters": [{}], "rules": "../../../etc/passwd"})", "/rules", "escapes"},
+        {R"("characters": [{}], "rules": "/etc/passwd"})", "/rules", "absolute"},
+        {R"("characters": [{}], "rules": "missing_rules.json"})", "/rules", "does not exist"},
+        {R"("characters": [{}], "colour": "red"})", "/colour", "unknown key"},
+        {R"("characters": [{}], "frames": 0})", "/frames", "outside"},
+        {R"("characters": [{}], "frames": 1.5})", "/frames", "integer"},
+        {R"("characters": [{}], "dt": "fast"})", "/dt", "expected a number"},
+        {R"("characters": [{}], "character_types": [{"name": "x"}]})", "/character_types/0", "exactly one"},
+        {R"("crowds": []})", "/", "no characters"},
+        {R"("characters": [{"overlay": {"type": "walk"}}]})", "/characters/0/overlay", "reach or a look_at"},
+        {R"("characters": [{"overlay": {"type": "reach", "target": [0, 1, 1], "weight": 2}}]})", "/characters/0/overlay/weight", "outside"},
+        {R"("characters": [{"overlay": {"type": "look_at"}}]})", "/characters/0/overlay/target", "missing"},
+    };
+    for (const Case& c : cases) {
+        auto r = parse(base + c.body);
+        ASSERT_FALSE(r.ok()) << c.body;
+        const std::string msg = message_of(r);
+        EXPECT_NE(msg.find(c.path), std::string::npos) << c.body << " -> " << msg;
+        EXPECT_NE(msg.find(c.words), std::string::npos) << c.body << " -> " << msg;
+        EXPECT_NE(msg.find("test_inline.json"), std::string::npos) << msg;
+    }
+}
+
+TEST(SceneLoader, NumberOverflowNamesLineAndColumn) {
+    auto r = parse("{\"camera\": {\"position\": [0, 2, 10], \"target\": [0, 1, 0]},\n \"characters\": [{\"position\": [0, 1e999, 0]}]}");
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().line, 2);
+    EXPECT_EQ(r.error().column, 34);
+    EXPECT_NE(r.error().message.find("overflow"), std::string::npos) << r.error().to_string();
+}
+
+TEST(SceneLoader, ReportsEveryProblemNotOnlyTheFirst) {
+    auto r = parse(R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "frames": -1, "dt": 0, "characters": [{}]})");
+    ASSERT_FALSE(r.ok());
+    const std::string msg = message_of(r);
+    EXPECT_NE(msg.find("/frames"), std::string::npos);
+    EXPECT_NE(msg.find("/dt"), std::string::npos);
+}
+
+TEST(SceneLoader, MissingCameraAndCoincidentCamera) {
+    EXPECT_NE(message_of(parse(R"({"characters": [{}]})")).find("/camera"), std::string::npos);
+    EXPECT_NE(message_of(parse(R"({"camera": {"position": [1, 1, 1], "target": [1, 1, 1]}, "characters": [{}]})")).find("coincide"),
+              std::string::npos);
+}
+
+TEST(SceneLoader, MissingFileAndTruncatedFile) {
+    auto missing = load_scene(kScenes + "no_such_scene.json");
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().to_string().find("does not exist"), std::string::npos);
+    auto truncated = parse(R"({"camera": {"position": [0, 2, 10], "tar)");
+    ASSERT_FALSE(truncated.ok());
+    EXPECT_EQ(truncated.error().line, 1);
+}
+
+TEST(SceneLoader, CameraPathInterpolates) {
+    CameraDesc cam;
+    cam.keys = {{0.0f, {0, 0, 0}, {0, 0, -1}}, {2.0f, {2, 0, 0}, {2, 0, -1}}};
+    EXPECT_FLOAT_EQ(sample_camera(cam, 1.0f).position.x, 1.0f);
+    EXPECT_FLOAT_EQ(sample_camera(cam, -1.0f).position.x, 0.0f);
+    EXPECT_FLOAT_EQ(sample_camera(cam, 5.0f).position.x, 2.0f);
+}
+
+}  // namespace
+}  // namespace aloha
+
+namespace aloha {
+namespace {
+
+// Crowd body variety: a height/build range makes `variants` humanoid types with heights spread
+// evenly over the range and builds inside theirs; each character is one of them; clip names stay
+// the base type's. Misuse is refused with the JSON path.
+TEST(SceneLoader, CrowdBodyVariants) {
+    const std::string base = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, )";
+    auto r = parse(base + R"("crowds": [{"count": 200, "height": [1.6, 1.9], "build": [0.2, 0.8], "variants": 4}]})");
+    ASSERT_TRUE(r.ok()) << message_of(r);
+    const SceneDesc& s = r.value();
+    ASSERT_EQ(s.types.size(), 5u);  // the default humanoid and its four variants
+    for (size_t v = 1; v < 5; ++v) {
+        EXPECT_FALSE(s.types[v].humanoid.empty());
+        EXPECT_NEAR(s.types[v].height, 1.6f + 0.3f * (static_cast<float>(v) - 0.5f) / 4.0f, 1e-5f);
+        EXPECT_GE(s.types[v].build, 0.2f);
+        EXPECT_LE(s.types[v].build, 0.8f);
+        EXPECT_EQ(s.types[v].clip_prefix, "humanoid");
+    }
+    std::vector<int> used(5, 0);
+    for (const CharacterDesc& c : expand_characters(s)) used[static_cast<size_t>(c.type)]++;
+    EXPECT_EQ(used[0], 0);
+    for (size_t v = 1; v < 5; ++v) EXPECT_GT(used[v], 20) << "every variant is drawn";
+
+    auto no_range = parse(base + R"("crowds": [{"count": 5, "variants": 3}]})");
+    ASSERT_FALSE(no_range.ok());
+    EXPECT_NE(message_of(no_range).find("/crowds/0/variants"), std::string::npos) << message_of(no_range);
+    auto bad_height = parse(base + R"("crowds": [{"count": 5, "height": [1.9, 1.6]}]})");
+    ASSERT_FALSE(bad_height.ok());
+    EXPECT_NE(message_of(bad_height).find("/crowds/0/height"), std::string::npos) << message_of(bad_height);
+    auto not_humanoid = parse(base + R"("character_types": [{"name": "b", "bvh": "closeup.json"}],
+                                         "crowds": [{"type": "b", "count": 5, "height": [1.6, 1.9]}]})");
+    ASSERT_FALSE(not_humanoid.ok());
+    EXPECT_NE(message_of(not_humanoid).find("needs a 'humanoid' character type"), std::string::npos) << message_of(not_humanoid);
+    auto height_on_bvh = parse(base + R"("character_types": [{"name": "b", "bvh": "closeup.json", "height": 1.7}],
+                                          "crowds": [{"type": "b", "count": 5}]})");
+    ASSERT_FALSE(height_on_bvh.ok());
+    EXPECT_NE(message_of(height_on_bvh).find("apply to 'humanoid' types only"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aloha
+
+namespace aloha {
+namespace {
+
+TEST(SceneLoader, CharacterOverlayIsReadWithItsWeight) {
+    auto r = parse(R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [
+        {"requests": [{"type": "walk", "speed": 1.4}],
+         "overlay": {"type": "look_at", "target": [3, 1.6, 6], "weight": 0.8, "crossfade": 0.4}}]})");
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const CharacterDesc& c = r.value().characters.at(0);
+    ASSERT_TRUE(c.overlay.has_value());
+    EXPECT_EQ(c.overlay->request.kind, RequestKind::LookAt);
+    EXPECT_EQ(c.overlay->effector, "Head");
+    EXPECT_FLOAT_EQ(c.overlay_weight, 0.8f);
+    EXPECT_FLOAT_EQ(c.overlay->request.crossfade_s, 0.4f);
+    EXPECT_EQ(c.requests.size(), 1u);
+}
+
+TEST(SceneLoader, AlwaysFullIsReadPerCharacterAndMustBeABoolean) {
+    const std::string head = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [)";
+    auto r = parse(head + R"({"always_full": true}, {"importance": 0.5}]})");
+    ASSERT_TRUE(r.ok()) << message_of(r);
+    EXPECT_TRUE(r.value().characters.at(0).always_full);
+    EXPECT_FALSE(r.value().characters.at(1).always_full);  // documented default: false
+    auto bad = parse(head + R"({"always_full": "yes"}]})");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(message_of(bad).find("/characters/0/always_full"), std::string::npos) << message_of(bad);
+}
+
+}  // namespace
+}  // namespace aloha
+
+namespace aloha {
+namespace {
+
+TEST(SceneLoader, HumanoidMapAndScaleOfFileCharacterTypes) {
+    const std::string head = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [{"type": "b"}], )";
+    auto good = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "scale": 0.01,
+        "humanoid_map": {"LeftKnee": "knee_l"}}]})");
+    ASSERT_TRUE(good.ok()) << message_of(good);
+    EXPECT_FLOAT_EQ(good.value().types.at(0).scale, 0.01f);
+    EXPECT_EQ(good.value().types.at(0).humanoid_map.at("LeftKnee"), "knee_l");
+    EXPECT_EQ(good.value().types.at(0).pointer, "/character_types/0");
+    EXPECT_NE(good.value().types.at(0).canonical.find("humanoid.json"), std::string::npos);
+    auto not_object = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "humanoid_map": ["x"]}]})");
+    ASSERT_FALSE(not_object.ok());
+    EXPECT_NE(message_of(not_object).find("/character_types/0/humanoid_map"), std::string::npos) << message_of(not_object);
+    auto not_string = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "humanoid_map": {"Hips": 3}}]})");
+    ASSERT_FALSE(not_string.ok());
+    EXPECT_NE(message_of(not_string).find("/character_types/0/humanoid_map/Hips"), std::string::npos) << message_of(not_string);
+    auto bad_scale = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "scale": -1}]})");
+    ASSERT_FALSE(bad_scale.ok());
+    EXPECT_NE(message_of(bad_scale).find("/character_types/0/scale"), std::string::npos) << message_of(bad_scale);
+    auto on_humanoid = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "scale": 2}]})");
+    ASSERT_FALSE(on_humanoid.ok());
+    EXPECT_NE(message_of(on_humanoid).find("apply to 'bvh' and 'gltf' types only"), std::string::npos) << message_of(on_humanoid);
+}
+
+}  // namespace
+}  // namespace aloha

@@ -1,0 +1,147 @@
+#include "host/tool/cli_args.hpp"
+
+#include <gtest/gtest.h>
+
+namespace aloha::tool {
+namespace {
+
+Result<CliOptions> parse(std::vector<std::string> args) { return parse_cli(args); }
+
+TEST(Cli, ParsesProfileOptions) {
+    auto r = parse({"profile", "scene.json", "--frames", "120", "--warmup=5", "--out", "dir", "--lod", "off",
+                    "--budget-ms", "12.5", "--threads", "2", "--seed", "9", "--characters", "2000", "--fidelity"});
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const CliOptions& o = r.value();
+    EXPECT_EQ(o.command, "profile");
+    EXPECT_EQ(o.scene, "scene.json");
+    EXPECT_EQ(*o.frames, 120u);
+    EXPECT_EQ(o.warmup, 5u);
+    EXPECT_EQ(o.out, "dir");
+    EXPECT_FALSE(o.lod);
+    EXPECT_DOUBLE_EQ(*o.budget_ms, 12.5);
+    EXPECT_EQ(o.threads, 2u);
+    EXPECT_EQ(*o.seed, 9u);
+    EXPECT_EQ(*o.characters, 2000u);
+    EXPECT_TRUE(o.fidelity);
+}
+
+TEST(Cli, ParsesBudgetTierAndOcclusionOptions) {
+    auto r = parse({"profile", "scene.json", "--budget", "off", "--budget-animation-ms", "1.5", "--budget-geometry-ms",
+                    "4", "--budget-single-ms", "6", "--tier", "medium", "--occlusion", "off"});
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const CliOptions& o = r.value();
+    ASSERT_TRUE(o.budget.has_value());
+    EXPECT_FALSE(*o.budget);
+    EXPECT_DOUBLE_EQ(*o.budget_animation_ms, 1.5);
+    EXPECT_DOUBLE_EQ(*o.budget_geometry_ms, 4.0);
+    EXPECT_DOUBLE_EQ(*o.budget_single_ms, 6.0);
+    EXPECT_FALSE(o.budget_ms.has_value());
+    EXPECT_EQ(o.tier, "medium");
+    EXPECT_FALSE(o.occlusion);
+    auto d = parse({"profile", "scene.json"});
+    ASSERT_TRUE(d.ok());
+    EXPECT_FALSE(d.value().budget.has_value());  // the rule file decides
+    EXPECT_TRUE(d.value().occlusion);
+    EXPECT_TRUE(d.value().tier.empty());
+}
+
+TEST(Cli, RejectsBadArgumentsNamingThem) {
+    struct Case { std::vector<std::string> args; std::string words; };
+    const std::vector<Case> cases = {
+        {{"fly", "s.json"}, "unknown command 'fly'"},
+        {{"profile"}, "needs a scene file"},
+        {{"profile", "s.json", "--frames"}, "'--frames' needs a value"},
+        {{"profile", "s.json", "--frames", "ten"}, "'ten'"},
+        {{"profile", "s.json", "--frames", "0"}, "[1, 10000000]"},
+        {{"profile", "s.json", "--frames", "-3"}, "'-3'"},
+        {{"profile", "s.json", "--lod", "maybe"}, "'--lod' expects on or off"},
+        {{"profile", "s.json", "--budget-ms", "nan"}, "--budget-ms"},
+        {{"profile", "s.json", "--budget-ms", "-1"}, "--budget-ms"},
+        {{"profile", "s.json", "--budget-geometry-ms", "0"}, "'--budget-geometry-ms' expects"},
+        {{"profile", "s.json", "--budget", "maybe"}, "'--budget' expects on or off"},
+        {{"profile", "s.json", "--occlusion", "1"}, "'--occlusion' expects on or off"},
+        {{"profile", "s.json", "--tier"}, "'--tier' needs a value"},
+        {{"profile", "s.json", "--threads", "1000"}, "[0, 256]"},
+        {{"profile", "s.json", "--frame", "3"}, "not known to 'aloha profile'"},
+        {{"render", "s.json", "--warmup", "3"}, "not known to 'aloha render'"},
+        {{"render", "s.json", "--colour", "pink"}, "'--colour' expects"},
+        {{"render", "a.json", "b.json"}, "unexpected argument 'b.json'"},
+        {{"profile", "s.json", "--width", "8"}, "[16, 8192]"},
+    };
+    for (const Case& c : cases) {
+        auto r = parse(c.args);
+        ASSERT_FALSE(r.ok()) << c.words;
+        EXPECT_NE(r.error().to_string().find(c.words), std::string::npos) << r.error().to_string();
+    }
+}
+
+TEST(Cli, ScaleTakesAListOfCounts) {
+    auto r = parse({"scale", "s.json", "--counts", "1000,2000,5000", "--no-render"});
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    EXPECT_EQ(r.value().counts, (std::vector<uint32_t>{1000, 2000, 5000}));
+    for (const char* bad : {"1000,,2000", "1000,x", "0", "2000000", ""}) {
+        auto b = parse({"scale", "s.json", "--counts", bad});
+        EXPECT_FALSE(b.ok()) << bad;
+    }
+    EXPECT_FALSE(parse({"scale", "s.json"}).ok());  // --counts is required
+    auto cmp = parse({"profile", "s.json", "--compare-lod", "--compare-frames", "4"});
+    ASSERT_TRUE(cmp.ok());
+    EXPECT_TRUE(cmp.value().compare_lod);
+    EXPECT_EQ(cmp.value().compare_frames, 4u);
+}
+
+TEST(Cli, HelpEverywhere) {
+    auto top = parse({"--help"});
+    ASSERT_TRUE(top.ok());
+    EXPECT_EQ(top.value().command, "help");
+    for (const char* cmd : {"render", "view", "profile", "scale", "validate"}) {
+        auto r = parse({cmd, "--help"});
+        ASSERT_TRUE(r.ok()) << cmd;
+        EXPECT_TRUE(r.value().help);
+        EXPECT_NE(help_text(cmd).find(std::string("aloha ") + cmd), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace aloha::tool
+
+namespace aloha::tool {
+namespace {
+
+TEST(Cli, ExportTakesJointsCharactersAndFrameRanges) {
+    auto o = parse_cli({"export", "s.json", "--joints", "j.csv", "--characters", "0,5,10-20", "--frames", "30:90"});
+    ASSERT_TRUE(o.ok()) << o.error().to_string();
+    EXPECT_EQ(o.value().joints, "j.csv");
+    const std::vector<std::pair<uint32_t, uint32_t>> ranges = {{0, 0}, {5, 5}, {10, 20}};
+    EXPECT_EQ(o.value().character_ranges, ranges);
+    ASSERT_TRUE(o.value().frame_range);
+    EXPECT_EQ(*o.value().frame_range, (std::pair<uint32_t, uint32_t>{30, 90}));
+    auto n = parse_cli({"export", "s.json", "--joints=j.csv", "--frames", "12"});
+    ASSERT_TRUE(n.ok());
+    EXPECT_EQ(*n.value().frame_range, (std::pair<uint32_t, uint32_t>{0, 12}));
+    EXPECT_TRUE(n.value().character_ranges.empty());
+}
+
+TEST(Cli, ExportRefusesBadSelectionsNamingThem) {
+    auto expect_error = [](std::vector<std::string> args, const std::string& part) {
+        auto o = parse_cli(args);
+        ASSERT_FALSE(o.ok());
+        EXPECT_NE(o.error().to_string().find(part), std::string::npos) << o.error().to_string();
+    };
+    expect_error({"export", "s.json"}, "needs --joints");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--frames", "9:3"}, "'--frames' expects A:B");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--frames", "a:b"}, "'a:b'");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--characters", "4-2"}, "bad item '4-2'");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--characters", "1,,2"}, "bad item ''");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--colour", "level"}, "not known to 'aloha export'");
+    expect_error({"render", "s.json", "--motion-metrics"}, "not known to 'aloha render'");
+}
+
+TEST(Cli, ProfileTakesMotionMetrics) {
+    auto o = parse_cli({"profile", "s.json", "--motion-metrics"});
+    ASSERT_TRUE(o.ok());
+    EXPECT_TRUE(o.value().motion_metrics);
+}
+
+}  // namespace
+}  // namespace aloha::tool
