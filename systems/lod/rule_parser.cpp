@@ -57,7 +57,7 @@ struct Parser {
             // be peeled off (skin at the springs' rest ends).
             const uint8_t all = kDefaultLayers[static_cast<int>(d.method)];
             const uint8_t needed = static_cast<uint8_t>(all & ~kLayerFat);
-            if (l.is_array() && ((d.layers & needed) != needed || (d.layers & ~all) != 0))
+            if (l->is_array() && ((d.layers & needed) != needed || (d.layers & ~all) != 0))
                 err(p + "/layers", all == needed ? "this method's layers are fixed: give its default or leave the key out"
                                                  : "layered and subdivided levels need skeleton, muscle and skin; fat is optional");
         }
