@@ -12,7 +12,7 @@ PACKAGES=(
   libglfw3-dev                                  # the viewer window
   libtinygltf-dev                               # glTF characters
   libosd-dev                                    # OpenSubdiv Catmull-Clark refinement
-  libmeshoptimizer-dev                          # simplification of the generated body skin
+  libmeshoptimizer-dev                          # vertex-cache order of the generated body skin
   libeigen3-dev                                 # linear algebra of the IK and dynamics solvers
   libcli11-dev                                  # the aloha tool's command line (subcommands, checks, help)
   nlohmann-json3-dev                            # scene and rule files

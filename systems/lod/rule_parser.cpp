@@ -53,6 +53,13 @@ struct Parser {
                 else if (n == "skin") d.layers |= kLayerSkin;
                 else err(lp, "unknown layer " + item.dump() + " (allowed: skeleton, muscle, fat, skin)");
             }
+            // Each method draws a fixed set of layers; only the fat springs of the muscle methods can
+            // be peeled off (skin at the springs' rest ends).
+            const uint8_t all = kDefaultLayers[static_cast<int>(d.method)];
+            const uint8_t needed = static_cast<uint8_t>(all & ~kLayerFat);
+            if (l->is_array() && ((d.layers & needed) != needed || (d.layers & ~all) != 0))
+                err(p + "/layers", all == needed ? "this method's layers are fixed: give its default or leave the key out"
+                                                 : "layered and subdivided levels need skeleton, muscle and skin; fat is optional");
         }
         r.read("geomorph_s", d.geomorph_s, 0.0, 10.0);
         r.renamed("geomorph_frames", "geomorph_s", lod_detail::kSecondsNotFrames);

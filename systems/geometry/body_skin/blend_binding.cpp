@@ -53,6 +53,7 @@ bool BlendBindJob::Validate(std::vector<std::string>* errors) const {
         fail("muscle_positions must hold one grid per muscle");
     if (muscle_normals.size() != muscle_positions.size()) fail("muscle_normals size differs from muscle_positions");
     if (bindings.size() != skin_positions.size()) fail("bindings size differs from skin_positions");
+    if (!muscle_groups.empty() && muscle_groups.size() != M) fail("muscle_groups needs one group per muscle or none");
     for (size_t i = 0; i < skin_positions.size(); ++i) {
         if (!finite(skin_positions[i])) {
             fail("skin vertex " + std::to_string(i) + " is not finite");
@@ -81,16 +82,29 @@ void BlendBindJob::Run() const {
             const glm::vec3 point = sample_grid(muscle_positions.subspan(m * V, V), theta_steps, phi_steps, param);
             all[m] = {glm::length(p - point), m, param};
         }
-        const size_t keep = std::min<size_t>(K + 1, M);
-        std::partial_sort(all.begin(), all.begin() + static_cast<ptrdiff_t>(keep), all.end(),
-                          [](const Candidate& a, const Candidate& b) { return a.distance < b.distance || (a.distance == b.distance && a.muscle < b.muscle); });
+        std::sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) {
+            return a.distance < b.distance || (a.distance == b.distance && a.muscle < b.muscle);
+        });
+        // Nearest first, skipping muscles of another limb than one already kept.
+        size_t keep = 0;
+        for (size_t c = 0; c < M && keep < static_cast<size_t>(K) + 1; ++c) {
+            bool ok = true;
+            if (!muscle_groups.empty()) {
+                const uint8_t g = muscle_groups[all[c].muscle];
+                for (size_t k = 0; k < keep && ok; ++k) {
+                    const uint8_t h = muscle_groups[all[k].muscle];
+                    ok = g == 0 || h == 0 || g == h;
+                }
+            }
+            if (ok) all[keep++] = all[c];
+        }
         // Kernels relative to the nearest (the common factor cancels in the normalisation).
         const float d0 = all[0].distance;
         const float cut = keep > static_cast<size_t>(K) ? std::exp(-(all[K].distance - d0) / spread) : 0.0f;
         BlendBinding& out = bindings[i];
         out = BlendBinding{};
         float sum = 0.0f;
-        const int used = static_cast<int>(std::min<size_t>(K, M));
+        const int used = static_cast<int>(std::min<size_t>(K, keep));
         for (int k = 0; k < used; ++k) {
             out.muscle[k] = all[k].muscle;
             out.param[k] = all[k].param;

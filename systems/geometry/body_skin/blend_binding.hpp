@@ -5,7 +5,8 @@
 // muscle point on the ray from the muscle centre through p (radial projection: its (theta, phi) follow
 // in closed form from the super-ellipsoid equations 1-3) is sampled on the tessellated muscle, giving
 // a frame F_m (tangent, bitangent, normal), a point P_m and the distance d_m = |p - P_m|. The
-// kBlendInfluences nearest muscles are kept with weights
+// kBlendInfluences nearest muscles of compatible limb groups (nearest first, each pairwise
+// compatible with those kept) are kept with weights
 //     w_m = exp(-d_m / s) - exp(-d_(K+1) / s)          (s = spread, d_(K+1) the next nearest),
 // normalised; subtracting the first left-out muscle's kernel makes every weight reach zero before a
 // muscle leaves the set, so the weights are continuous over the rest surface and blend smoothly across
@@ -52,6 +53,10 @@ struct BlendBindJob {
     std::span<const glm::vec3> muscle_normals;     ///< unit normals, same size
     std::span<const glm::vec3> skin_positions;     ///< rest-pose skin vertices (finite)
     std::span<BlendBinding> bindings;              ///< output, one per skin vertex
+    /// Optional limb group per muscle (0 = trunk, skin_field.hpp): a vertex only blends muscles whose
+    /// groups are pairwise equal or trunk, so skin near two limbs (hand by the thigh) follows one.
+    /// Empty: all muscles compatible.
+    std::span<const uint8_t> muscle_groups;
 
     /// Checks sizes, spread and finiteness; one message per failure.
     bool Validate(std::vector<std::string>* errors = nullptr) const;

@@ -41,7 +41,7 @@ struct FieldCapsule {
 };
 
 /// A smooth union of primitives with blend radius `blend` (m, > 0). Primitives carry a group: group 0
-/// (the trunk) blends with everything; primitives of two different non-zero groups (the two legs) are
+/// (the trunk) blends with everything; primitives of two different non-zero groups (two limbs) are
 /// joined by the plain minimum, so no blended web grows between limbs that lie close together:
 /// field = min over groups g > 0 of smin(trunk, group g) (just the trunk without other groups).
 struct BodyField {

@@ -1,5 +1,7 @@
-// Skin simplification, relaxation and topology checks (see skin_remesh.hpp).
+// Skin simplification (edge_collapse.hpp), relaxation, vertex-cache order and topology checks (see skin_remesh.hpp).
 #include "systems/geometry/body_skin/skin_remesh.hpp"
+
+#include "systems/geometry/body_skin/edge_collapse.hpp"
 
 #include <meshoptimizer.h>
 
@@ -60,12 +62,8 @@ SurfaceTopology analyse_surface(std::span<const uint32_t> indices, size_t vertex
 
 TriangleSurface simplify_and_relax(const TriangleSurface& dense, const SampledField& field, uint32_t target_triangles,
                                    int iterations) {
-    std::vector<uint32_t> simplified(dense.indices.size());
-    const size_t count = meshopt_simplify(simplified.data(), dense.indices.data(), dense.indices.size(),
-                                          &dense.positions[0].x, dense.positions.size(), sizeof(glm::vec3),
-                                          size_t{target_triangles} * 3, 1.0f, 0, nullptr);
-    simplified.resize(count);
-    TriangleSurface out = compact(dense.positions, simplified);
+    const TriangleSurface collapsed = collapse_edges(dense, target_triangles);
+    TriangleSurface out = compact(collapsed.positions, collapsed.indices);
     // Neighbours of every vertex (each undirected edge once per direction).
     const size_t n = out.positions.size();
     std::vector<std::vector<uint32_t>> ring(n);
@@ -110,7 +108,10 @@ TriangleSurface simplify_and_relax(const TriangleSurface& dense, const SampledFi
             out.positions[v] = p;
         }
     }
-    return out;
+    // Triangle order for the post-transform vertex cache, vertices in first-use order.
+    std::vector<uint32_t> ordered(out.indices.size());
+    meshopt_optimizeVertexCache(ordered.data(), out.indices.data(), out.indices.size(), out.positions.size());
+    return compact(out.positions, ordered);
 }
 
 }  // namespace aloha

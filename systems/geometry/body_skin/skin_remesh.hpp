@@ -1,5 +1,5 @@
-// Turning the dense polygonised body surface into a skin of a given resolution: edge-collapse
-// simplification (meshoptimizer), tangential relaxation with projection back onto the field's zero
+// Turning the dense polygonised body surface into a skin of a given resolution: manifold-preserving
+// edge-collapse simplification (edge_collapse.hpp), tangential relaxation with projection back onto the field's zero
 // set (even triangles without losing the shape), and the topology checks the skin must pass (one
 // component, every edge in exactly two triangles).
 #pragma once
@@ -28,10 +28,11 @@ struct SurfaceTopology {
 /// Counts components and edge valences of `indices` (triangles over `vertex_count` vertices).
 [[nodiscard]] SurfaceTopology analyse_surface(std::span<const uint32_t> indices, size_t vertex_count);
 
-/// Simplifies `dense` to about `target_triangles` triangles (meshopt_simplify, error bound free),
-/// drops unused vertices, then relaxes: `iterations` rounds of moving every vertex half way to the
+/// Simplifies `dense` (a closed 2-manifold) to about `target_triangles` triangles (collapse_edges: the
+/// result stays a closed manifold of the same topology), drops unused vertices, then relaxes: `iterations` rounds of moving every vertex half way to the
 /// mean of its neighbours within the tangent plane, each followed by Newton projection onto the
-/// zero set of `field`. The result keeps the input's orientation.
+/// zero set of `field`; finally orders the triangles for the vertex cache (meshopt_optimizeVertexCache)
+/// and the vertices by first use. The result keeps the input's orientation.
 [[nodiscard]] TriangleSurface simplify_and_relax(const TriangleSurface& dense, const SampledField& field,
                                                  uint32_t target_triangles, int iterations = 4);
 

@@ -1,6 +1,8 @@
 // Generated body regions, grid UVs and texture (see body_texture.hpp).
 #include "systems/geometry/controller/body_texture.hpp"
 
+#include "systems/geometry/muscle/muscle_shape_job.hpp"
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -75,34 +77,35 @@ std::vector<BodyRegion> bone_regions(const Skeleton& skeleton, std::span<const g
     return region;
 }
 
-std::vector<glm::vec2> body_grid_uvs(const Skeleton& skeleton, std::span<const glm::mat4> rest_model, const MuscleSet& muscles,
-                                     std::span<const glm::vec3> positions) {
+std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const glm::mat4> rest_model, const MuscleSet& muscles,
+                                     std::span<const glm::vec3> positions, std::span<const uint16_t> dominant_muscle) {
     const size_t m_count = static_cast<size_t>(muscles.size());
     std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
-    if (m_count == 0 || positions.size() % m_count != 0) return uvs;
-    const size_t per = positions.size() / m_count;
+    if (m_count == 0 || dominant_muscle.size() != positions.size()) return uvs;
     const std::vector<BodyRegion> region = bone_regions(skeleton, rest_model);
     const auto parents = skeleton.parents();
     float lo = FLT_MAX, hi = -FLT_MAX;
     for (const glm::mat4& m : rest_model) lo = std::min(lo, m[3].y), hi = std::max(hi, m[3].y);
     const float height = std::max(hi - lo, 1e-6f);
+    std::vector<glm::vec3> centres(m_count), radii(m_count);
+    std::vector<glm::quat> rotations(m_count);
+    const MuscleShapeJob shape{&muscles, rest_model, centres, rotations, radii};
+    shape.Run();
+    std::vector<float> column(m_count);
     for (size_t m = 0; m < m_count; ++m) {
-        glm::vec3 centre(0.0f);
-        for (size_t k = 0; k < per; ++k) centre += positions[m * per + k];
-        centre /= static_cast<float>(per);
-        // Nearest bone (parent -> joint segment); the region is the parent's outgoing bone's.
+        // Nearest bone (parent -> joint segment) to the rest centre; the region is the parent's outgoing bone's.
         float best = FLT_MAX;
         BodyRegion r = BodyRegion::Shirt;
         for (size_t j = 0; j < region.size(); ++j) {
             const int p = parents[j];
             if (p < 0) continue;
-            const float d = point_segment_distance(centre, glm::vec3(rest_model[static_cast<size_t>(p)][3]), glm::vec3(rest_model[j][3]));
+            const float d = point_segment_distance(centres[m], glm::vec3(rest_model[static_cast<size_t>(p)][3]), glm::vec3(rest_model[j][3]));
             if (d < best) best = d, r = region[static_cast<size_t>(p)];
         }
-        const float u = (static_cast<float>(r) + 0.5f) / static_cast<float>(kColumns);
-        for (size_t k = 0; k < per; ++k)
-            uvs[m * per + k] = glm::vec2(u, std::clamp((hi - positions[m * per + k].y) / height, 0.0f, 1.0f));
+        column[m] = (static_cast<float>(r) + 0.5f) / static_cast<float>(kColumns);
     }
+    for (size_t i = 0; i < positions.size(); ++i)
+        uvs[i] = glm::vec2(column[dominant_muscle[i]], std::clamp((hi - positions[i].y) / height, 0.0f, 1.0f));
     return uvs;
 }
 

@@ -208,7 +208,6 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
             break;
         }
     }
-    if (desc.bind_theta_steps < 3 || desc.bind_phi_steps < 2) problems.push_back("bind tessellation needs T >= 3, P >= 2");
     if (desc.mesh) check_mesh(*desc.mesh, J, problems);
     if (!problems.empty()) {
         std::string message = "character type '" + desc.name + "': " + problems.front();
@@ -228,22 +227,6 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     g->table_cache_ = std::make_unique<SuperEllipsoidTableCache>(g->muscles_);
     g->mesh_ = std::move(desc.mesh);
     if (g->mesh_) g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
-    if (g->mesh_ && g->muscles_.size() > 0) {
-        // Bind every mesh vertex to the nearest rest-pose muscle point at the bind tessellation.
-        const SuperEllipsoidTables& tab = g->tables(desc.bind_theta_steps, desc.bind_phi_steps);
-        const size_t M = static_cast<size_t>(g->muscles_.size()), V = tab.vertices_per_muscle();
-        std::vector<glm::vec3> centres(M), radii(M), mpos(M * V), mnrm(M * V);
-        std::vector<glm::quat> rotations(M);
-        const MuscleShapeJob shape{&g->muscles_, g->rest_model_, centres, rotations, radii};
-        shape.Run();
-        const MuscleTessellateJob tess{&tab, centres, rotations, radii, mpos, mnrm};
-        tess.Run();
-        g->bindings_.resize(g->mesh_rest_positions_.size());
-        const SkinBindJob bind{desc.bind_theta_steps, desc.bind_phi_steps, mpos, mnrm, g->mesh_rest_positions_, g->bindings_};
-        std::vector<std::string> errors;
-        if (!bind.Validate(&errors)) return make_error(g->name_, "character type '" + g->name_ + "': " + errors.front());
-        bind.Run();
-    }
     return g;
 }
 
@@ -260,17 +243,45 @@ const GeneratedBindMesh& CharacterGeometry::generated_mesh(uint32_t theta_steps,
     return *slot;
 }
 
-const SubdivisionTopology& CharacterGeometry::subdivision(uint32_t theta_steps, uint32_t phi_steps, uint32_t level) const {
-    if (!mesh_) return grid_subdivisions_.get({theta_steps, phi_steps, static_cast<uint32_t>(muscles_.size()), level});
+const SkinLayer& CharacterGeometry::skin_layer(uint32_t theta_steps, uint32_t phi_steps) const {
+    assert(muscles_.size() > 0);
+    const SuperEllipsoidTables& tab = tables(theta_steps, phi_steps);
+    const GeneratedBindMesh* grid = mesh_ ? nullptr : &generated_mesh(theta_steps, phi_steps);
     std::lock_guard lock(mutex_);
-    auto& slot = mesh_subdivisions_[level];
+    auto& slot = skin_layers_[{theta_steps, phi_steps}];
+    if (slot) return *slot;
+    if (mesh_) {
+        slot = std::make_unique<SkinLayer>(build_mesh_skin(mesh_rest_positions_, mesh_->indices, muscles_, skeleton_.parents(), rest_model_, tab));
+    } else {
+        if (!body_surface_)
+            body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_));
+        slot = std::make_unique<SkinLayer>(build_generated_skin(*body_surface_, muscles_, skeleton_.parents(), rest_model_, tab, *grid));
+    }
+    return *slot;
+}
+
+const SubdivisionTopology& CharacterGeometry::subdivision(uint32_t theta_steps, uint32_t phi_steps, uint32_t level) const {
+    const std::span<const uint32_t> idx = mesh_ ? std::span<const uint32_t>(mesh_->indices) : skin_layer(theta_steps, phi_steps).indices;
+    const uint32_t vertices = mesh_ ? static_cast<uint32_t>(mesh_->positions.size())
+                                    : static_cast<uint32_t>(skin_layer(theta_steps, phi_steps).rest_positions.size());
+    std::lock_guard lock(mutex_);
+    auto& slot = subdivisions_[{mesh_ ? 0u : theta_steps, mesh_ ? 0u : phi_steps, level}];
     if (!slot) {
         GridFaces faces;
-        const std::vector<uint32_t>& idx = mesh_->indices;
         faces.vertex_counts.assign(idx.size() / 3, 3);
         faces.vertex_indices.assign(idx.begin(), idx.end());
-        slot = build_subdivision(faces, static_cast<uint32_t>(mesh_->positions.size()), level);
+        slot = build_subdivision(faces, vertices, level);
     }
+    return *slot;
+}
+
+const SurfaceMap& CharacterGeometry::skin_map(uint32_t from_theta, uint32_t from_phi, uint32_t to_theta, uint32_t to_phi) const {
+    assert(!mesh_);
+    const SkinLayer& from = skin_layer(from_theta, from_phi);
+    const SkinLayer& to = skin_layer(to_theta, to_phi);
+    std::lock_guard lock(mutex_);
+    auto& slot = skin_maps_[{from_theta, from_phi, to_theta, to_phi}];
+    if (!slot) slot = std::make_unique<SurfaceMap>(map_surface(from.rest_positions, from.indices, to.rest_positions));
     return *slot;
 }
 

@@ -1,19 +1,22 @@
 // Per character type geometry, built once at load and shared (read-only) by every geometric
-// controller of that type: skeleton, muscle layout, rest pose, optional real skinned mesh with its
-// muscle bindings, and lazily built per-tessellation data (super-ellipsoid tables, the generated
-// peeled bind mesh, subdivision refinements), cached for the lifetime of the type.
+// controller of that type: skeleton, muscle layout, rest pose, optional real skinned mesh, and lazily
+// built per-tessellation data (super-ellipsoid tables, the per-muscle grid mesh, the skin layer with
+// its muscle bindings, subdivision refinements, correspondences between skin resolutions), cached for
+// the lifetime of the type.
 #pragma once
 
 #include "engine/anim/skeleton.hpp"
 #include "engine/core/result.hpp"
 #include "systems/geometry/muscle/muscle_set.hpp"
 #include "systems/geometry/muscle/superellipsoid_tables.hpp"
-#include "systems/geometry/spring_skin/skin_binding.hpp"
+#include "systems/geometry/body_skin/surface_map.hpp"
+#include "systems/geometry/controller/skin_layer.hpp"
 #include "systems/geometry/spring_skin/subdivision.hpp"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_precision.hpp>
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -63,9 +66,7 @@ struct CharacterGeometryDesc {
     MuscleSet muscles;                       ///< resolved against `skeleton`; when empty only rigid-proxy
                                              ///< and (with a mesh) skinned-mesh levels may be used
     std::vector<glm::mat4> rest_model;       ///< rest-pose model matrix per joint (muscles rest here)
-    std::optional<CharacterMesh> mesh;       ///< real skinned mesh, or none (generated peeled mesh)
-    uint32_t bind_theta_steps = 16;          ///< tessellation the mesh is bound to the muscles at
-    uint32_t bind_phi_steps = 12;
+    std::optional<CharacterMesh> mesh;       ///< real skinned mesh, or none (generated body skin)
 };
 
 /// Immutable geometry of one character type plus thread-safe lazily built caches. Create with
@@ -73,8 +74,8 @@ struct CharacterGeometryDesc {
 class CharacterGeometry {
 public:
     /// Validates `desc` (muscles resolved for this skeleton, rest_model size, mesh sizes, joint
-    /// indices in range, finite values) and builds the type: rest-pose mesh positions, muscle
-    /// bindings of the mesh (SkinBindJob at the bind tessellation), per-joint proxy radii.
+    /// indices in range, finite values) and builds the type: rest-pose mesh positions, per-joint proxy
+    /// radii. Skin layers (and their muscle bindings) are built per tessellation on first use.
     /// Errors name desc.name and the problem.
     static Result<std::unique_ptr<CharacterGeometry>> create(CharacterGeometryDesc desc);
 
@@ -105,8 +106,6 @@ public:
     [[nodiscard]] const CharacterMesh& mesh() const { return *mesh_; }
     /// The real mesh skinned at the rest pose (model space). Empty without a mesh.
     [[nodiscard]] std::span<const glm::vec3> mesh_rest_positions() const { return mesh_rest_positions_; }
-    /// Muscle binding of every real mesh vertex. Empty without a mesh.
-    [[nodiscard]] std::span<const SkinBinding> bindings() const { return bindings_; }
 
     /// Super-ellipsoid tables at (T, P), built on first use. Thread-safe; the reference stays valid.
     /// Requires T >= 3, P >= 2.
@@ -114,9 +113,17 @@ public:
     /// Generated peeled bind mesh at (T, P), built on first use. Thread-safe; stays valid.
     /// Requires T >= 3, P >= 2.
     const GeneratedBindMesh& generated_mesh(uint32_t theta_steps, uint32_t phi_steps) const;
-    /// Catmull-Clark refinement of the skin at `level` (1..4): of the muscle grids at (T, P) for a
+    /// The skin layer at (T, P), built on first use (skin_layer.hpp): the generated body skin of a
+    /// type without a mesh (the dense body surface is built once for all tessellations), the real mesh
+    /// otherwise; bound to the muscles at (T, P). Thread-safe; stays valid. Requires muscles,
+    /// T >= 3, P >= 2.
+    const SkinLayer& skin_layer(uint32_t theta_steps, uint32_t phi_steps) const;
+    /// Catmull-Clark refinement of the skin at `level` (1..4): of the generated skin at (T, P) for a
     /// type without a mesh, of the real mesh's triangles (T, P ignored) otherwise. Thread-safe.
     const SubdivisionTopology& subdivision(uint32_t theta_steps, uint32_t phi_steps, uint32_t level) const;
+    /// Correspondence from the generated skin at (T0, P0) to the one at (T1, P1) (surface_map.hpp),
+    /// built on first use. Thread-safe; stays valid. Requires a type without a mesh.
+    const SurfaceMap& skin_map(uint32_t from_theta, uint32_t from_phi, uint32_t to_theta, uint32_t to_phi) const;
 
 private:
     CharacterGeometry() = default;
@@ -128,13 +135,14 @@ private:
     std::vector<float> proxy_radii_;
     std::optional<CharacterMesh> mesh_;
     std::vector<glm::vec3> mesh_rest_positions_;
-    std::vector<SkinBinding> bindings_;
 
     mutable std::mutex mutex_;
     mutable std::unique_ptr<SuperEllipsoidTableCache> table_cache_;
     mutable std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<GeneratedBindMesh>> generated_;
-    mutable SubdivisionCache grid_subdivisions_;
-    mutable std::map<uint32_t, std::unique_ptr<SubdivisionTopology>> mesh_subdivisions_;
+    mutable std::unique_ptr<BodySurface> body_surface_;
+    mutable std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<SkinLayer>> skin_layers_;
+    mutable std::map<std::array<uint32_t, 3>, std::unique_ptr<SubdivisionTopology>> subdivisions_;
+    mutable std::map<std::array<uint32_t, 4>, std::unique_ptr<SurfaceMap>> skin_maps_;
 };
 
 /// Linear-blend skins `mesh` with palette model[j] * mesh.inverse_bind[j] (e.g. the rest pose, to get

@@ -19,13 +19,13 @@ struct GeometryController::Level {
     bool real_mesh = false;                        ///< the control surface is the real mesh
     bool keep_refined = true;                      ///< Subdivided: refined surface kept per slot
     uint32_t theta_steps = 0, phi_steps = 0;       ///< grid tessellation (muscles, grid skin)
-    uint32_t grid_vertices = 0;                    ///< V(T, P)
+    uint32_t grid_vertices = 0;                    ///< V(T, P) (vertices per muscle)
     uint32_t control_vertices = 0;                 ///< control surface vertices per character
     uint32_t display_vertices = 0;                 ///< displayed vertices per character
     const SuperEllipsoidTables* tables = nullptr;  ///< Layered / Subdivided
-    const GeneratedBindMesh* generated = nullptr;  ///< SkinnedMesh of a type without a mesh
+    const SkinLayer* skin = nullptr;               ///< skin layer (types with muscles, mesh levels)
+    bool springs = false;                          ///< fat springs run (Layered / Subdivided with the fat layer)
     const SubdivisionTopology* subdivision = nullptr;  ///< Subdivided
-    std::vector<uint32_t> own_indices;             ///< grid index buffer when built here
     std::span<const uint32_t> indices;             ///< the level's triangle list
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)
     std::vector<uint16_t> vertex_material;         ///< material per displayed vertex (empty: all 0)
@@ -34,21 +34,22 @@ struct GeometryController::Level {
     /// Level with storage shaped by `layout`.
     explicit Level(const SlotLayout& layout) : store(layout) {}
 
-    /// True when the level's control surface is a set of (T, P) grids (morphs by grid sampling).
-    [[nodiscard]] bool grid() const { return mesh_level && !real_mesh; }
+    /// True when `other` displays the same control vertices (same mesh, or same generated skin).
+    [[nodiscard]] bool same_skin(const Level& other) const {
+        return real_mesh || (theta_steps == other.theta_steps && phi_steps == other.phi_steps);
+    }
     /// True when the level runs muscles (Layered / Subdivided).
     [[nodiscard]] bool layered() const {
         return lod.method == GeomMethod::Layered || lod.method == GeomMethod::Subdivided;
     }
-    /// The displayed control surface of slot `s` (morphed positions or the grid spring ends).
+    /// The displayed control surface of slot `s` (morphed positions or the spring ends).
     [[nodiscard]] std::span<const glm::vec3> control(uint32_t s) const {
-        const bool springs = grid() && layered() && !store.shows_morph[s];
-        return springs ? store.spring_end(s) : store.positions(s);
+        return springs && !store.shows_morph[s] ? store.spring_end(s) : store.positions(s);
     }
 };
 
-/// Points `job`'s bind inputs at the mesh `level` skins: the type's real mesh, or the level's bind mesh
-/// generated from the muscles.
+/// Points `job`'s bind inputs at the mesh `level` skins: the type's real mesh, or the level's generated
+/// skin layer.
 inline void set_lbs_source(const CharacterGeometry& g, const GeometryController::Level& level, LinearBlendSkinJob& job) {
     if (level.real_mesh) {
         job.bind_positions = g.mesh().positions;
@@ -56,10 +57,10 @@ inline void set_lbs_source(const CharacterGeometry& g, const GeometryController:
         job.joints = g.mesh().joints;
         job.weights = g.mesh().weights;
     } else {
-        job.bind_positions = level.generated->positions;
-        job.bind_normals = level.generated->normals;
-        job.joints = level.generated->joints;
-        job.weights = level.generated->weights;
+        job.bind_positions = level.skin->rest_positions;
+        job.bind_normals = level.skin->rest_normals;
+        job.joints = level.skin->joints;
+        job.weights = level.skin->weights;
     }
 }
 

@@ -1,11 +1,10 @@
 // Fidelity measurement: the stateless reference surface of a character at any level, and matched
-// (current, reference) point pairs at the same parametric location.
+// (current, reference) point pairs at the same place on the skin.
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/muscle/muscle_shape_job.hpp"
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
-#include "systems/geometry/spring_skin/grid_sample.hpp"
 #include "systems/geometry/spring_skin/peeled.hpp"
-#include "systems/geometry/spring_skin/skin_binding.hpp"
+#include "systems/geometry/body_skin/blend_binding.hpp"
 #include "systems/geometry/spring_skin/subdivision.hpp"
 
 namespace aloha {
@@ -24,7 +23,7 @@ void GeometryController::control_surface(const Level& level, std::span<const glm
         job.Run();
         return;
     }
-    // Layered / Subdivided control surface with the fat springs at rest (root + thickness * normal).
+    // Layered / Subdivided control surface with the fat springs at rest (their rest ends).
     const size_t M = g.muscle_count(), V = level.grid_vertices;
     std::vector<glm::vec3> centres(M), radii(M), mpos(M * V), mnrm(M * V);
     std::vector<glm::quat> rotations(M);
@@ -32,15 +31,9 @@ void GeometryController::control_surface(const Level& level, std::span<const glm
     shape.Run();
     const MuscleTessellateJob tess{level.tables, centres, rotations, radii, mpos, mnrm};
     tess.Run();
-    if (level.real_mesh) {
-        const BoundSkinJob bound{level.theta_steps, level.phi_steps, g.muscle_count(), mpos, mnrm, g.bindings(), out};
-        bound.Run();
-        return;
-    }
-    for (size_t m = 0; m < M; ++m) {
-        const float h = g.muscles().fat_thickness[m];
-        for (size_t i = m * V; i < (m + 1) * V; ++i) out[i] = mpos[i] + h * mnrm[i];
-    }
+    const BlendSpringJob skin{level.theta_steps, level.phi_steps, g.muscle_count(), spring_params_, false, mpos, mnrm,
+                              level.skin->bindings, {out, {}, {}, {}}};
+    skin.Run();
 }
 
 void GeometryController::reference_surface(const PoseSource& poses, uint32_t character, uint8_t reference_level,
@@ -70,19 +63,12 @@ void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t chara
     current.assign(shown.begin(), shown.end());
     std::vector<glm::vec3> ref_control;
     control_surface(R, poses.joints(character, geometry_->joint_count()), ref_control);
-    if (C.real_mesh) {  // same mesh vertices at every level
+    if (C.same_skin(R)) {  // same vertices at both levels
         reference = std::move(ref_control);
         return;
     }
-    const uint32_t Vc = C.grid_vertices, Vr = R.grid_vertices, M = geometry_->muscle_count();
     reference.resize(current.size());
-    for (uint32_t i = 0; i < Vc; ++i) {
-        const GridParam param = grid_vertex_param(C.theta_steps, C.phi_steps, i);
-        for (uint32_t m = 0; m < M; ++m) {
-            const std::span<const glm::vec3> grid = std::span<const glm::vec3>(ref_control).subspan(size_t{m} * Vr, Vr);
-            reference[size_t{m} * Vc + i] = sample_grid(grid, R.theta_steps, R.phi_steps, param);
-        }
-    }
+    geometry_->skin_map(R.theta_steps, R.phi_steps, C.theta_steps, C.phi_steps).apply(ref_control, reference);
 }
 
 }  // namespace aloha

@@ -10,7 +10,7 @@
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
 #include "systems/geometry/spring_skin/geomorph.hpp"
 #include "systems/geometry/spring_skin/peeled.hpp"
-#include "systems/geometry/spring_skin/skin_binding.hpp"
+#include "systems/geometry/body_skin/blend_binding.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 
 #include <cassert>
@@ -73,12 +73,7 @@ void run_skinned(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
     job.Run();
     if (!apply_morph(st, s, st.positions(s), st.positions(s))) return;
     // While morphing, light the shape that is shown.
-    if (L.real_mesh) {
-        accumulate_vertex_normals(st.positions(s), L.indices, st.normals(s));
-    } else {
-        const SkinJob normals{L.theta_steps, L.phi_steps, st.positions(s), {}, st.normals(s)};
-        normals.Run();
-    }
+    accumulate_vertex_normals(st.positions(s), L.indices, st.normals(s));
 }
 
 void run_muscles(const CharacterGeometry& g, Level& L, uint32_t s, std::span<const glm::mat4> pose) {
@@ -93,29 +88,18 @@ void run_muscles(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
 
 void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const FatSpringParams& params) {
     SlotStore& st = L.store;
-    const std::span<const glm::vec3> muscle_positions = st.muscle_positions(s), muscle_normals = st.muscle_normals(s);
-    std::span<const glm::vec3> control;
-    if (!L.real_mesh) {
-        const FatSpringJob springs{L.theta_steps, L.phi_steps, params, muscle_positions, muscle_normals,
-                                   g.muscles().fat_thickness,
-                                   {st.spring_end(s), st.spring_velocity(s), st.spring_prev_rest(s), st.spring_initialised(s)}};
-        assert(springs.Validate());
-        springs.Run();
-        control = apply_morph(st, s, st.spring_end(s), st.positions(s)) ? st.positions(s) : st.spring_end(s);
-        if (L.lod.method == GeomMethod::Layered) {
-            const SkinJob normals{L.theta_steps, L.phi_steps, control, muscle_normals, st.normals(s)};
-            assert(normals.Validate());
-            normals.Run();
-        }
-    } else {
-        const BoundSkinJob bound{L.theta_steps, L.phi_steps, g.muscle_count(), muscle_positions, muscle_normals,
-                                 g.bindings(), st.positions(s)};
-        assert(bound.Validate());
-        bound.Run();
-        apply_morph(st, s, st.positions(s), st.positions(s));
-        control = st.positions(s);
-        if (L.lod.method == GeomMethod::Layered) accumulate_vertex_normals(control, L.indices, st.normals(s));
-    }
+    // Skin vertices hang on blended muscle points; with the fat layer through the fat springs
+    // (written to the spring ends), without it at the springs' rest ends (written to positions).
+    const BlendSpringJob skin{L.theta_steps, L.phi_steps, g.muscle_count(), params, L.springs, st.muscle_positions(s),
+                              st.muscle_normals(s), L.skin->bindings,
+                              L.springs ? FatSpringStateView{st.spring_end(s), st.spring_velocity(s), st.spring_prev_rest(s),
+                                                             st.spring_initialised(s)}
+                                        : FatSpringStateView{st.positions(s), {}, {}, {}}};
+    assert(skin.Validate());
+    skin.Run();
+    const std::span<const glm::vec3> fresh = L.springs ? st.spring_end(s) : st.positions(s);
+    const std::span<const glm::vec3> control = apply_morph(st, s, fresh, st.positions(s)) ? st.positions(s) : fresh;
+    if (L.lod.method == GeomMethod::Layered) accumulate_vertex_normals(control, L.indices, st.normals(s));
     if (L.subdivision) {
         FrameScratch& scratch = frame_scratch();
         const size_t refined = L.subdivision->refined_vertex_count;

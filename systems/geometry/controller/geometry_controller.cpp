@@ -4,9 +4,7 @@
 
 #include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/controller_level.hpp"
-#include "systems/geometry/spring_skin/grid_sample.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
-#include "systems/geometry/surface_grid.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -39,7 +37,7 @@ GeometryController::~GeometryController() = default;
 namespace {
 
 // UVs and materials of the level's displayed vertices: those of its control surface (the real mesh,
-// or the generated body UVs of the grid skin at rest), carried through the subdivision stencils.
+// or the generated body UVs of the skin layer at rest), carried through the subdivision stencils.
 void set_surface_attributes(const CharacterGeometry& g, GeometryController::Level& level) {
     std::vector<glm::vec2> uvs;
     std::vector<uint16_t> materials;
@@ -47,7 +45,7 @@ void set_surface_attributes(const CharacterGeometry& g, GeometryController::Leve
         uvs = g.mesh().uvs;
         materials = g.mesh().vertex_material;
     } else {
-        uvs = body_grid_uvs(g.skeleton(), g.rest_model(), g.muscles(), g.generated_mesh(level.theta_steps, level.phi_steps).positions);
+        uvs = body_skin_uvs(g.skeleton(), g.rest_model(), g.muscles(), level.skin->rest_positions, level.skin->dominant_muscle);
     }
     const SubdivisionTopology* sub = level.subdivision;
     if (!sub) {
@@ -76,8 +74,13 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     // Rule files are validated by their loader; clamp here so a bad table cannot break the grids.
     const uint32_t T = std::max<uint32_t>(3, lod.theta_steps), P = std::max<uint32_t>(2, lod.phi_steps);
     const uint32_t V = grid_vertex_count(T, P);
-    const uint32_t mesh_vertices = real ? static_cast<uint32_t>(g.mesh().positions.size()) : 0;
-    const uint32_t control = real ? mesh_vertices : M * V;
+    // The skin layer: the real mesh's vertices bound at (T, P), or the generated skin at (T, P).
+    const bool mesh_method = lod.method == GeomMethod::SkinnedMesh || lod.method == GeomMethod::Layered ||
+                             lod.method == GeomMethod::Subdivided;
+    const SkinLayer* skin = mesh_method && M > 0 && (!real || lod.method != GeomMethod::SkinnedMesh) ? &g.skin_layer(T, P) : nullptr;
+    const uint32_t control = real ? static_cast<uint32_t>(g.mesh().positions.size())
+                                  : (skin ? static_cast<uint32_t>(skin->rest_positions.size()) : 0);
+    const bool springs = (lod.layers & kLayerFat) != 0;
 
     SlotLayout layout;
     const SubdivisionTopology* subdivision = nullptr;
@@ -96,9 +99,9 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
         case GeomMethod::Subdivided:
             layout.shapes = M;
             layout.muscle_vertices = M * V;
-            if (!real) {
-                layout.springs = M * V;
-                layout.spring_flags = M;
+            if (springs) {
+                layout.springs = control;
+                layout.spring_flags = 1;
             }
             layout.control = control;
             if (lod.method == GeomMethod::Layered) {
@@ -123,16 +126,12 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     level->display_vertices = subdivision ? subdivision->refined_vertex_count : layout.control;
     level->subdivision = subdivision;
     if (level->layered()) level->tables = &g.tables(T, P);
-    if (lod.method == GeomMethod::SkinnedMesh && !real) level->generated = &g.generated_mesh(T, P);
+    level->skin = skin;
+    level->springs = level->layered() && springs;
     if (subdivision) {
         level->indices = subdivision->triangles;
     } else if (level->mesh_level) {
-        if (real) {
-            level->indices = g.mesh().indices;
-        } else {
-            level->own_indices = build_skin_indices(T, P, M);
-            level->indices = level->own_indices;
-        }
+        level->indices = real ? std::span<const uint32_t>(g.mesh().indices) : std::span<const uint32_t>(skin->indices);
     }
     if (level->mesh_level) set_surface_attributes(g, *level);
     return level;
@@ -178,17 +177,12 @@ void GeometryController::ensure_capacity(uint32_t character) {
 void GeometryController::capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot) {
     const std::span<const glm::vec3> old = from.control(from_slot);
     const std::span<glm::vec3> target = to.store.deltas(to_slot);
-    if (to.real_mesh) {  // same mesh at every level: vertex by vertex
+    if (to.same_skin(from)) {  // same vertices: one by one
         std::copy(old.begin(), old.end(), target.begin());
         return;
     }
-    // Grid to grid: the old surface sampled at each new vertex's (theta, phi), muscle by muscle.
-    const uint32_t Vo = from.grid_vertices, Vn = to.grid_vertices, M = geometry_->muscle_count();
-    for (uint32_t i = 0; i < Vn; ++i) {
-        const GridParam param = grid_vertex_param(to.theta_steps, to.phi_steps, i);
-        for (uint32_t m = 0; m < M; ++m)
-            target[size_t{m} * Vn + i] = sample_grid(old.subspan(size_t{m} * Vo, Vo), from.theta_steps, from.phi_steps, param);
-    }
+    // Different resolutions of the generated skin: the old surface read at each new vertex's place.
+    geometry_->skin_map(from.theta_steps, from.phi_steps, to.theta_steps, to.phi_steps).apply(old, target);
 }
 
 void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames) {
@@ -289,7 +283,7 @@ uint32_t GeometryController::characters_at(uint8_t level) const { return levels_
 size_t GeometryController::memory_bytes() const {
     size_t bytes = level_of_.size() * (sizeof(uint8_t) + sizeof(uint32_t));
     for (const auto& L : levels_)
-        bytes += size_t{L->store.capacity()} * L->store.bytes_per_slot() + L->own_indices.size() * sizeof(uint32_t);
+        bytes += size_t{L->store.capacity()} * L->store.bytes_per_slot();
     return bytes;
 }
 

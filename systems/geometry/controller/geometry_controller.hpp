@@ -4,18 +4,20 @@
 // slot of the level it is in. Methods:
 //   RigidProxy  -> RigidProxyJob: one box per joint, matrices map the cube [-1, 1]^3 onto the box
 //                  (character space).
-//   SkinnedMesh -> LinearBlendSkinJob of the real mesh, or of the bind mesh generated from the
-//                  muscles at the level's (T, P) (a type without a mesh).
-//   Layered     -> MuscleShapeJob + MuscleTessellateJob, then FatSpringJob + SkinJob (skin = outer
-//                  spring ends, grid layout) or, for a real mesh, BoundSkinJob + vertex normals.
+//   SkinnedMesh -> LinearBlendSkinJob of the real mesh, or of the generated continuous skin at the
+//                  level's (T, P) (a type without a mesh; skin_layer.hpp).
+//   Layered     -> MuscleShapeJob + MuscleTessellateJob, then BlendSpringJob: every skin vertex (of
+//                  the generated skin at (T, P), or of the real mesh) is the outer end of a fat spring
+//                  rooted at a blend of several muscles' surface points (blend_binding.hpp); without
+//                  the fat layer (GeomLod::layers) the skin sits at the springs' rest ends. Normals
+//                  from the triangles.
 //   Subdivided  -> Layered, then SubdivideJob at GeomLod::subdiv_level (the control surface is the
 //                  Layered skin; its normals are not computed).
-// The "control surface" of a mesh level is the grid skin at (T, P) for a type without a mesh and the
-// real mesh's vertices otherwise, so every pair of mesh levels of one type can geomorph: the old
-// displayed control surface is sampled at the new vertices' (muscle, theta, phi) (or taken vertex
-// by vertex for a real mesh) when the character enters the new level, and GeomorphJob slides the
-// new surface from it over N frames (the morph is applied to the control surface, before
-// subdivision).
+// The "control surface" of a mesh level is its skin layer's vertices. Two levels with the same skin
+// (a real mesh, or the same (T, P)) morph vertex by vertex; otherwise the old displayed control
+// surface is read at the new skin's vertices through CharacterGeometry::skin_map (closest points at
+// rest). GeomorphJob slides the new surface from it over N frames (the morph is applied to the
+// control surface, before subdivision).
 // Threading: begin_level / end_character / set_levels are serial (between frames or in the resolve
 // phase). update() may run concurrently for DISJOINT character lists of the same or different
 // levels: it only writes the slots of its characters and allocates nothing.

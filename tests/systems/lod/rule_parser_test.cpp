@@ -162,6 +162,20 @@ TEST(RuleParser, ShadowedRuleIsAWarning) {
     EXPECT_NE(t.warnings[0].message.find("rule 'closer' never fires"), std::string::npos) << t.warnings[0].message;
 }
 
+TEST(RuleParser, LayersPeelOnlyTheFatSprings) {
+    json j = small_rules();
+    j["geometric_levels"][0]["layers"] = {"skeleton", "muscle", "skin"};  // layered without fat springs
+    j["geometric_levels"][1]["layers"] = {"skeleton", "skin"};            // skin by LBS only (the default)
+    const RuleTable t = must_parse(j);
+    EXPECT_EQ(t.geom_levels[0].layers, kLayerSkeleton | kLayerMuscle | kLayerSkin);
+    EXPECT_EQ(t.geom_levels[1].layers, kLayerSkeleton | kLayerSkin);
+    j["geometric_levels"][0]["layers"] = {"skeleton", "fat", "skin"};     // no muscles to hang the fat on
+    j["geometric_levels"][1]["layers"] = {"skeleton", "muscle", "skin"};  // LBS runs no muscles
+    const auto e = errors_of(j);
+    EXPECT_TRUE(has_error(e, "/geometric_levels/0/layers", "need skeleton, muscle and skin")) << join_errors(e);
+    EXPECT_TRUE(has_error(e, "/geometric_levels/1/layers", "layers are fixed")) << join_errors(e);
+}
+
 TEST(RuleParser, LevelFieldErrors) {
     json j = small_rules();
     j["geometric_levels"][0]["method"] = "voxels";

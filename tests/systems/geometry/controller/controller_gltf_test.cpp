@@ -1,9 +1,7 @@
 // A glTF character (CesiumMan, muscles fitted per bone) at every geometric level. CesiumMan.glb is a
 // shared test asset, not in the repository (tests/common/test_assets.hpp): the test skips without it.
-#include "engine/assets/gltf_loader.hpp"
-#include "systems/geometry/controller/gltf_character_mesh.hpp"
-#include "systems/geometry/muscle/muscle_fit.hpp"
 #include "tests/common/test_assets.hpp"
+#include "tests/systems/geometry/controller/test_cesium.hpp"
 #include "tests/systems/geometry/controller/test_humanoid.hpp"
 
 #include <gtest/gtest.h>
@@ -11,59 +9,9 @@
 namespace aloha {
 namespace {
 
-// CesiumMan's geometry type and first clip, or the error that stopped building them.
-struct Cesium {
-    std::unique_ptr<CharacterGeometry> geometry;
-    RawAnimation clip;
-    std::string error;
-};
-
-// The character at `path` with its first clip, built once per test binary.
-const Cesium& load_cesium(const std::string& path) {
-    static const Cesium c = [&] {
-        Cesium out;
-        auto loaded = load_gltf_character(path);
-        if (!loaded.ok()) {
-            out.error = loaded.error().to_string();
-            return out;
-        }
-        auto skeleton = build_skeleton(loaded.value().skeleton, path);
-        if (!skeleton.ok()) {
-            out.error = skeleton.error().to_string();
-            return out;
-        }
-        CharacterMesh mesh = character_mesh_from_gltf(loaded.value(), skeleton.value());
-        const std::vector<glm::mat4> rest = rest_model_matrices(skeleton.value());
-        const std::vector<glm::vec3> rest_positions = skin_mesh_positions(mesh, rest);
-        MuscleFitOptions fit;
-        fit.source_name = path;
-        auto muscles = fit_muscles_per_bone(skeleton.value(), rest, rest_positions, widen_joints(mesh.joints), mesh.weights, fit);
-        if (!muscles.ok()) {
-            out.error = muscles.error().to_string();
-            return out;
-        }
-        CharacterGeometryDesc desc;
-        desc.type = 7;
-        desc.name = path;
-        desc.skeleton = std::move(skeleton).value();
-        desc.muscles = std::move(muscles).value();
-        desc.rest_model = rest;
-        desc.mesh = std::move(mesh);
-        auto geometry = CharacterGeometry::create(std::move(desc));
-        if (!geometry.ok()) {
-            out.error = geometry.error().to_string();
-            return out;
-        }
-        out.geometry = std::move(geometry).value();
-        out.clip = loaded.value().clips.front();
-        return out;
-    }();
-    return c;
-}
-
 TEST(GeometryControllerGltf, CesiumManWorksAtEveryLevel) {
     ALOHA_REQUIRE_TEST_ASSET(path, "CesiumMan.glb");
-    const Cesium& cesium = load_cesium(path);
+    const test::Cesium& cesium = test::load_cesium(path);
     ASSERT_NE(cesium.geometry, nullptr) << cesium.error;
     const CharacterGeometry& g = *cesium.geometry;
     const uint32_t n = static_cast<uint32_t>(g.mesh().positions.size());

@@ -22,25 +22,33 @@ TEST(GeometryController, CountsFollowTheOneParameter) {
     const auto levels = test::test_levels();
     GeometryController ctl(g, levels, 4);
     const uint32_t M = g.muscle_count();
-    // Every grid level holds one (T, P) grid per muscle.
-    EXPECT_EQ(ctl.vertices_per_character(1), M * grid_vertex_count(16, 12));
-    EXPECT_EQ(ctl.vertices_per_character(2), M * grid_vertex_count(8, 6));
-    EXPECT_EQ(ctl.vertices_per_character(3), M * grid_vertex_count(8, 6));
-    // One Catmull-Clark step of a closed (T, P) grid adds a point per edge (T(2P-1)) and per face
-    // (TP): T(P-1)+2 + T(2P-1) + TP = V(2T, 2P).
-    EXPECT_EQ(ctl.vertices_per_character(0), M * grid_vertex_count(16, 12));
+    // The continuous skin at (T, P) has M * V(T, P) triangles (the simplification's target, reached
+    // exactly: both counts are even). The edge collapses keep the dense surface's topology, so every
+    // resolution has the same Euler characteristic chi = V - E + F = V - F/2 (E = 3F/2 on a closed
+    // surface); the skinned level at the same (T, P) shows the same skin.
+    const uint32_t f16 = M * grid_vertex_count(16, 12), f8 = M * grid_vertex_count(8, 6);
+    EXPECT_EQ(ctl.level_indices(1).size(), 3u * f16);
+    EXPECT_EQ(ctl.level_indices(2).size(), 3u * f8);
+    const int chi = static_cast<int>(ctl.vertices_per_character(1)) - static_cast<int>(f16 / 2);
+    EXPECT_EQ(static_cast<int>(ctl.vertices_per_character(2)) - static_cast<int>(f8 / 2), chi);
+    EXPECT_EQ(chi % 2, 0);
+    EXPECT_LE(chi, 2);  // one connected closed surface: chi = 2 - 2 genus
+    EXPECT_EQ(ctl.vertices_per_character(3), ctl.vertices_per_character(2));
+    EXPECT_EQ(ctl.level_indices(3).size(), ctl.level_indices(2).size());
+    // One Catmull-Clark step of a closed triangle mesh adds a point per edge and per face:
+    // V + 3F/2 + F = 3F + chi, each triangle becoming three quads (six triangles).
+    EXPECT_EQ(static_cast<int>(ctl.vertices_per_character(0)), static_cast<int>(3u * f8) + chi);
+    EXPECT_EQ(ctl.level_indices(0).size(), 18u * f8);
     EXPECT_EQ(ctl.vertices_per_character(4), 0u);
     EXPECT_EQ(ctl.vertices_per_character(5), 0u);
-    EXPECT_EQ(ctl.level_indices(1).size(), 3u * M * grid_triangle_count(16, 12));
-    EXPECT_EQ(ctl.level_indices(2).size(), 3u * M * grid_triangle_count(8, 6));
-    EXPECT_EQ(ctl.level_indices(3).size(), ctl.level_indices(2).size());
     EXPECT_TRUE(ctl.level_indices(4).empty());
-    // Memory is affine in the vertex count: per control vertex a Layered grid level stores muscle
-    // position + normal (muscle -> spring_skin), spring end + velocity + previous rest, morph position +
-    // offset and a skin normal = 8 vec3 = 96 bytes; the per-muscle and per-joint parts are the same at
-    // both levels.
+    // Memory is affine in the counts: per muscle grid vertex a Layered level stores muscle position +
+    // normal (muscle -> spring_skin, 24 bytes); per skin vertex spring end + velocity + previous rest,
+    // morph position + offset and a skin normal = 6 vec3 = 72 bytes; the per-muscle and per-joint
+    // parts are the same at both levels.
     const size_t dv = size_t{M} * (grid_vertex_count(16, 12) - grid_vertex_count(8, 6));
-    EXPECT_EQ(ctl.bytes_per_character(1) - ctl.bytes_per_character(2), 96u * dv);
+    const size_t dn = size_t{ctl.vertices_per_character(1)} - ctl.vertices_per_character(2);
+    EXPECT_EQ(ctl.bytes_per_character(1) - ctl.bytes_per_character(2), 24u * dv + 72u * dn);
     EXPECT_GT(ctl.bytes_per_character(2), ctl.bytes_per_character(3));  // peeling drops muscles and springs
     EXPECT_GT(ctl.bytes_per_character(3), ctl.bytes_per_character(4));
     EXPECT_EQ(ctl.bytes_per_character(4), 31u * sizeof(glm::mat4) + 7u);  // boxes + morph counters/flags
@@ -146,7 +154,8 @@ TEST(GeometryController, SetLevelsKeepsCharactersAndRebuildsWhatChanged) {
     EXPECT_EQ(ctl.level(1).geomorph_s, 0.15f);
     EXPECT_EQ(ctl.level_of(2), 2);
     EXPECT_EQ(ctl.level_of(5), 4);
-    EXPECT_EQ(ctl.vertices_per_character(2), g.muscle_count() * grid_vertex_count(12, 6));
+    EXPECT_EQ(ctl.vertices_per_character(2), g.skin_layer(12, 6).rest_positions.size());
+    EXPECT_EQ(ctl.level_indices(2).size(), 3u * g.muscle_count() * grid_vertex_count(12, 6));
     // The kept level keeps the character's surface untouched.
     const auto after = ctl.surface(1).positions;
     ASSERT_EQ(after.size(), before.size());

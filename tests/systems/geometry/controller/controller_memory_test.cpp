@@ -1,6 +1,7 @@
 // GeometryController memory and stages: refined surfaces computed but not kept (runs with no
 // renderer), the muscle surface handed from the muscle stage to the skin stage, the two stages
 // against the one-call update, and allocating a level's slots at once.
+#include "systems/geometry/spring_skin/grid_sample.hpp"
 #include "systems/geometry/surface_grid.hpp"
 #include "tests/systems/geometry/controller/test_humanoid.hpp"
 
@@ -74,13 +75,26 @@ TEST(GeometryControllerMemory, MuscleSurfaceIsWhatTheSpringsStandOn) {
     muscles.assign(3, glm::vec3(1.0f));
     ctl.muscle_surface(0, muscles);  // not updated yet
     EXPECT_TRUE(muscles.empty());
-    animate(ctl, 2, 10, 1);  // one frame: the springs start at rest, one fat thickness out
+    // One frame at the rest pose: the springs start at their rest ends, which at the bind pose are the
+    // skin layer's vertices, and every influence of a vertex sits its bound offset away from its
+    // muscle point sampled on the muscle surface the controller reports.
+    const uint32_t c = 0;
+    ctl.update(2, std::span(&c, 1), PoseSource{g.rest_model().data(), 0}, kDt);
     ctl.muscle_surface(0, muscles);
-    const auto skin = ctl.surface(0).positions;
     const uint32_t V = grid_vertex_count(8, 6);
-    ASSERT_EQ(muscles.size(), skin.size());
-    for (size_t i = 0; i < skin.size(); ++i)
-        ASSERT_NEAR(glm::length(skin[i] - muscles[i]), g.muscles().fat_thickness[i / V], 1e-5f) << i;
+    ASSERT_EQ(muscles.size(), size_t{g.muscle_count()} * V);
+    const SkinLayer& layer = g.skin_layer(8, 6);
+    const auto skin = ctl.surface(0).positions;
+    ASSERT_EQ(skin.size(), layer.rest_positions.size());
+    for (size_t i = 0; i < skin.size(); ++i) {
+        ASSERT_LT(glm::length(skin[i] - layer.rest_positions[i]), 1e-5f) << i;
+        const BlendBinding& b = layer.bindings[i];
+        for (int k = 0; k < kBlendInfluences; ++k) {
+            if (b.weight[k] <= 0.0f) continue;
+            const glm::vec3 point = sample_grid(std::span<const glm::vec3>(muscles).subspan(size_t{b.muscle[k]} * V, V), 8, 6, b.param[k]);
+            ASSERT_NEAR(glm::length(skin[i] - point), glm::length(b.offset[k]), 1e-5f) << i << " influence " << k;
+        }
+    }
 }
 
 // update() is update_muscles() then update_skin(); running the stages as two passes over a list of

@@ -1,0 +1,74 @@
+// The skin layer of a character type at one tessellation: a closed triangle surface at rest (the
+// project-generated continuous body skin for a type without a mesh, the authored mesh otherwise),
+// every vertex bound to several muscles (blend_binding.hpp), plus linear-blend weights for the peeled
+// skinned-mesh level.
+//
+// The generated body skin is built once per body variant as a dense surface (the smooth union of the
+// rest muscles inflated by their fat and thin bone capsules, polygonised at kBodySkinCell), then
+// simplified for each level to M * V(T, P) / 2 vertices (M * V(T, P) triangles): the same (T, P) that
+// sets the muscle tessellation and the spring count (one spring per skin vertex) sets the skin's
+// resolution.
+#pragma once
+
+#include "engine/anim/skeleton.hpp"
+#include "systems/geometry/body_skin/blend_binding.hpp"
+#include "systems/geometry/body_skin/skin_field.hpp"
+#include "systems/geometry/muscle/muscle_set.hpp"
+#include "systems/geometry/muscle/superellipsoid_tables.hpp"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_precision.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+struct GeneratedBindMesh;
+
+/// Grid spacing (m) of the dense body surface.
+inline constexpr float kBodySkinCell = 0.008f;
+/// Blend radius (m) of the smooth union of muscles and capsules.
+inline constexpr float kBodySkinBlend = 0.02f;
+/// Kernel distance (m) of the multi-muscle binding weights.
+inline constexpr float kBindSpread = 0.015f;
+
+/// The dense implicit body surface of one body variant (shared by its levels).
+struct BodySurface {
+    SampledField field;      ///< signed distance estimate sampled on the grid
+    TriangleSurface dense;   ///< marching-tetrahedra zero set
+};
+
+/// A skin layer at one (T, P).
+struct SkinLayer {
+    uint32_t theta_steps = 0, phi_steps = 0;   ///< tessellation the bindings were made at
+    std::vector<glm::vec3> rest_positions;     ///< model space, rest pose
+    std::vector<glm::vec3> rest_normals;       ///< unit, rest pose
+    std::vector<uint32_t> indices;             ///< triangle list (counter-clockwise from outside)
+    std::vector<BlendBinding> bindings;        ///< one per vertex
+    std::vector<uint16_t> dominant_muscle;     ///< the influence with the largest weight, per vertex
+    std::vector<glm::u16vec4> joints;          ///< generated skin: LBS joints (palette = model * inverse rest)
+    std::vector<glm::vec4> weights;            ///< generated skin: LBS weights (sum 1)
+};
+
+/// Dense body surface of `muscles` at rest: muscles inflated by their fat thickness, capsules of half
+/// the proxy radius along every bone, blended with kBodySkinBlend, polygonised at kBodySkinCell.
+[[nodiscard]] BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleton,
+                                             std::span<const glm::mat4> rest_model, std::span<const float> proxy_radii);
+
+/// The generated skin at the tables' (T, P): `body` simplified to M * V(T, P) triangles and relaxed,
+/// bound to the rest muscles (influences restricted to compatible limbs of the skeleton `parents`), with LBS weights blended from `generated` (the per-muscle grid mesh at the
+/// same (T, P)) by the binding weights.
+[[nodiscard]] SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles, std::span<const int16_t> parents,
+                                             std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables,
+                                             const GeneratedBindMesh& generated);
+
+/// An authored mesh's skin layer at the tables' (T, P): its rest positions and triangles, bound to the
+/// rest muscles (no LBS data: the mesh has its own).
+[[nodiscard]] SkinLayer build_mesh_skin(std::span<const glm::vec3> rest_positions, std::span<const uint32_t> indices,
+                                        const MuscleSet& muscles, std::span<const int16_t> parents,
+                                        std::span<const glm::mat4> rest_model,
+                                        const SuperEllipsoidTables& tables);
+
+}  // namespace aloha
