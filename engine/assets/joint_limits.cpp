@@ -46,17 +46,18 @@ Result<JointLimitTable> parse_joint_limits(std::string_view text, const std::str
     if (doc.is_object() && !joints) doc.error("", "missing required key 'joints'");
     if (joints && !joints->is_object())
         doc.error("joints", std::string("expected an object keyed by joint name, got ") + joints->type_name());
-    for (auto it = joints && joints->is_object() ? joints->begin() : json::const_iterator(); joints && joints->is_object() && it != joints->end(); ++it) {
-        const std::string where = "/joints/" + it.key();
-        if (it.key().empty()) {
-            doc.error("joints/", "empty joint name");
-            continue;
+    if (joints && joints->is_object()) {
+        for (auto it = joints->begin(); it != joints->end(); ++it) {
+            if (it.key().empty()) {
+                doc.error("joints/", "empty joint name");
+                continue;
+            }
+            JsonObjectReader r(it.value(), "/joints/" + it.key(), source_name, errors);
+            JointLimit limit;
+            read_joint(r, to_radians, bound, limit);
+            table.names.push_back(it.key());
+            table.limits.push_back(limit);
         }
-        JsonObjectReader r(it.value(), where, source_name, errors);
-        JointLimit limit;
-        read_joint(r, to_radians, bound, limit);
-        table.names.push_back(it.key());
-        table.limits.push_back(limit);
     }
     if (!errors.empty()) return first_and_rest(errors);
     return table;

@@ -95,11 +95,11 @@ Result<std::vector<MuscleDef>> parse_muscle_defs(const json& doc, const std::str
         read_exponents(r, d);
         r.read("fat_thickness", d.fat_thickness, 0.0, 1.0);
         d.depth_axis = r.vec3("depth_axis", d.depth_axis, false, 1e3);
-        const std::string mirror = r.string("mirror", "");
+        // The mirrored copy's name: a non-empty string when given (one error otherwise).
+        const std::string mirror = r.has("mirror") ? r.string("mirror", "", /*required=*/true) : std::string();
         r.reject_unknown_keys();
         defs.push_back(d);
-        if (r.has("mirror") && mirror.empty()) r.error("mirror", "'mirror' must be the name of the mirrored copy");
-        else if (!mirror.empty()) defs.push_back(mirror_muscle(d, mirror));
+        if (!mirror.empty()) defs.push_back(mirror_muscle(d, mirror));
     }
     if (!errors.empty()) return first_and_rest(errors);
     return defs;

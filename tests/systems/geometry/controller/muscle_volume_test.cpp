@@ -3,6 +3,7 @@
 // within 2 % while both elbows and knees sweep 0-140 degrees.
 #include "systems/geometry/surface_grid.hpp"
 #include "tests/systems/geometry/controller/test_humanoid.hpp"
+#include "tests/systems/geometry/muscle/grid_volume.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -28,18 +29,6 @@ std::vector<glm::mat4> flexed(const Skeleton& s, float angle) {
     return m;
 }
 
-// Volume enclosed by muscle m's (T, P) grid within `surface` (outward triangles, divergence theorem).
-double muscle_volume(std::span<const glm::vec3> surface, uint32_t T, uint32_t P, uint32_t m) {
-    std::vector<uint32_t> tri;
-    append_grid_triangles(T, P, m * grid_vertex_count(T, P), tri);
-    double v = 0.0;
-    for (size_t i = 0; i < tri.size(); i += 3) {
-        const glm::dvec3 a(surface[tri[i]]), b(surface[tri[i + 1]]), c(surface[tri[i + 2]]);
-        v += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    return v;
-}
-
 TEST(MuscleVolume, DrawnMusclesKeepTheirVolumeAsElbowsAndKneesFlex) {
     const auto& h = test::humanoid();
     ASSERT_NE(h.geometry, nullptr);
@@ -58,7 +47,7 @@ TEST(MuscleVolume, DrawnMusclesKeepTheirVolumeAsElbowsAndKneesFlex) {
         ctl.muscle_surface(0, surface);
         ASSERT_EQ(surface.size(), size_t{M} * grid_vertex_count(24, 16));
         for (uint32_t m = 0; m < M; ++m) {
-            const double v = muscle_volume(surface, 24, 16, m);
+            const double v = test::grid_volume(surface, 24, 16, m);
             if (deg == 0) {
                 ASSERT_GT(v, 0.0) << g.muscles().names[m];
                 rest[m] = v;

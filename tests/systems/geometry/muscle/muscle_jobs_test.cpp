@@ -5,6 +5,7 @@
 #include "systems/geometry/muscle/superellipsoid.hpp"
 #include "systems/geometry/surface_grid.hpp"
 #include "tests/systems/geometry/muscle/test_skeletons.hpp"
+#include "tests/systems/geometry/muscle/grid_volume.hpp"
 
 #include <gtest/gtest.h>
 
@@ -47,17 +48,6 @@ Shapes run_shapes(const MuscleSet& set, std::span<const glm::mat4> model) {
     return s;
 }
 
-// Volume of a closed triangle mesh by the divergence theorem (sum of signed tetrahedra).
-double mesh_volume(std::span<const glm::vec3> p, uint32_t T, uint32_t P, size_t shape) {
-    std::vector<uint32_t> tri;
-    append_grid_triangles(T, P, static_cast<uint32_t>(shape * grid_vertex_count(T, P)), tri);
-    double v = 0.0;
-    for (size_t i = 0; i < tri.size(); i += 3) {
-        const glm::dvec3 a(p[tri[i]]), b(p[tri[i + 1]]), c(p[tri[i + 2]]);
-        v += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    return v;
-}
 
 TEST(MuscleJobs, ElbowFlexionKeepsVolumeShortensAndThickens) {
     const Skeleton arm = test::make_arm_skeleton();
@@ -165,7 +155,7 @@ TEST(MuscleJobs, MeshVolumeConvergesToAnalyticVolume) {
             MuscleTessellateJob job{&tables, s.centres, s.rotations, s.radii, pos, nrm};
             ASSERT_TRUE(job.Validate());
             job.Run();
-            const double err = std::fabs(mesh_volume(pos, T, P, 0) / exact - 1.0);
+            const double err = std::fabs(test::grid_volume(pos, T, P, 0) / exact - 1.0);
             // Inscribed polyhedron: error falls with the steps (second order for the smooth ellipsoid).
             EXPECT_LT(err, previous) << "T=" << T;
             if (ab == glm::vec2(1, 1) && T >= 16) {
