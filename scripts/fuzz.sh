@@ -16,12 +16,13 @@ TARGETS=("$@")
 [ ${#TARGETS[@]} -eq 0 ] && TARGETS=(fuzz_scene fuzz_rules fuzz_bvh fuzz_gltf fuzz_joint_limits)
 BUILD_DIR=${BUILD_DIR:-$ROOT/build-fuzz}
 WORK_DIR=${WORK_DIR:-$BUILD_DIR/fuzz-work}
-FLAGS="-fsanitize=address,undefined -fsanitize=fuzzer-no-link -fno-sanitize-recover=all -g -O1"
+FLAGS="-fsanitize=address,undefined -fsanitize=fuzzer-no-link -fno-sanitize-recover=all -gline-tables-only -O1"
 
 if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
   cmake -S "$ROOT/tests/fuzz" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
         -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-        -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" >/dev/null
+        -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_C_FLAGS="$FLAGS" \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-DNDEBUG" >/dev/null
 fi
 cmake --build "$BUILD_DIR" --target "${TARGETS[@]}" -j"${JOBS:-2}"
 

@@ -15,6 +15,8 @@
 #include "systems/geometry/body_skin/skin_field.hpp"
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
 namespace aloha {
 
@@ -22,5 +24,11 @@ namespace aloha {
 /// most `target_triangles` triangles remain or no edge may be collapsed. The result keeps every input
 /// vertex slot (collapsed ones unused, kept ones possibly moved), the input's orientation and topology.
 [[nodiscard]] TriangleSurface collapse_edges(const TriangleSurface& mesh, uint32_t target_triangles);
+
+/// collapse_edges() to several targets in one pass over the collapse order (cost of the smallest
+/// target alone): element i equals collapse_edges(mesh, target_triangles[i]), bit for bit, whatever the
+/// order of the targets.
+[[nodiscard]] std::vector<TriangleSurface> collapse_edges_progressive(const TriangleSurface& mesh,
+                                                                      std::span<const uint32_t> target_triangles);
 
 }  // namespace aloha

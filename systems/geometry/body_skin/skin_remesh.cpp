@@ -62,7 +62,17 @@ SurfaceTopology analyse_surface(std::span<const uint32_t> indices, size_t vertex
 
 TriangleSurface simplify_and_relax(const TriangleSurface& dense, const SampledField& field, uint32_t target_triangles,
                                    int iterations) {
-    const TriangleSurface collapsed = collapse_edges(dense, target_triangles);
+    return relax_collapsed(collapse_edges(dense, target_triangles), field, iterations);
+}
+
+std::vector<TriangleSurface> simplify_and_relax_all(const TriangleSurface& dense, const SampledField& field,
+                                                    std::span<const uint32_t> target_triangles, int iterations) {
+    std::vector<TriangleSurface> out = collapse_edges_progressive(dense, target_triangles);
+    for (TriangleSurface& s : out) s = relax_collapsed(s, field, iterations);
+    return out;
+}
+
+TriangleSurface relax_collapsed(const TriangleSurface& collapsed, const SampledField& field, int iterations) {
     TriangleSurface out = compact(collapsed.positions, collapsed.indices);
     // Neighbours of every vertex (each undirected edge once per direction).
     const size_t n = out.positions.size();

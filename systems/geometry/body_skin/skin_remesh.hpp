@@ -36,4 +36,13 @@ struct SurfaceTopology {
 [[nodiscard]] TriangleSurface simplify_and_relax(const TriangleSurface& dense, const SampledField& field,
                                                  uint32_t target_triangles, int iterations = 4);
 
+/// simplify_and_relax() to several targets with one collapse pass (collapse_edges_progressive):
+/// element i equals simplify_and_relax(dense, field, target_triangles[i], iterations).
+[[nodiscard]] std::vector<TriangleSurface> simplify_and_relax_all(const TriangleSurface& dense, const SampledField& field,
+                                                                  std::span<const uint32_t> target_triangles, int iterations = 4);
+
+/// The relaxation half of simplify_and_relax(): `collapsed` (collapse_edges' output, unused vertex
+/// slots allowed) compacted, relaxed onto `field` and put in vertex-cache order.
+[[nodiscard]] TriangleSurface relax_collapsed(const TriangleSurface& collapsed, const SampledField& field, int iterations = 4);
+
 }  // namespace aloha

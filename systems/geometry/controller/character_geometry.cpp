@@ -1,6 +1,7 @@
 // CharacterGeometry: validation, rest-pose data, mesh bindings and the lazily built caches.
 #include "systems/geometry/controller/character_geometry.hpp"
 
+#include "systems/geometry/body_skin/skin_remesh.hpp"
 #include "systems/geometry/muscle/muscle_shape_job.hpp"
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
 #include "systems/geometry/muscle/superellipsoid.hpp"
@@ -258,6 +259,36 @@ const SkinLayer& CharacterGeometry::skin_layer(uint32_t theta_steps, uint32_t ph
         slot = std::make_unique<SkinLayer>(build_generated_skin(*body_surface_, muscles_, skeleton_.parents(), rest_model_, tab, *grid));
     }
     return *slot;
+}
+
+void CharacterGeometry::prepare_skin_layers(std::span<const std::pair<uint32_t, uint32_t>> tessellations) const {
+    if (mesh_) return;  // an authored mesh is bound as it is: nothing shared between tessellations
+    // Tables and grid meshes first (they take the lock themselves), then the missing layers in one pass.
+    std::vector<std::pair<uint32_t, uint32_t>> missing;
+    std::vector<const SuperEllipsoidTables*> tabs;
+    std::vector<const GeneratedBindMesh*> grids;
+    std::vector<uint32_t> targets;
+    for (const auto& tp : tessellations) {
+        if (std::find(missing.begin(), missing.end(), tp) != missing.end()) continue;
+        {
+            std::lock_guard lock(mutex_);
+            if (skin_layers_.contains(tp)) continue;
+        }
+        missing.push_back(tp);
+        tabs.push_back(&tables(tp.first, tp.second));
+        grids.push_back(&generated_mesh(tp.first, tp.second));
+        targets.push_back(generated_skin_triangles(muscles_, *tabs.back()));
+    }
+    if (missing.empty()) return;
+    std::lock_guard lock(mutex_);
+    if (!body_surface_) body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_));
+    std::vector<TriangleSurface> skins = simplify_and_relax_all(body_surface_->dense, body_surface_->field, targets);
+    for (size_t i = 0; i < missing.size(); ++i) {
+        auto& slot = skin_layers_[missing[i]];
+        if (!slot)
+            slot = std::make_unique<SkinLayer>(
+                bind_generated_skin(std::move(skins[i]), muscles_, skeleton_.parents(), rest_model_, *tabs[i], *grids[i]));
+    }
 }
 
 const SubdivisionTopology& CharacterGeometry::subdivision(uint32_t theta_steps, uint32_t phi_steps, uint32_t level) const {

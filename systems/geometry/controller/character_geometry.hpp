@@ -118,6 +118,10 @@ public:
     /// otherwise; bound to the muscles at (T, P). Thread-safe; stays valid. Requires muscles,
     /// T >= 3, P >= 2.
     const SkinLayer& skin_layer(uint32_t theta_steps, uint32_t phi_steps) const;
+    /// Builds the skin layers at every (T, P) of `tessellations` that is not built yet, the generated
+    /// ones with one simplification pass (simplify_and_relax_all: the cost of the coarsest alone; each
+    /// layer equals what skin_layer() would build on its own). Thread-safe. Requires what skin_layer() does.
+    void prepare_skin_layers(std::span<const std::pair<uint32_t, uint32_t>> tessellations) const;
     /// Catmull-Clark refinement of the skin at `level` (1..4): of the generated skin at (T, P) for a
     /// type without a mesh, of the real mesh's triangles (T, P ignored) otherwise. Thread-safe.
     const SubdivisionTopology& subdivision(uint32_t theta_steps, uint32_t phi_steps, uint32_t level) const;

@@ -139,6 +139,14 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
 
 void GeometryController::set_levels(std::span<const GeomLod> levels) {
     assert(!levels.empty() && levels.size() < kNoLevel);
+    // Every generated skin the levels use, simplified in one pass (build_level then finds them built).
+    if (geometry_->muscle_count() > 0 && !geometry_->has_mesh()) {
+        std::vector<std::pair<uint32_t, uint32_t>> skins;
+        for (const GeomLod& lod : levels)
+            if (lod.method == GeomMethod::SkinnedMesh || lod.method == GeomMethod::Layered || lod.method == GeomMethod::Subdivided)
+                skins.emplace_back(std::max<uint32_t>(3, lod.theta_steps), std::max<uint32_t>(2, lod.phi_steps));
+        geometry_->prepare_skin_layers(skins);
+    }
     std::vector<std::unique_ptr<Level>> next(levels.size());
     std::vector<uint8_t> kept(levels.size(), 0);
     for (size_t i = 0; i < levels.size(); ++i) {

@@ -132,10 +132,19 @@ BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleto
 SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles, std::span<const int16_t> parents,
                                std::span<const glm::mat4> rest_model,
                                const SuperEllipsoidTables& tables, const GeneratedBindMesh& generated) {
-    const uint32_t T = tables.theta_steps(), P = tables.phi_steps(), V = grid_vertex_count(T, P);
-    const auto M = static_cast<uint32_t>(muscles.size());
     // The collapse keeps the dense surface's topology: one closed manifold (the tests check it).
-    TriangleSurface skin = simplify_and_relax(body.dense, body.field, M * V);
+    return bind_generated_skin(simplify_and_relax(body.dense, body.field, generated_skin_triangles(muscles, tables)), muscles,
+                               parents, rest_model, tables, generated);
+}
+
+uint32_t generated_skin_triangles(const MuscleSet& muscles, const SuperEllipsoidTables& tables) {
+    return static_cast<uint32_t>(muscles.size()) * grid_vertex_count(tables.theta_steps(), tables.phi_steps());
+}
+
+SkinLayer bind_generated_skin(TriangleSurface skin, const MuscleSet& muscles, std::span<const int16_t> parents,
+                              std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables,
+                              const GeneratedBindMesh& generated) {
+    const uint32_t T = tables.theta_steps(), P = tables.phi_steps(), V = grid_vertex_count(T, P);
     SkinLayer layer;
     layer.rest_positions = std::move(skin.positions);
     layer.indices = std::move(skin.indices);

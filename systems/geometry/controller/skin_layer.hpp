@@ -64,6 +64,15 @@ struct SkinLayer {
                                              std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables,
                                              const GeneratedBindMesh& generated);
 
+/// Triangles of the generated skin at the tables' (T, P): M * V(T, P).
+[[nodiscard]] uint32_t generated_skin_triangles(const MuscleSet& muscles, const SuperEllipsoidTables& tables);
+
+/// build_generated_skin() from an already simplified and relaxed body surface `skin`
+/// (simplify_and_relax[_all] of the body to generated_skin_triangles()): bound and LBS-weighted.
+[[nodiscard]] SkinLayer bind_generated_skin(TriangleSurface skin, const MuscleSet& muscles, std::span<const int16_t> parents,
+                                            std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables,
+                                            const GeneratedBindMesh& generated);
+
 /// An authored mesh's skin layer at the tables' (T, P): its rest positions and triangles, bound to the
 /// rest muscles (no LBS data: the mesh has its own).
 [[nodiscard]] SkinLayer build_mesh_skin(std::span<const glm::vec3> rest_positions, std::span<const uint32_t> indices,

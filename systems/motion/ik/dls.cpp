@@ -23,11 +23,15 @@ constexpr int kMaxRows = 6;
 constexpr int kMaxCols = 3 * kMaxIkChain;
 constexpr int kMaxTries = 6;
 
-// Fixed-capacity Eigen types: the solver never allocates (it runs per character per frame).
-using Jacobian = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxRows, kMaxCols>;
-using RowSquare = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxRows, kMaxRows>;
-using RowVector = Eigen::Matrix<float, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxRows, 1>;
-using ColVector = Eigen::Matrix<float, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxCols, 1>;
+// Eigen types of fixed row count (3: position, 6: position and orientation) and bounded column count:
+// the solver never allocates (it runs per character per frame). Sums in double, as J J^T of a long chain
+// loses the small singular values in float and the iteration then stalls near the tolerance.
+template <int R>
+using Jacobian = Eigen::Matrix<double, R, Eigen::Dynamic, Eigen::RowMajor, R, kMaxCols>;
+template <int R>
+using RowSquare = Eigen::Matrix<double, R, R>;
+template <int R>
+using RowVector = Eigen::Matrix<double, R, 1>;
 
 // Forward kinematics of the chain from a fixed parent matrix into `model`.
 void chain_fk(const Skeleton& skeleton, std::span<const int> chain, const PoseView& pose, const glm::quat* local,
@@ -44,30 +48,36 @@ void chain_fk(const Skeleton& skeleton, std::span<const int> chain, const PoseVi
 
 // dq = J^T (J J^T + lambda2 I)^-1 e over the active columns (Eigen's Cholesky, LLT); false if the system
 // is not symmetric positive definite.
-bool dls_step(const float jac[kMaxRows][kMaxCols], const bool* active, int rows, int cols, float lambda2,
-              const float* e, float* dq) {
-    Jacobian j(rows, cols);
-    RowVector err(rows);
-    for (int i = 0; i < rows; ++i) {
+template <int R>
+bool dls_step_rows(const float jac[kMaxRows][kMaxCols], const bool* active, int cols, float lambda2, const float* e,
+                   float* dq) {
+    Jacobian<R> j(R, cols);
+    RowVector<R> err;
+    for (int i = 0; i < R; ++i) {
         err(i) = e[i];
         for (int c = 0; c < cols; ++c) j(i, c) = active[c] ? jac[i][c] : 0.0f;
     }
-    RowSquare a = j * j.transpose();
-    a.diagonal().array() += lambda2;
-    const Eigen::LLT<RowSquare> llt(a);
+    RowSquare<R> a = j * j.transpose();
+    a.diagonal().array() += static_cast<double>(lambda2);
+    const Eigen::LLT<RowSquare<R>> llt(a);
     if (llt.info() != Eigen::Success) return false;
-    const RowVector y = llt.solve(err);
-    const ColVector step = j.transpose() * y;
-    for (int c = 0; c < cols; ++c) dq[c] = static_cast<float>(step(c));
+    const RowVector<R> y = llt.solve(err);
+    for (int c = 0; c < cols; ++c) dq[c] = static_cast<float>(j.col(c).dot(y));
     return true;
+}
+
+bool dls_step(const float jac[kMaxRows][kMaxCols], const bool* active, int rows, int cols, float lambda2,
+              const float* e, float* dq) {
+    assert(rows == 3 || rows == 6);
+    return rows == 3 ? dls_step_rows<3>(jac, active, cols, lambda2, e, dq) : dls_step_rows<6>(jac, active, cols, lambda2, e, dq);
 }
 
 // Geometric-mean singular value of the 3x3 position block of J J^T: det^(1/6).
 float position_sigma(const float jac[kMaxRows][kMaxCols], int cols) {
-    Jacobian j(3, cols);
+    Jacobian<3> j(3, cols);
     for (int i = 0; i < 3; ++i)
         for (int c = 0; c < cols; ++c) j(i, c) = jac[i][c];
-    const double det = static_cast<double>((j * j.transpose()).determinant());
+    const double det = (j * j.transpose()).determinant();
     return static_cast<float>(std::pow(std::max(det, 0.0), 1.0 / 6.0));
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace aloha {
 namespace {
@@ -62,6 +63,26 @@ TEST(SkinField, DumbbellJoinsIntoOneSurfaceAndSimplifies) {
     // Relaxed vertices sit on the zero set (Newton projection on the trilinear field: within 1 mm).
     for (const glm::vec3& p : coarse.positions) EXPECT_LT(std::abs(field.sample(p)), 1e-3f);
     EXPECT_NEAR(enclosed_volume(coarse) / enclosed_volume(dense), 1.0, 0.03);
+}
+
+// The levels of a body are simplified in one pass: stopping at a larger target and going on pops the
+// same collapses as going straight to the smaller one, so every snapshot equals its own collapse, bit
+// for bit, whatever order the targets are given in.
+TEST(SkinField, ProgressiveCollapseEqualsEachCollapseOnItsOwn) {
+    BodyField f = sphere(0.08f);
+    f.capsules.push_back({glm::vec3(0.1f, 0.2f, -0.3f), glm::vec3(0.4f, 0.2f, -0.3f), 0.03f});
+    const SampledField field = sample_body_field(f, 0.01f);
+    const TriangleSurface dense = polygonise(field);
+    const std::vector<uint32_t> targets = {600, 2400, 150, 1200};
+    const std::vector<TriangleSurface> all = simplify_and_relax_all(dense, field, targets);
+    ASSERT_EQ(all.size(), targets.size());
+    for (size_t i = 0; i < targets.size(); ++i) {
+        const TriangleSurface alone = simplify_and_relax(dense, field, targets[i]);
+        EXPECT_LE(all[i].indices.size() / 3, targets[i]);
+        EXPECT_EQ(all[i].indices, alone.indices) << "target " << targets[i];
+        ASSERT_EQ(all[i].positions.size(), alone.positions.size()) << "target " << targets[i];
+        for (size_t v = 0; v < alone.positions.size(); ++v) EXPECT_EQ(all[i].positions[v], alone.positions[v]);
+    }
 }
 
 TEST(SurfaceMap, MapsAVertexOntoItsTriangle) {

@@ -111,7 +111,7 @@ TEST(IkHooks, LowLodIsCoarserThanHighLod) {
         sum_high += glm::length(high.world(wrist) - goal);
     }
     // Regression guard, not derived: the straight arm's first steps go where rounding sends them, so the
-    // ratio moves with the arithmetic (hand-written Cholesky 3.0x, Eigen's LLT 2.0x, both converge below).
+    // ratio moves with the arithmetic (3.0x with the hand-written double Cholesky, 2.0x with a float LLT; both converge below).
     EXPECT_GT(sum_low, 1.5f * sum_high);
     // Warm starts let the cheap LOD converge over frames too (2 sweeps per frame accumulate).
     for (int frame = 0; frame < 30; ++frame) low.step();
