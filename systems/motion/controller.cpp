@@ -47,6 +47,13 @@ void MotionController::set_worker_slots(size_t count) {
 void MotionController::set_walk_rig(WalkRig rig, GaitParams gait) {
     rig_ = std::move(rig);
     gait_ = gait;
+    foot_lock_.emplace(*skeleton_, *rig_, chars_.size(), foot_lock_params_);
+}
+
+void MotionController::set_foot_lock(bool on, FootLockParams params) {
+    foot_lock_params_ = params;
+    foot_lock_on_ = on;
+    if (rig_) foot_lock_.emplace(*skeleton_, *rig_, chars_.size(), params);
 }
 
 void MotionController::set_walk_clip(ClipId clip) { set_walk_clips(std::span<const ClipId>(&clip, 1)); }

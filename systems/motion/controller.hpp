@@ -10,6 +10,7 @@
 #include "components/motion.hpp"
 #include "components/transform.hpp"
 #include "systems/motion/clip.hpp"
+#include "systems/motion/foot_lock.hpp"
 #include "systems/motion/inertialize.hpp"
 #include "systems/motion/kinematic_walk.hpp"
 #include "systems/motion/pose_pool.hpp"
@@ -85,6 +86,11 @@ public:
 
     /// Enables WalkMethod::Kinematic (and the fallback for Dynamic) with this leg rig.
     void set_walk_rig(WalkRig rig, GaitParams gait = {});
+    /// Turns the foot lock (foot_lock.hpp) of walking characters on or off (on by default once a walk
+    /// rig is set) and sets its parameters; clears every character's lock state. Not during an update.
+    void set_foot_lock(bool on, FootLockParams params = {});
+    /// The foot lock's state (null without a walk rig).
+    [[nodiscard]] const FootLock* foot_lock() const { return foot_lock_ ? &*foot_lock_ : nullptr; }
     /// Enables WalkMethod::ClipPlayback with this looping walk clip (its root motion sets the natural speed).
     void set_walk_clip(ClipId clip);
     /// Enables WalkMethod::ClipPlayback with several looping gait cycles (e.g. a walk and run ladder):
@@ -243,6 +249,7 @@ private:
         uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the rest pose)
         uint8_t stale = 0;             // posing skipped while unseen: the pool's pose (and keys) are old
         uint8_t keys_stale = 0;        // posed without its interpolation keys (read at updates only)
+        float since_locked = 0.0f;     // seconds since the foot lock last saw this character
         Channel prev;                  // the request faded from (while fade_left > 0 and !fade_snapshot)
     };
     struct Due {
@@ -259,6 +266,8 @@ private:
     void evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
                   Velocity& velocity, float posed_dt, bool primary, bool first);
     void pose_one(const Due& d, size_t worker);
+    // Runs the foot lock on the pose `d`'s character shows this frame (last, after keys and offsets).
+    void lock_feet(const Due& d);
     void update_slots(uint32_t c, Character& ch);
     // Phase 1's output of one block of active_ (blocks run concurrently, merged in order afterwards).
     struct StepBlock {
@@ -288,6 +297,9 @@ private:
     const Skeleton* skeleton_;
     const ClipLibrary* clips_;
     std::optional<WalkRig> rig_;
+    std::optional<FootLock> foot_lock_;  // with the walk rig
+    FootLockParams foot_lock_params_;
+    bool foot_lock_on_ = true;
     GaitParams gait_;
     std::vector<ClipId> walk_clips_;       // gait cycles, any order
     std::vector<float> walk_clip_speeds_;  // their natural speeds (m/s)

@@ -90,8 +90,10 @@ void MotionController::pose_one(const Due& d, size_t worker) {
         std::copy(shown.model.begin(), shown.model.end(), scratch.model.begin());
     }
     // A level change this frame: keep the pose shown so far before the new one overwrites it.
-    if (ch.inertial_slot >= 0 && ch.inertial_pending)
+    if (ch.inertial_slot >= 0 && ch.inertial_pending) {
         inertia_.hold(static_cast<uint32_t>(ch.inertial_slot), skeleton_->parents().data(), std::as_const(pool_).view(c).model);
+        if (foot_lock_) foot_lock_->rebase(c);  // the held pose carries the lock's corrections
+    }
     evaluate(c, ch.cur, lod, out, x, v, d.posed_dt, true, d.started);
     ch.shown = 1;
     // Keys are only taken for a pose read every frame; one read at updates only shows this pose (the keys'
@@ -150,6 +152,15 @@ void MotionController::settle_inertia(Character& ch, const PoseView& pose, float
                    nullptr, pose.model.data(), static_cast<size_t>(skeleton_->joint_count()));
 }
 
+void MotionController::lock_feet(const Due& d) {
+    if (!foot_lock_ || !foot_lock_on_) return;
+    Character& ch = chars_[d.character];
+    // Walks the controller poses kinematically or from clips; the dynamic walker's feet are its own.
+    const bool walking = ch.cur.req.kind == RequestKind::Walk && ch.has_walk_method && ch.walk_method != WalkMethod::Dynamic;
+    foot_lock_->apply(d.character, ch.since_locked, transforms_[d.element], pool_.view(d.character).model, walking);
+    ch.since_locked = 0.0f;
+}
+
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
     end = std::min(end, work_count());
     // Per-level time of this chunk, added to level_ns_ once at the end (one clock read per item).
@@ -165,6 +176,7 @@ void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
             const Character& ch = chars_[d.character];
             keys_.interpolate(static_cast<uint32_t>(ch.keys_slot), d.posed_dt / ch.keys_span, pool_.view(d.character).model);
         }
+        lock_feet(d);
         if (!timed) continue;
         const uint64_t t = now();
         chunk_ns[lods_[d.element].level] += t - last;

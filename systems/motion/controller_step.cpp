@@ -157,6 +157,7 @@ void MotionController::step_active(size_t k, float dt, std::span<MotionState> st
     }
 
     ch.since_posed += dt;
+    ch.since_locked += dt;
     ++st.frames_since_update;
     // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
     const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
@@ -211,6 +212,7 @@ void MotionController::step_active(size_t k, float dt, std::span<MotionState> st
             if (ch.inertial_slot >= 0) inertia_.release(static_cast<uint32_t>(ch.inertial_slot)), ch.inertial_slot = -1;
         }
         ch.last_anim = -1;  // a level change while resting shows nothing: no transition on waking
+        if (foot_lock_) foot_lock_->reset(c);  // this character's entries only
         out.resting.push_back(static_cast<uint32_t>(k));  // taken out of active_ after the blocks
     }
 }

@@ -17,4 +17,5 @@ list(APPEND ALOHA_MOTION_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/motion_metrics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/crowd_motion_meter.cpp
   ${CMAKE_CURRENT_LIST_DIR}/throttle_keys.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/foot_lock.cpp
   ${CMAKE_CURRENT_LIST_DIR}/inertialize.cpp)

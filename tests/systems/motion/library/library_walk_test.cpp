@@ -5,6 +5,7 @@
 #include "systems/motion/library/gait_clip.hpp"
 #include "systems/motion/library/motion_library.hpp"
 #include "tests/common/test_humanoid.hpp"
+#include "tests/systems/motion/skate_meter.hpp"
 
 #include <gtest/gtest.h>
 
@@ -50,43 +51,11 @@ protected:
     std::vector<ClipId> gaits;
 };
 
-// Contact as in gait_clip_test (within 5 mm of the ground and of the foot's lower point); travel per
-// contact is the largest horizontal distance from where the point touched down.
-struct SkateMeter {
-    void add(const WalkRig& rig, const PoseBuilder& rest, std::span<const glm::mat4> model, const Transform& x) {
-        for (int side = 0; side < 2; ++side) {
-            const FootContacts c = foot_contacts(rig, rest, side);
-            const glm::mat4 ankle = model[static_cast<size_t>(rig.ankle[side])];
-            glm::vec3 pts[2] = {glm::vec3(ankle * glm::vec4(c.heel, 1.0f)),
-                                glm::vec3(model[static_cast<size_t>(rig.toe[side])][3]) -
-                                    glm::vec3(0.0f, rest.rest_position(rig.toe[side]).y, 0.0f)};
-            for (glm::vec3& p : pts) p = x.position + x.rotation * p;
-            const float lowest = std::min(pts[0].y, pts[1].y);
-            for (int k = 0; k < 2; ++k) {
-                const int i = 2 * side + k;
-                const bool on = pts[k].y < 0.005f && pts[k].y < lowest + 0.001f;
-                if (on && !down[i]) start[i] = pts[k], excursion[i] = 0.0f, ++contacts;
-                if (on) {
-                    excursion[i] = std::max(excursion[i], glm::length(glm::vec2(pts[k].x - start[i].x, pts[k].z - start[i].z)));
-                    worst = std::max(worst, excursion[i]);
-                }
-                if (!on && down[i]) total += excursion[i];
-                down[i] = on;
-            }
-        }
-    }
-    glm::vec3 start[4];
-    float excursion[4] = {0, 0, 0, 0};
-    bool down[4] = {false, false, false, false};
-    float total = 0.0f, worst = 0.0f;
-    int contacts = 0;
-};
-
 // The bound: at most 2 mm of contact travel per metre walked, at any requested speed.
 TEST_F(LibraryWalk, ClipLevelFeetStayPlantedAtAnySpeed) {
     PoseBuilder rest(sk);
     for (float speed : {0.8f, 1.0f, 1.4f, 2.0f, 2.5f}) {
-        SkateMeter m;
+        test::SkateMeter m;
         walk(speed, WalkMethod::ClipPlayback, 4.0f,
              [&](std::span<const glm::mat4> model, const Transform& x) { m.add(rig, rest, model, x); });
         const float walked = speed * 4.0f;
@@ -103,7 +72,7 @@ TEST_F(LibraryWalk, ClipLevelFeetStayPlantedAtAnySpeed) {
 TEST_F(LibraryWalk, ThrottledClipLevelKeepsFeetPlanted) {
     PoseBuilder rest(sk);
     for (uint16_t interval : {uint16_t{2}, uint16_t{4}, uint16_t{8}}) {
-        SkateMeter m;
+        test::SkateMeter m;
         walk(1.4f, WalkMethod::ClipPlayback, 4.0f,
              [&](std::span<const glm::mat4> model, const Transform& x) { m.add(rig, rest, model, x); }, interval,
              1.0f / 60.0f);
