@@ -31,6 +31,9 @@ enum class GeomMethod : uint8_t {
     SkinnedMesh = 2,  ///< linear-blend-skinned skin, no muscles or springs (layers peeled)
     Layered = 3,      ///< skeleton + muscles + fat springs + skin from spring ends
     Subdivided = 4,   ///< Layered, then OpenSubdiv Catmull-Clark refinement of the skin
+    Impostor = 5,     ///< a camera-facing quad from the type's pre-rendered atlas (views x walk phases):
+                      ///< no per-character geometry; cheaper to draw than RigidProxy (out of the cost order
+                      ///< so that the values above keep their meaning)
 };
 
 /// Geometric LOD parameters marshalled to the geometric controller.

@@ -3,7 +3,8 @@
 // hemisphere(N) = mix(ground, sky, 0.5 + 0.5 N.y) (set 0 binding 4) and albedo = instance colour * material
 // base colour (* the base colour texture at the vertex UVs in textured mode, offsets.w & 2). N is turned
 // to face the camera (two-sided lighting, so meshes with either winding light the same). In box mode (offsets.w & 1)
-// N is the flat face normal from screen-space derivatives of the world position.
+// N is the flat face normal from screen-space derivatives of the world position. With offsets.w & 4 the
+// world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes).
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -31,6 +32,10 @@ void main() {
     if (dot(n, pc.camera.xyz - world) < 0.0) n = -n;
     vec4 albedo = v_colour;
     if ((pc.offsets.w & 2u) != 0u) albedo *= texture(base_colour_texture, vec2(v_normal_u.w, v_world_v.w));
+    if ((pc.offsets.w & 4u) != 0u) {  // normal output (impostor bakes): 0.5 + 0.5 N, the draw's coverage in alpha
+        out_colour = vec4(0.5 + 0.5 * n, albedo.a);
+        return;
+    }
     float ambient = pc.light.w;
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
     float diffuse = max(dot(n, pc.light.xyz), 0.0);

@@ -5,6 +5,8 @@
 #include "engine/gpu/vk_error.hpp"
 
 #include "shaders/line_frag.h"
+#include "shaders/impostor_frag.h"
+#include "shaders/impostor_vert.h"
 #include "shaders/line_vert.h"
 #include "shaders/lit_constant_frag.h"
 #include "shaders/lit_mesh_frag.h"
@@ -203,6 +205,12 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
          VK_CULL_MODE_NONE});
     if (!lines) return lines.error();
     lp.lines_ = lines.value();
+    Result<VkPipeline> impostor = make_pipeline(
+        lp.device_, lp.layout_, render_pass,
+        {k_impostor_vert_spv, k_impostor_frag_spv, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
+         VK_CULL_MODE_NONE});
+    if (!impostor) return impostor.error();
+    lp.impostor_ = impostor.value();
     return lp;
 }
 
@@ -217,7 +225,8 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       culled_(std::exchange(o.culled_, VK_NULL_HANDLE)),
       lines_(std::exchange(o.lines_, VK_NULL_HANDLE)),
       vertex_lit_(std::exchange(o.vertex_lit_, VK_NULL_HANDLE)),
-      vertex_lit_culled_(std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE)) {}
+      vertex_lit_culled_(std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE)),
+      impostor_(std::exchange(o.impostor_, VK_NULL_HANDLE)) {}
 
 LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
     if (this != &o) {
@@ -233,6 +242,7 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         lines_ = std::exchange(o.lines_, VK_NULL_HANDLE);
         vertex_lit_ = std::exchange(o.vertex_lit_, VK_NULL_HANDLE);
         vertex_lit_culled_ = std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE);
+        impostor_ = std::exchange(o.impostor_, VK_NULL_HANDLE);
     }
     return *this;
 }
@@ -244,6 +254,7 @@ void LitPipelines::destroy() {
     if (lines_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, lines_, nullptr);
     if (vertex_lit_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_, nullptr);
     if (vertex_lit_culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_culled_, nullptr);
+    if (impostor_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, impostor_, nullptr);
     if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
     for (VkDescriptorPool p : material_pools_) vkDestroyDescriptorPool(device_, p, nullptr);
     material_pools_.clear();
@@ -252,7 +263,7 @@ void LitPipelines::destroy() {
     if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
     if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
     device_ = VK_NULL_HANDLE;
-    mesh_ = culled_ = lines_ = vertex_lit_ = vertex_lit_culled_ = VK_NULL_HANDLE;
+    mesh_ = culled_ = lines_ = vertex_lit_ = vertex_lit_culled_ = impostor_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;

@@ -21,6 +21,7 @@ enum LitMode : uint32_t {
     kLitMesh = 0,          ///< vertex-pulled mesh, albedo = instance colour * base colour
     kLitBoxes = 1,         ///< arithmetic unit boxes (proxies), flat normals
     kLitTexturedMesh = 2,  ///< mesh whose albedo is also multiplied by texture(set 1) at the vertex UVs
+    kLitNormals = 4,       ///< per-pixel pipelines write 0.5 + 0.5 * the world normal instead of the lit colour
 };
 
 /// Push constants shared by both pipelines (128 bytes, std430 layout of shaders/lit_mesh.vert).
@@ -94,6 +95,9 @@ public:
     [[nodiscard]] VkPipeline vertex_lit() const { return vertex_lit_; }
     /// vertex_lit() with back faces culled.
     [[nodiscard]] VkPipeline vertex_lit_culled() const { return vertex_lit_culled_; }
+    /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
+    /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
+    [[nodiscard]] VkPipeline impostor() const { return impostor_; }
     /// Line-list pipeline: unlit vertex colour, depth test LESS_OR_EQUAL.
     [[nodiscard]] VkPipeline lines() const { return lines_; }
     /// Layout for vkCmdPushConstants (stages vertex + fragment, LitPush) and vkCmdBindDescriptorSets.
@@ -122,6 +126,7 @@ private:
     VkPipeline lines_ = VK_NULL_HANDLE;
     VkPipeline vertex_lit_ = VK_NULL_HANDLE;
     VkPipeline vertex_lit_culled_ = VK_NULL_HANDLE;
+    VkPipeline impostor_ = VK_NULL_HANDLE;
 };
 
 }  // namespace aloha::gpu

@@ -45,6 +45,7 @@ std::vector<GeomLod> CharacterRuntime::usable_levels(std::span<const GeomLod> le
     if (type.muscles.size() > 0) return out;
     for (GeomLod& l : out) {
         if (l.method == GeomMethod::Hidden || l.method == GeomMethod::RigidProxy) continue;
+        if (l.method == GeomMethod::Impostor && type.mesh) continue;  // baked from the skinned mesh
         l.method = type.mesh ? GeomMethod::SkinnedMesh : GeomMethod::RigidProxy;
         l.layers = type.mesh ? kLayerSkeleton | kLayerSkin : kLayerSkeleton;
     }
@@ -316,6 +317,7 @@ void World::step() {
             const std::vector<GeomLod> levels = geom_levels(rules_.table());
             for (auto& rt : types_) rt->geometry->set_levels(rt->usable_levels(levels));
             reset_draws();  // level topologies may have changed: register again on demand
+            if (Status s = build_impostors(); !s.ok()) render_status_ = s;  // a new impostor level: bake its atlases
             (void)apply_rule_settings();  // budget and tier too; a tier the new file lacks falls back to its own
         }
     }

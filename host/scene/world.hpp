@@ -152,6 +152,15 @@ public:
     /// Fills `out` with character `index` (spawn order: types in scene order, then id) as the last
     /// frame left it. Requires index < character_count().
     void motion_sample(uint32_t index, MotionSample& out) const;
+    /// One baked impostor atlas (attach_renderer bakes one per type when the rules have an impostor level).
+    struct ImpostorReport {
+        std::string type;             ///< the character type
+        uint32_t width = 0, height = 0; ///< atlas pixels (colour and normal halves)
+        double build_ms = 0.0;        ///< bake wall time (posing, reference surfaces, GPU frames, read-back, upload)
+        uint64_t texture_bytes = 0;   ///< mipmapped texture memory
+    };
+    /// The atlases baked for the attached renderer.
+    [[nodiscard]] std::span<const ImpostorReport> impostor_atlases() const { return impostor_reports_; }
     /// Number of character types and each one's data.
     [[nodiscard]] size_t type_count() const { return types_.size(); }
     [[nodiscard]] const CharacterType& type(size_t i) const;
@@ -168,6 +177,9 @@ private:
     void refresh_type_views();
     /// Forgets the registered draw topologies and labels each level's GPU pass with its rule-file name.
     void reset_draws();
+    /// Bakes and registers the impostor atlas of every type not baked yet (rules with an impostor level
+    /// and a renderer attached; world_impostors.cpp).
+    Status build_impostors();
     /// Fills pose_use_ for this frame (motion system): which poses the later stages read.
     void mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs, std::span<const LodState> states);
 
@@ -202,6 +214,8 @@ private:
     size_t elements_mapped_ = SIZE_MAX;              ///< characters element_of_character was last filled for
     DrawListBuilder draws_;                          ///< draw lists and the renderer's topology cache
     RenderLists lists_;
+    std::vector<ImpostorReport> impostor_reports_;   ///< atlases baked for renderer_, by type order
+    std::vector<uint8_t> impostor_built_;            ///< per type: baked for renderer_
     CrowdRenderer* renderer_ = nullptr;
     gpu::OffscreenTarget* target_ = nullptr;
     double last_gpu_ms_ = -1.0;

@@ -7,8 +7,11 @@ namespace aloha {
 Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target) {
     renderer_ = renderer;
     target_ = target;
+    draws_.clear_impostors();
+    impostor_reports_.clear();
+    impostor_built_.clear();
     reset_draws();
-    return {};
+    return build_impostors();
 }
 
 void World::reset_draws() {

@@ -59,7 +59,9 @@ void World::mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs
         CharacterRuntime& rt = *types_[r.type];
         const GeomMethod method = rt.geometry->level(r.level).method;
         const bool every = method == GeomMethod::Layered || method == GeomMethod::Subdivided || (bones && method != GeomMethod::Hidden);
-        const PoseUse whole = method == GeomMethod::Hidden ? PoseUse::Unseen : every ? PoseUse::EveryFrame : PoseUse::AtUpdates;
+        // Impostors show baked poses (only the clip clock, which runs anyway, picks the row).
+        const bool unseen = method == GeomMethod::Hidden || (method == GeomMethod::Impostor && !bones);
+        const PoseUse whole = unseen ? PoseUse::Unseen : every ? PoseUse::EveryFrame : PoseUse::AtUpdates;
         if (whole != PoseUse::AtUpdates) {
             std::fill(pose_use_.begin() + static_cast<std::ptrdiff_t>(r.begin), pose_use_.begin() + static_cast<std::ptrdiff_t>(r.end),
                       static_cast<uint8_t>(whole));
@@ -259,12 +261,12 @@ void World::register_systems() {
     }));
 
     // The draw lists; registering a new topology or material writes the renderer's tables.
-    using DrawAccess = Access<Reads<SurfaceResource, PoseResource, GroupingResource, Transform, LodState, AnimLod>,
+    using DrawAccess = Access<Reads<SurfaceResource, PoseResource, GroupingResource, Transform, LodState, AnimLod, MotionState>,
                               Writes<DrawListResource, RendererTablesResource>>;
     scheduler_.add(make_system<DrawAccess>("render_prepare", WorldPhase::Render, source, [this](SystemContext&, const DrawAccess& a) {
         if (!renderer_) return;
         render_status_ = draws_.gather(renderer_, draw_types_, groups_, a.read<Transform>(), a.read<LodState>(), a.read<AnimLod>(),
-                                       DrawSettings{options_.colour, options_.overlay}, lists_);
+                                       DrawSettings{options_.colour, options_.overlay}, lists_, a.read<MotionState>());
     }));
 
     using RenderAccess = Access<Reads<DrawListResource, RendererTablesResource, CameraResource>, Writes<GpuResource>>;
@@ -275,6 +277,7 @@ void World::register_systems() {
         input.meshes = lists_.meshes;
         input.proxies = lists_.proxies;
         input.lines = lists_.lines;
+        input.impostors = lists_.impostors;
         Status s = renderer_->render(input, *target_);
         if (s.ok()) s = renderer_->finish();
         render_status_ = s;

@@ -29,7 +29,7 @@ struct FrameRecord {
     std::vector<double> system_ms;  // per scheduler system
     double cpu_ms = 0, render_ms = 0, gpu_ms = -1, frame_ms = 0;
     std::vector<uint32_t> geom_levels, anim_levels;
-    std::array<uint32_t, 5> geom_methods{};
+    std::array<uint32_t, 6> geom_methods{};
     std::array<uint32_t, 3> walk_methods{};
     FidelityFrame fidelity;
     LodSample lod;
@@ -231,6 +231,11 @@ int run_profile(const CliOptions& options) {
     levels["geometric_methods"] = {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided"};
     levels["walk_methods"] = {"clip", "kinematic", "dynamic"};
     report["levels"] = levels;
+    nlohmann::json atlases = nlohmann::json::array();  // impostor atlases baked at load (one per type)
+    for (const World::ImpostorReport& a : world.impostor_atlases())
+        atlases.push_back({{"type", a.type}, {"width", a.width}, {"height", a.height}, {"build_ms", a.build_ms},
+                           {"texture_bytes", a.texture_bytes}});
+    report["impostor_atlases"] = atlases;
     nlohmann::json per_frame = nlohmann::json::array();
     for (const auto& r : records)
         per_frame.push_back({{"geometric", r.geom_levels}, {"animation", r.anim_levels},
@@ -334,6 +339,9 @@ int run_profile(const CliOptions& options) {
         else std::cout << "LOD off: CPU systems mean " << fmt(compare["cpu_systems_ms"]["mean"].get<double>()) << " ms, "
                        << fmt(compare["ratio_mean"].get<double>()) << "x slower than LOD on (target 20x)\n";
     }
+    for (const World::ImpostorReport& a : world.impostor_atlases())
+        std::cout << "impostor atlas '" << a.type << "': " << a.width << " x " << a.height << " px, " << fmt(a.build_ms) << " ms to bake, "
+                  << fmt(double(a.texture_bytes) / 1048576.0) << " MiB with mips\n";
     std::cout << lod_summary(report);
     if (motion) std::cout << motion->table(table);
     std::cout << "state hash " << state_hash(world) << "; reports in " << out << "/\n";

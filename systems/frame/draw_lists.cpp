@@ -31,15 +31,21 @@ void DrawListBuilder::reset() {
 
 Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
                                std::span<const Transform> transforms, std::span<const LodState> states,
-                               std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out) {
+                               std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out,
+                               std::span<const MotionState> motion) {
     out.meshes.clear();
     out.proxies.clear();
     out.lines.clear();
+    out.impostors.clear();
     for (const LevelRange& r : groups.ranges) {
         const DrawType& draw = types[r.type];
         const GeometryController& gc = *draw.geometry;
         const GeomMethod method = gc.level(r.level).method;  // as this type draws the level
         if (method == GeomMethod::Hidden) continue;
+        if (method == GeomMethod::Impostor) {
+            gather_impostors(draw, r, groups, transforms, states, anims, motion, settings, out);
+            continue;
+        }
         if (method == GeomMethod::RigidProxy) {
             for (uint32_t p = r.begin; p < r.end; ++p) {
                 const uint32_t e = groups.order[p], id = groups.ids[p];

@@ -6,6 +6,7 @@
 
 #include "components/character.hpp"
 #include "components/lod.hpp"
+#include "components/motion.hpp"
 #include "components/transform.hpp"
 #include "engine/assets/surface_material.hpp"
 #include "engine/core/result.hpp"
@@ -31,6 +32,7 @@ struct RenderLists {
     std::vector<DeformableMesh> meshes;
     std::vector<ProxyInstance> proxies;
     std::vector<LineSegment> lines;
+    std::vector<ImpostorInstance> impostors;
 };
 
 /// What the draw lists need of one character type.
@@ -52,18 +54,27 @@ struct DrawSettings {
 /// The frame's draw lists and the renderer ids they refer to. One per renderer.
 class DrawListBuilder {
 public:
-    /// Forgets every registered id (a new renderer, or levels whose topologies changed).
+    /// Forgets every registered topology and material id (a new renderer, or levels whose topologies
+    /// changed); the impostor atlases stay (clear_impostors()).
     void reset();
+    /// Forgets the impostor atlases (a new renderer): impostor levels draw nothing until set_impostor().
+    void clear_impostors() { impostors_.clear(); }
+    /// Draws type `type`'s impostor levels with atlas `atlas` (a renderer id), whose walk rows follow a
+    /// cycle of `cycle_s` seconds of clip time (the phase of a clip-playback walk is time / cycle_s).
+    void set_impostor(uint16_t type, uint32_t atlas, float cycle_s);
     /// Names the GPU pass each geometric level's meshes are drawn in (index: level; e.g. the rule file's
     /// level names); levels without a name are drawn in the pass "meshes". Takes effect for topologies
     /// registered after the call (call reset() first to relabel registered ones).
     void set_pass_names(std::vector<std::string> names) { pass_names_ = std::move(names); }
     /// Clears `out` and fills it with the characters of `groups` (positions walk elements of the spans).
     /// Proxies need no renderer; meshes need `renderer` for their topology ids (skipped when null).
+    /// Impostors need their type's atlas (set_impostor) and take their walk phase from `motion` (per
+    /// element; empty: phase 0); a character that is not walking shows the standing row.
     /// Errors: the renderer refusing a topology, texture or material (the lists are then partial).
     Status gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
                   std::span<const Transform> transforms, std::span<const LodState> states,
-                  std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out);
+                  std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out,
+                  std::span<const MotionState> motion = {});
     /// The renderer id of `surface`'s topology for type `type`, registering it (and the type's
     /// materials) on first use.
     Result<uint32_t> topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface);
@@ -72,11 +83,19 @@ public:
 
 private:
     void overlays(const DrawType& draw, uint32_t id, const glm::mat4& world, uint8_t bits, RenderLists& out);
+    void gather_impostors(const DrawType& draw, const LevelRange& r, const CharacterGroups& groups, std::span<const Transform> transforms,
+                          std::span<const LodState> states, std::span<const AnimLod> anims, std::span<const MotionState> motion,
+                          const DrawSettings& settings, RenderLists& out) const;
+    struct Impostor {
+        int64_t atlas = -1;    ///< renderer id, -1 = none
+        float cycle_s = 1.0f;  ///< walk cycle (clip seconds)
+    };
 
     std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< SurfaceView::topology_key -> renderer id
     std::vector<std::vector<uint32_t>> materials_;           ///< per type: renderer ids of its materials
     std::vector<glm::vec3> muscle_scratch_;                  ///< one character's muscle surface (overlays)
     std::vector<std::string> pass_names_;                    ///< per geometric level: its GPU pass label
+    std::vector<Impostor> impostors_;                        ///< per type: its impostor atlas
 };
 
 /// The colour a character is drawn in: the debug palette of `mode`, else white over a textured type's

@@ -14,6 +14,7 @@ double geometry_prior(const GeomLevelDef& l) {
     switch (l.method) {
         case GeomMethod::Hidden: return 0.0;
         case GeomMethod::RigidProxy: return 0.1;
+        case GeomMethod::Impostor: return 0.01;
         case GeomMethod::SkinnedMesh: return 0.3 + 0.5 * grid;
         case GeomMethod::Layered: return 1.0 + 3.0 * grid;
         case GeomMethod::Subdivided: return (1.0 + 3.0 * grid) * std::pow(3.0, l.subdiv_level);

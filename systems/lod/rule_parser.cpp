@@ -32,10 +32,11 @@ struct Parser {
         d.name = r.string("name", "", true);
         r.allow({"description"});
         d.method = static_cast<GeomMethod>(
-            r.choice("method", {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided"}, 1, true));
+            r.choice("method", {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided", "impostor"}, 1, true));
         constexpr uint8_t kDefaultLayers[] = {0, kLayerSkeleton, kLayerSkeleton | kLayerSkin,
                                               kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin,
-                                              kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin};
+                                              kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin,
+                                              kLayerSkeleton | kLayerSkin};  // impostor: the skin, baked
         d.layers = kDefaultLayers[static_cast<int>(d.method)];
         r.read("theta_steps", d.theta_steps, 3, 1024);
         r.read("phi_steps", d.phi_steps, 2, 1024);

@@ -2,14 +2,15 @@
 
 #include "systems/lod/frame_budget.hpp"
 
+#include <iterator>
 #include <algorithm>
 
 namespace aloha {
 
 std::string_view to_string(GeomMethod m) {
-    constexpr std::string_view names[] = {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided"};
+    constexpr std::string_view names[] = {"hidden", "rigid_proxy", "skinned_mesh", "layered", "subdivided", "impostor"};
     const auto i = static_cast<size_t>(m);
-    return i < 5 ? names[i] : "?";
+    return i < std::size(names) ? names[i] : "?";
 }
 
 std::string_view to_string(WalkMethod m) {

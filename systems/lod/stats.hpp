@@ -36,7 +36,7 @@ struct LodStats {
     std::vector<uint32_t> per_geom_level;     ///< index = geometric level
     std::vector<uint32_t> per_anim_level;     ///< index = animation level
     std::vector<uint32_t> per_rule;           ///< index = rule id (rule that produced the levels)
-    std::array<uint32_t, 5> per_geom_method{};///< index = GeomMethod
+    std::array<uint32_t, 6> per_geom_method{};///< index = GeomMethod
     std::array<uint32_t, 3> per_walk_method{};///< index = WalkMethod
 };
 

@@ -69,7 +69,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
         if (!st) return st;
     }
     growth_events_ = 0;  // initial allocations are not growth
-    for (const char* fixed : {"proxies", "lines", "resolve"}) pass_id(fixed);
+    for (const char* fixed : {"proxies", "impostors", "lines", "resolve"}) pass_id(fixed);
     return init_materials();
 }
 
@@ -111,6 +111,10 @@ bool CrowdRenderer::Validate(const FrameInput& frame, std::vector<std::string>* 
             fail(where() + std::to_string(m.normals.size()) + " normals for " + std::to_string(m.positions.size()) +
                  " positions");
     }
+    for (size_t i = 0; i < frame.impostors.size(); ++i)
+        if (frame.impostors[i].atlas >= atlases_.size())
+            fail("impostors[" + std::to_string(i) + "]: atlas " + std::to_string(frame.impostors[i].atlas) + " is not registered (" +
+                 std::to_string(atlases_.size()) + " registered)");
     if (glm::length(frame.light_direction) <= 0.0f) fail("light_direction must be non-zero");
     if (!(frame.ambient >= 0.0f && frame.ambient <= 1.0f)) fail("ambient must be in [0, 1]");
     for (const glm::vec3& c : {frame.sky_colour, frame.ground_colour, frame.key_colour})
@@ -222,7 +226,7 @@ Status CrowdRenderer::render(const FrameInput& frame, const gpu::TargetView& tar
     bool grew = false;
     for (auto [buf, bytes] :
          {std::pair{&slot.positions, vertices * kVec3Bytes}, std::pair{&slot.normals, vertices * kVec3Bytes},
-          std::pair{&slot.instances, (frame.meshes.size() + frame.proxies.size()) * sizeof(gpu::LitInstance)},
+          std::pair{&slot.instances, (uint64_t{impostor_base(frame)} + frame.impostors.size()) * sizeof(ImpostorInstance)},
           std::pair{&slot.lines, frame.lines.size() * 2 * sizeof(gpu::LineVertex)}}) {
         st = ensure(*buf, bytes, grew);
         if (!st) return st;

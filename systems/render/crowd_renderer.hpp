@@ -47,6 +47,30 @@ struct ProxyInstance {
     glm::vec4 colour{1.0f};  ///< albedo
 };
 
+/// One impostor (the `impostor` geometric level): a camera-facing quad showing the cell of its type's atlas
+/// (register_impostor_atlas) nearest the camera's direction and the walk phase. 64 bytes, copied as is.
+struct ImpostorInstance {
+    glm::vec4 position_scale{0.0f, 0.0f, 0.0f, 1.0f}; ///< xyz: character origin (world), w: its uniform scale
+    glm::vec4 forward_phase{0.0f, 1.0f, 0.0f, 1.0f};  ///< xy: world (x, z) of the character's local +Z (unit);
+                                                      ///< z: walk phase in [0, 1), < 0 the standing row;
+                                                      ///< w: fade: 1 shown, (0, 1) dithered in, < 0 the complement
+                                                      ///< of a mesh dithered at -w (shaders/impostor.frag)
+    glm::vec4 colour{1.0f};                           ///< tint, multiplies the atlas albedo
+    uint32_t atlas = 0;                               ///< id from CrowdRenderer::register_impostor_atlas
+    uint32_t reserved[3] = {0, 0, 0};                 ///< padding (std430 uvec4)
+};
+
+/// How an impostor atlas image is laid out (systems/render/impostor_atlas.hpp builds one). The image's top
+/// half holds colour cells (RGB premultiplied by coverage in alpha), the bottom half normal cells (0.5 + 0.5 N
+/// in the bake camera's frame, premultiplied the same way); each half is `directions` columns x `rows` rows.
+struct ImpostorAtlasLayout {
+    uint32_t directions = 16;  ///< columns: camera azimuths 2 pi c / directions in the character's frame (local +Z = 0)
+    uint32_t rows = 9;         ///< walk phases r / (rows - 1), then one standing row
+    float width = 1.0f;        ///< the quad (one cell) in model units: width, centred on the origin
+    float bottom = 0.0f;       ///< height of its lower edge above the origin
+    float height = 1.8f;       ///< its height
+};
+
 /// One overlay line segment (bones, springs), drawn unlit and depth-tested.
 struct LineSegment {
     glm::vec3 a{0.0f};       ///< start, world space
@@ -60,6 +84,9 @@ struct FrameInput {
     std::span<const DeformableMesh> meshes;      ///< batch (a): one draw per topology
     std::span<const ProxyInstance> proxies;      ///< batch (b): one instanced draw
     std::span<const LineSegment> lines;          ///< batch (c): one line-list draw
+    std::span<const ImpostorInstance> impostors; ///< batch (d): one instanced quad draw per run of equal atlas
+    bool write_normals = false;                  ///< meshes write 0.5 + 0.5 * world normal, not lit colour
+                                                 ///< (impostor bakes; per-pixel-lit topologies only)
     glm::vec4 clear_colour{0.12f, 0.12f, 0.14f, 1.0f}; ///< background
     glm::vec3 light_direction{0.3f, 0.8f, 0.5f}; ///< towards the key light, world space (normalised here)
     float ambient = 0.3f;                        ///< 0..1 share of the hemisphere light; 1 with white sky and
@@ -145,6 +172,9 @@ public:
     /// pow(rgb, 1/2.2), the display space the renderer shades in, so that factor x texel matches the
     /// sRGB encoding of their linear product; `texture` is an id from register_texture or -1.
     [[nodiscard]] Result<uint32_t> register_material(const SurfaceMaterial& material, int texture);
+    /// Uploads an impostor atlas (image laid out as `layout` says, mipmapped) once; returns its id for
+    /// ImpostorInstance::atlas. Errors: empty or inconsistent image or layout, Vulkan failures.
+    [[nodiscard]] Result<uint32_t> register_impostor_atlas(const TextureImage& image, const ImpostorAtlasLayout& layout);
     /// Vertex count of a registered topology (0 when unknown).
     [[nodiscard]] uint32_t topology_vertex_count(uint32_t topology) const;
 
@@ -170,6 +200,8 @@ public:
     [[nodiscard]] uint32_t last_draw_count() const { return last_draw_count_; }
     /// Times a per-frame buffer had to be reallocated because a frame exceeded its capacity.
     [[nodiscard]] uint32_t growth_events() const { return growth_events_; }
+    /// The context it draws on (impostor bakes make renderers of their own on it).
+    [[nodiscard]] gpu::Context& context() const { return ctx_; }
     /// Frames submitted so far.
     [[nodiscard]] uint64_t frame_count() const { return frame_index_; }
 
@@ -199,6 +231,10 @@ private:
         glm::vec4 colour{1.0f};       // display-space base colour
         int texture = -1;
     };
+    struct Atlas {
+        ImpostorAtlasLayout layout;
+        VkDescriptorSet set = VK_NULL_HANDLE;  // no_uvs_ + the atlas texture
+    };
     struct Slot {
         VkCommandBuffer cmd = VK_NULL_HANDLE;
         VkFence fence = VK_NULL_HANDLE;
@@ -225,6 +261,8 @@ private:
     Status ensure_queries(Slot& slot, uint32_t count);
     uint32_t pass_id(std::string_view name);
     void end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass);
+    uint32_t record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
+    [[nodiscard]] static uint32_t impostor_base(const FrameInput& frame);
 
     gpu::Context& ctx_;
     RendererOptions options_;
@@ -233,6 +271,7 @@ private:
     std::vector<Topology> topologies_;
     std::vector<gpu::Texture> textures_;
     std::vector<Material> materials_;
+    std::vector<Atlas> atlases_;
     gpu::Texture white_;                              // 1x1 white: untextured draws
     gpu::Buffer no_uvs_;                              // one zero vec2: draws without UVs
     VkDescriptorSet plain_set_ = VK_NULL_HANDLE;      // no_uvs_ + white_

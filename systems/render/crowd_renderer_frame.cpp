@@ -57,6 +57,9 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
     if (!frame.proxies.empty())
         std::memcpy(static_cast<void*>(instances + frame.meshes.size()), frame.proxies.data(),
                     frame.proxies.size_bytes());
+    if (!frame.impostors.empty())
+        std::memcpy(slot.instances.mapped() + size_t{impostor_base(frame)} * sizeof(ImpostorInstance), frame.impostors.data(),
+                    frame.impostors.size_bytes());
     gpu::LitLighting lighting;
     lighting.sky = glm::vec4(frame.sky_colour, 1.0f);
     lighting.ground = glm::vec4(frame.ground_colour, 1.0f);
@@ -69,7 +72,7 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
         lv[2 * i + 1] = {glm::vec4(l.b, 1.0f), l.colour};
     }
     return 2 * offset + (frame.meshes.size() + frame.proxies.size()) * sizeof(gpu::LitInstance) +
-           frame.lines.size() * 2 * sizeof(gpu::LineVertex);
+           frame.impostors.size_bytes() + frame.lines.size() * 2 * sizeof(gpu::LineVertex);
 }
 
 void CrowdRenderer::end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass) {
@@ -117,7 +120,8 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     push.camera = glm::vec4(glm::vec3(glm::inverse(frame.camera.view)[3]), 1.0f);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     uint32_t draws = 0;
-    const bool any_mesh = !frame.meshes.empty() || !frame.proxies.empty();
+    const bool any_mesh = !frame.meshes.empty() || !frame.proxies.empty() || !frame.impostors.empty();
+    const uint32_t normals = frame.write_normals ? uint32_t{gpu::kLitNormals} : 0u;
     if (any_mesh) {
         const VkDescriptorSet sets[2] = {slot.set, plain_set_};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 2, sets, 0, nullptr);
@@ -145,7 +149,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         }
         vkCmdBindIndexBuffer(cmd, topo.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
         if (!frame.materials || topo.ranges.empty()) {
-            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], gpu::kLitMesh);
+            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], gpu::kLitMesh | normals);
             push.base_colour = glm::vec4(1.0f);
             vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
             vkCmdDrawIndexed(cmd, topo.index_count, group_count_[t], 0, 0, 0);
@@ -157,7 +161,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
             const Material& m = materials_[r.material];
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
             const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
-            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], textured);
+            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], textured | normals);
             push.base_colour = m.colour;
             vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
             vkCmdDrawIndexed(cmd, r.index_count, group_count_[t], r.first_index, 0, 0);
@@ -179,6 +183,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         ++draws;
         end_pass(cmd, slot, {pass_id("proxies"), 1, frame.proxies.size(), uint64_t(kBoxIndexCount / 3) * frame.proxies.size()});
     }
+    draws += record_impostors(frame, cmd, slot, push);
     if (!frame.lines.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.lines());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 1, &slot.set, 0, nullptr);

@@ -137,6 +137,7 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
         const uint32_t s = slot_of_[c];
         switch (L.lod.method) {
             case GeomMethod::Hidden:
+            case GeomMethod::Impostor:
                 break;
             case GeomMethod::RigidProxy:
                 run_proxy(g, L, s, poses.joints(c, J));

@@ -16,6 +16,7 @@ bool same_level_shape(const GeomLod& a, const GeomLod& b) {
     switch (a.method) {
         case GeomMethod::Hidden:
         case GeomMethod::RigidProxy:
+        case GeomMethod::Impostor:
             return true;
         case GeomMethod::SkinnedMesh:
         case GeomMethod::Layered:
@@ -86,6 +87,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     const SubdivisionTopology* subdivision = nullptr;
     switch (lod.method) {
         case GeomMethod::Hidden:
+        case GeomMethod::Impostor:  // drawn from the type's atlas (systems/render/impostor_atlas.hpp)
             break;
         case GeomMethod::RigidProxy:
             layout.boxes = J;

@@ -146,7 +146,7 @@ TEST(CharacterRig, SkinnedMeshesFollowTheNormalisation) {
 struct Drawn {
     std::vector<std::vector<glm::vec3>> meshes;  ///< world-space vertices per mesh
     size_t proxies = 0;
-    std::array<uint32_t, 5> methods{};           ///< characters per GeomMethod (as the rules chose)
+    std::array<uint32_t, 6> methods{};           ///< characters per GeomMethod (as the rules chose)
 };
 
 // Loads the scene at `path`, runs `frames` frames with a lavapipe renderer attached (validation on)

@@ -47,9 +47,11 @@ TEST(RuleParser, DefaultFileLoadsWithoutWarnings) {
     EXPECT_TRUE(t.rules.back().unconditional);
     EXPECT_TRUE(t.budget.has_value());
     EXPECT_EQ(t.tiers[t.default_tier], "high");
-    // The fallback (most far characters): rigid proxy, clip playback every 4-8 frames.
+    // The fallback (most far characters): an impostor (the baked skin), clip playback every 4-8 frames.
     const RuleDef& fb = t.rules.back();
-    EXPECT_EQ(t.geom_levels[fb.geom_level].method, GeomMethod::RigidProxy);
+    EXPECT_EQ(t.geom_levels[fb.geom_level].method, GeomMethod::Impostor);
+    EXPECT_EQ(t.geom_levels[fb.geom_level].layers, kLayerSkeleton | kLayerSkin);
+    EXPECT_GE(t.find_geom_level("proxy"), 0) << "the rigid proxy level stays for rules and the budget";
     EXPECT_EQ(t.anim_levels[fb.anim_level].walk, WalkMethod::ClipPlayback);
     EXPECT_GE(t.anim_levels[fb.anim_level].update_interval, 4);
     EXPECT_LE(t.anim_levels[fb.anim_level].update_interval, 8);

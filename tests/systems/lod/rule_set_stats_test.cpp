@@ -161,7 +161,7 @@ namespace aloha {
 namespace {
 
 // The default rules on a 10,000-character crowd spread over 200 m x 200 m in front of a 60 degree,
-// 1280x720 camera: most characters are cheap (proxy or hidden, clip playback) and the richest level
+// 1280x720 camera: most characters are cheap (impostor, proxy or hidden, clip playback) and the richest level
 // is rare. Thresholds are generous fractions of the counts, not tuned to the exact layout.
 TEST(DefaultRules, TenThousandCrowdIsMostlyCheap) {
     Result<RuleTable> r = load_rules(std::string(ALOHA_SOURCE_DIR) + "/data/rules/default.json");
@@ -183,6 +183,7 @@ TEST(DefaultRules, TenThousandCrowdIsMostlyCheap) {
     LodStats s;
     LodStatsJob{&t, p.states, p.attrs, &s}.Run();
     const uint32_t cheap = s.per_geom_method[static_cast<size_t>(GeomMethod::RigidProxy)] +
+                           s.per_geom_method[static_cast<size_t>(GeomMethod::Impostor)] +
                            s.per_geom_method[static_cast<size_t>(GeomMethod::Hidden)];
     EXPECT_GT(cheap, n * 8 / 10) << to_json(s, t).dump();
     EXPECT_GT(s.per_walk_method[static_cast<size_t>(WalkMethod::ClipPlayback)], n * 8 / 10);

@@ -27,6 +27,15 @@ inline std::unique_ptr<gpu::Context> lavapipe_context() {
     return c.ok() ? std::move(c).value() : nullptr;
 }
 
+/// Renders `frame` with `r` into a fresh `size` x `size` offscreen target and reads it back.
+inline Result<gpu::Rgba8Image> draw_square(CrowdRenderer& r, gpu::Context& ctx, const FrameInput& frame, uint32_t size) {
+    Result<gpu::OffscreenTarget> target = gpu::OffscreenTarget::create(ctx, size, size);
+    if (!target.ok()) return target.error();
+    if (Status s = r.render(frame, target.value()); !s.ok()) return s.error();
+    if (Status s = r.finish(); !s.ok()) return s.error();
+    return target.value().read_back(ctx);
+}
+
 inline constexpr uint32_t kSceneSize = 128;
 inline constexpr float kPixelsPerUnit = 32.0f;  // ortho [-2, 2] over 128 pixels
 

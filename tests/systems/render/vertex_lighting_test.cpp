@@ -35,11 +35,7 @@ FrameInput lit_frame(const std::vector<DeformableMesh>& meshes) {
 }
 
 Result<gpu::Rgba8Image> draw(CrowdRenderer& r, gpu::Context& ctx, const FrameInput& frame) {
-    Result<gpu::OffscreenTarget> target = gpu::OffscreenTarget::create(ctx, kSize, kSize);
-    if (!target.ok()) return target.error();
-    if (Status s = r.render(frame, target.value()); !s.ok()) return s.error();
-    if (Status s = r.finish(); !s.ok()) return s.error();
-    return target.value().read_back(ctx);
+    return test::draw_square(r, ctx, frame, kSize);
 }
 
 glm::vec3 pixel(const gpu::Rgba8Image& img, uint32_t x, uint32_t y) {

@@ -1,0 +1,69 @@
+// The World's impostor atlases: each character type posed along its walk cycle and standing, baked once
+// per renderer (systems/frame/impostor_source.hpp, systems/render/impostor_atlas.hpp).
+#include "host/scene/character_runtime.hpp"
+#include "host/scene/world.hpp"
+#include "systems/frame/impostor_source.hpp"
+#include "systems/motion/kinematic_walk.hpp"
+#include "systems/motion/local_to_model.hpp"
+#include "systems/motion/pose_pool.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace aloha {
+namespace {
+
+constexpr uint32_t kWalkRows = 8;     // walk phases baked (the 9th row stands)
+constexpr uint32_t kDirections = 16;  // azimuths around the vertical axis: 22.5 degrees apart
+
+// Model-space joint matrices of `type` at kWalkRows phases of its slowest gait cycle, then standing (the
+// rest pose); every row stands when the type has no gait cycle. `cycle_s` gets the cycle's clip seconds.
+std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, float& cycle_s) {
+    const int joints = type.skeleton.joint_count();
+    PosePool pool(joints, kWalkRows + 1, &type.skeleton);
+    const AnimationClip* walk = type.gait_clips.empty() ? nullptr : type.clips.find(type.gait_clips.front());
+    cycle_s = walk && walk->duration() > 0.0f ? walk->duration() : 1.0f;
+    std::vector<std::vector<glm::mat4>> rows;
+    for (uint32_t r = 0; r <= kWalkRows; ++r) {
+        PoseView pose = pool.view(r);
+        if (walk && r < kWalkRows) {
+            sample_walk_cycle(*walk, cycle_s * static_cast<float>(r) / static_cast<float>(kWalkRows), nullptr, pose);
+            local_to_model(type.skeleton.parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),
+                           nullptr, pose.model.data(), static_cast<size_t>(joints));
+        }
+        rows.emplace_back(pose.model.begin(), pose.model.end());
+    }
+    return rows;
+}
+
+}  // namespace
+
+Status World::build_impostors() {
+    if (!renderer_) return {};
+    const auto& levels = rules_.table().geom_levels;
+    if (std::none_of(levels.begin(), levels.end(), [](const GeomLevelDef& l) { return l.method == GeomMethod::Impostor; })) return {};
+    refresh_type_views();
+    impostor_built_.resize(types_.size(), 0);
+    for (size_t t = 0; t < types_.size(); ++t) {
+        if (impostor_built_[t]) continue;
+        const auto t0 = std::chrono::steady_clock::now();
+        CharacterRuntime& rt = *types_[t];
+        const uint8_t level = impostor_source_level(*rt.geometry);
+        impostor_built_[t] = 1;
+        if (level == GeometryController::kNoLevel) continue;  // no mesh: its impostor level draws nothing
+        float cycle_s = 1.0f;
+        const std::vector<std::vector<glm::mat4>> poses = impostor_poses(rt.type, cycle_s);
+        ImpostorBakeInput in = impostor_bake_input(draw_types_[t], level, poses, rt.type.name);
+        in.directions = kDirections;
+        Result<ImpostorAtlas> atlas = bake_impostor_atlas(renderer_->context(), in);
+        if (!atlas) return atlas.error();
+        Result<uint32_t> id = renderer_->register_impostor_atlas(atlas.value().image, atlas.value().layout);
+        if (!id) return id.error();
+        draws_.set_impostor(static_cast<uint16_t>(t), id.value(), cycle_s);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        impostor_reports_.push_back({rt.type.name, atlas.value().image.width, atlas.value().image.height, ms, atlas.value().texture_bytes});
+    }
+    return {};
+}
+
+}  // namespace aloha

@@ -1,0 +1,60 @@
+#version 450
+// Impostor vertex shader: one camera-facing quad (6 vertices, no index buffer) per instance of set 0
+// binding 2 read as Impostor records (64 bytes, systems/render/crowd_renderer.hpp ImpostorInstance).
+// The quad turns about the vertical axis to face the camera and spans the type's atlas cell in model
+// units (push base_colour: x width, y bottom, z height), scaled by the instance's scale. The cell is the
+// atlas direction nearest the camera's azimuth in the character's frame (local +Z forward) and the walk
+// phase row (offsets.x directions, offsets.y phase rows; the last row is the standing pose, used when
+// the phase is negative). Colour cells fill the atlas's top half, normal cells its bottom half.
+
+struct Impostor {
+    vec4 position_scale;  // xyz: character origin (world), w: uniform scale
+    vec4 forward_phase;   // xy: world xz of the character's local +Z, z: walk phase [0,1) or < 0 standing, w: fade
+    vec4 colour;          // tint (multiplies the atlas albedo)
+    uvec4 atlas;          // x: atlas id (the draw's), unused here
+};
+layout(std430, set = 0, binding = 2) readonly buffer Impostors { Impostor impostors[]; };
+
+layout(push_constant) uniform Push {
+    mat4 view_proj;
+    vec4 light;
+    vec4 camera;
+    uvec4 offsets;      // x: directions, y: rows (phases + 1 standing), z: first instance, w: mode
+    vec4 base_colour;   // x: quad width, y: quad bottom, z: quad height (model units)
+} pc;
+
+layout(location = 0) out vec2 v_uv;             // colour-half texture coordinates
+layout(location = 1) flat out vec4 v_colour;    // tint
+layout(location = 2) flat out vec4 v_right_fade; // xyz: quad right axis (world), w: fade
+layout(location = 3) flat out vec3 v_toward;    // quad normal towards the camera (world, horizontal)
+
+const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
+
+void main() {
+    Impostor im = impostors[pc.offsets.z + uint(gl_InstanceIndex)];
+    vec3 origin = im.position_scale.xyz;
+    float scale = im.position_scale.w;
+    vec3 d = pc.camera.xyz - origin;
+    vec2 h = vec2(d.x, d.z);
+    if (dot(h, h) < 1e-12) h = vec2(0.0, 1.0);
+    h = normalize(h);
+    vec3 toward = vec3(h.x, 0.0, h.y);
+    vec3 right = vec3(h.y, 0.0, -h.x);  // cross(up, toward)
+    // Camera azimuth in the character's frame: local x = (f.y, -f.x), local z = f (xz components).
+    vec2 f = im.forward_phase.xy;
+    float lx = h.x * f.y - h.y * f.x;
+    float lz = h.x * f.x + h.y * f.y;
+    float dirs = float(pc.offsets.x);
+    float alpha = atan(lx, lz);  // (-pi, pi]
+    float v = mod(floor(alpha / 6.28318531 * dirs + 0.5), dirs);
+    float rows = float(pc.offsets.y);
+    float phase = im.forward_phase.z;
+    float k = phase < 0.0 ? rows - 1.0 : mod(floor(phase * (rows - 1.0) + 0.5), rows - 1.0);
+    vec2 c = kCorners[gl_VertexIndex];
+    vec3 world = origin + scale * (right * (c.x - 0.5) * pc.base_colour.x + vec3(0.0, pc.base_colour.y + c.y * pc.base_colour.z, 0.0));
+    v_uv = vec2((v + c.x) / dirs, 0.5 * (k + 1.0 - c.y) / rows);
+    v_colour = im.colour;
+    v_right_fade = vec4(right, im.forward_phase.w);
+    v_toward = toward;
+    gl_Position = pc.view_proj * vec4(world, 1.0);
+}

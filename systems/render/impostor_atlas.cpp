@@ -1,0 +1,140 @@
+#include "systems/render/impostor_atlas.hpp"
+
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/offscreen_target.hpp"
+#include "engine/gpu/vk_error.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+namespace aloha {
+namespace {
+
+constexpr float kMargin = 0.04f;  // empty border of a cell, share of the bounds on each side
+
+struct Cells {
+    float width_m = 0.0f, height_m = 0.0f, bottom_m = 0.0f;  // one cell in model units; its lower edge
+    uint32_t width_px = 0, height_px = 0;
+};
+
+// Cells that hold the mesh in every pose and from every azimuth: the radius about the vertical axis by
+// the height range, with a margin, at square pixels.
+Cells cell_size(const ImpostorBakeInput& in) {
+    float radius = 0.0f, lo = 1e30f, hi = -1e30f;
+    for (const ImpostorPose& p : in.rows)
+        for (const glm::vec3& v : p.positions) {
+            radius = std::max(radius, std::hypot(v.x, v.z));
+            lo = std::min(lo, v.y);
+            hi = std::max(hi, v.y);
+        }
+    Cells c;
+    const float h = std::max(hi - lo, 1e-3f);
+    c.height_m = h * (1.0f + 2.0f * kMargin);
+    c.bottom_m = lo - h * kMargin;
+    c.height_px = std::max<uint32_t>(in.cell_height_px, 8);
+    const float metres_per_px = c.height_m / static_cast<float>(c.height_px);
+    const float width = 2.0f * std::max(radius, 1e-3f) + 2.0f * h * kMargin;
+    c.width_px = static_cast<uint32_t>(std::ceil(width / metres_per_px / 4.0f)) * 4;
+    c.width_m = static_cast<float>(c.width_px) * metres_per_px;
+    return c;
+}
+
+uint64_t mip_chain_bytes(uint32_t w, uint32_t h) {
+    uint64_t bytes = 0;
+    for (;;) {
+        bytes += uint64_t{w} * h * 4;
+        if (w == 1 && h == 1) return bytes;
+        w = std::max(1u, w / 2);
+        h = std::max(1u, h / 2);
+    }
+}
+
+}  // namespace
+
+glm::mat4 impostor_view_rotation(uint32_t d, uint32_t directions) {
+    const float azimuth = 6.28318531f * static_cast<float>(d) / static_cast<float>(std::max(directions, 1u));
+    return glm::rotate(glm::mat4(1.0f), -azimuth, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeInput& in) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto fail = [&](const std::string& what) { return gpu::gpu_error("impostor atlas of '" + in.name + "': " + what); };
+    if (in.rows.size() < 2) return fail("needs at least one walk phase and the standing pose, has " + std::to_string(in.rows.size()) + " rows");
+    if (in.indices.empty() || in.indices.size() % 3 != 0 || in.rows[0].positions.empty()) return fail("empty mesh");
+    for (size_t r = 0; r < in.rows.size(); ++r)
+        if (in.rows[r].positions.size() != in.rows[0].positions.size() || in.rows[r].normals.size() != in.rows[0].positions.size())
+            return fail("row " + std::to_string(r) + " has " + std::to_string(in.rows[r].positions.size()) + " positions and " +
+                        std::to_string(in.rows[r].normals.size()) + " normals for " + std::to_string(in.rows[0].positions.size()) + " vertices");
+    const uint32_t dirs = std::max(in.directions, 1u), rows = static_cast<uint32_t>(in.rows.size());
+    const Cells cells = cell_size(in);
+    const uint32_t width = dirs * cells.width_px, height = rows * cells.height_px;
+    if (width > 8192 || 2 * height > 8192) return fail("atlas of " + std::to_string(width) + " x " + std::to_string(2 * height) + " pixels is too large");
+
+    RendererOptions options;
+    options.initial_vertices = static_cast<uint32_t>(in.rows[0].positions.size()) * dirs * rows + 1;
+    options.initial_instances = dirs * rows;
+    options.frames_in_flight = 1;
+    Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(ctx, options);
+    if (!made) return made.error();
+    CrowdRenderer& renderer = *made.value();
+    Result<gpu::OffscreenTarget> target = gpu::OffscreenTarget::create(ctx, width, height);
+    if (!target) return target.error();
+
+    std::vector<uint32_t> textures, materials;
+    for (const TextureImage& t : in.textures) {
+        Result<uint32_t> id = renderer.register_texture(t);
+        if (!id) return id.error();
+        textures.push_back(id.value());
+    }
+    for (const SurfaceMaterial& m : in.materials) {
+        const int tex = m.texture >= 0 && static_cast<size_t>(m.texture) < textures.size() ? static_cast<int>(textures[static_cast<size_t>(m.texture)]) : -1;
+        Result<uint32_t> id = renderer.register_material(m, tex);
+        if (!id) return id.error();
+        materials.push_back(id.value());
+    }
+    TopologySurface surface;
+    if (!materials.empty()) surface = {in.uvs, in.vertex_material, materials};
+    Result<uint32_t> topology = renderer.register_topology(in.indices, static_cast<uint32_t>(in.rows[0].positions.size()),
+                                                           in.cull_back_faces, surface);
+    if (!topology) return topology.error();
+
+    // Cell (d, r): column d, row r from the top; the character's origin sits at the cell's centre line,
+    // its quad's lower edge (bottom_m above the origin) on the cell's lower edge.
+    std::vector<DeformableMesh> meshes;
+    for (uint32_t r = 0; r < rows; ++r)
+        for (uint32_t d = 0; d < dirs; ++d) {
+            const glm::vec3 origin((static_cast<float>(d) + 0.5f) * cells.width_m,
+                                   -static_cast<float>(r + 1) * cells.height_m - cells.bottom_m, 0.0f);
+            meshes.push_back({topology.value(), in.rows[r].positions, in.rows[r].normals,
+                              glm::translate(glm::mat4(1.0f), origin) * impostor_view_rotation(d, dirs), glm::vec4(1.0f)});
+        }
+    FrameInput frame;
+    frame.meshes = meshes;
+    frame.camera.view = glm::lookAt(glm::vec3(0.0f, 0.0f, 10.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    frame.camera.proj = glm::ortho(0.0f, static_cast<float>(dirs) * cells.width_m, -static_cast<float>(rows) * cells.height_m, 0.0f, 0.1f, 20.0f);
+    frame.clear_colour = glm::vec4(0.0f);
+    frame.ambient = 1.0f;  // white sky and ground (the defaults): the albedo, unlit
+    ImpostorAtlas out;
+    out.image.name = "impostor atlas '" + in.name + "'";
+    out.image.width = width;
+    out.image.height = 2 * height;
+    out.image.rgba.resize(size_t{width} * 2 * height * 4);
+    for (size_t half = 0; half < 2; ++half) {
+        frame.write_normals = half == 1;
+        if (Status s = renderer.render(frame, target.value()); !s) return s.error();
+        if (Status s = renderer.finish(); !s) return s.error();
+        Result<gpu::Rgba8Image> image = target.value().read_back(ctx);
+        if (!image) return image.error();
+        std::memcpy(out.image.rgba.data() + half * width * height * 4, image.value().pixels.data(), size_t{width} * height * 4);
+    }
+    out.layout = {dirs, rows, cells.width_m, cells.bottom_m, cells.height_m};
+    out.texture_bytes = mip_chain_bytes(width, 2 * height);
+    out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+}  // namespace aloha

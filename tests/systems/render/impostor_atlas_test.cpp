@@ -1,0 +1,221 @@
+// Impostors (systems/render/impostor_atlas.hpp, CrowdRenderer impostors) on lavapipe under validation: a
+// figure of known pose baked into an atlas and drawn as an impostor matches a direct perspective render of
+// the same pose, seen from an atlas direction, within the tolerance the atlas resolution allows.
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/png.hpp"
+#include "render_scene.hpp"
+#include "systems/render/crowd_renderer.hpp"
+#include "systems/render/impostor_atlas.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace aloha {
+namespace {
+
+constexpr uint32_t kSize = 128;
+constexpr float kDistance = 25.0f;
+
+// A lopsided figure (its views differ): a body ellipsoid 1.8 m tall standing on y = 0, and a head
+// sphere pushed forward (+Z) and to its left (+X). Analytic normals.
+struct Figure {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<uint32_t> indices;
+    void ellipsoid(glm::vec3 centre, glm::vec3 radii, uint32_t rings, uint32_t segments) {
+        const auto base = static_cast<uint32_t>(positions.size());
+        for (uint32_t r = 0; r <= rings; ++r)
+            for (uint32_t s = 0; s <= segments; ++s) {
+                const float phi = 3.14159265f * float(r) / float(rings), theta = 6.28318531f * float(s) / float(segments);
+                const glm::vec3 u(std::sin(phi) * std::cos(theta), std::cos(phi), std::sin(phi) * std::sin(theta));
+                positions.push_back(centre + u * radii);
+                normals.push_back(u / radii);
+            }
+        for (uint32_t r = 0; r < rings; ++r)
+            for (uint32_t s = 0; s < segments; ++s) {
+                const uint32_t a = base + r * (segments + 1) + s, b = a + segments + 1;
+                for (uint32_t i : {a, a + 1, b, a + 1, b + 1, b}) indices.push_back(i);  // counter-clockwise from outside
+            }
+    }
+    Figure() {
+        ellipsoid({0.0f, 0.8f, 0.0f}, {0.28f, 0.8f, 0.16f}, 24, 32);
+        ellipsoid({0.08f, 1.6f, 0.12f}, {0.13f, 0.17f, 0.15f}, 12, 16);
+    }
+};
+
+ImpostorBakeInput bake_input(const Figure& fig, size_t rows) {  // the figure in `rows` rows, all the same pose
+    ImpostorBakeInput in;
+    in.name = "figure";
+    in.indices = fig.indices;
+    in.rows.assign(rows, ImpostorPose{fig.positions, fig.normals});
+    in.cull_back_faces = true;
+    return in;
+}
+
+struct Mask {
+    std::vector<uint8_t> on;
+    [[nodiscard]] bool at(int x, int y) const { return x >= 0 && y >= 0 && x < int(kSize) && y < int(kSize) && on[size_t(y) * kSize + size_t(x)]; }
+    // True when a pixel within `r` (Chebyshev) of (x, y) is on.
+    [[nodiscard]] bool near(int x, int y, int r) const {
+        for (int dy = -r; dy <= r; ++dy)
+            for (int dx = -r; dx <= r; ++dx)
+                if (at(x + dx, y + dy)) return true;
+        return false;
+    }
+    // True when every pixel within `r` of (x, y) is on.
+    [[nodiscard]] bool inside(int x, int y, int r) const {
+        for (int dy = -r; dy <= r; ++dy)
+            for (int dx = -r; dx <= r; ++dx)
+                if (!at(x + dx, y + dy)) return false;
+        return true;
+    }
+};
+
+Mask mask_of(const gpu::Rgba8Image& img) {  // clear colour is black: the figure is every lit pixel
+    Mask m;
+    m.on.resize(size_t{kSize} * kSize);
+    for (size_t i = 0; i < m.on.size(); ++i) m.on[i] = img.pixels[i * 4] + img.pixels[i * 4 + 1] + img.pixels[i * 4 + 2] > 0;
+    return m;
+}
+
+FrameInput camera_frame(float azimuth) {  // the camera on a level circle around the origin, aimed at mid-height
+    FrameInput f;
+    const glm::vec3 target(0.0f, 0.9f, 0.0f);
+    const glm::vec3 eye = target + kDistance * glm::vec3(std::sin(azimuth), 0.0f, std::cos(azimuth));
+    f.camera.view = glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+    f.camera.proj = glm::perspective(2.0f * std::atan(1.05f / kDistance), 1.0f, 1.0f, 100.0f);  // 2.1 m over 128 px
+    f.clear_colour = {0, 0, 0, 1};
+    set_character_lighting(f);
+    return f;
+}
+
+Result<gpu::Rgba8Image> draw(CrowdRenderer& r, gpu::Context& ctx, const FrameInput& frame) {
+    return test::draw_square(r, ctx, frame, kSize);
+}
+
+// Tolerance. The atlas cell is 96 px for the figure's 1.8 m plus 8% margin (0.0203 m per texel); on screen
+// 128 px span 2.1 m (0.0164 m per pixel), so a texel covers 1.24 pixels. The alpha-tested, bilinearly
+// filtered edge moves by at most half a texel (0.62 px) plus half a pixel of sample-centre rounding; the
+// orthographic bake against the perspective view changes the scale by at most the figure's depth over the
+// distance (0.3 m / 25 m = 1.2%, 0.8 px at the 64 px from the image centre to its top): under 2 px in all,
+// so every pixel of either silhouette is within 2 px of the other. For the same reason each impostor pixel
+// inside both silhouettes shows what the direct render shows within 2 px of it: its colour lies in the
+// range of the direct pixels of its 5 x 5 neighbourhood, widened by what the atlas itself loses: the
+// normal's 8-bit quantisation (1 level) and its bilinear interpolation over 1.24-pixel texels, at most the
+// change of the light across one pixel of the sharpest-curved part (the head, radius 0.13 m: 0.016 m turns
+// the normal by 0.13 rad, the key light, 0.55 of the light, by 0.07 = 18 levels): 20 levels, for 99% of the
+// pixels. The rest lie on the head's outline over the body, where the filtered (and mipmapped) normal mixes
+// two surfaces' normals up to 90 degrees apart: the light of a normal on the arc between them exceeds both
+// ends' by at most 1 - cos 45 = 0.29 of the light range (75 levels), the bound for every pixel. The mean
+// absolute difference against the same pixel (not its neighbourhood) is at most 6 levels: half of that
+// 20-level bound where the surface curves most, far less over the flatter body, plus the 1-level quantisation.
+void expect_matches(const gpu::Rgba8Image& direct, const gpu::Rgba8Image& impostor) {
+    const Mask a = mask_of(direct), b = mask_of(impostor);
+    size_t outside = 0, compared = 0, area = 0;
+    double sum = 0.0;
+    int worst = 0;
+    std::vector<int> excess;  // per compared pixel: its largest channel excess over the direct range
+    for (int y = 0; y < int(kSize); ++y)
+        for (int x = 0; x < int(kSize); ++x) {
+            area += a.at(x, y);
+            if ((a.at(x, y) && !b.near(x, y, 2)) || (b.at(x, y) && !a.near(x, y, 2))) ++outside;
+            if (!a.inside(x, y, 2) || !b.inside(x, y, 2)) continue;
+            const size_t i = (size_t(y) * kSize + size_t(x)) * 4;
+            int pixel_excess = 0;
+            for (size_t c = 0; c < 3; ++c) {
+                sum += std::abs(int(direct.pixels[i + c]) - int(impostor.pixels[i + c]));
+                int lo = 255, hi = 0;  // the direct render's range within 2 px
+                for (int dy = -2; dy <= 2; ++dy)
+                    for (int dx = -2; dx <= 2; ++dx) {
+                        const int v = direct.pixels[(size_t(y + dy) * kSize + size_t(x + dx)) * 4 + c];
+                        lo = std::min(lo, v);
+                        hi = std::max(hi, v);
+                    }
+                const int v = impostor.pixels[i + c];
+                pixel_excess = std::max(pixel_excess, v < lo ? lo - v : v > hi ? v - hi : 0);
+            }
+            worst = std::max(worst, pixel_excess);
+            excess.push_back(pixel_excess);
+            ++compared;
+        }
+    EXPECT_GT(area, 1500u) << "the figure fills about 110 x 30 pixels";
+    EXPECT_EQ(outside, 0u) << "silhouette pixels more than 2 px from the other render's silhouette";
+    ASSERT_GT(compared, 500u);
+    EXPECT_LE(sum / double(3 * compared), 6.0) << "mean colour difference inside both silhouettes (levels)";
+    std::sort(excess.begin(), excess.end());
+    EXPECT_LE(excess[excess.size() * 99 / 100], 20) << "99th percentile of the colour difference from the direct render within 2 px (levels)";
+    EXPECT_LE(worst, 75) << "largest colour difference inside both silhouettes from the direct render within 2 px (levels)";
+}
+
+TEST(ImpostorAtlas, ImpostorOfAKnownPoseMatchesADirectRender) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    ImpostorBakeInput in = bake_input(fig, 2);  // one phase and the standing row
+    in.directions = 16;
+    in.cell_height_px = 96;
+    Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
+    ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
+    EXPECT_EQ(atlas.value().layout.rows, 2u);
+    EXPECT_EQ(atlas.value().image.height, 2u * 2u * 96u);
+
+    Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+    ASSERT_TRUE(made.ok()) << made.error().to_string();
+    CrowdRenderer& r = *made.value();
+    Result<uint32_t> topology = r.register_topology(fig.indices, 0, true);
+    ASSERT_TRUE(topology.ok());
+    Result<uint32_t> id = r.register_impostor_atlas(atlas.value().image, atlas.value().layout);
+    ASSERT_TRUE(id.ok()) << id.error().to_string();
+
+    const glm::vec4 tint(0.85f, 0.65f, 0.5f, 1.0f);
+    // The character turned by `heading` about +Y, seen from atlas direction d (camera azimuth in its frame).
+    for (const auto& [heading, d] : {std::pair{0.0f, 0u}, std::pair{0.7f, 3u}, std::pair{-2.0f, 10u}}) {
+        SCOPED_TRACE("heading " + std::to_string(heading) + ", direction " + std::to_string(d));
+        const float azimuth = heading + 6.28318531f * float(d) / 16.0f;  // world azimuth of the camera
+        FrameInput direct = camera_frame(azimuth);
+        const glm::mat4 model = glm::rotate(glm::mat4(1.0f), heading, glm::vec3(0, 1, 0));
+        const std::vector<DeformableMesh> meshes = {{topology.value(), fig.positions, fig.normals, model, tint}};
+        direct.meshes = meshes;
+        Result<gpu::Rgba8Image> a = draw(r, *ctx, direct);
+        ASSERT_TRUE(a.ok()) << a.error().to_string();
+
+        FrameInput quad = camera_frame(azimuth);
+        ImpostorInstance inst;
+        inst.forward_phase = glm::vec4(std::sin(heading), std::cos(heading), 0.0f, 1.0f);  // local +Z in world (x, z)
+        inst.colour = tint;
+        inst.atlas = id.value();
+        quad.impostors = std::span(&inst, 1);
+        Result<gpu::Rgba8Image> b = draw(r, *ctx, quad);
+        ASSERT_TRUE(b.ok()) << b.error().to_string();
+        expect_matches(a.value(), b.value());
+        if (std::getenv("ALOHA_DUMP_IMPOSTOR")) {
+            (void)gpu::write_png("/tmp/imp_direct_" + std::to_string(d) + ".png", kSize, kSize, a.value().pixels);
+            (void)gpu::write_png("/tmp/imp_quad_" + std::to_string(d) + ".png", kSize, kSize, b.value().pixels);
+        }
+    }
+    EXPECT_TRUE(ctx->validation_messages().empty());
+}
+
+TEST(ImpostorAtlas, RefusesAnAtlasWithoutItsRows) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    const Result<ImpostorAtlas> one_row = bake_impostor_atlas(*ctx, bake_input(fig, 1));
+    ASSERT_FALSE(one_row.ok());
+    EXPECT_NE(one_row.error().to_string().find("at least one walk phase and the standing pose"), std::string::npos);
+    Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+    ASSERT_TRUE(made.ok());
+    TextureImage image;
+    image.width = 30;
+    image.height = 40;
+    image.rgba.assign(30 * 40 * 4, 0);
+    const Result<uint32_t> bad = made.value()->register_impostor_atlas(image, ImpostorAtlasLayout{16, 9, 1.0f, 0.0f, 1.8f});
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().to_string().find("whole cells"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aloha
