@@ -23,6 +23,9 @@ TEST(InstallConsumer, SameLevelsAndSkinAsTheWorld) {
     WorldOptions o;
     o.threads = 2;
     o.occlusion = false;  // the consumer runs no occlusion estimate
+    // Nor the World's pose-use saving (poses nobody reads, e.g. impostors', are left stale and posed
+    // fresh when seen again): the consumer poses every character every frame, so the World does too.
+    o.pose_every_character = true;
     auto made = World::create(game.scene, o);
     ASSERT_TRUE(made.ok()) << made.error().to_string();
     World& world = *made.value();
