@@ -91,6 +91,8 @@ struct LodState {
     uint8_t cap_geom_level = 0;     ///< richest geometric level the level caps allow this frame (0 = any)
     uint8_t cap_anim_level = 0;     ///< richest animation level the level caps allow this frame (0 = any)
     uint8_t always_full = 0;        ///< 1: set by the scene; the frame budget never demotes this character
+    uint8_t geom_wanted = 0;        ///< geometric level the rules (after demotion and caps) asked for last frame
+    float seconds_geom_wanted = 0.0f;  ///< simulated seconds geom_wanted has been asked for without a break
 };
 
 }  // namespace aloha

@@ -175,42 +175,25 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     ALOHA_VK_RETURN(vkCreateDescriptorPool(lp.device_, &dpi, nullptr, &lp.pool_));
     const std::span<const uint32_t> mesh_frag =
         constant_fragments ? std::span<const uint32_t>(k_lit_constant_frag_spv) : std::span<const uint32_t>(k_lit_mesh_frag_spv);
-    Result<VkPipeline> mesh = make_pipeline(
-        lp.device_, lp.layout_, render_pass,
-        {k_lit_mesh_vert_spv, mesh_frag, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
-         VK_CULL_MODE_NONE});
-    if (!mesh) return mesh.error();
-    lp.mesh_ = mesh.value();
-    Result<VkPipeline> culled = make_pipeline(
-        lp.device_, lp.layout_, render_pass,
-        {k_lit_mesh_vert_spv, mesh_frag, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
-         VK_CULL_MODE_BACK_BIT});
-    if (!culled) return culled.error();
-    lp.culled_ = culled.value();
     // Profiling with constant fragments: the per-pixel vertex shader (its flat colour feeds lit_constant.frag).
     const std::span<const uint32_t> vertex_vert =
         constant_fragments ? std::span<const uint32_t>(k_lit_mesh_vert_spv) : std::span<const uint32_t>(k_lit_mesh_vertex_lit_vert_spv);
     const std::span<const uint32_t> vertex_frag =
         constant_fragments ? std::span<const uint32_t>(k_lit_constant_frag_spv) : std::span<const uint32_t>(k_lit_vertex_frag_spv);
-    for (const auto& [out, cull] : {std::pair{&lp.vertex_lit_, VK_CULL_MODE_NONE}, std::pair{&lp.vertex_lit_culled_, VK_CULL_MODE_BACK_BIT}}) {
-        Result<VkPipeline> p = make_pipeline(lp.device_, lp.layout_, render_pass,
-                                             {vertex_vert, vertex_frag, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST,
-                                              VK_COMPARE_OP_LESS, static_cast<VkCullModeFlags>(cull)});
+    constexpr VkPrimitiveTopology kTriangles = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    const std::pair<VkPipeline*, PipelineDesc> pipelines[] = {
+        {&lp.mesh_, {k_lit_mesh_vert_spv, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        {&lp.culled_, {k_lit_mesh_vert_spv, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
+        {&lp.vertex_lit_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        {&lp.vertex_lit_culled_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
+        {&lp.lines_, {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE}},
+        {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+    };
+    for (const auto& [out, desc] : pipelines) {
+        Result<VkPipeline> p = make_pipeline(lp.device_, lp.layout_, render_pass, desc);
         if (!p) return p.error();
         *out = p.value();
     }
-    Result<VkPipeline> lines = make_pipeline(
-        lp.device_, lp.layout_, render_pass,
-        {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL,
-         VK_CULL_MODE_NONE});
-    if (!lines) return lines.error();
-    lp.lines_ = lines.value();
-    Result<VkPipeline> impostor = make_pipeline(
-        lp.device_, lp.layout_, render_pass,
-        {k_impostor_vert_spv, k_impostor_frag_spv, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_COMPARE_OP_LESS,
-         VK_CULL_MODE_NONE});
-    if (!impostor) return impostor.error();
-    lp.impostor_ = impostor.value();
     return lp;
 }
 

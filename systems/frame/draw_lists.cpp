@@ -99,10 +99,13 @@ void DrawListBuilder::overlays(const DrawType& draw, uint32_t id, const glm::mat
                     out.lines.push_back({to_world(muscle[m * per + grid_ring_vertex(T, r, t)]),
                                          to_world(muscle[m * per + grid_ring_vertex(T, r, t + 1)]), glm::vec4(0.85f, 0.15f, 0.15f, 1.0f)});
     }
+    // The springs of the control surface; a subdivided level displays the refined surface instead.
+    if (!(bits & kOverlaySprings) || lod.method == GeomMethod::Subdivided) return;
     const SurfaceView skin = draw.geometry->surface(id);
-    if ((bits & kOverlaySprings) && skin.positions.size() == muscle.size())  // springs: muscle -> skin
-        for (size_t k = 0; k < muscle.size(); ++k)
-            out.lines.push_back({to_world(muscle[k]), to_world(skin.positions[k]), glm::vec4(0.2f, 0.9f, 0.9f, 1.0f)});
+    draw.geometry->spring_roots(id, muscle_scratch_);  // springs: root on the muscles -> skin vertex
+    if (muscle_scratch_.size() > skin.positions.size()) return;
+    for (size_t k = 0; k < muscle_scratch_.size(); ++k)
+        out.lines.push_back({to_world(muscle_scratch_[k]), to_world(skin.positions[k]), glm::vec4(0.2f, 0.9f, 0.9f, 1.0f)});
 }
 
 Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface) {

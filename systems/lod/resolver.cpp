@@ -19,6 +19,13 @@ uint8_t demoted_anim_level(const RuleTable& table, uint8_t requested, uint8_t de
     return static_cast<uint8_t>(std::min(requested + demotion, last));
 }
 
+namespace {
+// Time held at a level stops growing here (a day): far past any hysteresis, and float keeps sub-frame steps.
+constexpr float kHeldCap = 86400.0f;
+inline float advance(float held, float dt) { return std::min(held + dt, kHeldCap); }
+inline float run_down(float left, float dt) { return std::max(left - dt, 0.0f); }
+}  // namespace
+
 LodTargets lod_targets(const RuleTable& table, const LodRequest& request, const LodState& state) {
     LodTargets t;
     t.geom = demoted_geom_level(table, request.geom_level, state.budget_demotion);
@@ -30,6 +37,14 @@ LodTargets lod_targets(const RuleTable& table, const LodRequest& request, const 
 }
 
 bool held_long_enough(const RuleTable& table, float held_s) { return held_s + 1e-6f >= table.hysteresis.min_seconds; }
+
+float seconds_wanted(const LodState& state, uint8_t target, float dt) {
+    return target == state.geom_wanted ? state.seconds_geom_wanted + dt : 0.0f;
+}
+
+bool wanted_long_enough(const RuleTable& table, uint8_t target, float wanted_s) {
+    return wanted_s + 1e-6f >= table.geom_levels[target].enter_after_s;
+}
 
 uint16_t transition_frames(float seconds, float dt) {
     if (!(seconds > 0.0f) || !(dt > 0.0f)) return 0;
@@ -44,8 +59,9 @@ LodTargets uncapped_outcome(const RuleTable& table, const LodRequest& request, c
     const uint8_t geom = std::min<uint8_t>(state.geom_level, static_cast<uint8_t>(table.geom_levels.size() - 1));
     const uint8_t anim = std::min<uint8_t>(state.anim_level, static_cast<uint8_t>(table.anim_levels.size() - 1));
     // Timers advance before the resolver compares them, hence + dt.
-    const bool geom_free = snap || held_long_enough(table, state.seconds_at_geom + dt) ||
-                           table.geom_levels[geom].method == GeomMethod::Hidden;
+    const bool geom_free = snap || ((held_long_enough(table, state.seconds_at_geom + dt) ||
+                                     table.geom_levels[geom].method == GeomMethod::Hidden) &&
+                                    wanted_long_enough(table, target.geom, std::min(seconds_wanted(state, target.geom, dt), kHeldCap)));
     const bool anim_free = snap || held_long_enough(table, state.seconds_at_anim + dt);
     return {geom_free ? target.geom : geom, anim_free ? target.anim : anim};
 }
@@ -68,12 +84,6 @@ bool LodResolveJob::Validate(std::vector<std::string>* errors) const {
     return ok;
 }
 
-namespace {
-// Time held at a level stops growing here (a day): far past any hysteresis, and float keeps sub-frame steps.
-constexpr float kHeldCap = 86400.0f;
-inline float advance(float held, float dt) { return std::min(held + dt, kHeldCap); }
-inline float run_down(float left, float dt) { return std::max(left - dt, 0.0f); }
-}  // namespace
 
 size_t LodResolveJob::Run() const {
     const RuleTable& t = *table;
@@ -85,6 +95,7 @@ size_t LodResolveJob::Run() const {
         LodState s = states[i];
         s.geom_level = std::min(s.geom_level, last_geom);
         s.anim_level = std::min(s.anim_level, last_anim);
+        s.geom_wanted = std::min(s.geom_wanted, last_geom);
         s.prev_geom_level = std::min(s.prev_geom_level, last_geom);
         s.prev_anim_level = std::min(s.prev_anim_level, last_anim);
         s.cap_geom_level = std::min(s.cap_geom_level, last_geom);
@@ -99,8 +110,12 @@ size_t LodResolveJob::Run() const {
         const uint8_t target_anim = target.anim;
         bool level_changed = false;
         // Over a cap: leave at once, whatever the time hysteresis says.
-        const bool geom_free = snap || held_long_enough(t, s.seconds_at_geom) ||
-                               t.geom_levels[s.geom_level].method == GeomMethod::Hidden || s.geom_level < s.cap_geom_level;
+        // A level with enter_after_s is entered only once it was asked for that long without a break.
+        s.seconds_geom_wanted = std::min(seconds_wanted(s, target_geom, dt), kHeldCap);
+        s.geom_wanted = target_geom;
+        const bool geom_free = snap || ((held_long_enough(t, s.seconds_at_geom) || t.geom_levels[s.geom_level].method == GeomMethod::Hidden ||
+                                         s.geom_level < s.cap_geom_level) &&
+                                        wanted_long_enough(t, target_geom, s.seconds_geom_wanted));
         const bool anim_free = snap || held_long_enough(t, s.seconds_at_anim) || s.anim_level < s.cap_anim_level;
         if (target_geom != s.geom_level && geom_free) {
             s.prev_geom_level = snap ? target_geom : s.geom_level;
@@ -138,6 +153,7 @@ void clamp_lod_states(const RuleTable& table, std::span<LodState> states) {
     for (LodState& s : states) {
         s.geom_level = std::min(s.geom_level, last_geom);
         s.anim_level = std::min(s.anim_level, last_anim);
+        s.geom_wanted = std::min(s.geom_wanted, last_geom);
         s.prev_geom_level = std::min(s.prev_geom_level, last_geom);
         s.prev_anim_level = std::min(s.prev_anim_level, last_anim);
         s.rule_id = std::min(s.rule_id, last_rule);

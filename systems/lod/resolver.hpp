@@ -38,6 +38,14 @@ struct LodTargets {
 /// microsecond of slack, so frame times summed in float do not cost a frame).
 [[nodiscard]] bool held_long_enough(const RuleTable& table, float held_s);
 
+/// Seconds geometric level `target` has been asked for without a break, counting this frame: 0 on the
+/// frame it is first asked for (it differs from `state.geom_wanted`), else the state's count + dt.
+[[nodiscard]] float seconds_wanted(const LodState& state, uint8_t target, float dt);
+
+/// True when a character asked for geometric level `target` for `wanted_s` seconds may enter it: its
+/// `enter_after_s` has passed (with the same slack as held_long_enough).
+[[nodiscard]] bool wanted_long_enough(const RuleTable& table, uint8_t target, float wanted_s);
+
 /// Frames a transition of `seconds` lasts at frame time `dt`: 0 for no transition, else
 /// round(seconds / dt), at least 1 (at most 65535). For consumers that count frames (the geometric
 /// controller's geomorph). Requires dt > 0 when seconds > 0.

@@ -64,6 +64,7 @@ struct Parser {
         }
         r.read("geomorph_s", d.geomorph_s, 0.0, 10.0);
         r.renamed("geomorph_frames", "geomorph_s", lod_detail::kSecondsNotFrames);
+        r.read("enter_after_s", d.enter_after_s, 0.0, 600.0);
         r.read("max_characters", d.max_characters, 0, 1.0e9);
         r.reject_unknown_keys();
         if (d.method == GeomMethod::Subdivided && d.subdiv_level == 0)

@@ -48,6 +48,8 @@ struct GeomLevelDef {
     uint8_t subdiv_level = 0;               ///< Catmull-Clark levels (Subdivided only)
     uint8_t layers = kLayerSkeleton;        ///< LayerBits
     float geomorph_s = 0.0f;                ///< morph seconds when this level is entered
+    float enter_after_s = 0.0f;             ///< seconds this level must be asked for without a break before
+                                            ///< a character enters it (leaving it is not delayed)
     uint32_t max_characters = kNoCap;       ///< cap: at most this many characters here or richer
 };
 

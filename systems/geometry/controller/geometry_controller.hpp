@@ -117,6 +117,10 @@ public:
     /// for debug drawing) to `positions`, or clears it when its level has no muscles or it has not
     /// been updated. Allocates.
     void muscle_surface(uint32_t character, std::vector<glm::vec3>& positions) const;
+    /// Copies the roots of the character's fat springs as of its last update (one per displayed
+    /// control vertex: the blend of muscle-surface points each skin vertex hangs on) to `roots`, or
+    /// clears it when its level has no muscles or it has not been updated. For debug drawing; allocates.
+    void spring_roots(uint32_t character, std::vector<glm::vec3>& roots) const;
     /// Triangle list shared by every character of `level` (empty for RigidProxy / Hidden).
     [[nodiscard]] std::span<const uint32_t> level_indices(uint8_t level) const;
     /// Texture coordinates of `level`'s displayed vertices, shared by every character there: the real

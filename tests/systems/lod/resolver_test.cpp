@@ -86,6 +86,63 @@ TEST(Resolver, LeavingHiddenIsImmediate) {
     EXPECT_EQ(f.states[0].geom_level, 1);
 }
 
+// enter_after_s on "hidden" (0.25 s = 15 frames at 60 Hz): a character enters it only after asking for it
+// 15 frames in a row (the frame it first asks counts 0 s); any frame asking for something else restarts
+// the count; leaving is not delayed. Exact frame counts: the slack is 1e-6 s against frames of 1/60 s.
+TEST(Resolver, EnterAfterNeedsAnUnbrokenRequestAndLeavesAtOnce) {
+    auto j = small_rules();
+    j["geometric_levels"][3]["enter_after_s"] = 0.25;
+    const RuleTable t = must_parse(j);
+    Frame f(1);
+    f.resolve(t, {request(1, 1, 2)}, true);
+    for (int frame = 1; frame <= 20; ++frame) f.resolve(t, {request(1, 1, 2)});  // held well past min_seconds
+    // Asked for hidden 10 frames (0.15 s), then once for mid: never hidden.
+    for (int frame = 0; frame < 10; ++frame) EXPECT_EQ(f.resolve(t, {request(3, 2, 0)}), frame == 0 ? 1u : 0u);  // animation follows at once
+    EXPECT_EQ(f.states[0].geom_level, 1);
+    f.resolve(t, {request(1, 2, 2)});
+    int hidden_at = -1;
+    for (int frame = 0; frame < 30 && hidden_at < 0; ++frame) {
+        f.resolve(t, {request(3, 2, 0)});
+        if (f.states[0].geom_level == 3) hidden_at = frame;
+    }
+    EXPECT_EQ(hidden_at, 15);  // 0 s on frame 0, 15/60 = 0.25 s on frame 15
+    EXPECT_EQ(f.resolve(t, {request(1, 2, 2)}), 1u);  // leaving: on the first frame
+    EXPECT_EQ(f.states[0].geom_level, 1);
+    // Entering a level without enter_after_s is only subject to min_seconds, as before.
+    for (int frame = 0; frame < 20; ++frame) f.resolve(t, {request(1, 2, 2)});
+    EXPECT_EQ(f.resolve(t, {request(2, 2, 3)}), 1u);
+    EXPECT_EQ(f.states[0].geom_level, 2);
+    // A snap (first frame, teleport) enters at once.
+    Frame g(1);
+    g.resolve(t, {request(3, 2, 0)}, true);
+    EXPECT_EQ(g.states[0].geom_level, 3);
+}
+
+// The same delay at 30, 60 and 120 Hz: the switch into hidden comes at the same simulated time, to
+// within one frame of the coarsest rate.
+TEST(Resolver, EnterAfterIsInSeconds) {
+    auto j = small_rules();
+    j["geometric_levels"][3]["enter_after_s"] = 0.4;
+    const RuleTable t = must_parse(j);
+    for (const int hz : {30, 60, 120}) {
+        const float dt = 1.0f / static_cast<float>(hz);
+        std::vector<LodState> states(1);
+        std::vector<GeomLod> geom(1);
+        std::vector<AnimLod> anim(1);
+        LodResolveJob{&t, std::vector<LodRequest>{request(1, 1, 2)}, states, geom, anim, {}, {}, 0, 0.0f, true}.Run();
+        float time = 0.0f, hidden_at = -1.0f;
+        for (int frame = 1; hidden_at < 0.0f && frame < 10 * hz; ++frame) {
+            time = static_cast<float>(frame) * dt;
+            const std::vector<LodRequest> req{time >= 1.0f ? request(3, 2, 0) : request(1, 1, 2)};
+            LodResolveJob{&t, req, states, geom, anim, {}, {}, 0, dt, false}.Run();
+            if (states[0].geom_level == 3) hidden_at = time;
+        }
+        SCOPED_TRACE(hz);
+        EXPECT_GE(hidden_at, 1.4f - 1e-4f);
+        EXPECT_LE(hidden_at, 1.4f + 1.0f / 30.0f + 1e-4f);
+    }
+}
+
 TEST(Resolver, BudgetDemotionNeverHidesAVisibleCharacter) {
     const RuleTable t = must_parse(small_rules());  // levels: rich, mid, proxy, hidden
     EXPECT_EQ(demoted_geom_level(t, 0, 1), 1);
