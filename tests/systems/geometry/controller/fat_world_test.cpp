@@ -231,6 +231,40 @@ TEST(FatWorld, TurningWhileRunningStaysBounded) {
     EXPECT_GT(peak, 1e-4f);  // a turn is felt (centripetal 2.5 m/s * pi rad/s ~ 7.9 m/s^2)
 }
 
+TEST(FatWorld, LandingThrowsTheSkinDownThenSettles) {
+    const auto& h = test::humanoid();
+    ASSERT_NE(h.geometry, nullptr);
+    const CharacterGeometry& g = *h.geometry;
+    Walker w(g, test::grid_level(GeomMethod::Layered, 8, 6), test::clip_pose(g.skeleton(), h.clip, 0));
+    const std::vector<float> H = rest_length_bounds(g);
+    const std::vector<FatSpringParams> tuning = vertex_tunings(g, w.ctl.spring_params());
+    const float dt = 1.0f / 60.0f;
+    glm::vec3 position(0.0f, 0.45f, 0.0f);
+    for (int f = 0; f < 10; ++f) w.step(at(position), dt);
+    for (float v = 0.0f; position.y > 0.0f;) {  // falls from 0.45 m (g = 9.81 m/s^2), lands at 3 m/s
+        v += 9.81f * dt;
+        position.y = std::max(0.0f, position.y - v * dt);
+        w.step(at(position), dt);
+    }
+    float down = 0.0f, last = 0.0f;
+    std::vector<glm::vec3> rest;
+    for (int f = 0; f < 30; ++f) {  // stands for 0.5 s after the landing
+        w.step(at(position), dt);
+        w.ctl.reference_surface(w.types[0].poses, 0, 0, rest);
+        const std::span<const glm::vec3> skin = w.ctl.surface(0).positions;
+        last = 0.0f;
+        for (size_t i = 0; i < skin.size(); ++i) {
+            const float d = glm::length(skin[i] - rest[i]);
+            ASSERT_TRUE(std::isfinite(d));
+            EXPECT_LE(d, tuning[i].max_strain * H[i] * (1.0f + 1e-4f) + 1e-6f);
+            down = std::max(down, rest[i].y - skin[i].y);
+            last = std::max(last, d);
+        }
+    }
+    EXPECT_GT(down, 1e-3f);        // the landing throws the skin down past its rest ends
+    EXPECT_LT(last, 0.05f * down);  // and it has settled half a second later (settle_bound, < 5%)
+}
+
 TEST(FatWorld, SnapOrTeleportDoesNotFlingTheSkin) {
     const auto& h = test::humanoid();
     ASSERT_NE(h.geometry, nullptr);
