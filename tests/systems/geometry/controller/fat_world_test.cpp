@@ -35,6 +35,8 @@ namespace {
 
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 
+std::vector<float> strain_limits(const CharacterGeometry& g, const FatSpringParams& base);
+
 // One character through GeometryUpdateJob (the spring_skin system's glue) at one Layered level.
 struct Walker {
     GeometryController ctl;
@@ -47,13 +49,18 @@ struct Walker {
     std::vector<glm::mat4> pose;
     std::vector<uint32_t> scratch;
     CharacterGroups groups;
+    std::vector<float> limit;  ///< per skin vertex: its strain limit (strain_limits)
     bool first = true;
 
     Walker(const CharacterGeometry& g, const GeomLod& level, std::vector<glm::mat4> p)
         : ctl(g, std::span(&level, 1), 1), geom{level}, pose(std::move(p)) {
         types.push_back({&ctl, PoseSource{pose.data(), pose.size()}});
         group_by_level(refs, geom, groups);
+        limit = strain_limits(g, ctl.spring_params());
     }
+    /// At the Layered (8, 6) level, held in the walk's first pose.
+    explicit Walker(const CharacterGeometry& g)
+        : Walker(g, test::grid_level(GeomMethod::Layered, 8, 6), test::clip_pose(g.skeleton(), test::humanoid().clip, 0)) {}
     // One frame of `dt` s with the root at `placement`.
     void step(const Transform& placement, float dt) {
         placements[0] = placement;
@@ -105,6 +112,15 @@ std::vector<FatSpringParams> vertex_tunings(const CharacterGeometry& g, const Fa
     return out;
 }
 
+// Per skin vertex: the strain limit max_strain * H of its tuning (with float slack).
+std::vector<float> strain_limits(const CharacterGeometry& g, const FatSpringParams& base) {
+    const std::vector<float> H = rest_length_bounds(g);
+    const std::vector<FatSpringParams> tuning = vertex_tunings(g, base);
+    std::vector<float> out;
+    for (size_t i = 0; i < H.size(); ++i) out.push_back(tuning[i].max_strain * H[i] * (1.0f + 1e-4f) + 1e-6f);
+    return out;
+}
+
 // The settle envelope of the file comment at `t` s after the stop, as a fraction of D.
 double settle_bound(const FatSpringParams& p, double t) {
     const double wn = kTwoPi * p.normal_hz, wl = kTwoPi * p.lateral_hz, z = p.normal_damping;
@@ -136,16 +152,13 @@ struct StopRun {
 
 // Runs at 2.5 m/s along +Z for 1 s at `hz`, then stops dead and stands for 0.5 s.
 StopRun stop_from_run(const CharacterGeometry& g, float hz) {
-    const auto& h = test::humanoid();
-    Walker w(g, test::grid_level(GeomMethod::Layered, 8, 6), test::clip_pose(g.skeleton(), h.clip, 0));
-    const std::vector<float> H = rest_length_bounds(g);
-    const std::vector<FatSpringParams> tuning = vertex_tunings(g, w.ctl.spring_params());
+    Walker w(g);
     const float dt = 1.0f / hz;
     StopRun out;
     auto check = [&](const std::vector<float>& d) {
         for (size_t i = 0; i < d.size(); ++i) {
             out.finite = out.finite && std::isfinite(d[i]);
-            out.within_strain = out.within_strain && d[i] <= tuning[i].max_strain * H[i] * (1.0f + 1e-4f) + 1e-6f;
+            out.within_strain = out.within_strain && d[i] <= w.limit[i];
         }
     };
     const int run_frames = static_cast<int>(std::lround(hz)), stand_frames = static_cast<int>(std::lround(0.5f * hz));
@@ -210,10 +223,7 @@ TEST(FatWorld, FiniteAndWithinTheStrainLimitFrom15To240Hz) {
 TEST(FatWorld, TurningWhileRunningStaysBounded) {
     const auto& h = test::humanoid();
     ASSERT_NE(h.geometry, nullptr);
-    const CharacterGeometry& g = *h.geometry;
-    Walker w(g, test::grid_level(GeomMethod::Layered, 8, 6), test::clip_pose(g.skeleton(), h.clip, 0));
-    const std::vector<float> H = rest_length_bounds(g);
-    const std::vector<FatSpringParams> tuning = vertex_tunings(g, w.ctl.spring_params());
+    Walker w(*h.geometry);
     const float dt = 1.0f / 30.0f;
     glm::vec3 position(0.0f);
     float heading = 0.0f, peak = 0.0f;
@@ -224,7 +234,7 @@ TEST(FatWorld, TurningWhileRunningStaysBounded) {
         const std::vector<float> d = w.deviation();
         for (size_t i = 0; i < d.size(); ++i) {
             ASSERT_TRUE(std::isfinite(d[i]));
-            EXPECT_LE(d[i], tuning[i].max_strain * H[i] * (1.0f + 1e-4f) + 1e-6f);
+            EXPECT_LE(d[i], w.limit[i]);
             peak = std::max(peak, d[i]);
         }
     }
@@ -234,10 +244,7 @@ TEST(FatWorld, TurningWhileRunningStaysBounded) {
 TEST(FatWorld, LandingThrowsTheSkinDownThenSettles) {
     const auto& h = test::humanoid();
     ASSERT_NE(h.geometry, nullptr);
-    const CharacterGeometry& g = *h.geometry;
-    Walker w(g, test::grid_level(GeomMethod::Layered, 8, 6), test::clip_pose(g.skeleton(), h.clip, 0));
-    const std::vector<float> H = rest_length_bounds(g);
-    const std::vector<FatSpringParams> tuning = vertex_tunings(g, w.ctl.spring_params());
+    Walker w(*h.geometry);
     const float dt = 1.0f / 60.0f;
     glm::vec3 position(0.0f, 0.45f, 0.0f);
     for (int f = 0; f < 10; ++f) w.step(at(position), dt);
@@ -256,7 +263,7 @@ TEST(FatWorld, LandingThrowsTheSkinDownThenSettles) {
         for (size_t i = 0; i < skin.size(); ++i) {
             const float d = glm::length(skin[i] - rest[i]);
             ASSERT_TRUE(std::isfinite(d));
-            EXPECT_LE(d, tuning[i].max_strain * H[i] * (1.0f + 1e-4f) + 1e-6f);
+            EXPECT_LE(d, w.limit[i]);
             down = std::max(down, rest[i].y - skin[i].y);
             last = std::max(last, d);
         }
@@ -270,7 +277,7 @@ TEST(FatWorld, SnapOrTeleportDoesNotFlingTheSkin) {
     ASSERT_NE(h.geometry, nullptr);
     const CharacterGeometry& g = *h.geometry;
     for (const float hz : {15.0f, 240.0f}) {
-        Walker w(g, test::grid_level(GeomMethod::Layered, 8, 6), test::clip_pose(g.skeleton(), h.clip, 0));
+        Walker w(g);
         const float dt = 1.0f / hz;
         for (int f = 0; f < 10; ++f) w.step(at(glm::vec3(0.0f)), dt);
         // A 180 degree snap in one frame, then a 100 m teleport: neither is motion; the skin stays at rest.
@@ -308,7 +315,7 @@ TEST(FatWorld, ASofterRegionMovesMore) {
     // The sum over the half second after the stop of the largest deviation: the softer springs swing
     // longer (slower decay e^(-zeta w t): 5.7/s against 88/s), so they move more.
     auto motion_after_stop = [](const CharacterGeometry& g) {
-        Walker w(g, test::grid_level(GeomMethod::Layered, 8, 6), test::clip_pose(g.skeleton(), test::humanoid().clip, 0));
+        Walker w(g);
         const float dt = 1.0f / 60.0f;
         glm::vec3 position(0.0f);
         for (int f = 0; f < 60; ++f) w.step(at(position += glm::vec3(0.0f, 0.0f, 2.5f * dt)), dt);
