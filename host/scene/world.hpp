@@ -11,6 +11,7 @@
 #include "engine/ecs/ecs.hpp"
 #include "host/scene/character_type.hpp"
 #include "host/scene/motion_sample.hpp"
+#include "host/scene/skin_sample.hpp"
 #include "host/scene/scene_desc.hpp"
 #include "host/scene/world_phases.hpp"
 #include "engine/scheduler/scheduler.hpp"
@@ -152,6 +153,15 @@ public:
     /// Fills `out` with character `index` (spawn order: types in scene order, then id) as the last
     /// frame left it. Requires index < character_count().
     void motion_sample(uint32_t index, MotionSample& out) const;
+    /// Fills `out` with character `index`'s (spawn order) displayed body as the last frame left it, in
+    /// world space (world_skin.cpp): its level's skin (positions, normals, triangles), or the boxes of a
+    /// rigid proxy; empty triangles when the level draws no mesh (hidden, impostor) or before its first
+    /// frame. Requires index < character_count().
+    void skin_sample(uint32_t index, SkinSample& out) const;
+    /// Holds character `index` (spawn order) at geometric level `level` from the next step() on,
+    /// whatever the rules, the caps and the budget say (the budget never demotes it). Errors (as
+    /// ErrorKind::Option, path "character" or "level") name the valid range.
+    Status pin_geom_level(uint32_t index, uint8_t level);
     /// One baked impostor atlas (attach_renderer bakes one per type when the rules have an impostor level).
     struct ImpostorReport {
         std::string type;             ///< the character type
@@ -182,6 +192,11 @@ private:
     Status build_impostors();
     /// Fills pose_use_ for this frame (motion system): which poses the later stages read.
     void mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs, std::span<const LodState> states);
+    /// Type index and id of spawn index `index` (< character_count()).
+    [[nodiscard]] std::pair<size_t, uint32_t> spawn_character(uint32_t index) const;
+    /// Writes the pinned character's request (pin_geom_level) into `requests` and marks its state
+    /// always_full (the resolve phase).
+    void apply_level_pin(std::span<LodRequest> requests, std::span<LodState> states) const;
 
     SceneDesc scene_;
     WorldOptions options_;
@@ -224,6 +239,7 @@ private:
     glm::vec2 override_viewport_{1280.0f, 720.0f};
     Status render_status_;
     double last_cpu_ms_ = 0.0;
+    std::optional<std::pair<uint32_t, uint8_t>> pin_;  ///< spawn index, geometric level (pin_geom_level)
     uint64_t frame_ = 0;
     float time_ = 0.0f;
     bool first_frame_ = true;

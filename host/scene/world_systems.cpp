@@ -166,6 +166,7 @@ void World::register_systems() {
             ctx.parallel_for(count, grain, fn);
         };
         if (options_.lod) caps.Run();
+        apply_level_pin(a.write<LodRequest>(), states);  // a character held at one level (pin_geom_level)
         // The resolver in fixed blocks on both cores: each block lists its changes in its own part of
         // changed_ and counts its switches; the lists are then packed in block order (same as serial).
         const size_t n = states.size(), blocks = (n + kLodGrain - 1) / kLodGrain;
@@ -233,12 +234,14 @@ void World::register_systems() {
 
     // The geometric controller, per (type, level) range of the grouping one tight loop, chunks in
     // parallel (systems/frame/geometry_frame.hpp).
-    auto geometry_job = [this](SystemContext& ctx, std::span<const LodState> states, std::span<const MotionState> motion) {
+    auto geometry_job = [this](SystemContext& ctx, std::span<const LodState> states, std::span<const MotionState> motion,
+                               std::span<const Transform> placements) {
         GeometryUpdateJob job;
         job.types = geometry_types_;
         job.groups = &groups_;
         job.states = states;
         job.motion = motion;
+        job.placements = placements;
         job.dt = ctx.dt();
         job.first_frame = first_frame_;
         job.level_ns = geom_level_ns_;  // per-level time for the geometry budget
@@ -249,15 +252,16 @@ void World::register_systems() {
         return job;
     };
     // Muscle stage: the muscles shaped for the pose (volume kept) and tessellated at the level's (T, P).
-    using MuscleAccess = Access<Reads<LodState, MotionState, PoseResource, GroupingResource>, Writes<MuscleSurfaceResource>>;
+    using MuscleAccess = Access<Reads<Transform, LodState, MotionState, PoseResource, GroupingResource>, Writes<MuscleSurfaceResource>>;
     scheduler_.add(make_system<MuscleAccess>("muscle", WorldPhase::Tessellate, source, [geometry_job](SystemContext& ctx, const MuscleAccess& a) {
-        geometry_job(ctx, a.read<LodState>(), a.read<MotionState>()).RunMuscles();
+        geometry_job(ctx, a.read<LodState>(), a.read<MotionState>(), a.read<Transform>()).RunMuscles();
     }));
     // Skin stage: rigid proxies, linear-blend skin, fat springs on the muscle surface + skin, geomorph,
     // OpenSubdiv.
-    using SkinAccess = Access<Reads<LodState, MotionState, PoseResource, GroupingResource, MuscleSurfaceResource>, Writes<SurfaceResource>>;
+    using SkinAccess = Access<Reads<Transform, LodState, MotionState, PoseResource, GroupingResource, MuscleSurfaceResource>,
+                              Writes<SurfaceResource>>;
     scheduler_.add(make_system<SkinAccess>("spring_skin", WorldPhase::Skin, source, [geometry_job](SystemContext& ctx, const SkinAccess& a) {
-        geometry_job(ctx, a.read<LodState>(), a.read<MotionState>()).RunSkin();
+        geometry_job(ctx, a.read<LodState>(), a.read<MotionState>(), a.read<Transform>()).RunSkin();
     }));
 
     // The draw lists; registering a new topology or material writes the renderer's tables.

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <memory>
 #include <set>
 
@@ -20,7 +21,7 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 struct Bindings {
     CliOptions o;
     std::string lod = "on", budget, occlusion = "on", counts, characters, frames, frame_range, selection;
-    std::string warmup, frame, width, height, threads, seed, compare_frames;
+    std::string warmup, frame, width, height, threads, seed, compare_frames, character, level;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
 
@@ -130,16 +131,27 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
     scale->add_flag("--no-render", b.o.no_render, "CPU systems only");
     add_common(*scale, b, false);
 
-    CLI::App* exp = command("export", "aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B] [options]",
+    CLI::App* exp = command("export",
+                            "aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B] [options]\n"
+                            "  aloha export SCENE --frame N --character I [--level L] --out FILE.glb [options]",
                             "Runs the scene headless (no rendering) and writes every joint's world position per "
                             "frame, with each character's animation level, update interval, method and whether a "
-                            "transition is under way.");
+                            "transition is under way (--joints); or one character's displayed skin and skeleton at "
+                            "frame N, in world space, as glTF 2.0 binary (--out).");
     exp->add_option("--joints", b.o.joints, "CSV path (refuses to overwrite without --force)")->check(non_empty());
     exp->add_option("--characters", b.selection, "spawn indices and inclusive ranges, e.g. 0,5,10-20 (default: every character)")
         ->check(index_ranges());
     exp->add_option("--frames", b.frame_range,
                     "frames A to B-1, 0 = the first frame run (default: 0 to the scene's frames); a single N means 0:N")
         ->check(frame_range());
+    exp->add_option("--out", b.o.out, "glTF binary path (.glb; refuses to overwrite without --force)")->check(non_empty());
+    exp->add_option("--frame", b.frame, "with --out: the frame whose skin is written (0 = the first frame run)")
+        ->check(whole_number(0, 10'000'000));
+    exp->add_option("--character", b.character, "with --out: the character (spawn index, as --characters counts)")
+        ->check(whole_number(0, 10'000'000));
+    exp->add_option("--level", b.level,
+                    "with --out: hold the character at this geometric level from the first frame (default: the "
+                    "level the rules give it)")->check(whole_number(0, 254));
     exp->add_flag("--force", b.o.force, "allow overwriting the output");
     add_common(*exp, b, true);
 
@@ -168,6 +180,8 @@ void convert(Bindings& b) {
     if (!b.threads.empty()) o.threads = u32(b.threads);
     if (!b.compare_frames.empty()) o.compare_frames = u32(b.compare_frames);
     if (!b.characters.empty()) o.characters = u32(b.characters);
+    if (!b.character.empty()) o.character = u32(b.character);
+    if (!b.level.empty()) o.level = u32(b.level);
     if (!b.seed.empty()) o.seed = std::stoull(b.seed);
     if (!b.counts.empty()) o.counts = parse_count_list(b.counts);
     if (!b.selection.empty()) o.character_ranges = parse_index_ranges(b.selection);
@@ -192,6 +206,27 @@ Error parse_error(const CLI::ParseError& e) {
     const std::string name = what.substr(0, colon);
     if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) return cli_error("option '" + name + "' needs a value");
     return cli_error("option '" + name + "' " + what.substr(colon + 2));
+}
+
+// `aloha export` writes joints (--joints) or one skin (--out FILE.glb), each with its own options.
+Status check_export(const CliOptions& o) {
+    if (o.joints.empty() == o.out.empty())
+        return cli_error("'aloha export' needs --joints FILE.csv (joint positions) or --out FILE.glb (one character's skin, "
+                         "with --frame and --character), not both");
+    if (!o.joints.empty()) {
+        if (o.frame || o.character || o.level)
+            return cli_error("--frame, --character and --level go with --out FILE.glb, not --joints (use --frames and --characters)");
+        return {};
+    }
+    if (!o.character_ranges.empty() || o.frame_range)
+        return cli_error("--characters and --frames go with --joints; --out FILE.glb takes one --character and one --frame");
+    if (!o.frame) return cli_error("'aloha export --out' needs --frame N (the frame whose skin is written)");
+    if (!o.character) return cli_error("'aloha export --out' needs --character I (the character whose skin is written)");
+    const size_t dot = o.out.rfind('.');
+    std::string ext = dot == std::string::npos ? std::string() : o.out.substr(dot);
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext != ".glb") return cli_error("option '--out' expects a .glb file (glTF 2.0 binary), got '" + o.out + "'");
+    return {};
 }
 
 }  // namespace
@@ -226,7 +261,9 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
     const CliOptions& o = b.o;
     if (o.scene.empty()) return cli_error("'aloha " + o.command + "' needs a scene file");
     if (o.command == "scale" && o.counts.empty()) return cli_error("'aloha scale' needs --counts A,B,...");
-    if (o.command == "export" && o.joints.empty()) return cli_error("'aloha export' needs --joints FILE.csv");
+    if (o.command == "export") {
+        if (Status st = check_export(o); !st.ok()) return st.error();
+    }
     return b.o;
 }
 

@@ -16,10 +16,10 @@ namespace aloha::tool {
 struct CliOptions {
     std::string command;               ///< render | view | profile | scale | export | validate | help
     std::string scene;                 ///< scene file
-    std::string out;                   ///< output file (render) or folder (profile)
+    std::string out;                   ///< output file (render, export's .glb) or folder (profile)
     std::optional<uint32_t> frames;    ///< --frames N
     uint32_t warmup = 30;              ///< --warmup W
-    std::optional<uint32_t> frame;     ///< --frame N (render)
+    std::optional<uint32_t> frame;     ///< --frame N (render; export --out)
     std::optional<uint32_t> width, height;
     std::optional<uint64_t> seed;
     bool lod = true;                   ///< --lod on|off
@@ -52,6 +52,8 @@ struct CliOptions {
     std::vector<std::pair<uint32_t, uint32_t>> character_ranges;
     /// export --frames A:B: frames A..B-1 (0 = the first frame run); without it 0 to the scene's frames
     std::optional<std::pair<uint32_t, uint32_t>> frame_range;
+    std::optional<uint32_t> character;  ///< export --character I: the character whose skin --out writes (spawn index)
+    std::optional<uint32_t> level;      ///< export --level L: hold that character at geometric level L
 };
 
 /// Parses argv (without argv[0]). Errors name the offending argument.

@@ -1,4 +1,5 @@
-// `aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B]`: runs the scene headless
+// `aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B]` (or `--out FILE.glb`, one
+// character's skin: cmd_export_skin.cpp): runs the scene headless
 // (CPU systems only) and writes, per frame and selected character, every joint's world position with
 // the character's animation level, update interval, method and whether a transition is under way.
 #include "host/tool/commands.hpp"
@@ -44,13 +45,14 @@ std::string csv_field(const std::string& text) {
 }  // namespace
 
 int run_export(const CliOptions& options) {
-    if (!check_can_write(options.joints, options.force)) return 1;
+    if (!check_can_write(options.out.empty() ? options.joints : options.out, options.force)) return 1;
     auto opened = open_session(options, /*render=*/false);
     if (!opened.ok()) {
         print_error(opened.error().to_string());
         return 1;
     }
     Session& s = *opened.value();
+    if (!options.out.empty()) return export_skin(options, s);
     World& world = *s.world;
     auto chosen = selected_characters(options, world.character_count());
     if (!chosen.ok()) {

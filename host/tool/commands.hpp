@@ -5,6 +5,8 @@
 
 namespace aloha::tool {
 
+struct Session;
+
 /// `aloha render SCENE --frame N --out frame.png`
 int run_render(const CliOptions& options);
 /// `aloha validate SCENE`
@@ -15,6 +17,9 @@ int run_profile(const CliOptions& options);
 int run_scale(const CliOptions& options);
 /// `aloha export SCENE --joints FILE.csv [--characters LIST] [--frames A:B]`
 int run_export(const CliOptions& options);
+/// `aloha export SCENE --frame N --character I [--level L] --out FILE.glb` on the session run_export
+/// opened (cmd_export_skin.cpp)
+int export_skin(const CliOptions& options, Session& session);
 /// `aloha view SCENE` (GLFW window with overlay)
 int run_view(const CliOptions& options);
 

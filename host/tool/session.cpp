@@ -72,7 +72,8 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     if (options.overlay.find("bones") != std::string::npos) wo.overlay |= kOverlayBones;
     if (options.overlay.find("muscles") != std::string::npos) wo.overlay |= kOverlayMuscles;
     if (options.overlay.find("springs") != std::string::npos) wo.overlay |= kOverlaySprings;
-    wo.keep_refined_surfaces = render;  // nothing displays them without a renderer
+    // Nothing displays refined skins without a renderer, but export --out writes one.
+    wo.keep_refined_surfaces = render || (options.command == "export" && !options.out.empty());
     wo.budget = options.budget;
     wo.budget_animation_ms = options.budget_animation_ms;
     wo.budget_geometry_ms = options.budget_geometry_ms;

@@ -46,8 +46,8 @@ bool GeometryUpdateJob::Validate(std::vector<std::string>* errors) const {
         if (errors) errors->push_back("GeometryUpdateJob: " + m);
     };
     if (!groups) return fail("groups is null"), false;
-    if (states.size() != groups->size() || motion.size() != groups->size())
-        fail("states and motion need one element per grouped character");
+    if (states.size() != groups->size() || motion.size() != groups->size() || placements.size() != groups->size())
+        fail("states, motion and placements need one element per grouped character");
     if (!scratch) fail("scratch is null");
     for (const LevelRange& r : groups->ranges)
         if (r.type >= types.size() || !types[r.type].controller) {
@@ -87,8 +87,13 @@ void GeometryUpdateJob::RunSkin() const {
         }
         // Grain: cheap methods in big chunks, rich ones one or a few characters each.
         const size_t grain = method == GeomMethod::RigidProxy ? 256 : method == GeomMethod::SkinnedMesh ? 16 : 1;
-        run_range(run_chunks, ids.size(), grain, level_ns, r.level,
-                  [&](size_t b, size_t e) { t.controller->update_skin(r.level, ids.subspan(b, e - b), t.poses, dt); });
+        // Layered levels take the whole range, so their elements are the grouping's order at the same positions.
+        const bool whole = method == GeomMethod::Layered || method == GeomMethod::Subdivided;
+        const std::span<const uint32_t> elements(groups->order.data() + r.begin, r.end - r.begin);
+        run_range(run_chunks, ids.size(), grain, level_ns, r.level, [&](size_t b, size_t e) {
+            const PlacementSource placed = whole ? PlacementSource{placements, elements.subspan(b, e - b)} : PlacementSource{};
+            t.controller->update_skin(r.level, ids.subspan(b, e - b), t.poses, dt, placed);
+        });
     }
 }
 

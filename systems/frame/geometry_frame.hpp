@@ -6,6 +6,7 @@
 #include "components/character.hpp"
 #include "components/lod.hpp"
 #include "components/motion.hpp"
+#include "components/transform.hpp"
 #include "systems/frame/level_groups.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 
@@ -41,6 +42,8 @@ struct GeometryUpdateJob {
     const CharacterGroups* groups = nullptr;  ///< grouping of this frame's levels (group_by_level)
     std::span<const LodState> states;      ///< per element
     std::span<const MotionState> motion;   ///< per element (frames_since_update: who was posed)
+    std::span<const Transform> placements; ///< per element: world placement this frame, after motion (the
+                                           ///< fat springs feel the root's motion; fat_spring_frame.hpp)
     float dt = 0.0f;                       ///< seconds this frame advances (fat springs)
     bool first_frame = false;              ///< every character needs its surface built
     std::span<uint64_t> level_ns{};        ///< optional: per geometric level, ns added (budget learning)

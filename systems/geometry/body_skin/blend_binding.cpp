@@ -142,6 +142,19 @@ bool BlendSpringJob::Validate(std::vector<std::string>* errors) const {
     if (state.end.size() != n) fail("state.end needs one entry per binding");
     if (springs && (state.velocity.size() != n || state.prev_rest.size() != n || state.initialised.size() != 1))
         fail("spring state needs velocity and prev_rest per binding and one initialised flag");
+    if (!vertex_region.empty()) {
+        if (vertex_region.size() != n) fail("vertex_region needs one entry per binding (or none)");
+        if (region_params.empty() || region_params.size() > kMaxSpringTunings)
+            fail("region_params needs 1 to " + std::to_string(kMaxSpringTunings) + " tunings");
+        for (const uint8_t r : vertex_region)
+            if (r >= region_params.size()) {
+                fail("vertex_region names tuning " + std::to_string(r) + " past region_params");
+                break;
+            }
+        for (const FatSpringParams& p : region_params)
+            if (!(p.normal_hz > 0.0f && p.lateral_hz > 0.0f && p.normal_damping >= 0.0f && p.max_strain > 0.0f && p.dt > 0.0f))
+                fail("region spring frequencies, damping, strain limit and dt must be positive");
+    }
     for (size_t i = 0; i < n; ++i) {
         bool bad = false;
         for (int k = 0; k < kBlendInfluences; ++k) bad |= bindings[i].weight[k] > 0.0f && bindings[i].muscle[k] >= muscle_count;
@@ -157,6 +170,8 @@ void BlendSpringJob::Run() const {
     assert(Validate());
     const uint32_t T = theta_steps, P = phi_steps;
     const SpringStepper stepper(params);
+    std::array<SpringStepper, kMaxSpringTunings> regions;  // per-region tunings (vertex_region)
+    for (size_t r = 0; r < region_params.size() && !vertex_region.empty(); ++r) regions[r] = SpringStepper(region_params[r]);
     const bool start = springs && !state.initialised[0];
     for (size_t i = 0; i < bindings.size(); ++i) {
         const BlendBinding& b = bindings[i];
@@ -180,7 +195,8 @@ void BlendSpringJob::Run() const {
         const glm::vec3 axis = rest - root;
         const float h = glm::length(axis);
         const glm::vec3 n = h > 1e-6f ? axis / h : glm::vec3(0.0f, 0.0f, 1.0f);
-        stepper.step(rest, n, h, state.end[i], state.velocity[i], state.prev_rest[i]);
+        const SpringStepper& tuned = vertex_region.empty() ? stepper : regions[vertex_region[i]];
+        tuned.step(rest, n, h, state.end[i], state.velocity[i], state.prev_rest[i]);
     }
     if (start) state.initialised[0] = 1;
 }

@@ -82,6 +82,10 @@ struct BlendSpringJob {
     std::span<const BlendBinding> bindings;        ///< one per skin vertex
     FatSpringStateView state;                      ///< end (= skin output) / velocity / prev_rest per
                                                    ///< vertex, one `initialised` flag
+    /// Optional per-region tuning: vertex i's springs use region_params[vertex_region[i]] (dt = this
+    /// frame) instead of `params`. Empty vertex_region: `params` for every vertex.
+    std::span<const uint8_t> vertex_region = {};
+    std::span<const FatSpringParams> region_params = {};  ///< at most kMaxSpringTunings
     /// Checks sizes, parameters and influence indices; one message per failure.
     bool Validate(std::vector<std::string>* errors = nullptr) const;
     /// Updates state.end (the skin). Requires Validate().

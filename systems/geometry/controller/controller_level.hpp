@@ -25,6 +25,7 @@ struct GeometryController::Level {
     const SuperEllipsoidTables* tables = nullptr;  ///< Layered / Subdivided
     const SkinLayer* skin = nullptr;               ///< skin layer (types with muscles, mesh levels)
     bool springs = false;                          ///< fat springs run (Layered / Subdivided with the fat layer)
+    std::vector<uint8_t> spring_region;            ///< per control vertex: its fat region (fat_regions.hpp); empty: none
     const SubdivisionTopology* subdivision = nullptr;  ///< Subdivided
     std::span<const uint32_t> indices;             ///< the level's triangle list
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)

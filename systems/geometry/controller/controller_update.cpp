@@ -8,11 +8,14 @@
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/muscle/muscle_shape_job.hpp"
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
+#include "systems/geometry/controller/fat_regions.hpp"
+#include "systems/geometry/spring_skin/fat_spring_frame.hpp"
 #include "systems/geometry/spring_skin/geomorph.hpp"
 #include "systems/geometry/spring_skin/peeled.hpp"
 #include "systems/geometry/body_skin/blend_binding.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 
+#include <array>
 #include <cassert>
 #include <vector>
 
@@ -86,7 +89,25 @@ void run_muscles(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
     tess.Run();
 }
 
-void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const FatSpringParams& params) {
+// Carries slot s's fat springs from their last placement to `now` (nullptr: none known; fat_spring_frame.hpp).
+void carry_springs(Level& L, uint32_t s, const Transform* now, float dt) {
+    SlotStore& st = L.store;
+    if (!now) {
+        st.placed[s] = 0;
+        return;
+    }
+    if (st.placed[s] && st.spring_initialised(s)[0]) {
+        const SpringReframeJob carry{spring_frame_change(st.placement[s], *now, dt),
+                                     {st.spring_end(s), st.spring_velocity(s), st.spring_prev_rest(s), {}}};
+        assert(carry.Validate());
+        carry.Run();
+    }
+    st.placement[s] = *now;
+    st.placed[s] = 1;
+}
+
+void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const FatSpringParams& params,
+                      std::span<const FatSpringParams> tunings) {
     SlotStore& st = L.store;
     // Skin vertices hang on blended muscle points; with the fat layer through the fat springs
     // (written to the spring ends), without it at the springs' rest ends (written to positions).
@@ -94,7 +115,8 @@ void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const Fa
                               st.muscle_normals(s), L.skin->bindings,
                               L.springs ? FatSpringStateView{st.spring_end(s), st.spring_velocity(s), st.spring_prev_rest(s),
                                                              st.spring_initialised(s)}
-                                        : FatSpringStateView{st.positions(s), {}, {}, {}}};
+                                        : FatSpringStateView{st.positions(s), {}, {}, {}},
+                              L.spring_region, L.spring_region.empty() ? std::span<const FatSpringParams>() : tunings};
     assert(skin.Validate());
     skin.Run();
     const std::span<const glm::vec3> fresh = L.springs ? st.spring_end(s) : st.positions(s);
@@ -126,13 +148,22 @@ void GeometryController::update_muscles(uint8_t level, std::span<const uint32_t>
 }
 
 void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt) {
+    update_skin(level, characters, poses, dt, PlacementSource{});
+}
+
+void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt,
+                                     const PlacementSource& placements) {
     assert(level < levels_.size() && dt > 0.0f);
+    assert(placements.transforms.empty() || placements.elements.size() == characters.size());
     Level& L = *levels_[level];
     const CharacterGeometry& g = *geometry_;
     const size_t J = g.joint_count();
     FatSpringParams params = spring_params_;
     params.dt = dt;
-    for (const uint32_t c : characters) {
+    std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region (the muscle layout's)
+    region_spring_params(params, g.muscles().fat_regions, tunings);
+    for (size_t i = 0; i < characters.size(); ++i) {
+        const uint32_t c = characters[i];
         assert(level_of(c) == level);
         const uint32_t s = slot_of_[c];
         switch (L.lod.method) {
@@ -147,16 +178,19 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
                 break;
             case GeomMethod::Layered:
             case GeomMethod::Subdivided:
-                run_layered_skin(g, L, s, params);
+                if (L.springs)
+                    carry_springs(L, s, placements.transforms.empty() ? nullptr : &placements.transforms[placements.elements[i]], dt);
+                run_layered_skin(g, L, s, params, tunings);
                 break;
         }
         L.store.valid[s] = 1;
     }
 }
 
-void GeometryController::update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt) {
+void GeometryController::update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt,
+                                const PlacementSource& placements) {
     update_muscles(level, characters, poses);
-    update_skin(level, characters, poses, dt);
+    update_skin(level, characters, poses, dt, placements);
 }
 
 }  // namespace aloha

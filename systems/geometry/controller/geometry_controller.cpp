@@ -4,6 +4,7 @@
 
 #include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/controller_level.hpp"
+#include "systems/geometry/controller/fat_regions.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 
 #include <algorithm>
@@ -130,6 +131,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     if (level->layered()) level->tables = &g.tables(T, P);
     level->skin = skin;
     level->springs = level->layered() && springs;
+    if (level->springs) level->spring_region = vertex_fat_regions(skin->bindings, g.muscles());
     if (subdivision) {
         level->indices = subdivision->triangles;
     } else if (level->mesh_level) {

@@ -24,6 +24,7 @@
 #pragma once
 
 #include "components/lod.hpp"
+#include "components/transform.hpp"
 #include "systems/geometry/controller/character_geometry.hpp"
 #include "systems/geometry/controller/slot_store.hpp"
 #include "systems/geometry/spring_skin/fat_spring.hpp"
@@ -46,6 +47,14 @@ struct PoseSource {
     [[nodiscard]] std::span<const glm::mat4> joints(uint32_t c, size_t count) const {
         return {model + size_t{c} * stride, count};
     }
+};
+
+/// Where the world placements of the characters handed to update_skin live: characters[i]'s is
+/// transforms[elements[i]] (elements parallel to the character list). Empty: every character stays
+/// where it is (model space is world space for its fat springs).
+struct PlacementSource {
+    std::span<const Transform> transforms;  ///< the host's placements (per element)
+    std::span<const uint32_t> elements;     ///< per character handed to update_skin: its element
 };
 
 /// One character's current mesh surface (character space). Empty spans for RigidProxy / Hidden /
@@ -103,8 +112,13 @@ public:
     /// at muscle levels fat springs (frame time `dt` > 0) on the muscle surface update_muscles wrote
     /// this frame, the skin, geomorph and OpenSubdiv refinement. Thread-safe for disjoint lists.
     void update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
+    /// The same with the characters' world placements this frame: the fat springs feel the root's
+    /// motion (start, stop, turn, landing; fat_spring_frame.hpp), a teleport or snap excepted.
+    void update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt,
+                     const PlacementSource& placements);
     /// Both stages, one after the other (update_muscles then update_skin).
-    void update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
+    void update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt,
+                const PlacementSource& placements = {});
 
     /// The character's displayed surface (valid until its next update / begin_level / set_levels);
     /// positions and normals are empty before its first update, at levels with no mesh, and at

@@ -23,6 +23,7 @@ void SlotStore::release(uint32_t slot) {
     pending[slot] = 0;
     shows_morph[slot] = 0;
     valid[slot] = 0;
+    if (!placed.empty()) placed[slot] = 0;
     frames_left_[slot] = 0;
     free_.push_back(slot);
 }
@@ -32,7 +33,7 @@ size_t SlotStore::bytes_per_slot() const {
     return (size_t{l.boxes} + l.palette) * sizeof(glm::mat4) + size_t{l.shapes} * (2 * sizeof(glm::vec3) + sizeof(glm::quat)) +
            size_t{l.muscle_vertices} * 2 * sizeof(glm::vec3) + size_t{l.springs} * 3 * sizeof(glm::vec3) + l.spring_flags +
            (size_t{l.control} * 2 + l.control_normals + size_t{l.refined} * 2) * sizeof(glm::vec3) +
-           2 * sizeof(uint16_t) + 3 * sizeof(uint8_t);
+           2 * sizeof(uint16_t) + 3 * sizeof(uint8_t) + (l.spring_flags ? sizeof(Transform) + sizeof(uint8_t) : 0);
 }
 
 void SlotStore::grow(uint32_t new_capacity) {
@@ -60,6 +61,8 @@ void SlotStore::grow(uint32_t new_capacity) {
     pending.resize(n, 0);
     shows_morph.resize(n, 0);
     valid.resize(n, 0);
+    placement.resize(l.spring_flags ? n : 0);  // levels with fat springs only
+    placed.resize(l.spring_flags ? n : 0, 0);
     // New slots go on the free list so that the lowest index is handed out first.
     for (uint32_t s = new_capacity; s-- > capacity_;) free_.push_back(s);
     capacity_ = new_capacity;

@@ -4,6 +4,8 @@
 // (last released first), so enter/leave cycles keep memory flat.
 #pragma once
 
+#include "components/transform.hpp"
+
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -88,6 +90,11 @@ public:
     std::vector<uint8_t> pending;
     std::vector<uint8_t> shows_morph;
     std::vector<uint8_t> valid;
+    /// Per slot of a level with fat springs (empty otherwise): the character's world placement when its
+    /// springs last stepped, and whether it is known (fat_spring_frame.hpp carries the springs from it
+    /// to this frame's placement).
+    std::vector<Transform> placement;
+    std::vector<uint8_t> placed;
 
 private:
     template <class T>

@@ -35,6 +35,45 @@ void read_exponents(JsonObjectReader& r, MuscleDef& d) {
     d.exponent_b = ab.y;
 }
 
+// "fat_regions": { NAME: { "normal_hz", "normal_damping", "lateral_hz", "max_strain" } } (each optional).
+std::vector<FatRegion> read_fat_regions(JsonObjectReader& top, const std::string& file, std::vector<Error>& errors) {
+    std::vector<FatRegion> regions;
+    const json* v = top.child("fat_regions");
+    if (!v) return regions;
+    if (!v->is_object()) return top.error("fat_regions", std::string("expected an object of regions, got ") + v->type_name()), regions;
+    if (v->size() > kMaxFatRegions)
+        return top.error("fat_regions", "more than " + std::to_string(kMaxFatRegions) + " regions"), regions;
+    for (const auto& [name, body] : v->items()) {
+        JsonObjectReader r(body, top.child_path("fat_regions") + "/" + name, file, errors);
+        FatRegion region;
+        region.name = name;
+        auto read = [&r](const char* key, std::optional<float>& out, double lo, double hi) {
+            if (r.has(key)) out = static_cast<float>(r.number(key, lo, lo, hi));
+        };
+        read("normal_hz", region.normal_hz, 0.1, 1000.0);
+        read("normal_damping", region.normal_damping, 0.0, 10.0);
+        read("lateral_hz", region.lateral_hz, 0.1, 1000.0);
+        read("max_strain", region.max_strain, 0.01, 1.0);
+        r.allow({"description"});
+        r.reject_unknown_keys();
+        regions.push_back(std::move(region));
+    }
+    return regions;
+}
+
+// "fat_region": NAME of one of `regions` (an error listing them otherwise).
+void read_fat_region(JsonObjectReader& r, std::span<const FatRegion> regions, MuscleDef& d) {
+    if (!r.has("fat_region")) return;
+    const std::string name = r.string("fat_region", "", true);
+    std::string known;
+    for (const FatRegion& region : regions) {
+        if (region.name == name) return void(d.fat_region = region);
+        known += (known.empty() ? "" : ", ") + region.name;
+    }
+    if (!name.empty())
+        r.error("fat_region", "unknown fat region '" + name + "' (the file's \"fat_regions\" are: " + (known.empty() ? "none" : known) + ")");
+}
+
 }  // namespace
 
 std::string mirror_joint_name(std::string_view name) {
@@ -66,10 +105,12 @@ Result<std::vector<MuscleDef>> parse_muscle_defs(const json& doc, const std::str
     top.allow({"$schema", "description", "format", "skeleton", "units", "notes"});
     top.integer("version", 1, 1, 1);  // the only version so far
     MuscleDef defaults;
+    const std::vector<FatRegion> regions = read_fat_regions(top, source_name, errors);
     if (const json* dj = top.child("defaults")) {
         JsonObjectReader d(*dj, "/defaults", source_name, errors);
         read_exponents(d, defaults);
         d.read("fat_thickness", defaults.fat_thickness, 0.0, 1.0);
+        read_fat_region(d, regions, defaults);
         d.reject_unknown_keys();
     }
     const json* list = top.child("muscles");
@@ -94,6 +135,7 @@ Result<std::vector<MuscleDef>> parse_muscle_defs(const json& doc, const std::str
         if (has_volume) d.ratio = static_cast<float>(r.number("ratio", d.ratio, 1e-3, 1e3, /*required=*/true));
         read_exponents(r, d);
         r.read("fat_thickness", d.fat_thickness, 0.0, 1.0);
+        read_fat_region(r, regions, d);
         d.depth_axis = r.vec3("depth_axis", d.depth_axis, false, 1e3);
         // The mirrored copy's name: a non-empty string when given (one error otherwise).
         const std::string mirror = r.has("mirror") ? r.string("mirror", "", /*required=*/true) : std::string();

@@ -44,6 +44,7 @@ void MuscleSet::push_back(const std::string& name, int origin, glm::vec3 origin_
     volume_factor.push_back(static_cast<float>(superellipsoid_volume_factor(ab.x, ab.y)));
     fat_thickness.push_back(fat);
     rest_length.push_back(length);
+    fat_region.push_back(0);
 }
 
 std::vector<glm::mat4> rest_model_matrices(const Skeleton& skeleton) { return skeleton_rest_model(skeleton); }
@@ -148,6 +149,13 @@ Result<MuscleSet> resolve_muscles(std::span<const MuscleDef> defs, const Skeleto
             vol = static_cast<float>(superellipsoid_volume(glm::dvec3(0.5 * length, d.rest_radii.x, d.rest_radii.y), ab.x, ab.y));
         }
         set.push_back(d.name, oj, ooff, ij, ioff, hint, vol, p, ab, d.fat_thickness, length);
+        if (d.fat_region) {  // one entry per region name, in order of first use
+            size_t k = 0;
+            while (k < set.fat_regions.size() && set.fat_regions[k].name != d.fat_region->name) ++k;
+            if (k == set.fat_regions.size() && k < kMaxFatRegions) set.fat_regions.push_back(*d.fat_region);
+            if (k < kMaxFatRegions) set.fat_region.back() = static_cast<uint8_t>(k + 1);
+            else fail("/fat_region", "more than " + std::to_string(kMaxFatRegions) + " fat regions are used");
+        }
     }
     if (!errors.empty()) {
         Error first = errors.front();

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,6 +25,20 @@ struct MuscleAnchor {
     glm::vec3 offset{0.0f};        ///< metres, in the joint's frame
 };
 
+/// Fat-spring dynamics of one body region (the layout file's "fat_regions"): each value given
+/// overrides the geometric controller's tuning (FatSpringParams) for the skin over the region's
+/// muscles; an absent value keeps the controller's.
+struct FatRegion {
+    std::string name;                     ///< region name ("belly", "thigh", ...)
+    std::optional<float> normal_hz;       ///< natural frequency along the spring (Hz, stiffness)
+    std::optional<float> normal_damping;  ///< damping ratio along the spring (1 = critical)
+    std::optional<float> lateral_hz;      ///< frequency of the critically damped lateral follow (Hz)
+    std::optional<float> max_strain;      ///< strain limit (fraction of the fat thickness)
+};
+
+/// Most fat regions one layout may name (the controller keeps one spring stepper per region).
+inline constexpr size_t kMaxFatRegions = 15;
+
 /// A muscle as written by hand. Give either rest radii (width ry, depth rz at the rest pose, the
 /// length comes from the skeleton) or a rest volume with the ratio p = ry / rz.
 struct MuscleDef {
@@ -37,6 +52,7 @@ struct MuscleDef {
     float exponent_b = 1.0f;       ///< B (theta exponent), same range
     float fat_thickness = 0.005f;  ///< metres of fat over this muscle (read by the fat-spring layer)
     glm::vec3 depth_axis{0.0f};    ///< muscle z (depth) hint in the origin joint's frame; 0 = away from the bone
+    std::optional<FatRegion> fat_region;  ///< the body region its fat belongs to (none: the controller's tuning)
     std::string source_path;       ///< JSON path of the entry for errors ("" = "/muscles/<index>")
 };
 
@@ -57,6 +73,8 @@ struct MuscleSet {
     std::vector<float> volume_factor;         ///< k(A, B) with V = k rx ry rz
     std::vector<float> fat_thickness;         ///< metres
     std::vector<float> rest_length;           ///< origin-insertion distance at the rest/bind pose (m)
+    std::vector<uint8_t> fat_region;          ///< 0 = the controller's fat tuning, k = fat_regions[k - 1]
+    std::vector<FatRegion> fat_regions;       ///< the regions the muscles name (at most kMaxFatRegions)
 
     /// Number of muscles.
     [[nodiscard]] int size() const { return static_cast<int>(names.size()); }

@@ -33,6 +33,9 @@ struct FatSpringParams {
     float max_strain = 0.5f;        ///< strain limit: |end - rest end| <= max_strain * thickness
 };
 
+/// Most tunings one spring job mixes per vertex (BlendSpringJob::region_params).
+inline constexpr size_t kMaxSpringTunings = 16;
+
 /// Mutable per-spring state (structure of arrays), one entry per muscle surface vertex, plus one
 /// "initialised" flag per muscle. Views into a FatSpringPool (or any storage the caller owns).
 struct FatSpringStateView {

@@ -24,6 +24,8 @@ struct SpringStepper {
     float normal_omega = 1.0f;
     float max_strain = 0.5f;
 
+    /// An identity stepper (to fill arrays before assigning).
+    SpringStepper() = default;
     /// Stepper for `params` (valid parameters).
     explicit SpringStepper(const FatSpringParams& params);
     /// Advances one spring whose rest end is `rest` with unit normal `n` and rest length `h`:

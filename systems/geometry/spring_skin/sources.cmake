@@ -2,6 +2,7 @@
 list(APPEND ALOHA_GEOMETRY_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/grid_sample.cpp
   ${CMAKE_CURRENT_LIST_DIR}/fat_spring.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/fat_spring_frame.cpp
   ${CMAKE_CURRENT_LIST_DIR}/skin_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/peeled.cpp
   ${CMAKE_CURRENT_LIST_DIR}/subdivision.cpp

@@ -137,6 +137,33 @@ TEST(Cli, ExportRefusesBadSelectionsNamingThem) {
     expect_error({"render", "s.json", "--motion-metrics"}, "not known to 'aloha render'");
 }
 
+TEST(ExportSkin, CommandLineTakesFrameCharacterLevelAndGlb) {
+    auto o = parse_cli({"export", "s.json", "--frame", "12", "--character", "3", "--level", "1", "--out", "x.glb"});
+    ASSERT_TRUE(o.ok()) << o.error().to_string();
+    EXPECT_EQ(o.value().out, "x.glb");
+    EXPECT_EQ(o.value().frame, 12u);
+    EXPECT_EQ(o.value().character, 3u);
+    EXPECT_EQ(o.value().level, 1u);
+    auto no_level = parse_cli({"export", "s.json", "--frame=0", "--character=0", "--out=Y.GLB", "--force"});
+    ASSERT_TRUE(no_level.ok()) << no_level.error().to_string();
+    EXPECT_FALSE(no_level.value().level);
+    EXPECT_TRUE(no_level.value().force);
+    auto expect_error = [](std::vector<std::string> args, const std::string& part) {
+        auto r = parse_cli(args);
+        ASSERT_FALSE(r.ok());
+        EXPECT_NE(r.error().to_string().find(part), std::string::npos) << r.error().to_string();
+    };
+    expect_error({"export", "s.json", "--character", "0", "--out", "x.glb"}, "needs --frame N");
+    expect_error({"export", "s.json", "--frame", "0", "--out", "x.glb"}, "needs --character I");
+    expect_error({"export", "s.json", "--frame", "0", "--character", "0", "--out", "x.gltf"}, "expects a .glb file");
+    expect_error({"export", "s.json", "--frame", "0", "--character", "0", "--out", "x.glb", "--joints", "j.csv"}, "not both");
+    expect_error({"export", "s.json", "--joints", "j.csv", "--frame", "3"}, "go with --out FILE.glb");
+    expect_error({"export", "s.json", "--frame", "0", "--character", "0", "--out", "x.glb", "--characters", "1"}, "go with --joints");
+    expect_error({"export", "s.json", "--frame", "-1", "--character", "0", "--out", "x.glb"}, "'--frame'");
+    expect_error({"export", "s.json", "--frame", "0", "--character", "x", "--out", "x.glb"}, "'--character' expects a whole number");
+    expect_error({"export", "s.json", "--frame", "0", "--character", "0", "--level", "300", "--out", "x.glb"}, "'--level'");
+}
+
 TEST(Cli, ProfileTakesMotionMetrics) {
     auto o = parse_cli({"profile", "s.json", "--motion-metrics"});
     ASSERT_TRUE(o.ok());

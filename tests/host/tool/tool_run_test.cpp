@@ -1,6 +1,7 @@
 // Runs the built `aloha` program end to end (headless, lavapipe) and checks its outputs and errors.
 #include "engine/anim/humanoid_map.hpp"
 #include "tests/common/rig_fixtures.hpp"
+#include "tests/host/tool/tool_run.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -20,22 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int code = -1;
-    std::string output;
-};
-
-RunResult run(const std::string& args) {
-    RunResult r;
-    const std::string cmd = std::string(ALOHA_TOOL) + " " + args + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    while (fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using aloha::test::RunResult;
+using aloha::test::run;
 
 const std::string kScenes = std::string(ALOHA_SOURCE_DIR) + "/data/scenes/";
 

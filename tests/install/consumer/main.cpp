@@ -54,7 +54,7 @@ struct MiniGame {
         apply_level_switches(geometry, refs, lod, geom, std::span(changed).first(n), frame == 0, dt);
         group_by_level(refs, geom, groups);
         for (const auto& rt : types) MotionUpdateJob{rt->motion.get(), dt, anim, motion, transforms, velocities, rt->element_of_character}.Run();
-        const GeometryUpdateJob shapes{geometry, &groups, lod, motion, dt, frame++ == 0, {}, {}, &scratch};
+        const GeometryUpdateJob shapes{geometry, &groups, lod, motion, transforms, dt, frame++ == 0, {}, {}, &scratch};
         shapes.RunMuscles(), shapes.RunSkin();
     }
 };

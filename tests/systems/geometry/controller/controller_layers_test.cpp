@@ -19,10 +19,10 @@ TEST(GeometryControllerLayers, WithoutFatNoSpringsAreRunAndTheSkinSitsAtRest) {
     ctl.begin_level(0, 0, -1, 0);
     ctl.begin_level(1, 1, -1, 0);
     // What is computed: the spring state (end, velocity, previous rest: 3 vec3 per skin vertex, plus
-    // one flag) exists only with the fat layer.
+    // one flag, and the placement they last stepped at with its flag) exists only with the fat layer.
     const size_t vertices = ctl.vertices_per_character(0);
     ASSERT_EQ(ctl.vertices_per_character(1), vertices);
-    EXPECT_EQ(ctl.bytes_per_character(0) - ctl.bytes_per_character(1), vertices * 3 * sizeof(glm::vec3) + 1);
+    EXPECT_EQ(ctl.bytes_per_character(0) - ctl.bytes_per_character(1), vertices * 3 * sizeof(glm::vec3) + 1 + sizeof(Transform) + 1);
 
     // What is displayed: walk a few frames, then jump the pose far ahead in the clip (a sudden change).
     const uint32_t both[2] = {0, 1};

@@ -12,3 +12,8 @@ aloha_test(geomctl_tests
     ${CMAKE_CURRENT_LIST_DIR}/muscle_volume_test.cpp
   LIBS aloha::geometry aloha::assets aloha::motion
   LABELS geometry)
+# Fat springs driven by the characters' world motion, through the frame glue (GeometryUpdateJob).
+aloha_test(fat_world_tests
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/fat_world_test.cpp
+  LIBS aloha::geometry aloha::assets aloha::motion aloha::frame
+  LABELS geometry)
