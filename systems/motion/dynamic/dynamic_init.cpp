@@ -167,7 +167,21 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView pose, const glm
     std::vector<uint8_t> carries(s.bodies.size(), 0);
     if (!settings.contact_points.empty())
         for (const DynamicContact& c : s.contacts)
-        for (int b = c.body; b > 0; b = s.bodies[static_cast<size_t>(b)].parent) carries[static_cast<size_t>(b)] = 1;
+            for (int b = c.body; b > 0; b = s.bodies[static_cast<size_t>(b)].parent) carries[static_cast<size_t>(b)] = 1;
+    // A foot whose sole points span less than a tenth of its distance to the pelvis (CesiumMan's: 4 cm)
+    // keeps its own gains: a stiff ankle would roll so short a foot over its edge and tip the body.
+    for (size_t i = 1; i < s.bodies.size(); ++i) {
+        float span = 0.0f;
+        int points = 0;
+        for (const DynamicContact& a : s.contacts) {
+            if (a.body != static_cast<int>(i)) continue;
+            ++points;
+            for (const DynamicContact& b : s.contacts)
+                if (b.body == a.body) span = std::max(span, glm::length(a.local - b.local));
+        }
+        const float reach = glm::length(body_joint_position(s.bodies[i]) - body_joint_position(s.bodies[0]));
+        if (points > 1 && span < 0.1f * reach) carries[i] = 0;
+    }
     std::vector<float> sub_inertia(s.bodies.size(), 0.0f);
     std::vector<float> motor_inertia(s.bodies.size(), 0.0f);
     for (size_t i = 0; i < s.bodies.size(); ++i) {

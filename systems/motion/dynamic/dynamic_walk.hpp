@@ -32,8 +32,9 @@ struct DynamicWalkSettings {
     float motor_frequency = 40.0f;           ///< PD motor natural frequency (rad/s), gains scale with subtree inertia
     float motor_damping_ratio = 1.0f;        ///< PD motor damping ratio
     /// With contact_points: the leg joints' motors add this share of the rest of the body's inertia about
-    /// them to their subtree's, so stance legs carry the body (0: subtree only; 0.5 and up is too stiff
-    /// for the implicit step and loses balance at 1.2 m/s, see docs/PERFORMANCE.md 'dynamic skate').
+    /// them to their subtree's, so stance legs carry the body (not a foot whose sole points span under a
+    /// tenth of its distance to the pelvis). 0: subtree only; 0.3 and up lost balance
+    /// at 1.0-1.4 m/s (docs/PERFORMANCE.md 'Dynamic walker's skate').
     float stance_gain = 0.15f;
     float balance_frequency = 8.0f;          ///< balance aid natural frequency (rad/s) on pelvis position/orientation
     float balance_damping_ratio = 1.0f;      ///< balance aid damping ratio
