@@ -86,6 +86,8 @@ public:
 
     /// Enables WalkMethod::Kinematic (and the fallback for Dynamic) with this leg rig.
     void set_walk_rig(WalkRig rig, GaitParams gait = {});
+    /// The leg rig set by set_walk_rig (null before).
+    [[nodiscard]] const WalkRig* walk_rig() const { return rig_ ? &*rig_ : nullptr; }
     /// Turns the foot lock (foot_lock.hpp) of walking characters on or off (on by default once a walk
     /// rig is set) and sets its parameters; clears every character's lock state. Not during an update.
     void set_foot_lock(bool on, FootLockParams params = {});

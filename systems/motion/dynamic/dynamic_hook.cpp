@@ -147,6 +147,8 @@ size_t DynamicHookContext::simulated() const {
 void register_dynamic_walk_hook(MotionController& controller, DynamicHookContext& context) {
     context.characters.clear();
     context.characters.resize(controller.capacity());
+    if (context.settings.contact_points.empty() && controller.walk_rig())
+        context.settings.contact_points = dynamic_sole_contacts(controller.skeleton(), *controller.walk_rig());
     controller.set_method_hook(MethodSlot::DynamicWalk, &dynamic_hook, &context, &dynamic_release);
 }
 

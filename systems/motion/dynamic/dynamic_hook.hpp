@@ -70,9 +70,16 @@ inline constexpr float kDynamicPushSeconds = 0.1f;
 /// body to push. Not during an update.
 bool push_dynamic_walker(DynamicHookContext& context, uint32_t character, const glm::vec3& impulse);
 
+/// Sole points of the feet of `rig` (per foot: heel and ball on the ground fixed to the ankle, the toes'
+/// tip fixed to the toe joint when it has a child ahead of it), ground being rig.ankle_height below the
+/// rest ankles: the points the kinematic gait stands on, for DynamicWalkSettings::contact_points.
+[[nodiscard]] std::vector<DynamicContactPoint> dynamic_sole_contacts(const Skeleton& skeleton, const WalkRig& rig);
+
 /// Sizes `context` for `controller` and registers the DynamicWalk hook and its release callback.
 /// The controller then runs WalkMethod::Dynamic (it requires a walk rig: set_walk_rig) instead of
-/// falling back to Kinematic. The simulation frame is the character's Transform without scale.
+/// falling back to Kinematic. The simulation frame is the character's Transform without scale. Without
+/// contact points in context.settings, the feet's sole points of the controller's walk rig (set it first)
+/// become them.
 void register_dynamic_walk_hook(MotionController& controller, DynamicHookContext& context);
 
 }  // namespace aloha

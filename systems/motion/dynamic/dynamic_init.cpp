@@ -132,39 +132,77 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView pose, const glm
         }
         s.total_mass += b.mass;
     }
-    // Motor gains from the composite inertia of each subtree about its joint: k = I w^2, c = 2 z w I.
+    // Contact points: the given sole points, else joints near the lowest start-pose joint (feet and toes).
+    auto add_contact = [&](size_t j, const glm::vec3& world_point) {
+        const auto bi = static_cast<size_t>(s.owner[j]);
+        const DynamicBody& b = s.bodies[bi];
+        s.contacts.push_back(DynamicContact{static_cast<int>(bi), glm::inverse(b.q) * (world_point - body_joint_position(b))});
+    };
+    for (const DynamicContactPoint& c : settings.contact_points) {
+        if (c.joint < 0 || static_cast<size_t>(c.joint) >= n || !std::isfinite(c.offset.x + c.offset.y + c.offset.z))
+            return make_error(src, "contact point on joint " + std::to_string(c.joint) + " is not a joint of the " +
+                                       std::to_string(n) + "-joint skeleton or has a non-finite offset");
+        const auto j = static_cast<size_t>(c.joint);
+        add_contact(j, wp[j] + wr[j] * c.offset);
+    }
+    if (settings.contact_points.empty()) {
+        float lowest = wp[0].y;
+        for (const glm::vec3& p : wp) lowest = std::min(lowest, p.y);
+        for (size_t j = 0; j < n; ++j)
+            if (wp[j].y <= lowest + settings.contact_height) add_contact(j, wp[j]);
+    }
+    // Motor gains, k = I w^2 and c = 2 z w I, from the composite inertia I about each joint of the
+    // bodies it moves: its subtree; for the legs (the joints between the pelvis and a body that touches
+    // the ground) also the rest of the body, which a stance leg carries. A leg tuned to its own subtree
+    // alone cannot carry the body's weight (the ankle's own subtree is the foot: ~0.01 kg m^2), so the
+    // body sank onto the balance aid, which then bore half its weight and dragged it along: the feet,
+    // pressed with half the weight, slid under the friction limit (docs/PERFORMANCE.md, dynamic skate).
+    auto in_subtree = [&](size_t k, size_t i) {
+        int up = static_cast<int>(k);
+        while (up > static_cast<int>(i)) up = s.bodies[static_cast<size_t>(up)].parent;
+        return up == static_cast<int>(i);
+    };
+    // Only with sole contact points: they come with a gait that plants its stance feet; a target that
+    // does not (the joint-contact fallback tracks arbitrary rotations) would have stiff legs fight the ground.
+    std::vector<uint8_t> carries(s.bodies.size(), 0);
+    if (!settings.contact_points.empty())
+        for (const DynamicContact& c : s.contacts)
+            for (int b = c.body; b > 0; b = s.bodies[static_cast<size_t>(b)].parent) carries[static_cast<size_t>(b)] = 1;
+    // A foot whose sole points span less than a tenth of its distance to the pelvis (CesiumMan's: 4 cm)
+    // keeps its own gains: a stiff ankle would roll so short a foot over its edge and tip the body.
+    for (size_t i = 1; i < s.bodies.size(); ++i) {
+        float span = 0.0f;
+        int points = 0;
+        for (const DynamicContact& a : s.contacts) {
+            if (a.body != static_cast<int>(i)) continue;
+            ++points;
+            for (const DynamicContact& b : s.contacts)
+                if (b.body == a.body) span = std::max(span, glm::length(a.local - b.local));
+        }
+        const float reach = glm::length(body_joint_position(s.bodies[i]) - body_joint_position(s.bodies[0]));
+        if (points > 1 && span < 0.1f * reach) carries[i] = 0;
+    }
     std::vector<float> sub_inertia(s.bodies.size(), 0.0f);
-    for (size_t i = s.bodies.size(); i-- > 0;) {
+    std::vector<float> motor_inertia(s.bodies.size(), 0.0f);
+    for (size_t i = 0; i < s.bodies.size(); ++i) {
         const glm::vec3 pj = body_joint_position(s.bodies[i]);
-        float acc = 0.0f;
-        for (size_t k = i; k < s.bodies.size(); ++k) {
-            // Body k is in the subtree of i if walking up its parents reaches i.
-            int up = static_cast<int>(k);
-            while (up > static_cast<int>(i)) up = s.bodies[static_cast<size_t>(up)].parent;
-            if (up != static_cast<int>(i)) continue;
+        float sub = 0.0f, rest = 0.0f;
+        for (size_t k = 0; k < s.bodies.size(); ++k) {
             const DynamicBody& b = s.bodies[k];
             const glm::mat3 inv = b.inv_inertia;
             const float mean_i = (1.0f / inv[0][0] + 1.0f / inv[1][1] + 1.0f / inv[2][2]) / 3.0f;
             const glm::vec3 d = b.x - pj;
-            acc += b.mass * glm::dot(d, d) + mean_i;
+            (in_subtree(k, i) ? sub : rest) += b.mass * glm::dot(d, d) + mean_i;
         }
-        sub_inertia[i] = acc;
+        sub_inertia[i] = sub;
+        motor_inertia[i] = carries[i] ? sub + settings.stance_gain * rest : sub;
     }
     const float wm = settings.motor_frequency;
     for (size_t i = 0; i < s.bodies.size(); ++i) {
-        s.bodies[i].motor_k = sub_inertia[i] * wm * wm;
-        s.bodies[i].motor_c = 2.0f * settings.motor_damping_ratio * wm * sub_inertia[i];
+        s.bodies[i].motor_k = motor_inertia[i] * wm * wm;
+        s.bodies[i].motor_c = 2.0f * settings.motor_damping_ratio * wm * motor_inertia[i];
     }
     s.balance_inertia = sub_inertia[0];
-    // Contact points: joints near the lowest start-pose joint (feet and toes).
-    float lowest = wp[0].y;
-    for (const glm::vec3& p : wp) lowest = std::min(lowest, p.y);
-    for (size_t j = 0; j < n; ++j) {
-        if (wp[j].y > lowest + settings.contact_height) continue;
-        const auto bi = static_cast<size_t>(s.owner[j]);
-        const DynamicBody& b = s.bodies[bi];
-        s.contacts.push_back(DynamicContact{static_cast<int>(bi), glm::inverse(b.q) * (wp[j] - body_joint_position(b))});
-    }
     // Solver scratch: rows = 6 per constraint (point + motor), 6 balance rows, 3 per contact.
     const size_t rows = 6 * (s.bodies.size() - 1) + 6 + 3 * s.contacts.size();
     s.row_data.assign(rows * 14, 0.0f);

@@ -313,6 +313,8 @@ void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> targ
         build_rows(s, h, root_target, root_target_vel, rows, bilateral);
         for (DynamicBody& b : s.bodies) b.v += h * gravity;
         s.bodies[0].v += (h / s.bodies[0].mass) * s.pelvis_force;
+        s.last_rows = rows.count;
+        s.last_bilateral = bilateral;
         const bool solved = solve_and_apply(s, rows.count, bilateral);
         for (DynamicBody& b : s.bodies) {
             b.x += h * b.v;

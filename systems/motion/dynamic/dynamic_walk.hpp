@@ -19,18 +19,34 @@
 
 namespace aloha {
 
+/// A point that may touch the ground, fixed to a joint: `offset` in that joint's frame (metres).
+struct DynamicContactPoint {
+    int joint = 0;                    ///< skeleton joint the point moves with
+    glm::vec3 offset{0.0f};           ///< point in the joint's frame
+};
+
 /// Tunables of the dynamic walk (defaults are for a ~1.7 m human in metres, kg, seconds).
 struct DynamicWalkSettings {
     int substeps = 2;                        ///< solver substeps per step (h = dt / substeps)
     float constraint_frequency = 50.0f;      ///< w of C'' + 2wC' + w^2C = 0 (rad/s); keep w*h <= 0.5
     float motor_frequency = 40.0f;           ///< PD motor natural frequency (rad/s), gains scale with subtree inertia
     float motor_damping_ratio = 1.0f;        ///< PD motor damping ratio
+    /// With contact_points: the leg joints' motors add this share of the rest of the body's inertia about
+    /// them to their subtree's, so stance legs carry the body (not a foot whose sole points span under a
+    /// tenth of its distance to the pelvis). 0: subtree only; 0.3 and up lost balance
+    /// at 1.0-1.4 m/s (docs/PERFORMANCE.md 'Dynamic walker's skate').
+    float stance_gain = 0.15f;
     float balance_frequency = 8.0f;          ///< balance aid natural frequency (rad/s) on pelvis position/orientation
     float balance_damping_ratio = 1.0f;      ///< balance aid damping ratio
     float friction = 0.9f;                   ///< Coulomb friction coefficient of feet on the ground
     float min_bone_length = 0.02f;           ///< joints closer than this to their parent are merged (welded)
     float density = 1000.0f;                 ///< kg/m^3 of the capsule links
-    float contact_height = 0.12f;            ///< joints this close to the lowest start joint become contact points
+    float contact_height = 0.12f;            ///< without contact_points: joints this close to the lowest start joint touch the ground
+    /// The feet's sole points (dynamic_sole_contacts: heel and ball under the ankle and toe, toe tip),
+    /// so the simulated feet stand on the ground where the kinematic gait puts its soles. Empty: the
+    /// joints near the lowest start-pose joint (which stand the body lower than the gait by the sole's
+    /// depth below those joints, and depend on the pose the walk starts from).
+    std::vector<DynamicContactPoint> contact_points;
 };
 
 /// One rigid link (a joint that owns a body plus the zero-length/leaf joints welded to it).
@@ -82,6 +98,8 @@ struct DynamicWalkState {
     std::vector<double> lambda;              ///< impulses
     std::vector<glm::vec3> shift_position;   ///< per body: post-stabilisation displacement of the COM
     std::vector<glm::vec3> shift_rotation;   ///< per body: post-stabilisation rotation (world rotation vector)
+    size_t last_rows = 0;                    ///< rows of the last substep (bilateral first, then 3 per touching contact)
+    size_t last_bilateral = 0;               ///< bilateral rows of the last substep
     uint32_t failed_factorisations = 0;      ///< substeps whose constraint matrix was not positive definite (no impulses applied)
 };
 

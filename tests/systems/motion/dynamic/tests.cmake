@@ -6,5 +6,6 @@ aloha_test(dynamic_tests
           ${CMAKE_CURRENT_LIST_DIR}/dynamic_push_test.cpp
           ${CMAKE_CURRENT_LIST_DIR}/dynamic_guard_test.cpp
           ${CMAKE_CURRENT_LIST_DIR}/dynamic_plaza_test.cpp
+          ${CMAKE_CURRENT_LIST_DIR}/dynamic_skate_test.cpp
   LIBS aloha::motion aloha::assets
   LABELS motion dynamic)
