@@ -132,6 +132,11 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
     const size_t J = g.joint_count();
     FatSpringParams params = spring_params_;
     params.dt = dt;
+    const bool skin_level = L.lod.method == GeomMethod::SkinnedMesh || L.layered();
+    const uint64_t n = characters.size();
+    L.work_characters.fetch_add(n, std::memory_order_relaxed);
+    if (skin_level) L.work_vertices.fetch_add(n * L.control_vertices, std::memory_order_relaxed);
+    if (L.springs) L.work_springs.fetch_add(n * L.control_vertices, std::memory_order_relaxed);
     for (const uint32_t c : characters) {
         assert(level_of(c) == level);
         const uint32_t s = slot_of_[c];
