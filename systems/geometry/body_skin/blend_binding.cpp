@@ -1,6 +1,7 @@
 // Multi-muscle skin binding and the blended fat springs (see blend_binding.hpp).
 #include "systems/geometry/body_skin/blend_binding.hpp"
 
+#include "systems/geometry/body_skin/weight_smoothing.hpp"
 #include "systems/geometry/muscle/superellipsoid.hpp"
 #include "systems/geometry/spring_skin/fat_spring_step.hpp"
 #include "systems/geometry/surface_grid.hpp"
@@ -54,6 +55,14 @@ bool BlendBindJob::Validate(std::vector<std::string>* errors) const {
     if (muscle_normals.size() != muscle_positions.size()) fail("muscle_normals size differs from muscle_positions");
     if (bindings.size() != skin_positions.size()) fail("bindings size differs from skin_positions");
     if (!muscle_groups.empty() && muscle_groups.size() != M) fail("muscle_groups needs one group per muscle or none");
+    if (!(smooth_radius >= 0.0f && std::isfinite(smooth_radius))) fail("smooth_radius must be finite and >= 0");
+    if (skin_indices.size() % 3 != 0) fail("skin_indices must hold whole triangles");
+    for (const uint32_t v : skin_indices) {
+        if (v >= skin_positions.size()) {
+            fail("skin_indices names vertex " + std::to_string(v) + " past " + std::to_string(skin_positions.size()));
+            break;
+        }
+    }
     for (size_t i = 0; i < skin_positions.size(); ++i) {
         if (!finite(skin_positions[i])) {
             fail("skin vertex " + std::to_string(i) + " is not finite");
@@ -66,21 +75,29 @@ bool BlendBindJob::Validate(std::vector<std::string>* errors) const {
 void BlendBindJob::Run() const {
     assert(Validate());
     const uint32_t M = static_cast<uint32_t>(centres.size());
+    const size_t V = grid_vertex_count(theta_steps, phi_steps);
     constexpr int K = kBlendInfluences;
+    auto compatible = [&](uint32_t a, uint32_t b) {
+        if (muscle_groups.empty()) return true;
+        const uint8_t g = muscle_groups[a], h = muscle_groups[b];
+        return g == 0 || h == 0 || g == h;
+    };
+    auto param_of = [&](glm::vec3 p, uint32_t m) {
+        const glm::vec3 q = glm::conjugate(rotations[m]) * (p - centres[m]);
+        return superellipsoid_param(q, radii[m], exponents[m].x, exponents[m].y);
+    };
+    // 1. Kernel weights of the nearest compatible muscles (distance to the radially projected point).
     struct Candidate {
         float distance;
         uint32_t muscle;
-        GridParam param;
     };
     std::vector<Candidate> all(M);
+    std::vector<SparseWeights> weights(skin_positions.size());
     for (size_t i = 0; i < skin_positions.size(); ++i) {
         const glm::vec3 p = skin_positions[i];
         for (uint32_t m = 0; m < M; ++m) {
-            const glm::vec3 q = glm::conjugate(rotations[m]) * (p - centres[m]);
-            const GridParam param = superellipsoid_param(q, radii[m], exponents[m].x, exponents[m].y);
-            const size_t V = grid_vertex_count(theta_steps, phi_steps);
-            const glm::vec3 point = sample_grid(muscle_positions.subspan(m * V, V), theta_steps, phi_steps, param);
-            all[m] = {glm::length(p - point), m, param};
+            const glm::vec3 point = sample_grid(muscle_positions.subspan(m * V, V), theta_steps, phi_steps, param_of(p, m));
+            all[m] = {glm::length(p - point), m};
         }
         std::sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) {
             return a.distance < b.distance || (a.distance == b.distance && a.muscle < b.muscle);
@@ -89,34 +106,55 @@ void BlendBindJob::Run() const {
         size_t keep = 0;
         for (size_t c = 0; c < M && keep < static_cast<size_t>(K) + 1; ++c) {
             bool ok = true;
-            if (!muscle_groups.empty()) {
-                const uint8_t g = muscle_groups[all[c].muscle];
-                for (size_t k = 0; k < keep && ok; ++k) {
-                    const uint8_t h = muscle_groups[all[k].muscle];
-                    ok = g == 0 || h == 0 || g == h;
-                }
-            }
+            for (size_t k = 0; k < keep && ok; ++k) ok = compatible(all[c].muscle, all[k].muscle);
             if (ok) all[keep++] = all[c];
         }
         // Kernels relative to the nearest (the common factor cancels in the normalisation).
         const float d0 = all[0].distance;
         const float cut = keep > static_cast<size_t>(K) ? std::exp(-(all[K].distance - d0) / spread) : 0.0f;
-        BlendBinding& out = bindings[i];
-        out = BlendBinding{};
+        SparseWeights& w = weights[i];
         float sum = 0.0f;
-        const int used = static_cast<int>(std::min<size_t>(K, keep));
-        for (int k = 0; k < used; ++k) {
-            out.muscle[k] = all[k].muscle;
-            out.param[k] = all[k].param;
-            out.weight[k] = std::max(std::exp(-(all[k].distance - d0) / spread) - cut, 0.0f);
-            sum += out.weight[k];
+        w.count = static_cast<int>(std::min<size_t>(K, keep));
+        for (int k = 0; k < w.count; ++k) {
+            w.muscle[k] = all[k].muscle;
+            w.weight[k] = std::max(std::exp(-(all[k].distance - d0) / spread) - cut, 0.0f);
+            sum += w.weight[k];
         }
         if (!(sum > 1e-12f)) {  // equidistant set: the nearest alone
-            out.weight[0] = 1.0f;
-            sum = 1.0f;
+            w.count = 1;
+            w.weight[0] = sum = 1.0f;
+        }
+        for (int k = 0; k < w.count; ++k) w.weight[k] /= sum;
+    }
+    // 2. Smoothed over the skin graph (a transition band of about smooth_radius across joints).
+    const bool smooth = !skin_indices.empty() && smooth_radius > 0.0f;
+    if (smooth) {
+        const VertexGraph graph = build_vertex_graph(skin_positions, skin_indices);
+        smooth_weights(graph, smoothing_rounds(smooth_radius, graph.mean_edge), weights);
+    }
+    // 3. The K largest pairwise compatible weights, renormalised, with their points and offsets.
+    for (size_t i = 0; i < skin_positions.size(); ++i) {
+        const glm::vec3 p = skin_positions[i];
+        const SparseWeights& w = weights[i];
+        BlendBinding& out = bindings[i];
+        out = BlendBinding{};
+        int used = 0;
+        float sum = 0.0f;
+        for (int c = 0; c < w.count && used < K; ++c) {
+            if (!(w.weight[c] > 0.0f)) continue;
+            bool ok = true;
+            // Smoothed weights already blend two limbs only where the surface joins them through
+            // the trunk (the crotch, the gluteal cleft): dropping one there would tear the skin.
+            for (int k = 0; k < used && ok && !smooth; ++k) ok = compatible(w.muscle[c], out.muscle[k]);
+            if (!ok) continue;
+            out.muscle[used] = w.muscle[c];
+            out.weight[used] = w.weight[c];
+            sum += w.weight[c];
+            ++used;
         }
         for (int k = 0; k < used; ++k) {
             out.weight[k] /= sum;
+            out.param[k] = param_of(p, out.muscle[k]);
             const GridFrame f = frame_of(muscle_positions, muscle_normals, theta_steps, phi_steps, out.muscle[k], out.param[k]);
             const glm::vec3 d = p - f.point;
             out.offset[k] = {glm::dot(d, f.tangent), glm::dot(d, f.bitangent), glm::dot(d, f.normal)};

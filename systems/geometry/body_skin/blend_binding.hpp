@@ -57,6 +57,11 @@ struct BlendBindJob {
     /// groups are pairwise equal or trunk, so skin near two limbs (hand by the thigh) follows one.
     /// Empty: all muscles compatible.
     std::span<const uint8_t> muscle_groups;
+    /// Optional triangles of the skin (indices into skin_positions): with smooth_radius > 0 the
+    /// kernel weights are smoothed over the skin's surface graph (weight_smoothing.hpp) before the
+    /// kBlendInfluences largest compatible ones are kept. Empty: no smoothing.
+    std::span<const uint32_t> skin_indices;
+    float smooth_radius = 0.0f;                    ///< spread (m) of the smoothing (0: none)
 
     /// Checks sizes, spread and finiteness; one message per failure.
     bool Validate(std::vector<std::string>* errors = nullptr) const;

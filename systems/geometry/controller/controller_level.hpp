@@ -4,6 +4,7 @@
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/geometry/spring_skin/peeled.hpp"
 
+#include <atomic>
 #include <span>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct GeometryController::Level {
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)
     std::vector<uint16_t> vertex_material;         ///< material per displayed vertex (empty: all 0)
     SlotStore store;                               ///< per-character storage
+    std::atomic<uint64_t> work_characters{0};      ///< GeometryWork::characters
+    std::atomic<uint64_t> work_springs{0};         ///< GeometryWork::springs_stepped
+    std::atomic<uint64_t> work_vertices{0};        ///< GeometryWork::skin_vertices
 
     /// Level with storage shaped by `layout`.
     explicit Level(const SlotLayout& layout) : store(layout) {}

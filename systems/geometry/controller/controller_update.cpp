@@ -162,6 +162,11 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
     params.dt = dt;
     std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region (the muscle layout's)
     region_spring_params(params, g.muscles().fat_regions, tunings);
+    const bool skin_level = L.lod.method == GeomMethod::SkinnedMesh || L.layered();
+    const uint64_t n = characters.size();
+    L.work_characters.fetch_add(n, std::memory_order_relaxed);
+    if (skin_level) L.work_vertices.fetch_add(n * L.control_vertices, std::memory_order_relaxed);
+    if (L.springs) L.work_springs.fetch_add(n * L.control_vertices, std::memory_order_relaxed);
     for (size_t i = 0; i < characters.size(); ++i) {
         const uint32_t c = characters[i];
         assert(level_of(c) == level);

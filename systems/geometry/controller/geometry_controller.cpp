@@ -318,6 +318,20 @@ size_t GeometryController::memory_bytes() const {
     return bytes;
 }
 
+GeometryWork GeometryController::work(uint8_t level) const {
+    const Level& L = *levels_.at(level);
+    return {L.work_characters.load(std::memory_order_relaxed), L.work_springs.load(std::memory_order_relaxed),
+            L.work_vertices.load(std::memory_order_relaxed)};
+}
+
+void GeometryController::reset_work() {
+    for (const auto& L : levels_) {
+        L->work_characters.store(0, std::memory_order_relaxed);
+        L->work_springs.store(0, std::memory_order_relaxed);
+        L->work_vertices.store(0, std::memory_order_relaxed);
+    }
+}
+
 uint8_t GeometryController::level_of(uint32_t character) const {
     return character < level_of_.size() ? level_of_[character] : kNoLevel;
 }

@@ -57,6 +57,14 @@ struct PlacementSource {
     std::span<const uint32_t> elements;     ///< per character handed to update_skin: its element
 };
 
+/// Work a level's update_skin() calls have done since the last GeometryController::reset_work()
+/// (counted per character updated; for `aloha profile` and tests of layer peeling).
+struct GeometryWork {
+    uint64_t characters = 0;       ///< characters whose skin stage ran
+    uint64_t springs_stepped = 0;  ///< fat springs updated (one per skin vertex at levels with the fat layer)
+    uint64_t skin_vertices = 0;    ///< control-surface vertices placed (LBS, or muscle-blended rest ends / spring ends)
+};
+
 /// One character's current mesh surface (character space). Empty spans for RigidProxy / Hidden /
 /// no level / not yet updated.
 struct SurfaceView {
@@ -168,6 +176,11 @@ public:
     [[nodiscard]] uint32_t capacity() const { return static_cast<uint32_t>(level_of_.size()); }
     /// The character type.
     [[nodiscard]] const CharacterGeometry& geometry() const { return *geometry_; }
+
+    /// Work done at `level` since the last reset_work() (thread-safe counters, summed over update calls).
+    [[nodiscard]] GeometryWork work(uint8_t level) const;
+    /// Zeroes every level's work counters. Serial only.
+    void reset_work();
 
     /// Fat-spring tuning (dt is replaced by update's dt).
     [[nodiscard]] const FatSpringParams& spring_params() const { return spring_params_; }

@@ -81,7 +81,8 @@ void bind_layer(SkinLayer& layer, const MuscleSet& muscles, std::span<const int1
     layer.phi_steps = tables.phi_steps();
     layer.bindings.resize(layer.rest_positions.size());
     const BlendBindJob bind{layer.theta_steps, layer.phi_steps, kBindSpread, r.centres, r.rotations, r.radii, muscles.exponents,
-                            r.positions, r.normals, layer.rest_positions, layer.bindings, groups};
+                            r.positions, r.normals, layer.rest_positions, layer.bindings, groups, layer.indices,
+                            kBindSmoothing};
     assert(bind.Validate());
     bind.Run();
     layer.dominant_muscle.resize(layer.bindings.size());

@@ -46,7 +46,7 @@ struct Scene {
                 skin.emplace_back(x, 0.05f * std::cos(a), 0.05f * std::sin(a));
             }
         bindings.resize(skin.size());
-        const BlendBindJob bind{kT, kP, 0.015f, centres, rotations, radii, exponents, grids.positions, grids.normals, skin, bindings, {}};
+        const BlendBindJob bind{kT, kP, 0.015f, centres, rotations, radii, exponents, grids.positions, grids.normals, skin, bindings, {}, {}, 0.0f};
         EXPECT_TRUE(bind.Validate());
         bind.Run();
     }

@@ -124,12 +124,16 @@ TEST(ContinuousSkin, HumanoidWalkNeitherTearsNorCollapsesEdges) {
         std::cout << "level " << l << ": edge length / bind length in [" << r.lo << ", " << r.hi << "], " << r.outside << " of "
                   << r.edges << " outside [0.5, 2]; extremes at (" << r.lo_at.x << " " << r.lo_at.y << " " << r.lo_at.z << ") and ("
                   << r.hi_at.x << " " << r.hi_at.y << " " << r.hi_at.z << ")\n";
-        // MISSED (issue 14 asks every edge within [0.5, 2] x its bind length): the skin still creases
-        // where an arm's inner side meets the torso and at the gluteal fold (about 0.3 % of the edge
-        // samples outside). Measured: level 0 [0.018, 5.0], 1 [0.062, 4.6], 2 [0.22, 4.0],
-        // 3 [0.34, 3.35]. Regression guard from that run, not the target:
-        EXPECT_GE(range[l].lo, 0.01f);
-        EXPECT_LE(range[l].hi, 6.0f);
+        // MISSED (issue 14 asks every edge within [0.5, 2] x its bind length): with the binding
+        // weights smoothed over the skin graph (kBindSmoothing; before: level 0 [0.018, 5.0], 1
+        // [0.062, 4.6], 2 [0.22, 4.0], 3 [0.34, 3.35]) the skin still creases where an arm's inner
+        // side meets the torso (latissimus / obliques / thorax against biceps / triceps) and at the
+        // gluteal fold (under 0.1 % of the edge samples outside). Measured: level 0 [0.11, 3.4],
+        // 1 [0.22, 3.04], 2 [0.31, 2.29], 3 [0.20, 2.37]; with the fat springs driven by world motion
+        // and tuned per region (the softer belly and arms swing further) level 0 reaches 3.95.
+        // Regression guard from those runs, not the target:
+        EXPECT_GE(range[l].lo, 0.08f);
+        EXPECT_LE(range[l].hi, 4.2f);
         EXPECT_LT(static_cast<double>(r.outside), 0.005 * static_cast<double>(r.edges));
     }
 }
@@ -148,11 +152,13 @@ TEST(ContinuousSkin, CesiumManWalkNeitherTearsNorCollapsesEdges) {
         std::cout << "CesiumMan level " << l << ": edge length / bind length in [" << r.lo << ", " << r.hi << "], " << r.outside
                   << " of " << r.edges << " outside [0.5, 2]\n";
         // MISSED (issue 14 asks [0.5, 2]): CesiumMan's own linear-blend skinning (level 3, the
-        // authored weights) already gives [0.025, 6.1] on its walk; the muscle-driven levels 0-2 give
-        // [0.03, 2.7], [0.036, 3.0], [0.038, 3.0] (under 0.1 % of the edge samples outside).
+        // authored weights) already gives [0.025, 6.1] on its walk (sharp authored transitions at the
+        // knees and shoulders); the muscle-driven levels 0-2, binding weights smoothed over the mesh
+        // graph, give [0.059, 2.16], [0.034, 2.28], [0.021, 2.19] (before: [0.03, 2.7], [0.036, 3.0],
+        // [0.038, 3.0]); the collapses sit at the knees' back and the hip front.
         // Regression guard from that run, not the target:
         EXPECT_GE(range[l].lo, 0.015f);
-        EXPECT_LE(range[l].hi, l == 3 ? 7.0f : 3.5f);
+        EXPECT_LE(range[l].hi, l == 3 ? 7.0f : 2.6f);
         EXPECT_LT(static_cast<double>(r.outside), 0.005 * static_cast<double>(r.edges));
     }
 }

@@ -1,6 +1,6 @@
 // Layer peeling as data: a Layered level without the `fat` layer runs no fat springs (no spring state
-// is kept and none is stepped) and shows the skin at the springs' rest ends, while the same level with
-// all four layers shows the springs' lag after a sudden move.
+// is kept and none is stepped: GeometryController::work counts them) and shows the skin at the springs'
+// rest ends, while the same level with all four layers shows the springs' lag after a sudden move.
 #include "tests/systems/geometry/controller/test_humanoid.hpp"
 
 #include <gtest/gtest.h>
@@ -34,6 +34,17 @@ TEST(GeometryControllerLayers, WithoutFatNoSpringsAreRunAndTheSkinSitsAtRest) {
         ctl.update(0, std::span(both, 1), src, 1.0f / 30.0f);
         ctl.update(1, std::span(both + 1, 1), src, 1.0f / 30.0f);
     }
+    // What is computed, counted: over those 10 frames the level with fat updated one spring per skin
+    // vertex per frame, the level without none; both placed every skin vertex every frame.
+    const GeometryWork with = ctl.work(0), without = ctl.work(1);
+    EXPECT_EQ(with.characters, 10u);
+    EXPECT_EQ(without.characters, 10u);
+    EXPECT_EQ(with.springs_stepped, 10u * vertices);
+    EXPECT_EQ(without.springs_stepped, 0u);
+    EXPECT_EQ(with.skin_vertices, 10u * vertices);
+    EXPECT_EQ(without.skin_vertices, 10u * vertices);
+    ctl.reset_work();
+    EXPECT_EQ(ctl.work(0).springs_stepped, 0u);
     const auto jump = test::clip_pose(g.skeleton(), h.clip, 25);
     const PoseSource src{jump.data(), 0};
     ctl.update(0, std::span(both, 1), src, 1.0f / 30.0f);
