@@ -39,6 +39,16 @@ GridParam superellipsoid_param(glm::vec3 q, glm::vec3 radii, float a, float b) {
     return {theta, phi};
 }
 
+glm::vec3 blend_root(std::span<const glm::vec3> muscle_positions, uint32_t theta_steps, uint32_t phi_steps,
+                     const BlendBinding& b) {
+    const size_t V = grid_vertex_count(theta_steps, phi_steps);
+    glm::vec3 root(0.0f);
+    for (int k = 0; k < kBlendInfluences; ++k)
+        if (b.weight[k] > 0.0f)
+            root += b.weight[k] * sample_grid(muscle_positions.subspan(size_t{b.muscle[k]} * V, V), theta_steps, phi_steps, b.param[k]);
+    return root;
+}
+
 bool BlendBindJob::Validate(std::vector<std::string>* errors) const {
     bool ok = true;
     auto fail = [&](std::string message) {

@@ -73,6 +73,11 @@ struct BlendBindJob {
 /// `radii` and exponents (A, B) (equations 1-3 inverted). q = 0 gives (0, 0).
 [[nodiscard]] GridParam superellipsoid_param(glm::vec3 q, glm::vec3 radii, float a, float b);
 
+/// The root of one skin vertex's fat spring: sum of weight x muscle point over `b`'s influences, on the
+/// tessellated muscles `muscle_positions` (muscles x V(T, P)). Requires every influence's muscle present.
+[[nodiscard]] glm::vec3 blend_root(std::span<const glm::vec3> muscle_positions, uint32_t theta_steps, uint32_t phi_steps,
+                                   const BlendBinding& b);
+
 /// Places one character's bound skin: the fat springs (root and rest end as above) stepped by the
 /// exact damped-oscillator update of fat_spring.hpp, or, with `springs` false, the rest ends
 /// directly (the skin without the fat dynamics; state untouched).

@@ -277,15 +277,8 @@ void GeometryController::spring_roots(uint32_t character, std::vector<glm::vec3>
     const uint32_t s = slot_of_[character];
     if (!L.store.valid[s]) return;
     const std::span<const glm::vec3> muscles = L.store.muscle_positions(s);
-    const uint32_t per = L.grid_vertices;
     roots.reserve(L.skin->bindings.size());
-    for (const BlendBinding& b : L.skin->bindings) {
-        glm::vec3 r(0.0f);
-        for (int k = 0; k < kBlendInfluences; ++k)
-            if (b.weight[k] > 0.0f)
-                r += b.weight[k] * sample_grid(muscles.subspan(size_t{b.muscle[k]} * per, per), L.theta_steps, L.phi_steps, b.param[k]);
-        roots.push_back(r);
-    }
+    for (const BlendBinding& b : L.skin->bindings) roots.push_back(blend_root(muscles, L.theta_steps, L.phi_steps, b));
 }
 
 std::span<const uint32_t> GeometryController::level_indices(uint8_t level) const { return levels_.at(level)->indices; }
