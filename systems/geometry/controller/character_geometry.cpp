@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 
 namespace aloha {
 namespace {
@@ -314,6 +315,35 @@ const SurfaceMap& CharacterGeometry::skin_map(uint32_t from_theta, uint32_t from
     auto& slot = skin_maps_[{from_theta, from_phi, to_theta, to_phi}];
     if (!slot) slot = std::make_unique<SurfaceMap>(map_surface(from.rest_positions, from.indices, to.rest_positions));
     return *slot;
+}
+
+void CharacterGeometry::prepare_skin_maps(std::span<const std::pair<uint32_t, uint32_t>> tessellations) const {
+    assert(!mesh_);
+    // The missing maps are independent: each is built on its own thread, then stored under the lock.
+    std::vector<std::array<uint32_t, 4>> missing;
+    for (const auto& from : tessellations)
+        for (const auto& to : tessellations) {
+            const std::array<uint32_t, 4> key{from.first, from.second, to.first, to.second};
+            if (from == to || std::find(missing.begin(), missing.end(), key) != missing.end()) continue;
+            (void)skin_layer(from.first, from.second);
+            (void)skin_layer(to.first, to.second);
+            std::lock_guard lock(mutex_);
+            if (!skin_maps_.contains(key)) missing.push_back(key);
+        }
+    std::vector<std::future<SurfaceMap>> built;
+    for (const auto& k : missing) {
+        const SkinLayer& from = skin_layer(k[0], k[1]);
+        const SkinLayer& to = skin_layer(k[2], k[3]);
+        built.push_back(std::async(std::launch::async, [&from, &to] {
+            return map_surface(from.rest_positions, from.indices, to.rest_positions);
+        }));
+    }
+    for (size_t i = 0; i < missing.size(); ++i) {
+        SurfaceMap map = built[i].get();
+        std::lock_guard lock(mutex_);
+        auto& slot = skin_maps_[missing[i]];
+        if (!slot) slot = std::make_unique<SurfaceMap>(std::move(map));
+    }
 }
 
 }  // namespace aloha

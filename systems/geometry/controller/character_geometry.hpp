@@ -128,6 +128,10 @@ public:
     /// Correspondence from the generated skin at (T0, P0) to the one at (T1, P1) (surface_map.hpp),
     /// built on first use. Thread-safe; stays valid. Requires a type without a mesh.
     const SurfaceMap& skin_map(uint32_t from_theta, uint32_t from_phi, uint32_t to_theta, uint32_t to_phi) const;
+    /// Builds skin_map() for every ordered pair of distinct tessellations in `tessellations` that is not
+    /// built yet, so a geomorph between any two of those levels finds its map ready (no build at a
+    /// level switch). Thread-safe. Requires a type without a mesh and what skin_layer() does.
+    void prepare_skin_maps(std::span<const std::pair<uint32_t, uint32_t>> tessellations) const;
 
 private:
     CharacterGeometry() = default;

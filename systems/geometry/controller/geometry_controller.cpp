@@ -150,6 +150,11 @@ void GeometryController::set_levels(std::span<const GeomLod> levels) {
             if (lod.method == GeomMethod::SkinnedMesh || lod.method == GeomMethod::Layered || lod.method == GeomMethod::Subdivided)
                 skins.emplace_back(std::max<uint32_t>(3, lod.theta_steps), std::max<uint32_t>(2, lod.phi_steps));
         geometry_->prepare_skin_layers(skins);
+        // The maps a geomorph between two of these skins reads, built now rather than at the first switch
+        // (issue 18: no hitch at a switch).
+        std::sort(skins.begin(), skins.end());
+        skins.erase(std::unique(skins.begin(), skins.end()), skins.end());
+        geometry_->prepare_skin_maps(skins);
     }
     std::vector<std::unique_ptr<Level>> next(levels.size());
     std::vector<uint8_t> kept(levels.size(), 0);
@@ -302,12 +307,14 @@ size_t GeometryController::bytes_per_character(uint8_t level) const { return lev
 
 uint32_t GeometryController::slot_capacity(uint8_t level) const { return levels_.at(level)->store.capacity(); }
 
+uint32_t GeometryController::slots_per_page(uint8_t level) const { return levels_.at(level)->store.slots_per_page(); }
+
 uint32_t GeometryController::characters_at(uint8_t level) const { return levels_.at(level)->store.in_use(); }
 
 size_t GeometryController::memory_bytes() const {
     size_t bytes = level_of_.size() * (sizeof(uint8_t) + sizeof(uint32_t));
     for (const auto& L : levels_)
-        bytes += size_t{L->store.capacity()} * L->store.bytes_per_slot();
+        bytes += L->store.allocated_bytes();
     return bytes;
 }
 

@@ -162,11 +162,14 @@ public:
     [[nodiscard]] uint32_t vertices_per_character(uint8_t level) const;
     /// Bytes of per-character storage at `level` (what one character costs there).
     [[nodiscard]] size_t bytes_per_character(uint8_t level) const;
-    /// Slots allocated at `level` (grows only when all are in use).
+    /// Slots allocated at `level` (grows by one page only when all are in use).
     [[nodiscard]] uint32_t slot_capacity(uint8_t level) const;
+    /// Slots per page of `level`'s storage (capacity grows in these steps).
+    [[nodiscard]] uint32_t slots_per_page(uint8_t level) const;
     /// Characters currently at `level`.
     [[nodiscard]] uint32_t characters_at(uint8_t level) const;
-    /// Bytes of all per-character storage plus the shared index buffers.
+    /// Bytes of all per-character storage (with a spare page prepared in the background) plus the
+    /// shared index buffers.
     [[nodiscard]] size_t memory_bytes() const;
     /// The character's level, or kNoLevel.
     [[nodiscard]] uint8_t level_of(uint32_t character) const;

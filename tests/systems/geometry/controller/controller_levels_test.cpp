@@ -129,8 +129,11 @@ TEST(GeometryController, SlotReuseKeepsMemoryFlat) {
             EXPECT_EQ(ctl.memory_bytes(), memory_after_first);
         }
     }
-    // No level ever needs more slots than characters it held at once (16, rounded to the doubling).
-    for (uint8_t l = 0; l < levels.size(); ++l) EXPECT_LE(ctl.slot_capacity(l), 16u);
+    // No level ever needs more slots than characters it held at once (16, rounded up to its page).
+    for (uint8_t l = 0; l < levels.size(); ++l) {
+        const uint32_t page = ctl.slots_per_page(l);
+        EXPECT_LE(ctl.slot_capacity(l), (16u + page - 1) / page * page) << int(l);
+    }
 }
 
 TEST(GeometryController, SetLevelsKeepsCharactersAndRebuildsWhatChanged) {

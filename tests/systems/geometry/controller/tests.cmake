@@ -3,6 +3,7 @@ aloha_test(geomctl_tests
   SOURCES
     ${CMAKE_CURRENT_LIST_DIR}/controller_levels_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_memory_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/slot_store_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_morph_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_threads_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_gltf_test.cpp
