@@ -1,7 +1,9 @@
 #version 450
 // Impostor fragment shader: alpha-tested atlas albedo (premultiplied by coverage, so mip levels
-// averaged with the empty background are divided back) times the tint, lit as shaders/lit_mesh.frag
-// lights a mesh, with the normal decoded from the atlas's bottom half (stored in the bake camera's
+// averaged with the empty background are divided back) times the tint, read unfiltered (texelFetch) from
+// the one mip level the vertex shader chose for the whole quad (on lavapipe a filtered texture() with its
+// per-pixel level costs about twice as much: docs/PERFORMANCE.md), lit as shaders/lit_mesh.frag lights a
+// mesh, with the normal decoded from the atlas's bottom half (stored in the bake camera's
 // frame: x right, y up, z towards the camera) and turned into the quad's world frame. Fade (a
 // screen-door dither over a 4x4 Bayer matrix): fade f > 0 shows the pixels whose threshold is below f,
 // f < 0 the complement of -f's pixels (the other side of a cross-fade with a mesh dithered at -f).
@@ -25,6 +27,7 @@ layout(location = 0) in vec2 v_uv;
 layout(location = 1) flat in vec4 v_colour;
 layout(location = 2) flat in vec4 v_right_fade;
 layout(location = 3) flat in vec3 v_toward;
+layout(location = 4) flat in vec3 v_level;   // xy: the atlas's size in texels at mip z (chosen per quad)
 layout(location = 0) out vec4 out_colour;
 
 const float kBayer[16] = float[](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);
@@ -36,9 +39,11 @@ void main() {
         float t = (kBayer[p.y * 4 + p.x] + 0.5) / 16.0;
         if (fade >= 0.0 ? t >= fade : t < -fade) discard;
     }
-    vec4 c = texture(atlas, v_uv);
+    ivec2 texel = ivec2(v_uv * v_level.xy);
+    int level = int(v_level.z);
+    vec4 c = texelFetch(atlas, texel, level);
     if (c.a < 0.5) discard;
-    vec4 e = texture(atlas, v_uv + vec2(0.0, 0.5));
+    vec4 e = texelFetch(atlas, texel + ivec2(0, int(v_level.y) / 2), level);
     vec3 nb = e.a > 0.0 ? e.rgb / e.a * 2.0 - 1.0 : vec3(0.0, 0.0, 1.0);
     vec3 n = normalize(v_right_fade.xyz * nb.x + vec3(0.0, nb.y, 0.0) + v_toward * nb.z);
     vec3 albedo = c.rgb / c.a * v_colour.rgb;

@@ -6,6 +6,9 @@
 // atlas direction nearest the camera's azimuth in the character's frame (local +Z forward) and the walk
 // phase row (offsets.x directions, offsets.y phase rows; the last row is the standing pose, used when
 // the phase is negative). Colour cells fill the atlas's top half, normal cells its bottom half.
+// The quad covers only the cell's silhouette (set 1 binding 0, systems/render/crowd_renderer.hpp
+// impostor_cell_table), padded by a texel of the mip level the quad's screen size calls for (log2 of atlas
+// texels per pixel, rounded: v_level), so that the coarser level's wider silhouette is not cut.
 
 struct Impostor {
     vec4 position_scale;  // xyz: character origin (world), w: uniform scale
@@ -20,13 +23,15 @@ layout(push_constant) uniform Push {
     vec4 light;
     vec4 camera;
     uvec4 offsets;      // x: directions, y: rows (phases + 1 standing), z: first instance, w: mode
-    vec4 base_colour;   // x: quad width, y: quad bottom, z: quad height (model units)
+    vec4 base_colour;   // x: quad width, y: quad bottom, z: quad height (model units), w: viewport height (px)
 } pc;
+layout(std430, set = 1, binding = 0) readonly buffer Cells { vec4 cells[]; };  // [0]: texel grid, then bounds
 
 layout(location = 0) out vec2 v_uv;             // colour-half texture coordinates
 layout(location = 1) flat out vec4 v_colour;    // tint
 layout(location = 2) flat out vec4 v_right_fade; // xyz: quad right axis (world), w: fade
 layout(location = 3) flat out vec3 v_toward;    // quad normal towards the camera (world, horizontal)
+layout(location = 4) flat out vec3 v_level;     // xy: the atlas's size in texels at mip z (the quad's level)
 
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
 
@@ -50,9 +55,28 @@ void main() {
     float rows = float(pc.offsets.y);
     float phase = im.forward_phase.z;
     float k = phase < 0.0 ? rows - 1.0 : mod(floor(phase * (rows - 1.0) + 0.5), rows - 1.0);
-    vec2 c = kCorners[gl_VertexIndex];
+    vec4 b = cells[1u + uint(k) * pc.offsets.x + uint(v)];
+    if (b.z <= b.x) {  // empty cell: a degenerate quad
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        return;
+    }
+    // Texels per pixel at the origin's depth, vertically: atlas texels are square in model units and a quad
+    // faces the camera across, so only its height is foreshortened (by the camera's pitch) and sets the lod.
+    vec4 grid = cells[0];
+    vec3 centre = origin + vec3(0.0, scale * (pc.base_colour.y + 0.5 * pc.base_colour.z), 0.0);
+    vec4 c0 = pc.view_proj * vec4(centre, 1.0);
+    vec4 cy = pc.view_proj * vec4(centre + vec3(0.0, scale * pc.base_colour.z, 0.0), 1.0);
+    float py = c0.w > 1e-6 && cy.w > 1e-6 ? abs(cy.y / cy.w - c0.y / c0.w) * 0.5 * pc.base_colour.w : 1e6;  // cell height, px
+    float rho = grid.y / max(py, 1e-3);
+    float lod = clamp(log2(rho), 0.0, grid.z - 1.0);
+    float level = floor(lod + 0.5);  // the nearest level, as a sampler's nearest-mip mode picks it
+    // A texel of that level that passes the alpha test holds a covered texel of level 0 within its 2^level
+    // footprint; one more texel for footprints that do not divide the cell evenly.
+    vec2 pad = (exp2(level) + 1.0) / grid.xy;
+    vec2 c = mix(max(b.xy - pad, 0.0), min(b.zw + pad, 1.0), kCorners[gl_VertexIndex]);
     vec3 world = origin + scale * (right * (c.x - 0.5) * pc.base_colour.x + vec3(0.0, pc.base_colour.y + c.y * pc.base_colour.z, 0.0));
     v_uv = vec2((v + c.x) / dirs, 0.5 * (k + 1.0 - c.y) / rows);
+    v_level = vec3(max(floor(vec2(grid.x * dirs, 2.0 * grid.y * rows) / exp2(level)), 1.0), level);
     v_colour = im.colour;
     v_right_fade = vec4(right, im.forward_phase.w);
     v_toward = toward;

@@ -71,6 +71,12 @@ struct ImpostorAtlasLayout {
     float height = 1.8f;       ///< its height
 };
 
+/// What shaders/impostor.vert reads of an atlas (set 1 binding 0, vec4 each): first (cell width, cell height in
+/// texels, mip levels, 0), then per cell (row r, column d at 1 + r * directions + d) the bounds of its colour
+/// texels with alpha > 0 as fractions of the cell (x0, y0, x1, y1; x from the left, y from the bottom; all 0 for an
+/// empty cell), so the quad covers only the silhouette. Precondition: `image` is whole cells of `layout`.
+[[nodiscard]] std::vector<glm::vec4> impostor_cell_table(const TextureImage& image, const ImpostorAtlasLayout& layout);
+
 /// One overlay line segment (bones, springs), drawn unlit and depth-tested.
 struct LineSegment {
     glm::vec3 a{0.0f};       ///< start, world space
@@ -233,7 +239,8 @@ private:
     };
     struct Atlas {
         ImpostorAtlasLayout layout;
-        VkDescriptorSet set = VK_NULL_HANDLE;  // no_uvs_ + the atlas texture
+        gpu::Buffer cells;                     // impostor_cell_table: the texel grid, then each cell's bounds
+        VkDescriptorSet set = VK_NULL_HANDLE;  // cells + the atlas texture
     };
     struct Slot {
         VkCommandBuffer cmd = VK_NULL_HANDLE;
@@ -261,7 +268,7 @@ private:
     Status ensure_queries(Slot& slot, uint32_t count);
     uint32_t pass_id(std::string_view name);
     void end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass);
-    uint32_t record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
+    uint32_t record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height);
     [[nodiscard]] static uint32_t impostor_base(const FrameInput& frame);
 
     gpu::Context& ctx_;

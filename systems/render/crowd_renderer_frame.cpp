@@ -183,7 +183,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         ++draws;
         end_pass(cmd, slot, {pass_id("proxies"), 1, frame.proxies.size(), uint64_t(kBoxIndexCount / 3) * frame.proxies.size()});
     }
-    draws += record_impostors(frame, cmd, slot, push);
+    draws += record_impostors(frame, cmd, slot, push, float(target.extent.height));
     if (!frame.lines.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.lines());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 1, &slot.set, 0, nullptr);

@@ -2,6 +2,7 @@
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace aloha {
@@ -11,6 +12,31 @@ static_assert(sizeof(ImpostorInstance) == 64 && offsetof(ImpostorInstance, atlas
               "ImpostorInstance is copied to the GPU as shaders/impostor.vert's Impostor record");
 
 }  // namespace
+
+std::vector<glm::vec4> impostor_cell_table(const TextureImage& image, const ImpostorAtlasLayout& layout) {
+    const uint32_t cw = image.width / layout.directions, ch = image.height / (2 * layout.rows);
+    uint32_t levels = 1;
+    for (uint32_t s = std::max(image.width, image.height); s > 1; s /= 2) ++levels;
+    std::vector<glm::vec4> table{glm::vec4(float(cw), float(ch), float(levels), 0.0f)};
+    table.reserve(1 + size_t{layout.rows} * layout.directions);
+    for (uint32_t r = 0; r < layout.rows; ++r)
+        for (uint32_t d = 0; d < layout.directions; ++d) {
+            uint32_t x0 = cw, y0 = ch, x1 = 0, y1 = 0;  // covered texels [x0, x1) x [y0, y1), y down from the cell's top
+            for (uint32_t y = 0; y < ch; ++y) {
+                const uint8_t* row = image.rgba.data() + ((size_t{r} * ch + y) * image.width + size_t{d} * cw) * 4;
+                for (uint32_t x = 0; x < cw; ++x)
+                    if (row[x * 4 + 3] != 0) {
+                        x0 = std::min(x0, x);
+                        x1 = std::max(x1, x + 1);
+                        y0 = std::min(y0, y);
+                        y1 = y + 1;
+                    }
+            }
+            table.push_back(x1 == 0 ? glm::vec4(0.0f)
+                                    : glm::vec4(float(x0) / float(cw), float(ch - y1) / float(ch), float(x1) / float(cw), float(ch - y0) / float(ch)));
+        }
+    return table;
+}
 
 Result<uint32_t> CrowdRenderer::register_impostor_atlas(const TextureImage& image, const ImpostorAtlasLayout& layout) {
     if (layout.directions == 0 || layout.rows < 2)
@@ -27,10 +53,14 @@ Result<uint32_t> CrowdRenderer::register_impostor_atlas(const TextureImage& imag
     clamped.nearest = false;
     Result<uint32_t> texture = register_texture(clamped);
     if (!texture) return texture.error();
+    const std::vector<glm::vec4> table = impostor_cell_table(image, layout);
+    Result<gpu::Buffer> cells = gpu::Buffer::create(ctx_, table.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!cells) return cells.error();
+    cells.value().write(std::as_bytes(std::span(table)));
     const gpu::Texture& t = textures_[texture.value()];
-    Result<VkDescriptorSet> set = pipes_.material_set(no_uvs_, t.view(), t.sampler());
+    Result<VkDescriptorSet> set = pipes_.material_set(cells.value(), t.view(), t.sampler());
     if (!set) return set.error();
-    atlases_.push_back({layout, set.value()});
+    atlases_.push_back({layout, std::move(cells).value(), set.value()});
     return static_cast<uint32_t>(atlases_.size() - 1);
 }
 
@@ -40,7 +70,8 @@ uint32_t CrowdRenderer::impostor_base(const FrameInput& frame) {
     return static_cast<uint32_t>((bytes + sizeof(ImpostorInstance) - 1) / sizeof(ImpostorInstance));
 }
 
-uint32_t CrowdRenderer::record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push) {
+uint32_t CrowdRenderer::record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push,
+                                         float viewport_height) {
     if (frame.impostors.empty()) return 0;
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.impostor());
@@ -54,7 +85,7 @@ uint32_t CrowdRenderer::record_impostors(const FrameInput& frame, VkCommandBuffe
         const Atlas& a = atlases_[atlas];
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &a.set, 0, nullptr);
         push.offsets = glm::uvec4(a.layout.directions, a.layout.rows, base + first, 0u);
-        push.base_colour = glm::vec4(a.layout.width, a.layout.bottom, a.layout.height, 0.0f);
+        push.base_colour = glm::vec4(a.layout.width, a.layout.bottom, a.layout.height, viewport_height);
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDraw(cmd, 6, end - first, 0, 0);
         ++draws;

@@ -217,5 +217,28 @@ TEST(ImpostorAtlas, RefusesAnAtlasWithoutItsRows) {
     EXPECT_NE(bad.error().to_string().find("whole cells"), std::string::npos);
 }
 
+TEST(ImpostorAtlas, CellTableHoldsEachCellsCoveredTexels) {
+    // 2 directions x 2 rows of 8 x 4-texel cells (a 16 x 16 image: colour half on top). Cell (row 0, dir 1)
+    // covers texels x 2..4, y 1..2 of its cell; cell (row 1, dir 0) one texel at its lower left corner;
+    // the others are empty. Texels of the normal half are set too and must not count.
+    TextureImage image;
+    image.width = 16;
+    image.height = 16;
+    image.rgba.assign(16 * 16 * 4, 0);
+    auto cover = [&](uint32_t x, uint32_t y) { image.rgba[(size_t{y} * 16 + x) * 4 + 3] = 1; };
+    for (uint32_t y = 1; y <= 2; ++y)
+        for (uint32_t x = 2; x <= 4; ++x) cover(8 + x, y);
+    cover(0, 7);
+    cover(3, 12);  // normal half
+    const std::vector<glm::vec4> t = impostor_cell_table(image, ImpostorAtlasLayout{2, 2, 1.0f, 0.0f, 1.8f});
+    ASSERT_EQ(t.size(), 5u);
+    EXPECT_EQ(t[0], glm::vec4(8.0f, 4.0f, 5.0f, 0.0f));  // cell texels, mip levels of 16 x 16
+    EXPECT_EQ(t[1], glm::vec4(0.0f));                     // row 0, dir 0: empty
+    // x from the left: [2, 5) / 8; y from the bottom: texel rows 1..2 down from the top are [1, 3) / 4 up.
+    EXPECT_EQ(t[2], glm::vec4(2.0f / 8.0f, 1.0f / 4.0f, 5.0f / 8.0f, 3.0f / 4.0f));
+    EXPECT_EQ(t[3], glm::vec4(0.0f, 0.0f, 1.0f / 8.0f, 1.0f / 4.0f));  // row 1, dir 0: the corner texel
+    EXPECT_EQ(t[4], glm::vec4(0.0f));
+}
+
 }  // namespace
 }  // namespace aloha
