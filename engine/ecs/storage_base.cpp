@@ -6,31 +6,25 @@
 
 namespace aloha {
 
-namespace {
-
-constexpr SparseEntry kAbsentEntry{StorageBase::kAbsent, StorageBase::kAbsent};
-
-}  // namespace
-
-SparseEntry& StorageBase::sparse_slot(uint32_t index) {
+detail::SparsePage& StorageBase::sparse_page(uint32_t index) {
     const uint32_t page = index / kPageSize;
     if (page >= sparse_.size()) {
-        sparse_.resize(page + 1, detail::kAbsentPage.data());
+        sparse_.resize(page + 1, &detail::kAbsentPage);
         owned_pages_.resize(page + 1);
     }
     if (!owned_pages_[page]) {
-        owned_pages_[page] = std::make_unique<SparseEntry[]>(kPageSize);
-        std::fill_n(owned_pages_[page].get(), kPageSize, kAbsentEntry);
+        owned_pages_[page] = std::make_unique<detail::SparsePage>(detail::kAbsentPage);
         sparse_[page] = owned_pages_[page].get();
     }
-    return owned_pages_[page][index % kPageSize];
+    return *owned_pages_[page];
 }
 
 void StorageBase::push_entity(Entity e) {
-    SparseEntry& slot = sparse_slot(e.index);
+    detail::SparsePage& page = sparse_page(e.index);
     // An index holds at most one entity: a stale handle must not overwrite a live one's entry.
-    assert(slot.dense == kAbsent && "entity index already present in this storage");
-    slot = SparseEntry{static_cast<uint32_t>(dense_.size()), e.generation};
+    assert(page.dense[e.index % kPageSize] == kAbsent && "entity index already present in this storage");
+    page.dense[e.index % kPageSize] = static_cast<uint32_t>(dense_.size());
+    page.generation[e.index % kPageSize] = e.generation;
     dense_.push_back(e);
 }
 
@@ -41,22 +35,21 @@ void StorageBase::notify_construct(Entity e) {
 bool StorageBase::remove(Entity e) {
     if (!contains(e)) return false;
     if (owner_ != nullptr) owner_->on_destroy(e);  // moves e out of the group's front range
-    SparseEntry& removed = entry_of(e.index);
-    const uint32_t pos = removed.dense;
+    const uint32_t pos = sparse().position(e.index);
     const auto last = static_cast<uint32_t>(dense_.size() - 1);
     if (pos != last) {
         const Entity moved = dense_[last];
         dense_[pos] = moved;
-        entry_of(moved.index).dense = pos;  // its generation is unchanged
+        set_position(moved.index, pos);  // its generation is unchanged
     }
     pop_component(pos);
     dense_.pop_back();
-    removed = kAbsentEntry;
+    set_entry(e.index, kAbsent, kAbsent);
     return true;
 }
 
 void StorageBase::clear() {
-    for (const Entity e : dense_) entry_of(e.index) = kAbsentEntry;
+    for (const Entity e : dense_) set_entry(e.index, kAbsent, kAbsent);
     dense_.clear();
     clear_components();
     if (owner_ != nullptr) owner_->reset();
@@ -68,8 +61,8 @@ void StorageBase::swap_positions(size_t a, size_t b) {
     const Entity eb = dense_[b];
     dense_[a] = eb;
     dense_[b] = ea;
-    entry_of(ea.index).dense = static_cast<uint32_t>(b);
-    entry_of(eb.index).dense = static_cast<uint32_t>(a);
+    set_position(ea.index, static_cast<uint32_t>(b));
+    set_position(eb.index, static_cast<uint32_t>(a));
     swap_components(a, b);
 }
 
@@ -77,7 +70,7 @@ void StorageBase::apply_swaps(std::span<const SwapPair> swaps) {
     for (const SwapPair s : swaps) std::swap(dense_[s.a], dense_[s.b]);
     swap_component_sequence(swaps);
     for (const SwapPair s : swaps) {
-        for (const uint32_t pos : {s.a, s.b}) entry_of(dense_[pos].index).dense = pos;
+        for (const uint32_t pos : {s.a, s.b}) set_position(dense_[pos].index, pos);
     }
 }
 
@@ -85,12 +78,12 @@ bool StorageBase::consistent() const {
     if (sparse_.size() != owned_pages_.size()) return false;
     size_t present = 0;
     for (size_t page = 0; page < sparse_.size(); ++page) {
-        const SparseEntry* entries = sparse_[page];
-        if (owned_pages_[page] ? entries != owned_pages_[page].get() : entries != detail::kAbsentPage.data()) {
+        const detail::SparsePage* entries = sparse_[page];
+        if (owned_pages_[page] ? entries != owned_pages_[page].get() : entries != &detail::kAbsentPage) {
             return false;
         }
         for (uint32_t i = 0; i < kPageSize; ++i) {
-            const SparseEntry s = entries[i];
+            const SparseEntry s{entries->dense[i], entries->generation[i]};
             if (s.dense == kAbsent) {
                 if (s.generation != kAbsent) return false;
                 continue;

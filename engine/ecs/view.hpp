@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <tuple>
@@ -42,6 +43,9 @@ inline bool same_entities(const Entity* a, const Entity* b, size_t count) {
 /// Non-owning view over the storages of Ts (use `const T` for read-only access).
 /// Structural changes to the viewed storages while iterating are not allowed: record them in a
 /// CommandBuffer and apply it afterwards.
+/// The storages must hold live entities of one registry (Registry::emplace requires a live entity and
+/// Registry::destroy removes every component), so an entity index is held by one generation in all of
+/// them: each() then looks other storages up by index alone (4 bytes of sparse page per entity).
 template <class... Ts>
 class View {
     static_assert(sizeof...(Ts) > 0, "a view needs at least one component type");
@@ -194,22 +198,26 @@ private:
     }
 
     // Dense position of `e` (driver position `k`) in storage I (skipped for the driver), a prefetch of
-    // its component, and `aligned` cleared unless that position is k.
+    // its component, and `aligned` cleared unless that position is k. `e` is in the driving storage, so
+    // (see the class comment) any entity storage I holds at e's index is `e` itself: the generation is
+    // not read.
     template <size_t I, size_t D, class Cols>
     static void lookup(const Cols& cols, Entity e, size_t k, uint32_t& slot, bool& aligned) {
         if constexpr (I != D) {
             const auto& col = std::get<I>(cols);
-            slot = col.sparse.find(e);
+            slot = col.sparse.position(e.index);
+            assert((slot == StorageBase::kAbsent || col.entities[slot] == e) &&
+                   "viewed storages hold different generations of one index (not one registry's live entities?)");
             aligned &= slot == k;
             using T = std::tuple_element_t<I, std::tuple<Ts...>>;
             detail::prefetch<!std::is_const_v<T>>(col.components + (slot == StorageBase::kAbsent ? 0 : slot));
         }
     }
 
-    // Prefetches the sparse entry of `e` in storage I (skipped for the driver).
+    // Prefetches the dense position of `e` in storage I (skipped for the driver).
     template <size_t I, size_t D, class Cols>
     static void prefetch_entry(const Cols& cols, Entity e) {
-        if constexpr (I != D) detail::prefetch<false>(&std::get<I>(cols).sparse.entry(e.index));
+        if constexpr (I != D) detail::prefetch<false>(std::get<I>(cols).sparse.position_slot(e.index));
     }
 
     std::tuple<StorageFor<Ts>*...> storages_;

@@ -108,7 +108,14 @@ void World::register_systems() {
             job.camera = camera_;
             job.grid = &occlusion_grid_;
             job.attributes = a.write<LodAttributes>();
-            job.Rasterise();  // pass 1 fills the grid; pass 2 only reads it, in parallel chunks
+            // Pass 1 in one part per thread (a grid each, merged: the same grid bit for bit); pass 2
+            // only reads the grid, in parallel chunks.
+            const size_t parts = std::max<size_t>(1, ctx.threads());
+            job.PrepareParts(parts);
+            ctx.parallel_for(parts, 1, [&](size_t b, size_t e) {
+                for (size_t p = b; p < e; ++p) job.RasterisePart(p, parts);
+            });
+            job.MergeParts(parts);
             ctx.parallel_for(job.attributes.size(), kLodGrain, [&](size_t b, size_t e) { (void)job.Test(b, e); });
         }));
     }

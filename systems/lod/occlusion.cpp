@@ -78,11 +78,31 @@ size_t OcclusionJob::Run() const {
 }
 
 void OcclusionJob::Rasterise() const {
+    PrepareParts(1);
+    RasterisePart(0, 1);
+}
+
+void OcclusionJob::PrepareParts(size_t parts) const {
     OcclusionGrid& g = *grid;
-    const float cell = params.cell_px;
-    g.resize(camera.viewport_px, cell);
+    g.resize(camera.viewport_px, params.cell_px);
     constexpr float kFar = std::numeric_limits<float>::infinity();
     std::fill(g.depth.begin(), g.depth.end(), kFar);
+    g.part_depth.assign(g.depth.size() * (std::max<size_t>(parts, 1) - 1), kFar);
+}
+
+void OcclusionJob::MergeParts(size_t parts) const {
+    OcclusionGrid& g = *grid;
+    const size_t cells = g.depth.size();
+    for (size_t p = 1; p < parts; ++p) {
+        const float* part = g.part_depth.data() + (p - 1) * cells;
+        for (size_t i = 0; i < cells; ++i) g.depth[i] = std::min(g.depth[i], part[i]);
+    }
+}
+
+void OcclusionJob::RasterisePart(size_t part, size_t parts) const {
+    OcclusionGrid& g = *grid;
+    float* depth = part == 0 ? g.depth.data() : g.part_depth.data() + (part - 1) * g.depth.size();
+    const float cell = params.cell_px;
     const Projector pr = make_projector(camera);
     const bool level_camera = level_camera_of(camera);
     const Bounds default_bounds{};
@@ -102,13 +122,15 @@ void OcclusionJob::Rasterise() const {
         const int cx1 = std::min(g.width, static_cast<int>(std::floor(x1 / cell)));
         const int cy0 = std::max(0, static_cast<int>(std::ceil(y_lo / cell)));
         const int cy1 = std::min(g.height, static_cast<int>(std::floor(y_hi / cell)));
-        const float depth = far_z + radius * h;
+        const float core_depth = far_z + radius * h;
         for (int y = cy0; y < cy1; ++y) {
-            float* row = g.depth.data() + static_cast<size_t>(y) * static_cast<size_t>(g.width);
-            for (int x = cx0; x < cx1; ++x) row[x] = std::min(row[x], depth);
+            float* row = depth + static_cast<size_t>(y) * static_cast<size_t>(g.width);
+            for (int x = cx0; x < cx1; ++x) row[x] = std::min(row[x], core_depth);
         }
     };
-    for (size_t i = 0; level_camera && i < transforms.size(); ++i) {
+    const size_t n = transforms.size(), share = (n + parts - 1) / std::max<size_t>(parts, 1);
+    const size_t begin = std::min(n, part * share), end = std::min(n, begin + share);
+    for (size_t i = begin; level_camera && i < end; ++i) {
         if (!attributes[i].visible) continue;
         const Transform& t = transforms[i];
         const float h = (bounds.empty() ? default_bounds : bounds[i]).height * t.scale;

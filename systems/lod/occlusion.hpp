@@ -39,6 +39,7 @@ struct OcclusionParams {
 struct OcclusionGrid {
     int width = 0, height = 0;       ///< cells
     std::vector<float> depth;        ///< width * height view depths; +inf = nothing in front
+    std::vector<float> part_depth;   ///< scratch of pass 1 in parts: the depths of parts 1.. (part 0 fills `depth`)
     /// Sizes the grid for `viewport_px` and `cell_px`; allocates only when it grows.
     void resize(glm::vec2 viewport_px, float cell_px);
 };
@@ -70,6 +71,15 @@ struct OcclusionJob {
     size_t Run() const;
     /// Pass 1 alone: sizes and fills the grid. Requires Validate().
     void Rasterise() const;
+    /// Pass 1 in `parts` (>= 1) parts that may run concurrently: PrepareParts(parts), then RasterisePart(p,
+    /// parts) for every p (each rasterises an even share of the characters into a grid of its own), then
+    /// MergeParts(parts) (the nearest depth of each cell). Gives the grid of Rasterise() bit for bit: a
+    /// cell's depth is the least of the same depths in any order. Requires Validate().
+    void PrepareParts(size_t parts) const;
+    /// Rasterises the cores of part `part` of `parts` into its own grid (see PrepareParts).
+    void RasterisePart(size_t part, size_t parts) const;
+    /// Folds parts 1.. into the grid (see PrepareParts).
+    void MergeParts(size_t parts) const;
     /// Pass 2 alone for characters [begin, end) after Rasterise(); returns how many are fully occluded.
     /// Disjoint ranges may run concurrently (the grid is only read).
     size_t Test(size_t begin, size_t end) const;

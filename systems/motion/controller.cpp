@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -29,7 +30,19 @@ glm::quat turn_towards(const glm::quat& rotation, const glm::vec3& dir, float ma
     d = std::clamp(d, -max_angle, max_angle);
     return glm::angleAxis(cur + d, glm::vec3(0, 1, 0));
 }
+
+// True when `a` and `b` hold the same bits (+0 and -0 differ: atan2 tells them apart).
+template <class T>
+bool same_bits(const T& a, const T& b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
 }  // namespace
+
+glm::quat MotionController::turn(Channel& ch, const glm::quat& rotation, const glm::vec3& dir, float max_angle) {
+    if (same_bits(ch.faced, rotation) && same_bits(ch.faced_dir, dir) && same_bits(ch.faced_max_turn, max_angle))
+        return rotation;  // turn_towards(faced, faced_dir, faced_max_turn) == faced, bit for bit
+    const glm::quat out = turn_towards(rotation, dir, max_angle);
+    if (same_bits(out, rotation)) ch.faced = rotation, ch.faced_dir = dir, ch.faced_max_turn = max_angle;
+    return out;
+}
 
 MotionController::MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity)
     : skeleton_(&skeleton), clips_(&clips), chars_(capacity), queues_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
@@ -161,6 +174,7 @@ void MotionController::start_next(uint32_t c, Character& ch) {
     started.req = next;
     if (next.kind == RequestKind::PlayClip) started.time = next.start_time;
     if (next.kind == RequestKind::Walk) started.walk_clip = pick_walk_clip(next.speed);
+    if (started.walk_clip >= 0) started.walk_natural = clips_->find(static_cast<ClipId>(started.walk_clip))->root_speed();
     if (next.kind == RequestKind::Walk && ch.cur.req.kind == RequestKind::Walk) started.walk = ch.cur.walk;  // keep feet planted
     ch.cur = started;
 }
@@ -192,7 +206,7 @@ void MotionController::advance_clock(Channel& ch, float seconds) const {
     if (ch.req.kind == RequestKind::PlayClip) {
         ch.time += seconds * ch.req.speed;
     } else if (ch.req.kind == RequestKind::Walk && ch.walk_clip >= 0) {
-        const float natural = clips_->find(static_cast<ClipId>(ch.walk_clip))->root_speed();
+        const float natural = ch.walk_natural;
         ch.time += seconds * (natural > 1e-4f ? std::max(ch.req.speed, 0.0f) / natural : 1.0f);
     }
 }
@@ -247,7 +261,7 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
             }
             if (!ch.done) {
                 placement->position += dir * speed * dt;
-                placement->rotation = turn_towards(placement->rotation, dir, kTurnRate * dt);
+                placement->rotation = turn(ch, placement->rotation, dir, kTurnRate * dt);
                 if (velocity) velocity->linear = dir * speed;
             } else if (velocity) {
                 velocity->linear = glm::vec3(0.0f);

@@ -209,9 +209,15 @@ private:
         float request_time = 0.0f;  // seconds since start
         uint32_t path_cursor = 0;
         int32_t walk_clip = -1;     // gait cycle a Walk request plays at the ClipPlayback level
+        float walk_natural = 0.0f;  // that clip's root_speed() (m/s), read every frame the clock runs
         uint8_t done = 0;
         SamplingCache cache;
         KinematicWalkState walk;
+        // A turn that left the rotation as it was: the same rotation, direction and step (bit for bit)
+        // leave it again, so a walker facing its way skips turn_towards (max_turn < 0: none yet).
+        glm::quat faced{1.0f, 0.0f, 0.0f, 0.0f};
+        glm::vec3 faced_dir{0.0f};
+        float faced_max_turn = -1.0f;
     };
     struct Overlay {
         MotionRequest req;
@@ -265,6 +271,8 @@ private:
     void begin_fade(uint32_t c, Character& ch, float seconds, bool live_prev);
     void advance(Channel& ch, const AnimLod& lod, float dt, Transform* placement, Velocity* velocity);
     WalkMethod walk_method(const AnimLod& lod) const;
+    // turn_towards (controller.cpp) unless `ch` already faces `dir` with exactly this rotation and step.
+    static glm::quat turn(Channel& ch, const glm::quat& rotation, const glm::vec3& dir, float max_angle);
     void evaluate(uint32_t c, Channel& ch, const AnimLod& lod, const PoseView& out, Transform& placement,
                   Velocity& velocity, float posed_dt, bool primary, bool first);
     void pose_one(const Due& d, size_t worker);
@@ -281,6 +289,10 @@ private:
                                std::span<const uint32_t> element_of_character, const ChunkRunner* run_chunks);
     void step_active(size_t k, float dt, std::span<MotionState> states, std::span<const uint32_t> element_of_character,
                      StepBlock& out);
+    // Active positions phase 1 prefetches ahead of the one it steps (its record and element rows).
+    static constexpr size_t kStepPrefetch = 8;
+    // Prefetches what step_active(k) reads: the character's record and its element's rows.
+    void prefetch_step(size_t k, std::span<MotionState> states, std::span<const uint32_t> element_of_character) const;
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
     bool clip_driven(const Character& ch, const AnimLod& lod) const;
     // True when `ch` walks by the kinematic walk at `lod` (its pose predictable one interval ahead

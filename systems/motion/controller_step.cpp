@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstddef>
 #include <mutex>
 
 namespace aloha {
@@ -62,7 +63,10 @@ size_t MotionController::begin_update_blocks(float dt, std::span<const AnimLod> 
         StepBlock& out = blocks_[j];
         out.due.clear(), out.between.clear(), out.resting.clear();
         const size_t b = j * step_block_, e = blocks == 1 ? m : std::min(m, b + step_block_);
-        for (size_t k = e; k-- > b;) step_active(k, dt, states, element_of_character, out);
+        for (size_t k = e; k-- > b;) {
+            if (k >= b + kStepPrefetch) prefetch_step(k - kStepPrefetch, states, element_of_character);
+            step_active(k, dt, states, element_of_character, out);
+        }
     };
     if (blocks == 1) {
         run_block(0);
@@ -85,6 +89,25 @@ size_t MotionController::begin_update_blocks(float dt, std::span<const AnimLod> 
     }
     ++frame_;
     return due_.size();
+}
+
+void MotionController::prefetch_step(size_t k, std::span<MotionState> states,
+                                     std::span<const uint32_t> element_of_character) const {
+#if defined(__GNUC__) || defined(__clang__)
+    const uint32_t c = active_[k];
+    const uint32_t e = element_of_character.empty() ? c : element_of_character[c];
+    // The record's fields phase 1 reads (the hot head, up to the faded-from channel) and the element's
+    // rows: the element order is not the id order, so each row is a cache miss of its own.
+    const char* rec = reinterpret_cast<const char*>(&chars_[c]);
+    for (size_t off = 0; off < offsetof(Character, prev); off += 64) __builtin_prefetch(rec + off, 1, 3);
+    __builtin_prefetch(&lods_[e], 0, 3);
+    __builtin_prefetch(&states[e], 1, 3);
+    __builtin_prefetch(&transforms_[e], 1, 3);
+    __builtin_prefetch(&velocities_[e], 1, 3);
+    if (!pose_use_.empty()) __builtin_prefetch(&pose_use_[e], 0, 3);
+#else
+    (void)k, (void)states, (void)element_of_character;
+#endif
 }
 
 void MotionController::step_active(size_t k, float dt, std::span<MotionState> states,

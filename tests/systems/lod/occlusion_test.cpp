@@ -198,6 +198,27 @@ TEST(Occlusion, PassTwoInChunksEqualsOneRun) {
     for (size_t i = 0; i < s.t.size(); ++i) EXPECT_EQ(s.a[i].occluded, whole[i].occluded) << i;
 }
 
+// The host runs pass 1 in parts, one grid each, concurrently: any number of parts, merged, gives the
+// grid of Rasterise() bit for bit (each cell the least of the same depths).
+TEST(Occlusion, PassOneInPartsEqualsOneGrid) {
+    Scene s;
+    for (int z = 0; z < 40; ++z)
+        for (int x = 0; x < 30; ++x) s.add({0.5f * (x - 15) + 0.1f * (z % 3), 0.0f, -0.5f * z}, 1.55f + 0.013f * ((x * 7 + z) % 31), 0.2f);
+    const LodCamera cam = make_lod_camera({0, 1.7f, 4}, {0, 1.2f, -20}, glm::radians(50.0f), {1280, 720}, 0.1f, 500.0f);
+    ASSERT_GT(s.run(cam, OcclusionParams{}), 0u);  // sets `visible`, and cores cover cells
+    OcclusionJob job{s.t, s.b, s.g, cam, OcclusionParams{}, &s.grid, s.a};
+    job.Rasterise();
+    const std::vector<float> whole = s.grid.depth;
+    ASSERT_TRUE(std::any_of(whole.begin(), whole.end(), [](float d) { return std::isfinite(d); }));
+    for (const size_t parts : {size_t{2}, size_t{3}, size_t{7}, size_t{64}}) {
+        job.PrepareParts(parts);
+        for (size_t p = parts; p-- > 0;) job.RasterisePart(p, parts);  // any order
+        job.MergeParts(parts);
+        ASSERT_EQ(s.grid.depth.size(), whole.size());
+        for (size_t i = 0; i < whole.size(); ++i) ASSERT_EQ(s.grid.depth[i], whole[i]) << parts << " parts, cell " << i;
+    }
+}
+
 TEST(Occlusion, ValidateListsEveryProblem) {
     std::vector<Transform> t(2);
     std::vector<LodAttributes> a(1);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace aloha {
@@ -244,6 +245,34 @@ TEST(MotionController, WalkFollowsPathWithRootMotion) {
     EXPECT_NEAR(f.xs[0].position.z, 2.0f, 0.03f);
     EXPECT_EQ(f.vs[0].linear, glm::vec3(0.0f));
     EXPECT_EQ(cursor, 2u);  // both waypoints passed
+}
+
+// A walker turns towards its direction at 6 rad/s and, once facing it, keeps its rotation bit for bit
+// (the controller then skips the turn); a rotation set from outside is turned from again.
+TEST(MotionController, WalkerTurnsToItsDirectionAndFromARotationSetOutside) {
+    Fixture f(1);
+    MotionController mc(f.sk, f.clips, 1);
+    MotionRequest walk;
+    walk.kind = RequestKind::Walk;
+    walk.speed = 1.0f;
+    walk.target = glm::vec3(1, 0, 0);  // facing +x is a yaw of pi/2 from +z
+    ASSERT_TRUE(mc.push_request(0, walk));
+    auto yaw = [&] {
+        const glm::vec3 fwd = f.xs[0].rotation * glm::vec3(0, 0, 1);
+        return std::atan2(fwd.x, fwd.z);
+    };
+    const float step = 6.0f * kDt;  // the most one frame turns (rad)
+    f.step(mc);
+    EXPECT_NEAR(yaw(), step, 1e-4f);
+    for (int i = 0; i < 30; ++i) f.step(mc);  // pi/2 takes 16 frames at 0.1 rad per frame
+    EXPECT_NEAR(yaw(), 1.5707963f, 1e-5f);
+    const glm::quat faced = f.xs[0].rotation;
+    f.step(mc);
+    f.step(mc);
+    EXPECT_EQ(f.xs[0].rotation, faced);
+    f.xs[0].rotation = glm::quat(1, 0, 0, 0);  // turned back to +z from outside
+    f.step(mc);
+    EXPECT_NEAR(yaw(), step, 1e-4f);
 }
 
 TEST(MotionController, JobValidates) {
