@@ -32,7 +32,7 @@ size_t SlotStore::bytes_per_slot() const {
     const SlotLayout& l = layout_;
     return (size_t{l.boxes} + l.palette) * sizeof(glm::mat4) + size_t{l.shapes} * (2 * sizeof(glm::vec3) + sizeof(glm::quat)) +
            size_t{l.muscle_vertices} * 2 * sizeof(glm::vec3) + size_t{l.springs} * 3 * sizeof(glm::vec3) + l.spring_flags +
-           (size_t{l.control} * 2 + l.control_normals + size_t{l.refined} * 2) * sizeof(glm::vec3) +
+           (size_t{l.control} + l.morph + l.control_normals + size_t{l.refined} * 2) * sizeof(glm::vec3) +
            2 * sizeof(uint16_t) + 3 * sizeof(uint8_t) + (l.spring_flags ? sizeof(Transform) + sizeof(uint8_t) : 0);
 }
 
@@ -52,7 +52,7 @@ void SlotStore::grow(uint32_t new_capacity) {
     spring_prev_.resize(n * l.springs);
     spring_init_.resize(n * l.spring_flags, 0);
     positions_.resize(n * l.control);
-    deltas_.resize(n * l.control);
+    deltas_.resize(n * l.morph);
     normals_.resize(n * l.control_normals);
     refined_pos_.resize(n * l.refined);
     refined_nrm_.resize(n * l.refined);

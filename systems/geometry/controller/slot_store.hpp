@@ -23,7 +23,8 @@ struct SlotLayout {
     uint32_t muscle_vertices = 0;   ///< tessellated muscle positions / normals (muscle -> spring_skin)
     uint32_t springs = 0;           ///< fat-spring end / velocity / previous rest (grid skin)
     uint32_t spring_flags = 0;      ///< fat-spring "initialised" flags (muscles)
-    uint32_t control = 0;           ///< displayed control surface positions and morph offsets
+    uint32_t control = 0;           ///< displayed control surface positions
+    uint32_t morph = 0;             ///< geomorph offsets: one per displayed vertex (0 = the level does not morph)
     uint32_t control_normals = 0;   ///< normals of the control surface (0 when it is subdivided)
     uint32_t refined = 0;           ///< subdivided positions / normals
 };
@@ -65,7 +66,7 @@ public:
     std::span<glm::vec3> spring_prev_rest(uint32_t s) { return part(spring_prev_, layout_.springs, s); }
     std::span<uint8_t> spring_initialised(uint32_t s) { return part(spring_init_, layout_.spring_flags, s); }
     std::span<glm::vec3> positions(uint32_t s) { return part(positions_, layout_.control, s); }
-    std::span<glm::vec3> deltas(uint32_t s) { return part(deltas_, layout_.control, s); }
+    std::span<glm::vec3> deltas(uint32_t s) { return part(deltas_, layout_.morph, s); }
     std::span<glm::vec3> normals(uint32_t s) { return part(normals_, layout_.control_normals, s); }
     std::span<glm::vec3> refined_positions(uint32_t s) { return part(refined_pos_, layout_.refined, s); }
     std::span<glm::vec3> refined_normals(uint32_t s) { return part(refined_nrm_, layout_.refined, s); }
