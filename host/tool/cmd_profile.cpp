@@ -135,6 +135,7 @@ int run_profile(const CliOptions& options) {
         world.step();
         if (!options.quiet) progress(f + 1, options.warmup, tty, "warm-up ");
     }
+    const std::vector<GeometryWork> work_before = geometry_work(world);  // the measured frames' work is the difference
     std::vector<TraceEvent> trace;
     world.scheduler().set_trace_sink([&](const TraceEvent& e) { trace.push_back(e); });
     std::vector<FrameRecord> records;
@@ -179,6 +180,7 @@ int run_profile(const CliOptions& options) {
         if (!options.quiet) progress(f + 1, frames, tty, "profile ");
     }
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    const std::vector<GeometryWork> work_after = geometry_work(world);
     world.scheduler().set_trace_sink(nullptr);
 
     // ---- LOD off, same scene, same process: the slowdown ratio of the CPU systems.
@@ -245,6 +247,7 @@ int run_profile(const CliOptions& options) {
     const auto bytes = memory_per_level(world);
     for (size_t l = 0; l < bytes.size() && l < gnames.size(); ++l) mem[gnames[l]] = bytes[l];
     report["memory_bytes_per_character_per_level"] = mem;
+    report["geometry_work"] = geometry_work_report(world, work_before, work_after, frames);
     report["lod_stats_last_frame"] = to_json(world.lod_stats(), table);
     nlohmann::json explain = nlohmann::json::array();
     const size_t n = world.character_count();

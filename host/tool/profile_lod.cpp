@@ -1,5 +1,6 @@
 #include "host/tool/profile_lod.hpp"
 
+#include "host/scene/character_runtime.hpp"
 #include "host/tool/stats.hpp"
 
 #include <algorithm>
@@ -129,6 +130,40 @@ void add_lod_report(const World& world, const std::vector<LodSample>& samples, d
                            {"visible_by_occluded_fraction_per_frame",
                             {{"0", histogram[0]}, {"below_0.5", histogram[1]}, {"0.5_to_0.9", histogram[2]},
                              {"0.9_to_1", histogram[3]}, {"1", histogram[4]}}}};
+}
+
+std::vector<GeometryWork> geometry_work(const World& world) {
+    std::vector<GeometryWork> out(world.rules().table().geom_levels.size());
+    for (size_t t = 0; t < world.type_count(); ++t) {
+        const GeometryController* gc = world.runtime(t).geometry.get();
+        if (!gc) continue;
+        for (uint8_t l = 0; l < gc->level_count() && l < out.size(); ++l) {
+            const GeometryWork w = gc->work(l);
+            out[l].characters += w.characters;
+            out[l].springs_stepped += w.springs_stepped;
+            out[l].skin_vertices += w.skin_vertices;
+        }
+    }
+    return out;
+}
+
+nlohmann::json geometry_work_report(const World& world, std::span<const GeometryWork> before, std::span<const GeometryWork> after,
+                                    uint32_t frames) {
+    nlohmann::json levels = nlohmann::json::array();
+    const auto& names = world.rules().table().geom_levels;
+    const double per = frames > 0 ? 1.0 / frames : 0.0;
+    for (size_t l = 0; l < after.size() && l < before.size(); ++l) {
+        const uint64_t characters = after[l].characters - before[l].characters;
+        const uint64_t springs = after[l].springs_stepped - before[l].springs_stepped;
+        const uint64_t vertices = after[l].skin_vertices - before[l].skin_vertices;
+        levels.push_back({{"level", l < names.size() ? names[l].name : std::to_string(l)},
+                          {"characters_updated", characters},
+                          {"springs_stepped", springs},
+                          {"skin_vertices", vertices},
+                          {"per_frame", {{"characters_updated", characters * per}, {"springs_stepped", springs * per},
+                                         {"skin_vertices", vertices * per}}}});
+    }
+    return levels;
 }
 
 std::string lod_summary(const nlohmann::json& r) {

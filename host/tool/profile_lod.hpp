@@ -41,6 +41,16 @@ struct LodSample {
 /// and over the settled frames (from where every active controller had settled).
 void add_lod_report(const World& world, const std::vector<LodSample>& samples, double dt, nlohmann::json& report);
 
+/// The geometric controllers' work counters (GeometryController::work) per geometric level, summed
+/// over the character types: counters only grow, so the work of a run is the difference of two reads.
+[[nodiscard]] std::vector<GeometryWork> geometry_work(const World& world);
+
+/// report.json's "geometry_work": per geometric level the work done from `before` to `after` (two
+/// geometry_work() reads) over `frames` frames: characters whose skin stage ran, fat springs stepped
+/// and control-surface vertices placed, in all and per frame.
+[[nodiscard]] nlohmann::json geometry_work_report(const World& world, std::span<const GeometryWork> before,
+                                                  std::span<const GeometryWork> after, uint32_t frames);
+
 /// Lines for the printed summary (tier, budget parts against their targets, switches, occlusion).
 [[nodiscard]] std::string lod_summary(const nlohmann::json& report);
 

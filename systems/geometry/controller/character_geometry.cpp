@@ -9,6 +9,7 @@
 #include "systems/geometry/surface_grid.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <future>
 
@@ -309,41 +310,58 @@ const SubdivisionTopology& CharacterGeometry::subdivision(uint32_t theta_steps, 
 
 const SurfaceMap& CharacterGeometry::skin_map(uint32_t from_theta, uint32_t from_phi, uint32_t to_theta, uint32_t to_phi) const {
     assert(!mesh_);
-    const SkinLayer& from = skin_layer(from_theta, from_phi);
-    const SkinLayer& to = skin_layer(to_theta, to_phi);
+    return surface_map({from_theta, from_phi, 0}, {to_theta, to_phi, 0});
+}
+
+void CharacterGeometry::rest_surface(SkinSurfaceKey key, std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices) const {
+    if (mesh_) {
+        positions = mesh_rest_positions_;
+        indices = mesh_->indices;
+    } else {
+        const SkinLayer& skin = skin_layer(key.theta_steps, key.phi_steps);
+        positions = skin.rest_positions;
+        indices = skin.indices;
+    }
+    if (key.subdivision == 0) return;
+    const SubdivisionTopology& refinement = subdivision(key.theta_steps, key.phi_steps, key.subdivision);
+    std::vector<glm::vec3> refined(refinement.refined_vertex_count);
+    const SubdivideJob refine{&refinement, positions, refined, {}};
+    assert(refine.Validate());
+    refine.Run();
+    positions = std::move(refined);
+    indices = refinement.triangles;
+}
+
+const SurfaceMap& CharacterGeometry::surface_map(SkinSurfaceKey from, SkinSurfaceKey to) const {
+    if (mesh_) from.theta_steps = from.phi_steps = to.theta_steps = to.phi_steps = 0;  // one mesh at every (T, P)
+    const std::pair key{from, to};
+    {
+        std::lock_guard lock(mutex_);
+        if (const auto it = surface_maps_.find(key); it != surface_maps_.end()) return *it->second;
+    }
+    // Built outside the lock (the rest surfaces take it themselves); a racing builder's copy is dropped.
+    std::vector<glm::vec3> source, target;
+    std::vector<uint32_t> source_indices, target_indices;
+    rest_surface(from, source, source_indices);
+    rest_surface(to, target, target_indices);
+    auto map = std::make_unique<SurfaceMap>(map_surface(source, source_indices, target));
     std::lock_guard lock(mutex_);
-    auto& slot = skin_maps_[{from_theta, from_phi, to_theta, to_phi}];
-    if (!slot) slot = std::make_unique<SurfaceMap>(map_surface(from.rest_positions, from.indices, to.rest_positions));
+    auto& slot = surface_maps_[key];
+    if (!slot) slot = std::move(map);
     return *slot;
 }
 
-void CharacterGeometry::prepare_skin_maps(std::span<const std::pair<uint32_t, uint32_t>> tessellations) const {
-    assert(!mesh_);
-    // The missing maps are independent: each is built on its own thread, then stored under the lock.
-    std::vector<std::array<uint32_t, 4>> missing;
-    for (const auto& from : tessellations)
-        for (const auto& to : tessellations) {
-            const std::array<uint32_t, 4> key{from.first, from.second, to.first, to.second};
-            if (from == to || std::find(missing.begin(), missing.end(), key) != missing.end()) continue;
-            (void)skin_layer(from.first, from.second);
-            (void)skin_layer(to.first, to.second);
+void CharacterGeometry::prepare_surface_maps(std::span<const std::pair<SkinSurfaceKey, SkinSurfaceKey>> pairs) const {
+    // Each map is independent and surface_map() builds outside the lock: one thread per map.
+    std::vector<std::future<void>> built;
+    for (const auto& [from, to] : pairs) {
+        {
             std::lock_guard lock(mutex_);
-            if (!skin_maps_.contains(key)) missing.push_back(key);
+            if (surface_maps_.contains({from, to})) continue;
         }
-    std::vector<std::future<SurfaceMap>> built;
-    for (const auto& k : missing) {
-        const SkinLayer& from = skin_layer(k[0], k[1]);
-        const SkinLayer& to = skin_layer(k[2], k[3]);
-        built.push_back(std::async(std::launch::async, [&from, &to] {
-            return map_surface(from.rest_positions, from.indices, to.rest_positions);
-        }));
+        built.push_back(std::async(std::launch::async, [this, from, to] { (void)surface_map(from, to); }));
     }
-    for (size_t i = 0; i < missing.size(); ++i) {
-        SurfaceMap map = built[i].get();
-        std::lock_guard lock(mutex_);
-        auto& slot = skin_maps_[missing[i]];
-        if (!slot) slot = std::make_unique<SurfaceMap>(std::move(map));
-    }
+    for (auto& b : built) b.get();
 }
 
 }  // namespace aloha

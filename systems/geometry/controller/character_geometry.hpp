@@ -69,6 +69,16 @@ struct CharacterGeometryDesc {
     std::optional<CharacterMesh> mesh;       ///< real skinned mesh, or none (generated body skin)
 };
 
+/// One displayed surface of a type: its skin layer at (T, P) (the real mesh when the type has one: T
+/// and P are then ignored) after `subdivision` Catmull-Clark steps (0: the skin layer itself).
+struct SkinSurfaceKey {
+    uint32_t theta_steps = 0;  ///< T of the skin layer
+    uint32_t phi_steps = 0;    ///< P of the skin layer
+    uint32_t subdivision = 0;  ///< Catmull-Clark steps (0..4)
+    /// Keys order lexicographically (for the cache map).
+    auto operator<=>(const SkinSurfaceKey&) const = default;
+};
+
 /// Immutable geometry of one character type plus thread-safe lazily built caches. Create with
 /// CharacterGeometry::create; the object never moves (controllers keep pointers into it).
 class CharacterGeometry {
@@ -128,10 +138,18 @@ public:
     /// Correspondence from the generated skin at (T0, P0) to the one at (T1, P1) (surface_map.hpp),
     /// built on first use. Thread-safe; stays valid. Requires a type without a mesh.
     const SurfaceMap& skin_map(uint32_t from_theta, uint32_t from_phi, uint32_t to_theta, uint32_t to_phi) const;
-    /// Builds skin_map() for every ordered pair of distinct tessellations in `tessellations` that is not
-    /// built yet, so a geomorph between any two of those levels finds its map ready (no build at a
-    /// level switch). Thread-safe. Requires a type without a mesh and what skin_layer() does.
-    void prepare_skin_maps(std::span<const std::pair<uint32_t, uint32_t>> tessellations) const;
+    /// Rest-pose positions and triangles of the displayed surface `key` (the skin layer's, or the real
+    /// mesh's, refined by the key's subdivision stencils). Allocates. Requires what skin_layer() and
+    /// subdivision() do (a generated skin needs muscles).
+    void rest_surface(SkinSurfaceKey key, std::vector<glm::vec3>& positions, std::vector<uint32_t>& indices) const;
+    /// Correspondence from displayed surface `from` to displayed surface `to` at rest (closest points,
+    /// surface_map.hpp): e.g. a Catmull-Clark refined skin read at a coarser skin's vertices, for
+    /// geomorphs into and out of subdivided levels. Built on first use. Thread-safe; stays valid.
+    const SurfaceMap& surface_map(SkinSurfaceKey from, SkinSurfaceKey to) const;
+    /// Builds surface_map() for every (from, to) pair of `pairs` not built yet, the pairs in parallel,
+    /// so a geomorph between those surfaces finds its map ready (no build at a level switch).
+    /// Thread-safe. Requires what surface_map() does.
+    void prepare_surface_maps(std::span<const std::pair<SkinSurfaceKey, SkinSurfaceKey>> pairs) const;
 
 private:
     CharacterGeometry() = default;
@@ -150,7 +168,7 @@ private:
     mutable std::unique_ptr<BodySurface> body_surface_;
     mutable std::map<std::pair<uint32_t, uint32_t>, std::unique_ptr<SkinLayer>> skin_layers_;
     mutable std::map<std::array<uint32_t, 3>, std::unique_ptr<SubdivisionTopology>> subdivisions_;
-    mutable std::map<std::array<uint32_t, 4>, std::unique_ptr<SurfaceMap>> skin_maps_;
+    mutable std::map<std::pair<SkinSurfaceKey, SkinSurfaceKey>, std::unique_ptr<SurfaceMap>> surface_maps_;
 };
 
 /// Linear-blend skins `mesh` with palette model[j] * mesh.inverse_bind[j] (e.g. the rest pose, to get

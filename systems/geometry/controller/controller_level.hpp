@@ -28,6 +28,7 @@ struct GeometryController::Level {
     bool springs = false;                          ///< fat springs run (Layered / Subdivided with the fat layer)
     std::vector<uint8_t> spring_region;            ///< per control vertex: its fat region (fat_regions.hpp); empty: none
     const SubdivisionTopology* subdivision = nullptr;  ///< Subdivided
+    SkinSurfaceKey display_key;                    ///< the displayed surface (mesh levels): geomorph correspondences
     std::span<const uint32_t> indices;             ///< the level's triangle list
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)
     std::vector<uint16_t> vertex_material;         ///< material per displayed vertex (empty: all 0)
@@ -47,9 +48,10 @@ struct GeometryController::Level {
     [[nodiscard]] bool layered() const {
         return lod.method == GeomMethod::Layered || lod.method == GeomMethod::Subdivided;
     }
-    /// The displayed control surface of slot `s` (morphed positions or the spring ends).
+    /// The control surface of slot `s` (morphed positions or the spring ends). A Subdivided level
+    /// morphs after refinement, so its control surface is never the morphed one.
     [[nodiscard]] std::span<const glm::vec3> control(uint32_t s) const {
-        return springs && !store.shows_morph[s] ? store.spring_end(s) : store.positions(s);
+        return springs && (subdivision || !store.shows_morph[s]) ? store.spring_end(s) : store.positions(s);
     }
 };
 

@@ -120,17 +120,23 @@ void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const Fa
     assert(skin.Validate());
     skin.Run();
     const std::span<const glm::vec3> fresh = L.springs ? st.spring_end(s) : st.positions(s);
-    const std::span<const glm::vec3> control = apply_morph(st, s, fresh, st.positions(s)) ? st.positions(s) : fresh;
-    if (L.lod.method == GeomMethod::Layered) accumulate_vertex_normals(control, L.indices, st.normals(s));
-    if (L.subdivision) {
-        FrameScratch& scratch = frame_scratch();
-        const size_t refined = L.subdivision->refined_vertex_count;
-        const bool keep = L.keep_refined;
-        const SubdivideJob refine{L.subdivision, control, keep ? st.refined_positions(s) : sized(scratch.refined_positions, refined),
-                                  keep ? st.refined_normals(s) : sized(scratch.refined_normals, refined)};
-        assert(refine.Validate());
-        refine.Run();
+    if (!L.subdivision) {
+        const std::span<const glm::vec3> control = apply_morph(st, s, fresh, st.positions(s)) ? st.positions(s) : fresh;
+        accumulate_vertex_normals(control, L.indices, st.normals(s));
+        return;
     }
+    // Subdivided: morph after refinement, on the surface that is displayed (the old level's displayed
+    // surface was read at the refined vertices), so the switch starts on exactly what was shown.
+    FrameScratch& scratch = frame_scratch();
+    const size_t refined = L.subdivision->refined_vertex_count;
+    const bool keep = L.keep_refined, morphing = st.frames_left(s)[0] > 0;
+    const std::span<glm::vec3> positions = keep ? st.refined_positions(s) : sized(scratch.refined_positions, refined);
+    const std::span<glm::vec3> normals = keep ? st.refined_normals(s) : sized(scratch.refined_normals, refined);
+    const SubdivideJob refine{L.subdivision, fresh, positions, morphing ? std::span<glm::vec3>() : normals};
+    assert(refine.Validate());
+    refine.Run();
+    // While morphing, light the shape that is shown.
+    if (apply_morph(st, s, positions, positions)) accumulate_vertex_normals(positions, L.indices, normals);
 }
 
 }  // namespace

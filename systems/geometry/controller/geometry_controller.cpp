@@ -96,6 +96,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
         case GeomMethod::SkinnedMesh:
             layout.palette = J;
             layout.control = control;
+            layout.morph = control;
             layout.control_normals = control;
             break;
         case GeomMethod::Layered:
@@ -109,9 +110,12 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
             layout.control = control;
             if (lod.method == GeomMethod::Layered) {
                 layout.control_normals = control;
+                layout.morph = control;
             } else {
+                // Morphs run on the refined surface (the one displayed); none when it is not kept.
                 subdivision = &g.subdivision(T, P, std::min<uint32_t>(lod.subdiv_level, 4));
                 layout.refined = keep_refined_ ? subdivision->refined_vertex_count : 0;
+                layout.morph = layout.refined;
             }
             break;
     }
@@ -128,6 +132,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     level->control_vertices = layout.control;
     level->display_vertices = subdivision ? subdivision->refined_vertex_count : layout.control;
     level->subdivision = subdivision;
+    level->display_key = {real ? 0 : T, real ? 0 : P, subdivision ? std::min<uint32_t>(lod.subdiv_level, 4) : 0};
     if (level->layered()) level->tables = &g.tables(T, P);
     level->skin = skin;
     level->springs = level->layered() && springs;
@@ -150,11 +155,6 @@ void GeometryController::set_levels(std::span<const GeomLod> levels) {
             if (lod.method == GeomMethod::SkinnedMesh || lod.method == GeomMethod::Layered || lod.method == GeomMethod::Subdivided)
                 skins.emplace_back(std::max<uint32_t>(3, lod.theta_steps), std::max<uint32_t>(2, lod.phi_steps));
         geometry_->prepare_skin_layers(skins);
-        // The maps a geomorph between two of these skins reads, built now rather than at the first switch
-        // (issue 18: no hitch at a switch).
-        std::sort(skins.begin(), skins.end());
-        skins.erase(std::unique(skins.begin(), skins.end()), skins.end());
-        geometry_->prepare_skin_maps(skins);
     }
     std::vector<std::unique_ptr<Level>> next(levels.size());
     std::vector<uint8_t> kept(levels.size(), 0);
@@ -182,6 +182,20 @@ void GeometryController::set_levels(std::span<const GeomLod> levels) {
         slot_of_[c] = s;
     }
     levels_ = std::move(next);
+    // The correspondences a geomorph reads, built now (in parallel) rather than at the first switch
+    // (issue 18: no hitch at a switch): between any two unrefined skins (cheap; rules may skip levels)
+    // and between neighbouring levels when one is refined (a map onto a refined surface takes a few
+    // hundred milliseconds; a switch that skips past a subdivided level builds its map when it happens).
+    std::vector<std::pair<SkinSurfaceKey, SkinSurfaceKey>> pairs;
+    for (size_t i = 0; i < levels_.size(); ++i)
+        for (size_t j = 0; j < levels_.size(); ++j) {
+            const Level& a = *levels_[i];
+            const Level& b = *levels_[j];
+            if (i == j || !a.mesh_level || !b.mesh_level || a.display_key == b.display_key || b.store.layout().morph == 0) continue;
+            const bool neighbours = i + 1 == j || j + 1 == i;
+            if (neighbours || (a.display_key.subdivision == 0 && b.display_key.subdivision == 0)) pairs.emplace_back(a.display_key, b.display_key);
+        }
+    geometry_->prepare_surface_maps(pairs);
 }
 
 void GeometryController::ensure_capacity(uint32_t character) {
@@ -192,14 +206,29 @@ void GeometryController::ensure_capacity(uint32_t character) {
 }
 
 void GeometryController::capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot) {
-    const std::span<const glm::vec3> old = from.control(from_slot);
+    // The old DISPLAYED surface: the refined one at a Subdivided level (refined again here when the
+    // level does not keep it), else the control surface.
+    std::span<const glm::vec3> old = from.control(from_slot);
+    std::vector<glm::vec3> refined;
+    if (from.subdivision) {
+        if (from.keep_refined) {
+            old = from.store.refined_positions(from_slot);
+        } else {
+            refined.resize(from.subdivision->refined_vertex_count);
+            const SubdivideJob refine{from.subdivision, old, refined, {}};
+            assert(refine.Validate());
+            refine.Run();
+            old = refined;
+        }
+    }
     const std::span<glm::vec3> target = to.store.deltas(to_slot);
-    if (to.same_skin(from)) {  // same vertices: one by one
+    if (to.display_key == from.display_key) {  // same displayed vertices: one by one
         std::copy(old.begin(), old.end(), target.begin());
         return;
     }
-    // Different resolutions of the generated skin: the old surface read at each new vertex's place.
-    geometry_->skin_map(from.theta_steps, from.phi_steps, to.theta_steps, to.phi_steps).apply(old, target);
+    // Different surfaces (resolutions of the generated skin, refined or not): the old surface read at
+    // each new displayed vertex's rest-pose closest point.
+    geometry_->surface_map(from.display_key, to.display_key).apply(old, target);
 }
 
 void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames) {
@@ -216,7 +245,7 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
     if (old != kNoLevel) {
         Level& from = *levels_[old];
         const uint32_t os = slot_of_[character];
-        if (geomorph_frames > 0 && from.mesh_level && to.mesh_level && from.store.valid[os]) {
+        if (geomorph_frames > 0 && from.mesh_level && to.mesh_level && from.store.valid[os] && to.store.layout().morph > 0) {
             capture_morph(from, os, to, s);
             to.store.frames_total(s)[0] = geomorph_frames;
             to.store.frames_left(s)[0] = geomorph_frames;

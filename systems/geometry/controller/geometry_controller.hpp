@@ -13,11 +13,15 @@
 //                  from the triangles.
 //   Subdivided  -> Layered, then SubdivideJob at GeomLod::subdiv_level (the control surface is the
 //                  Layered skin; its normals are not computed).
-// The "control surface" of a mesh level is its skin layer's vertices. Two levels with the same skin
-// (a real mesh, or the same (T, P)) morph vertex by vertex; otherwise the old displayed control
-// surface is read at the new skin's vertices through CharacterGeometry::skin_map (closest points at
-// rest). GeomorphJob slides the new surface from it over N frames (the morph is applied to the
-// control surface, before subdivision).
+// The "control surface" of a mesh level is its skin layer's vertices; the displayed surface is the
+// control surface, refined at Subdivided levels. A switch morphs the displayed surfaces: two levels
+// showing the same surface (a real mesh, or the same (T, P), both refined alike) vertex by vertex;
+// otherwise the old displayed surface is read at the new displayed vertices through
+// CharacterGeometry::surface_map (closest points at rest). GeomorphJob slides the new surface from
+// it over N frames, at a Subdivided level after refinement (morph after refinement: the first frame
+// lies on what was shown, Catmull-Clark's shrinkage of the control hull included). A Subdivided
+// level whose refined surfaces are not kept does not morph. The correspondences between neighbouring
+// mesh levels of the table are built with the levels (set_levels), others at their first switch.
 // Threading: begin_level / end_character / set_levels are serial (between frames or in the resolve
 // phase). update() may run concurrently for DISJOINT character lists of the same or different
 // levels: it only writes the slots of its characters and allocates nothing.

@@ -47,7 +47,7 @@ SlotStore::SlotStore(const SlotLayout& layout) : layout_(layout) {
         {layout.muscle_vertices, sizeof(glm::vec3)}, {layout.springs, sizeof(glm::vec3)},
         {layout.springs, sizeof(glm::vec3)},       {layout.springs, sizeof(glm::vec3)},
         {layout.spring_flags, sizeof(uint8_t)},    {layout.control, sizeof(glm::vec3)},
-        {layout.control, sizeof(glm::vec3)},       {layout.control_normals, sizeof(glm::vec3)},
+        {layout.morph, sizeof(glm::vec3)},         {layout.control_normals, sizeof(glm::vec3)},
         {layout.refined, sizeof(glm::vec3)},       {layout.refined, sizeof(glm::vec3)},
     }};
     size_t at = 0;

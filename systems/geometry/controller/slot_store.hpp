@@ -30,7 +30,8 @@ struct SlotLayout {
     uint32_t muscle_vertices = 0;   ///< tessellated muscle positions / normals (muscle -> spring_skin)
     uint32_t springs = 0;           ///< fat-spring end / velocity / previous rest (grid skin)
     uint32_t spring_flags = 0;      ///< fat-spring "initialised" flags (muscles)
-    uint32_t control = 0;           ///< displayed control surface positions and morph offsets
+    uint32_t control = 0;           ///< displayed control surface positions
+    uint32_t morph = 0;             ///< geomorph offsets: one per displayed vertex (0 = the level does not morph)
     uint32_t control_normals = 0;   ///< normals of the control surface (0 when it is subdivided)
     uint32_t refined = 0;           ///< subdivided positions / normals
 };

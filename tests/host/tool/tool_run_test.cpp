@@ -49,6 +49,17 @@ TEST(Tool, ProfileWritesEveryReport) {
         EXPECT_TRUE(report["systems"]["lod_rules"].contains(k));
     }
     EXPECT_EQ(report["characters_per_level_per_frame"].size(), 6u);
+    // The geometric controllers' work over the measured frames, one entry per geometric level: every
+    // character drawn by a level was updated there once a frame (at most 200 x 6 updates in all).
+    const nlohmann::json& work = report["geometry_work"];
+    ASSERT_EQ(work.size(), report["levels"]["geometric"].size());
+    uint64_t updated = 0;
+    for (const auto& level : work) {
+        for (const char* k : {"characters_updated", "springs_stepped", "skin_vertices", "per_frame"}) EXPECT_TRUE(level.contains(k)) << k;
+        updated += level["characters_updated"].get<uint64_t>();
+    }
+    EXPECT_GT(updated, 0u);
+    EXPECT_LE(updated, 200u * 6u);
     // frames.csv: a header of distinct column names (per-system columns apart from the totals), then
     // one row per measured frame with as many fields.
     std::ifstream csv(out / "p" / "frames.csv");

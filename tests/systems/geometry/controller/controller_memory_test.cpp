@@ -29,9 +29,10 @@ TEST(GeometryControllerMemory, RefinedSurfacesNotKeptSaveExactlyTheirBytesAndCha
     const CharacterGeometry& g = *humanoid().geometry;
     const auto levels = test::test_levels();  // level 0: Subdivided (8, 6), one Catmull-Clark step
     GeometryController kept(g, levels, 1), dropped(g, levels, 1, /*keep_refined_surfaces=*/false);
-    // The refined surface is two vec3 per refined vertex; every other level is unaffected.
+    // The refined surface is two vec3 per refined vertex, and its geomorph offsets one more (a level
+    // that keeps no refined surface does not morph); every other level is unaffected.
     EXPECT_EQ(kept.bytes_per_character(0) - dropped.bytes_per_character(0),
-              size_t{kept.vertices_per_character(0)} * 2 * sizeof(glm::vec3));
+              size_t{kept.vertices_per_character(0)} * 3 * sizeof(glm::vec3));
     for (uint8_t l = 1; l < levels.size(); ++l) EXPECT_EQ(kept.bytes_per_character(l), dropped.bytes_per_character(l));
     EXPECT_EQ(kept.vertices_per_character(0), dropped.vertices_per_character(0));
 

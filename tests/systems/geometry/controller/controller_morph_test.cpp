@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 namespace aloha {
 namespace {
 
@@ -16,12 +18,18 @@ using test::humanoid;
 // being measured.
 constexpr float kRound = 2e-5f;
 
-// The old displayed skin read at the new level's skin vertices: vertex by vertex for the same skin,
-// through the rest-pose correspondence between the two skin resolutions otherwise.
+// The displayed surface of a level: its skin at (T, P), refined when the level is Subdivided.
+SkinSurfaceKey display_key(const GeomLod& l) {
+    return {l.theta_steps, l.phi_steps, l.method == GeomMethod::Subdivided ? uint32_t{l.subdiv_level} : 0u};
+}
+
+// The old displayed skin read at the new level's displayed vertices: vertex by vertex for the same
+// surface, through the rest-pose correspondence between the two surfaces otherwise.
 std::vector<glm::vec3> sample_at(const CharacterGeometry& g, std::span<const glm::vec3> old, const GeomLod& a, const GeomLod& b) {
-    if (a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps) return {old.begin(), old.end()};
-    std::vector<glm::vec3> out(g.skin_layer(b.theta_steps, b.phi_steps).rest_positions.size());
-    g.skin_map(a.theta_steps, a.phi_steps, b.theta_steps, b.phi_steps).apply(old, out);
+    if (display_key(a) == display_key(b)) return {old.begin(), old.end()};
+    const SurfaceMap& map = g.surface_map(display_key(a), display_key(b));
+    std::vector<glm::vec3> out(map.corners.size());
+    map.apply(old, out);
     return out;
 }
 
@@ -85,17 +93,69 @@ TEST(GeometryControllerMorph, SwitchesMoveEachVertexByAtMostTheJumpOverN) {
         ctl.update(1, both, PoseSource{pose.data(), 0}, 1.0f / 30.0f);
     }
     constexpr uint16_t N = 8;
-    {
-        SCOPED_TRACE("Layered(16,12) -> Layered(8,6)");
-        check_switch(ctl, 1, 2, N, key);
+    // Level names of test_levels(); the last four switches go into and out of the subdivided level,
+    // whose morph runs on the refined (displayed) surface.
+    const char* names[] = {"Subdivided(8,6,1)", "Layered(16,12)", "Layered(8,6)", "SkinnedMesh(8,6)"};
+    const std::pair<uint8_t, uint8_t> switches[] = {{1, 2}, {2, 3}, {3, 1}, {1, 0}, {0, 2}, {2, 0}, {0, 3}};
+    for (const auto& [from, to] : switches) {
+        SCOPED_TRACE(std::string(names[from]) + " -> " + names[to]);
+        check_switch(ctl, from, to, N, key);
     }
-    {
-        SCOPED_TRACE("Layered(8,6) -> SkinnedMesh(8,6)");
-        check_switch(ctl, 2, 3, N, key);
-    }
-    {
-        SCOPED_TRACE("SkinnedMesh(8,6) -> Layered(16,12)");
-        check_switch(ctl, 3, 1, N, key);
+}
+
+// Distance of every point of `points` to the triangle surface (positions, indices): the closest
+// point found by map_surface's search (it can only overestimate the distance).
+std::vector<float> distance_to_surface(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                                       std::span<const glm::vec3> points) {
+    const SurfaceMap map = map_surface(positions, indices, points);
+    std::vector<glm::vec3> closest(points.size());
+    map.apply(positions, closest);
+    std::vector<float> d(points.size());
+    for (size_t i = 0; i < points.size(); ++i) d[i] = glm::length(points[i] - closest[i]);
+    return d;
+}
+
+// A switch into or out of the subdivided level changes the displayed surface continuously: the pose
+// held, the first morphed frame shown_1 = fresh + (N - 1) / N (o - fresh) with o on the old displayed
+// surface, so its distance to that surface is at most |o - fresh| / N = |shown_1 - fresh| / (N - 1),
+// measured here against the old deformed surface itself (not through the controller's rest-pose
+// correspondence). Morphing the control surface before refinement would leave the first frame off
+// the old surface by Catmull-Clark's shrinkage of the control hull (millimetres, not divided by N).
+TEST(GeometryControllerMorph, SwitchesIntoAndOutOfSubdividedStartOnTheShownSurface) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    constexpr uint16_t N = 8;
+    const std::pair<uint8_t, uint8_t> switches[] = {{1, 0}, {0, 1}, {2, 0}, {0, 2}, {3, 0}, {0, 3}};
+    for (const auto& [from, to] : switches) {
+        SCOPED_TRACE(std::to_string(from) + " -> " + std::to_string(to));
+        GeometryController ctl(g, test::test_levels(), 2);
+        const uint32_t both[2] = {0, 1};
+        ctl.begin_level(0, from, -1, 0);
+        ctl.begin_level(1, from, -1, 0);
+        std::vector<glm::mat4> pose;
+        for (size_t key = 120; key < 126; ++key) {  // walk so the springs carry motion
+            pose = test::clip_pose(g.skeleton(), humanoid().clip, key);
+            ctl.update(from, both, PoseSource{pose.data(), 0}, 1.0f / 30.0f);
+        }
+        const auto old_surface = copy(ctl.surface(0).positions);
+        const std::span<const uint32_t> old_indices = ctl.level_indices(from);
+        ctl.begin_level(0, to, static_cast<int8_t>(from), N);
+        ctl.begin_level(1, to, static_cast<int8_t>(from), 0);
+        ctl.update(to, both, PoseSource{pose.data(), 0}, 1.0f / 30.0f);  // the same pose
+        const auto shown = copy(ctl.surface(0).positions), fresh = copy(ctl.surface(1).positions);
+        ASSERT_EQ(shown.size(), ctl.vertices_per_character(to));
+        const std::vector<float> off = distance_to_surface(old_surface, old_indices, shown);
+        const std::vector<float> jump = distance_to_surface(old_surface, old_indices, fresh);
+        float largest_off = 0.0f, largest_jump = 0.0f;
+        for (size_t i = 0; i < shown.size(); ++i) {
+            ASSERT_LE(off[i], glm::length(shown[i] - fresh[i]) / (N - 1) + kRound) << i;
+            largest_off = std::max(largest_off, off[i]);
+            largest_jump = std::max(largest_jump, jump[i]);
+        }
+        // Without the morph the surface would jump visibly (millimetres off what was shown).
+        EXPECT_GT(largest_jump, 1e-3f);
+        std::cout << "largest jump " << largest_jump * 1000 << " mm, first morphed frame off the old surface by at most "
+                  << largest_off * 1000 << " mm\n";
     }
 }
 

@@ -15,6 +15,7 @@ SlotLayout big_layout() {
     l.springs = 3000;
     l.spring_flags = 1;
     l.control = 3000;
+    l.morph = 3000;
     l.control_normals = 3000;
     return l;
 }
