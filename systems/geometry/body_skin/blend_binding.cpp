@@ -16,11 +16,11 @@ namespace {
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// A sampled influence: point and frame of muscle m at param.
+// A sampled influence: point and frame of muscle m in its grid cell.
 GridFrame frame_of(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals, uint32_t T, uint32_t P, uint32_t m,
-                   GridParam param) {
+                   const GridCell& cell) {
     const size_t V = grid_vertex_count(T, P);
-    return sample_grid_frame(positions.subspan(m * V, V), normals.subspan(m * V, V), T, P, param);
+    return sample_grid_frame(positions.subspan(m * V, V), normals.subspan(m * V, V), cell);
 }
 
 }  // namespace
@@ -45,7 +45,7 @@ glm::vec3 blend_root(std::span<const glm::vec3> muscle_positions, uint32_t theta
     glm::vec3 root(0.0f);
     for (int k = 0; k < kBlendInfluences; ++k)
         if (b.weight[k] > 0.0f)
-            root += b.weight[k] * sample_grid(muscle_positions.subspan(size_t{b.muscle[k]} * V, V), theta_steps, phi_steps, b.param[k]);
+            root += b.weight[k] * sample_grid(muscle_positions.subspan(size_t{b.muscle[k]} * V, V), b.cell[k]);
     return root;
 }
 
@@ -165,7 +165,8 @@ void BlendBindJob::Run() const {
         for (int k = 0; k < used; ++k) {
             out.weight[k] /= sum;
             out.param[k] = param_of(p, out.muscle[k]);
-            const GridFrame f = frame_of(muscle_positions, muscle_normals, theta_steps, phi_steps, out.muscle[k], out.param[k]);
+            out.cell[k] = grid_cell(theta_steps, phi_steps, out.param[k]);
+            const GridFrame f = frame_of(muscle_positions, muscle_normals, theta_steps, phi_steps, out.muscle[k], out.cell[k]);
             const glm::vec3 d = p - f.point;
             out.offset[k] = {glm::dot(d, f.tangent), glm::dot(d, f.bitangent), glm::dot(d, f.normal)};
         }
@@ -203,11 +204,21 @@ bool BlendSpringJob::Validate(std::vector<std::string>* errors) const {
             if (!(p.normal_hz > 0.0f && p.lateral_hz > 0.0f && p.normal_damping >= 0.0f && p.max_strain > 0.0f && p.dt > 0.0f))
                 fail("region spring frequencies, damping, strain limit and dt must be positive");
     }
+    const uint32_t V = theta_steps >= 3 && phi_steps >= 2 ? grid_vertex_count(theta_steps, phi_steps) : 0;
     for (size_t i = 0; i < n; ++i) {
-        bool bad = false;
-        for (int k = 0; k < kBlendInfluences; ++k) bad |= bindings[i].weight[k] > 0.0f && bindings[i].muscle[k] >= muscle_count;
+        bool bad = false, off_grid = false;
+        for (int k = 0; k < kBlendInfluences; ++k) {
+            if (!(bindings[i].weight[k] > 0.0f)) continue;
+            bad |= bindings[i].muscle[k] >= muscle_count;
+            for (const uint32_t c : bindings[i].cell[k].corner) off_grid |= c >= V;
+        }
         if (bad) {
             fail("binding " + std::to_string(i) + " names a muscle past " + std::to_string(muscle_count));
+            break;
+        }
+        if (off_grid) {
+            fail("binding " + std::to_string(i) + " has a grid cell past V(T, P) = " + std::to_string(V) +
+                 " (bound at another tessellation?)");
             break;
         }
     }
@@ -226,7 +237,7 @@ void BlendSpringJob::Run() const {
         glm::vec3 root(0.0f), rest(0.0f);
         for (int k = 0; k < kBlendInfluences; ++k) {
             if (b.weight[k] <= 0.0f) continue;
-            const GridFrame f = frame_of(muscle_positions, muscle_normals, T, P, b.muscle[k], b.param[k]);
+            const GridFrame f = frame_of(muscle_positions, muscle_normals, T, P, b.muscle[k], b.cell[k]);
             root += b.weight[k] * f.point;
             rest += b.weight[k] * (f.point + b.offset[k].x * f.tangent + b.offset[k].y * f.bitangent + b.offset[k].z * f.normal);
         }

@@ -36,6 +36,7 @@ inline constexpr int kBlendInfluences = 4;
 struct BlendBinding {
     uint32_t muscle[kBlendInfluences] = {};       ///< muscle index within the character
     GridParam param[kBlendInfluences] = {};       ///< (theta, phi) of the muscle point
+    GridCell cell[kBlendInfluences] = {};         ///< param's cell on the bind (T, P) grid (per-frame sampling)
     glm::vec3 offset[kBlendInfluences] = {};      ///< vertex - point in the point's (t, b, n) frame
     float weight[kBlendInfluences] = {};          ///< sum 1
 };
@@ -74,7 +75,8 @@ struct BlendBindJob {
 [[nodiscard]] GridParam superellipsoid_param(glm::vec3 q, glm::vec3 radii, float a, float b);
 
 /// The root of one skin vertex's fat spring: sum of weight x muscle point over `b`'s influences, on the
-/// tessellated muscles `muscle_positions` (muscles x V(T, P)). Requires every influence's muscle present.
+/// tessellated muscles `muscle_positions` (muscles x V(T, P), the (T, P) `b` was bound at). Requires
+/// every influence's muscle present.
 [[nodiscard]] glm::vec3 blend_root(std::span<const glm::vec3> muscle_positions, uint32_t theta_steps, uint32_t phi_steps,
                                    const BlendBinding& b);
 
@@ -89,7 +91,7 @@ struct BlendSpringJob {
     bool springs = true;                           ///< false: skin = rest ends, no dynamics
     std::span<const glm::vec3> muscle_positions;   ///< muscle_count x V(T, P)
     std::span<const glm::vec3> muscle_normals;     ///< unit normals, same size
-    std::span<const BlendBinding> bindings;        ///< one per skin vertex
+    std::span<const BlendBinding> bindings;        ///< one per skin vertex, bound at (T, P)
     FatSpringStateView state;                      ///< end (= skin output) / velocity / prev_rest per
                                                    ///< vertex, one `initialised` flag
     /// Optional per-region tuning: vertex i's springs use region_params[vertex_region[i]] (dt = this

@@ -2,6 +2,7 @@
 #include "systems/geometry/spring_skin/grid_sample.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <numbers>
 
@@ -37,49 +38,31 @@ GridParam grid_vertex_param(uint32_t theta_steps, uint32_t phi_steps, uint32_t i
             -0.5f * kPi + static_cast<float>(ring) * kPi / static_cast<float>(phi_steps)};
 }
 
-glm::vec3 sample_grid(std::span<const glm::vec3> values, uint32_t theta_steps, uint32_t phi_steps,
-                      GridParam param) {
+GridCell grid_cell(uint32_t theta_steps, uint32_t phi_steps, GridParam param) {
     const uint32_t T = theta_steps, P = phi_steps;
-    assert(values.size() == grid_vertex_count(T, P));
     float rf = 0.0f, tf = 0.0f;
     continuous_coords(T, P, param, rf, tf);
     const uint32_t r0 = std::min(static_cast<uint32_t>(rf), P - 1);
     const uint32_t t0 = std::min(static_cast<uint32_t>(tf), T - 1);
-    const float fr = rf - static_cast<float>(r0), ft = tf - static_cast<float>(t0);
-    const glm::vec3 low = glm::mix(values[vertex_at(T, P, r0, t0)], values[vertex_at(T, P, r0, t0 + 1)], ft);
-    const glm::vec3 high =
-        glm::mix(values[vertex_at(T, P, r0 + 1, t0)], values[vertex_at(T, P, r0 + 1, t0 + 1)], ft);
-    return glm::mix(low, high, fr);
+    GridCell cell;
+    cell.corner[0] = vertex_at(T, P, r0, t0);
+    cell.corner[1] = vertex_at(T, P, r0, t0 + 1);
+    cell.corner[2] = vertex_at(T, P, r0 + 1, t0);
+    cell.corner[3] = vertex_at(T, P, r0 + 1, t0 + 1);
+    cell.ft = tf - static_cast<float>(t0);
+    cell.fr = rf - static_cast<float>(r0);
+    return cell;
+}
+
+glm::vec3 sample_grid(std::span<const glm::vec3> values, uint32_t theta_steps, uint32_t phi_steps,
+                      GridParam param) {
+    assert(values.size() == grid_vertex_count(theta_steps, phi_steps));
+    return sample_grid(values, grid_cell(theta_steps, phi_steps, param));
 }
 
 GridFrame sample_grid_frame(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                             uint32_t theta_steps, uint32_t phi_steps, GridParam param) {
-    const uint32_t T = theta_steps, P = phi_steps;
-    GridFrame frame;
-    frame.point = sample_grid(positions, T, P, param);
-    glm::vec3 n = sample_grid(normals, T, P, param);
-    const float nlen = glm::length(n);
-    frame.normal = nlen > 1e-20f ? n / nlen : glm::vec3(0.0f, 0.0f, 1.0f);
-
-    // Theta direction: difference of the two columns around theta, blended between the rings.
-    float rf = 0.0f, tf = 0.0f;
-    continuous_coords(T, P, param, rf, tf);
-    const uint32_t r0 = std::min(static_cast<uint32_t>(rf), P - 1);
-    const uint32_t t0 = std::min(static_cast<uint32_t>(tf), T - 1);
-    const float fr = rf - static_cast<float>(r0);
-    const glm::vec3 d_low = positions[vertex_at(T, P, r0, t0 + 1)] - positions[vertex_at(T, P, r0, t0)];
-    const glm::vec3 d_high = positions[vertex_at(T, P, r0 + 1, t0 + 1)] - positions[vertex_at(T, P, r0 + 1, t0)];
-    glm::vec3 tangent = glm::mix(d_low, d_high, fr);
-    tangent -= glm::dot(tangent, frame.normal) * frame.normal;
-    float tlen = glm::length(tangent);
-    if (!(tlen > 1e-12f)) {  // degenerate (pole): any unit vector perpendicular to the normal
-        const glm::vec3 axis = std::abs(frame.normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-        tangent = axis - glm::dot(axis, frame.normal) * frame.normal;
-        tlen = glm::length(tangent);
-    }
-    frame.tangent = tangent / tlen;
-    frame.bitangent = glm::cross(frame.normal, frame.tangent);
-    return frame;
+    return sample_grid_frame(positions, normals, grid_cell(theta_steps, phi_steps, param));
 }
 
 }  // namespace aloha
