@@ -6,8 +6,9 @@
 #include <cstring>
 
 #ifdef __linux__
-#include <pthread.h>
-#include <sched.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 #endif
 
 namespace aloha {
@@ -26,16 +27,14 @@ std::unique_ptr<std::byte[]> touched_page(size_t bytes) {
     return page;
 }
 
-// touched_page() on a background thread that runs only when a core is otherwise idle (Linux
-// SCHED_IDLE), so preparing a spare never takes a core from the frame's own threads.
-std::unique_ptr<std::byte[]> touched_page_when_idle(size_t bytes) {
+// touched_page() on a background thread at a lower priority (Linux: nice +10 for this thread), so
+// preparing a spare takes little from the frame's own threads yet still finishes on a busy machine.
+std::unique_ptr<std::byte[]> touched_page_in_background(size_t bytes) {
 #ifdef __linux__
-    const sched_param param{};
-    (void)pthread_setschedparam(pthread_self(), SCHED_IDLE, &param);
+    (void)setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 10);
 #endif
     return touched_page(bytes);
 }
-
 
 }  // namespace
 
@@ -83,13 +82,14 @@ void SlotStore::add_page(Page page) {
 
 void SlotStore::start_spare() {
     if (spare_.valid()) return;
-    spare_ = std::async(std::launch::async, touched_page_when_idle, page_bytes());
+    spare_ = std::async(std::launch::async, touched_page_in_background, page_bytes());
 }
 
 uint32_t SlotStore::acquire() {
     if (free_.empty()) {
-        // The spare, when one was started, is waited for (it has had the frames since to finish);
-        // otherwise a fresh page whose first writes fault in the threads that fill it.
+        // The spare when one was started (waited for if unfinished: it has had the frames since, and at
+        // nice +10 it still runs on a busy machine), so a store never holds more than one page beyond
+        // its slots; otherwise a fresh page whose first writes fault in the threads that fill it.
         if (spare_.valid()) add_page(spare_.get());
         else add_page(Page(new std::byte[page_bytes()]));
     }

@@ -2,8 +2,8 @@
 // out from a free list. Records live in pages of a power-of-two number of slots that are never moved
 // or freed while the store lives: growing adds a page (no copy, spans stay valid), released slots are
 // reused (last released first), so enter/leave cycles keep memory flat. When the free slots run low a
-// spare page is allocated and its memory touched on a background thread, so the level switch that
-// needs it does not stall on page faults (issue 18: no hitch at a switch).
+// spare page is allocated and its memory touched on a lower-priority background thread, so the level
+// switch that needs it does not stall on page faults (issue 18: no hitch at a switch).
 #pragma once
 
 #include "components/transform.hpp"
