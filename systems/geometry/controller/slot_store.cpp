@@ -116,15 +116,18 @@ void SlotStore::release(uint32_t slot) {
     free_.push_back(slot);
 }
 
+size_t SlotStore::flag_bytes() const {
+    return 2 * sizeof(uint16_t) + 3 * sizeof(uint8_t) + (layout_.spring_flags ? sizeof(Transform) + sizeof(uint8_t) : 0);
+}
+
 size_t SlotStore::bytes_per_slot() const {
     size_t bytes = 0;
     for (size_t b = 0; b < kBufferCount; ++b) bytes += count_[b] * element_bytes_[b];
-    return bytes + 2 * sizeof(uint16_t) + 3 * sizeof(uint8_t) + (layout_.spring_flags ? sizeof(Transform) + sizeof(uint8_t) : 0);
+    return bytes + flag_bytes();
 }
 
 size_t SlotStore::allocated_bytes() const {
-    const size_t flags = 2 * sizeof(uint16_t) + 3 * sizeof(uint8_t) + (layout_.spring_flags ? sizeof(Transform) + sizeof(uint8_t) : 0);
-    return pages_.size() * page_bytes() + size_t{capacity_} * flags + spare_bytes();
+    return pages_.size() * page_bytes() + size_t{capacity_} * flag_bytes() + spare_bytes();
 }
 
 }  // namespace aloha

@@ -135,6 +135,7 @@ private:
         return {reinterpret_cast<const T*>(record(s) + offset_[b]), count_[b]};
     }
     [[nodiscard]] size_t page_bytes() const { return size_t{record_bytes_} << page_shift_; }
+    [[nodiscard]] size_t flag_bytes() const;  ///< one slot's flags and counters (kept outside the pages)
     void add_page(Page page);
     void start_spare();
 

@@ -79,8 +79,8 @@ TEST(SlotStore, ReleasedSlotsAreReusedWithClearedFlags) {
     EXPECT_EQ(store.in_use(), 1u);
 }
 
-// Once the free slots run low a spare page is prepared (counted by spare_bytes) and the next page
-// comes from it; reserve() rounds up to whole pages.
+// Once the free slots run low a spare page is prepared (counted by spare_bytes), the next growth adds
+// one page; reserve() rounds up to whole pages.
 TEST(SlotStore, SparePageIsPreparedBeforeItIsNeeded) {
     SlotStore store(big_layout());
     EXPECT_EQ(store.spare_bytes(), 0u);
