@@ -1,6 +1,7 @@
 #include "systems/lod/occlusion.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -45,9 +46,16 @@ struct Projector {
     float near_plane = 0.0f;
     bool perspective = true;
 
+    // View depth of `p` (the z that project() gives).
+    float depth(const glm::vec3& p) const { return glm::dot(depth_row, glm::vec4(p, 1.0f)); }
+    // Pixel position of `p` (in front of the near plane).
+    glm::vec2 pixel(const glm::vec3& p) const {
+        const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
+        return {(c.x / c.w + 1.0f) * half_viewport.x, (1.0f - c.y / c.w) * half_viewport.y};
+    }
     // Pixel position and view depth of `p`; false when at or behind the near plane.
     bool project(const glm::vec3& p, glm::vec2& px, float& z) const {
-        z = glm::dot(depth_row, glm::vec4(p, 1.0f));
+        z = depth(p);
         if (!(z > near_plane)) return false;
         const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
         px = glm::vec2((c.x / c.w + 1.0f) * half_viewport.x, (1.0f - c.y / c.w) * half_viewport.y);
@@ -80,6 +88,7 @@ size_t OcclusionJob::Run() const {
 void OcclusionJob::Rasterise() const {
     PrepareParts(1);
     RasterisePart(0, 1);
+    MergeParts(1);
 }
 
 void OcclusionJob::PrepareParts(size_t parts) const {
@@ -97,6 +106,24 @@ void OcclusionJob::MergeParts(size_t parts) const {
         const float* part = g.part_depth.data() + (p - 1) * cells;
         for (size_t i = 0; i < cells; ++i) g.depth[i] = std::min(g.depth[i], part[i]);
     }
+    // The block summary of pass 2: nearest and farthest depth of each block (edge blocks partial).
+    constexpr int B = kOcclusionBlock;
+    g.block_width = (g.width + B - 1) / B;
+    g.block_height = (g.height + B - 1) / B;
+    const size_t blocks = static_cast<size_t>(g.block_width) * static_cast<size_t>(g.block_height);
+    g.block_nearest.assign(blocks, std::numeric_limits<float>::infinity());
+    g.block_farthest.assign(blocks, -std::numeric_limits<float>::infinity());
+    for (int y = 0; y < g.height; ++y) {
+        const float* row = g.depth.data() + static_cast<size_t>(y) * static_cast<size_t>(g.width);
+        float* nearest = g.block_nearest.data() + static_cast<size_t>(y / B) * static_cast<size_t>(g.block_width);
+        float* farthest = g.block_farthest.data() + static_cast<size_t>(y / B) * static_cast<size_t>(g.block_width);
+        for (int bx = 0; bx < g.block_width; ++bx) {
+            const int x0 = bx * B, x1 = std::min(g.width, x0 + B);
+            float lo = nearest[bx], hi = farthest[bx];
+            for (int x = x0; x < x1; ++x) lo = std::min(lo, row[x]), hi = std::max(hi, row[x]);
+            nearest[bx] = lo, farthest[bx] = hi;
+        }
+    }
 }
 
 void OcclusionJob::RasterisePart(size_t part, size_t parts) const {
@@ -109,13 +136,16 @@ void OcclusionJob::RasterisePart(size_t part, size_t parts) const {
 
     // Pass 1: cores of every visible character, inner rectangles, whole cells only.
     auto rasterise_core = [&](const glm::vec3& base, float h, float y0, float y1, float radius) {
-        glm::vec2 pb(0.0f), pt(0.0f);
-        float zb = 0.0f, zt = 0.0f;
-        if (!pr.project(base + glm::vec3(0.0f, y0 * h, 0.0f), pb, zb) ||
-            !pr.project(base + glm::vec3(0.0f, y1 * h, 0.0f), pt, zt))
-            return;
+        const glm::vec3 bottom = base + glm::vec3(0.0f, y0 * h, 0.0f), top = base + glm::vec3(0.0f, y1 * h, 0.0f);
+        const float zb = pr.depth(bottom), zt = pr.depth(top);
+        if (!(zb > pr.near_plane) || !(zt > pr.near_plane)) return;
         const float far_z = std::max(zb, zt);
         const float half_w = radius * h * pr.fx / (pr.perspective ? far_z : 1.0f);
+        // The inner rectangle is at most 2 half_w wide, and holds a whole cell only when at least a cell
+        // wide: a narrower core (every far character's) covers no cell, so it is not projected at all
+        // (1% short of a cell, far beyond the pixel coordinates' rounding, so no cell is ever lost).
+        if (2.0f * half_w < 0.99f * cell) return;
+        const glm::vec2 pb = pr.pixel(bottom), pt = pr.pixel(top);
         const float x0 = std::max(pb.x, pt.x) - half_w, x1 = std::min(pb.x, pt.x) + half_w;
         const float y_lo = std::min(pb.y, pt.y), y_hi = std::max(pb.y, pt.y);
         const int cx0 = std::max(0, static_cast<int>(std::ceil(x0 / cell)));
@@ -147,6 +177,8 @@ size_t OcclusionJob::Test(size_t begin, size_t end) const {
     const Projector pr = make_projector(camera);
     const bool level_camera = level_camera_of(camera);
     const Bounds default_bounds{};
+    assert(g.block_nearest.size() == static_cast<size_t>(g.block_width) * static_cast<size_t>(g.block_height) &&
+           g.block_width * kOcclusionBlock >= g.width && g.block_height * kOcclusionBlock >= g.height);  // MergeParts ran
     // Pass 2: bounds boxes, outer rectangles, every cell touched.
     size_t full = 0;
     for (size_t i = begin; i < end && i < transforms.size(); ++i) {
@@ -173,6 +205,24 @@ size_t OcclusionJob::Test(size_t begin, size_t end) const {
         const int cy0 = std::max(0, static_cast<int>(std::floor(lo.y / cell)));
         const int cy1 = std::min(g.height, static_cast<int>(std::ceil(hi.y / cell)));
         if (cx0 >= cx1 || cy0 >= cy1) continue;
+        // The blocks under the rectangle: with no cell of theirs nearer than the bounds, none is covered;
+        // with every cell nearer, all are (what counting the cells would give, without reading them).
+        {
+            constexpr int B = kOcclusionBlock;
+            float nearest = kFar, farthest = -kFar;
+            for (int by = cy0 / B; by <= (cy1 - 1) / B; ++by) {
+                const size_t row = static_cast<size_t>(by) * static_cast<size_t>(g.block_width);
+                for (int bx = cx0 / B; bx <= (cx1 - 1) / B; ++bx)
+                    nearest = std::min(nearest, g.block_nearest[row + static_cast<size_t>(bx)]),
+                    farthest = std::max(farthest, g.block_farthest[row + static_cast<size_t>(bx)]);
+            }
+            if (!(nearest < near_z)) continue;  // occluded stays 0
+            if (farthest < near_z) {
+                a.occluded = 1.0f;
+                ++full;
+                continue;
+            }
+        }
         // Covered cells of the rectangle sampled every `step` cells each way (every cell when it is small,
         // about kSamples otherwise: the fraction is an estimate); "fully covered" is only ever said after checking every cell.
         auto count = [&](int step, size_t* seen) {

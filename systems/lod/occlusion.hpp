@@ -35,11 +35,19 @@ struct OcclusionParams {
                                      ///< not (spatial hysteresis: no flicker from a pixel of sway)
 };
 
+/// Side of the square blocks of cells summarised for pass 2 (OcclusionGrid::block_nearest).
+inline constexpr int kOcclusionBlock = 8;
+
 /// Scratch that lives across frames: the depth grid (farthest core depth per cell, min over cores).
 struct OcclusionGrid {
     int width = 0, height = 0;       ///< cells
     std::vector<float> depth;        ///< width * height view depths; +inf = nothing in front
     std::vector<float> part_depth;   ///< scratch of pass 1 in parts: the depths of parts 1.. (part 0 fills `depth`)
+    /// Summary of `depth` per block of kOcclusionBlock x kOcclusionBlock cells (MergeParts fills it): the
+    /// nearest and the farthest depth in the block, so pass 2 can answer "no cell covered" or "every cell
+    /// covered" for a rectangle from its blocks without reading its cells (the same answer as cell by cell).
+    int block_width = 0, block_height = 0;
+    std::vector<float> block_nearest, block_farthest;
     /// Sizes the grid for `viewport_px` and `cell_px`; allocates only when it grows.
     void resize(glm::vec2 viewport_px, float cell_px);
 };
@@ -78,7 +86,7 @@ struct OcclusionJob {
     void PrepareParts(size_t parts) const;
     /// Rasterises the cores of part `part` of `parts` into its own grid (see PrepareParts).
     void RasterisePart(size_t part, size_t parts) const;
-    /// Folds parts 1.. into the grid (see PrepareParts).
+    /// Folds parts 1.. into the grid (see PrepareParts) and summarises it per block for pass 2.
     void MergeParts(size_t parts) const;
     /// Pass 2 alone for characters [begin, end) after Rasterise(); returns how many are fully occluded.
     /// Disjoint ranges may run concurrently (the grid is only read).

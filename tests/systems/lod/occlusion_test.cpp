@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <vector>
 
 namespace aloha {
@@ -217,6 +218,66 @@ TEST(Occlusion, PassOneInPartsEqualsOneGrid) {
         ASSERT_EQ(s.grid.depth.size(), whole.size());
         for (size_t i = 0; i < whole.size(); ++i) ASSERT_EQ(s.grid.depth[i], whole[i]) << parts << " parts, cell " << i;
     }
+}
+
+// Pass 2 answers "nothing covered" and "all covered" from the grid's block summary: the fractions must be
+// those of counting every cell (a plain re-count from the grid here, with the rectangle found the same way),
+// on a crowd that has near characters (big rectangles, many blocks), far ones (a few cells) and everything
+// between, seen from several heights.
+TEST(Occlusion, BlockSummaryGivesTheCellByCellFractions) {
+    Scene s;
+    for (int z = 0; z < 80; ++z)
+        for (int x = 0; x < 25; ++x)
+            s.add({0.7f * (x - 12) + 0.2f * (z % 3), 0.0f, -5.0f - 0.055f * static_cast<float>(z * z) - 0.6f * z},
+                  1.55f + 0.013f * ((x * 7 + z) % 31), 0.25f);
+    size_t partial = 0, none = 0, all = 0;
+    for (const float eye_y : {1.7f, 4.0f, 12.0f}) {
+        SCOPED_TRACE(eye_y);
+        const LodCamera cam = make_lod_camera({0, eye_y, 4}, {0, 1.0f, -30}, glm::radians(50.0f), {1280, 720}, 0.1f, 500.0f);
+        OcclusionParams p;
+        p.enter_margin_px = eye_y < 2.0f ? 0.0f : 3.0f;  // no margin at eye height: some are fully hidden
+        (void)s.run(cam, p);
+        const OcclusionGrid& g = s.grid;
+        const glm::mat4 vp = cam.projection * cam.view;
+        for (size_t i = 0; i < s.t.size(); ++i) {
+            const float h = s.b[i].height, r = s.b[i].radius;
+            glm::vec2 lo(1e30f), hi(-1e30f);
+            float near_z = 1e30f;
+            for (int k = 0; k < 8; ++k) {
+                const glm::vec3 c = s.t[i].position + glm::vec3(k & 1 ? r : -r, k & 2 ? h : 0.0f, k & 4 ? r : -r);
+                const glm::vec4 v = cam.view * glm::vec4(c, 1.0f);
+                const glm::vec4 q = vp * glm::vec4(c, 1.0f);
+                const glm::vec2 px((q.x / q.w + 1.0f) * 640.0f, (1.0f - q.y / q.w) * 360.0f);
+                lo = glm::min(lo, px), hi = glm::max(hi, px), near_z = std::min(near_z, -v.z);
+            }
+            lo -= p.enter_margin_px, hi += p.enter_margin_px;
+            const int cx0 = std::max(0, static_cast<int>(std::floor(lo.x / p.cell_px)));
+            const int cx1 = std::min(g.width, static_cast<int>(std::ceil(hi.x / p.cell_px)));
+            const int cy0 = std::max(0, static_cast<int>(std::floor(lo.y / p.cell_px)));
+            const int cy1 = std::min(g.height, static_cast<int>(std::ceil(hi.y / p.cell_px)));
+            if (cx0 >= cx1 || cy0 >= cy1) continue;
+            size_t covered = 0, cells = 0;
+            for (int y = cy0; y < cy1; ++y)
+                for (int x = cx0; x < cx1; ++x) covered += g.depth[static_cast<size_t>(y) * g.width + x] < near_z, ++cells;
+            // Where counting gives none or all, the job must say exactly 0 or 1; in between it samples
+            // large rectangles, so only the bounds of a fraction hold.
+            if (covered == 0) {
+                EXPECT_EQ(s.a[i].occluded, 0.0f) << i;
+                ++none;
+            } else if (covered == cells) {
+                EXPECT_EQ(s.a[i].occluded, 1.0f) << i;
+                ++all;
+            } else {
+                EXPECT_GT(s.a[i].occluded, 0.0f - 1e-6f) << i;
+                EXPECT_LT(s.a[i].occluded, 1.0f) << i;
+                ++partial;
+            }
+        }
+    }
+    EXPECT_GT(none, 0u);  // the views hold all three cases (else the check proves little)
+    EXPECT_GT(all, 0u);
+    EXPECT_GT(partial, 0u);
+    std::cout << "cells none / all / partly covered: " << none << " / " << all << " / " << partial << "\n";
 }
 
 TEST(Occlusion, ValidateListsEveryProblem) {
