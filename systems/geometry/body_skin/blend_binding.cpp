@@ -1,6 +1,7 @@
 // Multi-muscle skin binding and the blended fat springs (see blend_binding.hpp).
 #include "systems/geometry/body_skin/blend_binding.hpp"
 
+#include "systems/geometry/body_skin/blend_rest.hpp"
 #include "systems/geometry/body_skin/weight_smoothing.hpp"
 #include "systems/geometry/muscle/superellipsoid.hpp"
 #include "systems/geometry/spring_skin/fat_spring_step.hpp"
@@ -184,6 +185,7 @@ bool BlendSpringJob::Validate(std::vector<std::string>* errors) const {
     if (theta_steps >= 3 && phi_steps >= 2 && muscle_positions.size() != size_t{muscle_count} * grid_vertex_count(theta_steps, phi_steps))
         fail("muscle_positions must hold muscle_count grids");
     if (muscle_normals.size() != muscle_positions.size()) fail("muscle_normals size differs from muscle_positions");
+    if (muscle_positions.size() > UINT32_MAX / sizeof(glm::vec3)) fail("muscle_positions must be under 4 GiB (32-bit offsets)");
     if (!(std::isfinite(params.dt) && params.dt > 0.0f)) fail("params.dt must be finite and > 0");
     if (!(params.normal_hz > 0.0f && params.lateral_hz > 0.0f && params.normal_damping >= 0.0f && params.max_strain > 0.0f))
         fail("spring frequencies, damping and strain limit must be positive");
@@ -227,35 +229,48 @@ bool BlendSpringJob::Validate(std::vector<std::string>* errors) const {
 
 void BlendSpringJob::Run() const {
     assert(Validate());
-    const uint32_t T = theta_steps, P = phi_steps;
+    const uint32_t V = grid_vertex_count(theta_steps, phi_steps);
     const SpringStepper stepper(params);
     std::array<SpringStepper, kMaxSpringTunings> regions;  // per-region tunings (vertex_region)
     for (size_t r = 0; r < region_params.size() && !vertex_region.empty(); ++r) regions[r] = SpringStepper(region_params[r]);
     const bool start = springs && !state.initialised[0];
-    for (size_t i = 0; i < bindings.size(); ++i) {
-        const BlendBinding& b = bindings[i];
-        glm::vec3 root(0.0f), rest(0.0f);
-        for (int k = 0; k < kBlendInfluences; ++k) {
-            if (b.weight[k] <= 0.0f) continue;
-            const GridFrame f = frame_of(muscle_positions, muscle_normals, T, P, b.muscle[k], b.cell[k]);
-            root += b.weight[k] * f.point;
-            rest += b.weight[k] * (f.point + b.offset[k].x * f.tangent + b.offset[k].y * f.bitangent + b.offset[k].z * f.normal);
-        }
-        if (!springs) {
-            state.end[i] = rest;
+    const size_t n = bindings.size();
+    float roots[3][4], rests[3][4];  // four vertices' roots and rest ends, [axis][lane]
+    for (size_t first = 0; first < n; first += 4) {
+        // Four vertices at once where none has a degenerate frame (same bits as one by one).
+        const size_t lanes = std::min<size_t>(4, n - first);
+        const bool four = lanes == 4 && blend_rest_x4(muscle_positions, muscle_normals, V, &bindings[first], roots, rests);
+        if (four && springs && !start) {
+            const SpringStepper* tuned[4];
+            for (size_t lane = 0; lane < 4; ++lane) tuned[lane] = vertex_region.empty() ? &stepper : &regions[vertex_region[first + lane]];
+            spring_step_x4(roots, rests, tuned, &state.end[first], &state.velocity[first], &state.prev_rest[first]);
             continue;
         }
-        if (start) {
-            state.end[i] = rest;
-            state.prev_rest[i] = rest;
-            state.velocity[i] = glm::vec3(0.0f);
-            continue;
+        for (size_t lane = 0; lane < lanes; ++lane) {
+            const size_t i = first + lane;
+            glm::vec3 root, rest;
+            if (four) {
+                root = {roots[0][lane], roots[1][lane], roots[2][lane]};
+                rest = {rests[0][lane], rests[1][lane], rests[2][lane]};
+            } else {
+                blend_rest(muscle_positions, muscle_normals, V, bindings[i], root, rest);
+            }
+            if (!springs) {
+                state.end[i] = rest;
+                continue;
+            }
+            if (start) {
+                state.end[i] = rest;
+                state.prev_rest[i] = rest;
+                state.velocity[i] = glm::vec3(0.0f);
+                continue;
+            }
+            const glm::vec3 axis = rest - root;
+            const float h = glm::length(axis);
+            const glm::vec3 normal = h > 1e-6f ? axis / h : glm::vec3(0.0f, 0.0f, 1.0f);
+            const SpringStepper& tuned = vertex_region.empty() ? stepper : regions[vertex_region[i]];
+            tuned.step(rest, normal, h, state.end[i], state.velocity[i], state.prev_rest[i]);
         }
-        const glm::vec3 axis = rest - root;
-        const float h = glm::length(axis);
-        const glm::vec3 n = h > 1e-6f ? axis / h : glm::vec3(0.0f, 0.0f, 1.0f);
-        const SpringStepper& tuned = vertex_region.empty() ? stepper : regions[vertex_region[i]];
-        tuned.step(rest, n, h, state.end[i], state.velocity[i], state.prev_rest[i]);
     }
     if (start) state.initialised[0] = 1;
 }

@@ -100,7 +100,8 @@ struct BlendSpringJob {
     std::span<const FatSpringParams> region_params = {};  ///< at most kMaxSpringTunings
     /// Checks sizes, parameters and influence indices; one message per failure.
     bool Validate(std::vector<std::string>* errors = nullptr) const;
-    /// Updates state.end (the skin). Requires Validate().
+    /// Updates state.end (the skin), four vertices at a time where it can (blend_rest.hpp: the same bits as one
+    /// by one). Requires Validate().
     void Run() const;
 };
 

@@ -6,5 +6,6 @@ list(APPEND ALOHA_GEOMETRY_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/edge_collapse.cpp
   ${CMAKE_CURRENT_LIST_DIR}/skin_remesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/blend_binding.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/blend_rest.cpp
   ${CMAKE_CURRENT_LIST_DIR}/weight_smoothing.cpp
   ${CMAKE_CURRENT_LIST_DIR}/surface_map.cpp)

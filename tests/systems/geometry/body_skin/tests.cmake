@@ -4,5 +4,6 @@ aloha_test(body_skin_tests
   SOURCES
     ${CMAKE_CURRENT_LIST_DIR}/skin_field_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/blend_binding_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/blend_rest_test.cpp
   LIBS aloha::geometry
   LABELS geometry)
