@@ -46,20 +46,12 @@ struct Projector {
     float near_plane = 0.0f;
     bool perspective = true;
 
-    // View depth of `p` (the z that project() gives).
+    // View depth of `p`.
     float depth(const glm::vec3& p) const { return glm::dot(depth_row, glm::vec4(p, 1.0f)); }
     // Pixel position of `p` (in front of the near plane).
     glm::vec2 pixel(const glm::vec3& p) const {
         const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
         return {(c.x / c.w + 1.0f) * half_viewport.x, (1.0f - c.y / c.w) * half_viewport.y};
-    }
-    // Pixel position and view depth of `p`; false when at or behind the near plane.
-    bool project(const glm::vec3& p, glm::vec2& px, float& z) const {
-        z = depth(p);
-        if (!(z > near_plane)) return false;
-        const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
-        px = glm::vec2((c.x / c.w + 1.0f) * half_viewport.x, (1.0f - c.y / c.w) * half_viewport.y);
-        return true;
     }
 };
 
@@ -188,17 +180,25 @@ size_t OcclusionJob::Test(size_t begin, size_t end) const {
         const Transform& t = transforms[i];
         const Bounds& b = bounds.empty() ? default_bounds : bounds[i];
         const float h = b.height * t.scale, r = b.radius * t.scale;
-        glm::vec2 lo(kFar), hi(-kFar);
-        float near_z = kFar;
-        bool in_front = true;
-        for (int k = 0; k < 8 && in_front; ++k) {
-            const glm::vec3 corner = t.position + glm::vec3(k & 1 ? r : -r, k & 2 ? h : 0.0f, k & 4 ? r : -r);
-            glm::vec2 px(0.0f);
-            float z = 0.0f;
-            in_front = pr.project(corner, px, z);
-            lo = glm::min(lo, px), hi = glm::max(hi, px), near_z = std::min(near_z, z);
+        // The bounds box's eight corners (+-r, 0 or h, +-r) from the feet. Clip position and depth are linear in
+        // the point, so each corner is the feet's plus signed multiples of three matrix columns (one product, not
+        // eight), and the nearest depth is the feet's minus what the offsets can take off.
+        const glm::vec4 feet = pr.view_proj * glm::vec4(t.position, 1.0f);
+        const float feet_z = pr.depth(t.position);
+        const float near_z = feet_z - std::fabs(pr.depth_row.x * r) - std::fabs(pr.depth_row.z * r) + std::min(pr.depth_row.y * h, 0.0f);
+        if (!(near_z > pr.near_plane)) continue;  // a corner at or behind the near plane
+        const glm::vec4 ex = pr.view_proj[0] * r, ey = pr.view_proj[1] * h, ez = pr.view_proj[2] * r;
+        float qx_lo = kFar, qx_hi = -kFar, qy_lo = kFar, qy_hi = -kFar;  // extremes of x/w and y/w
+        for (int k = 0; k < 4; ++k) {
+            const float sx = k & 1 ? 1.0f : -1.0f, sz = k & 2 ? 1.0f : -1.0f;
+            const float x = feet.x + sx * ex.x + sz * ez.x, y = feet.y + sx * ex.y + sz * ez.y, w = feet.w + sx * ex.w + sz * ez.w;
+            const float inv0 = 1.0f / w, inv1 = 1.0f / (w + ey.w);
+            const float x0 = x * inv0, x1 = (x + ey.x) * inv1, y0 = y * inv0, y1 = (y + ey.y) * inv1;
+            qx_lo = std::min(qx_lo, std::min(x0, x1)), qx_hi = std::max(qx_hi, std::max(x0, x1));
+            qy_lo = std::min(qy_lo, std::min(y0, y1)), qy_hi = std::max(qy_hi, std::max(y0, y1));
         }
-        if (!in_front) continue;
+        glm::vec2 lo((qx_lo + 1.0f) * pr.half_viewport.x, (1.0f - qy_hi) * pr.half_viewport.y);
+        glm::vec2 hi((qx_hi + 1.0f) * pr.half_viewport.x, (1.0f - qy_lo) * pr.half_viewport.y);
         if (geom.empty() || geom[i].method != GeomMethod::Hidden) lo -= params.enter_margin_px, hi += params.enter_margin_px;
         const int cx0 = std::max(0, static_cast<int>(std::floor(lo.x / cell)));
         const int cx1 = std::min(g.width, static_cast<int>(std::ceil(hi.x / cell)));

@@ -1,6 +1,8 @@
 // LOD benchmarks over 100,000 characters: attributes, rule evaluation with 10 rules (the figure
-// asked for: ns per character = reported time / 100,000), resolver, and the three together.
+// asked for: ns per character = reported time / 100,000), resolver, the three together, and the
+// occlusion estimate (both passes, one thread) from eye height and from above.
 #include "systems/lod/attributes.hpp"
+#include "systems/lod/occlusion.hpp"
 #include "systems/lod/resolver.hpp"
 #include "systems/lod/rule_eval.hpp"
 #include "systems/lod/rule_table.hpp"
@@ -134,5 +136,26 @@ void BM_AttributesRulesResolve(benchmark::State& state) {
 BENCHMARK(BM_AttributesRulesResolve)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
+
+// Both occlusion passes over the crowd, one thread; state.range(0) = camera height (m): at 2 m the near
+// rows hide much of the crowd, at 30 m little is hidden and most rectangles are tested against empty cells.
+void BM_Occlusion(benchmark::State& state) {
+    Crowd& c = crowd();
+    const float eye = static_cast<float>(state.range(0));
+    const LodCamera cam = make_lod_camera({0, eye, 10}, {0, 1.0f, -60}, glm::radians(60.0f), {1280, 720}, 0.1f, 1000.0f);
+    std::vector<LodAttributes> attrs(kCharacters);
+    LodAttributesJob{c.t, c.v, c.b, c.imp, cam, attrs}.Run();
+    OcclusionGrid grid;
+    const OcclusionJob job{c.t, c.b, c.geom, cam, OcclusionParams{}, &grid, attrs};
+    size_t hidden = 0;
+    for (auto _ : state) {
+        hidden = job.Run();
+        benchmark::DoNotOptimize(attrs.data());
+    }
+    state.counters["fully_occluded"] = static_cast<double>(hidden);
+    state.counters["ns_per_char"] = benchmark::Counter(static_cast<double>(kCharacters) * state.iterations(),
+                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_Occlusion)->Arg(2)->Arg(30)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();
