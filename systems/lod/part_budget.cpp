@@ -27,6 +27,7 @@ void PartBudget::reset() {
     ema_ = -1.0f;
     noise_ = 0.0f;
     settle_left_ = 0;
+    held_under_ = 0;
     levels_ = 0;
     model_ = LevelCostModel();
 }
@@ -88,7 +89,10 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
         return step;
     }
     const double target = part_.target_ms;
-    if (std::fabs(predicted - target) <= band_ms()) return step;
+    if (std::fabs(predicted - target) <= band_ms()) {
+        held_under_ = 0;
+        return step;
+    }
     const bool over = predicted > target;
     const double wanted = part_.gain * std::fabs(predicted - target);  // ms to save (over) or to spend (under)
 
@@ -179,12 +183,15 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     // time back to the target. Taken instead of the steps above only when it lands inside the band,
     // so the next update holds; its undoing would need a coarse step again (passed over as long as
     // finer ones exist), so it cannot alternate. When the demotions cannot pull it into the band the
-    // part holds below its target, as before. Only while the band is the tolerance itself: when noise
-    // has widened it, the time is not steady enough for a fine adjustment to be worth its switches
-    // (under load each dip below the band would trade one coarse promotion for many demotions).
+    // part holds below its target, as before. Only for a shortfall that persists (held for three
+    // time constants of the smoothed time, 3 / smoothing updates) and while the band is the tolerance
+    // itself (not widened by noise): under load each passing dip below the band would otherwise trade
+    // one coarse promotion for many demotions and back (measured: 2-3 times the level changes).
     demoted_.clear();
+    held_under_ = !over && chosen_.empty() ? held_under_ + 1 : 0;
+    const bool persistent = static_cast<float>(held_under_) * common_.smoothing >= 3.0f;
     const bool steady = band <= part_.tolerance * part_.target_ms;
-    if (!over && !coarse && steady && left > band && !passed_.empty()) {
+    if (!over && !coarse && persistent && steady && left > band && !passed_.empty()) {
         uint32_t finest = 0;
         double finest_ms = 0.0;  // what it really costs; 0: no passed-over promotion would show
         for (uint32_t i : passed_) {
@@ -201,7 +208,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
                 demoted_.push_back(i), excess -= ms;
             }
         }
-        if (finest_ms > 0.0 && std::fabs(excess) <= band) chosen_.assign(1, finest);
+        if (finest_ms > 0.0 && std::fabs(excess) <= band) chosen_.assign(1, finest), held_under_ = 0;
         else demoted_.clear();
     }
     for (uint32_t i : chosen_) {
