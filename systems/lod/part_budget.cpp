@@ -27,6 +27,7 @@ void PartBudget::reset() {
     ema_ = -1.0f;
     noise_ = 0.0f;
     settle_left_ = 0;
+    held_under_ = 0;
     levels_ = 0;
     model_ = LevelCostModel();
 }
@@ -88,7 +89,10 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
         return step;
     }
     const double target = part_.target_ms;
-    if (std::fabs(predicted - target) <= band_ms()) return step;
+    if (std::fabs(predicted - target) <= band_ms()) {
+        held_under_ = 0;
+        return step;
+    }
     const bool over = predicted > target;
     const double wanted = part_.gain * std::fabs(predicted - target);  // ms to save (over) or to spend (under)
 
@@ -101,25 +105,51 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
         if (!geometric) return std::min(l + 1, levels - 1);
         return demoted_geom_level(table, static_cast<uint8_t>(l), 1);
     };
-    auto saving = [&](size_t l) { return model_.marginal(l) - model_.marginal(one_poorer(l)); };
-    auto extra = [&](size_t l) { return std::max(0.0, model_.marginal(l > 0 ? l - 1 : 0) - model_.marginal(l)); };
-    ranked_.clear();
-    for (size_t i = 0; i < states.size(); ++i) {
-        const LodState& s = states[i];
+    auto saving = [&](size_t i) {
         const size_t l = headed(i);
-        if (s.always_full || (geometric && table.geom_levels[l].method == GeomMethod::Hidden)) continue;
-        if (l == level_of(s) && !held_long_enough(table, geometric ? s.seconds_at_geom : s.seconds_at_anim)) continue;
-        const uint8_t demotion = geometric ? s.budget_demotion : s.anim_demotion;
-        if (over ? demotion >= part_.max_demotion || one_poorer(l) == l || saving(l) < least_saving : demotion == 0)
-            continue;
-        // Significance per millisecond: the least noticed detail for the time it saves goes first, the most
-        // noticed for the time it costs comes back first (with equal costs: plain significance order).
-        const double significance = std::max(0.0f, table.significance.evaluate(attributes[i]));
-        const double ms = std::max(1e-9, over ? saving(l) : extra(l));
-        ranked_.emplace_back(static_cast<float>(over ? significance / ms : -significance / ms), static_cast<uint32_t>(i));
-    }
+        return model_.marginal(l) - model_.marginal(one_poorer(l));
+    };
+    auto extra = [&](size_t i) {
+        const size_t l = headed(i);
+        return std::max(0.0, model_.marginal(l > 0 ? l - 1 : 0) - model_.marginal(l));
+    };
+    // What giving character i one level back really costs: the level it would then be headed for
+    // (through lod_targets, so a cap or a demotion past the last level that swallows the step costs
+    // nothing) against the one it is headed for. For the combined step below, which must not pay
+    // demotions for a promotion that would not show.
+    auto reached_extra = [&](size_t i) {
+        const size_t l = headed(i);
+        size_t up = l > 0 ? l - 1 : 0;
+        if (know_requests) {
+            LodState promoted = states[i];
+            uint8_t& demotion = geometric ? promoted.budget_demotion : promoted.anim_demotion;
+            demotion = static_cast<uint8_t>(demotion > 0 ? demotion - 1 : 0);
+            const LodTargets t = lod_targets(table, requests[i], promoted);
+            up = std::min<size_t>(geometric ? t.geom : t.anim, levels - 1);
+        }
+        return std::max(0.0, model_.marginal(up) - model_.marginal(l));
+    };
+    // Fills `out` with the characters that may be demoted (or promoted) one level, least (most)
+    // significance per millisecond first: the least noticed detail for the time it saves goes first,
+    // the most noticed for the time it costs comes back first (equal costs: plain significance order).
+    auto rank = [&](bool demote, std::vector<std::pair<float, uint32_t>>& out) {
+        out.clear();
+        for (size_t i = 0; i < states.size(); ++i) {
+            const LodState& s = states[i];
+            const size_t l = headed(i);
+            if (s.always_full || (geometric && table.geom_levels[l].method == GeomMethod::Hidden)) continue;
+            if (l == level_of(s) && !held_long_enough(table, geometric ? s.seconds_at_geom : s.seconds_at_anim)) continue;
+            const uint8_t demotion = geometric ? s.budget_demotion : s.anim_demotion;
+            if (demote ? demotion >= part_.max_demotion || one_poorer(l) == l || saving(i) < least_saving : demotion == 0)
+                continue;
+            const double significance = std::max(0.0f, table.significance.evaluate(attributes[i]));
+            const double ms = std::max(1e-9, demote ? saving(i) : extra(i));
+            out.emplace_back(static_cast<float>(demote ? significance / ms : -significance / ms), static_cast<uint32_t>(i));
+        }
+        std::sort(out.begin(), out.end());
+    };
+    rank(over, ranked_);
     if (ranked_.empty()) return step;
-    std::sort(ranked_.begin(), ranked_.end());
     // In order, until the wanted change is reached. A step that would carry the time beyond the far
     // edge of the band (one character whose level costs more than the band: a hero's dynamic walk, say)
     // is passed over for the finer ones after it. Only when the finer ones cannot reach the wanted
@@ -127,30 +157,66 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     // the step back could never satisfy that too, so the pair cannot alternate.
     const double band = band_ms();
     const double sign = over ? -1.0 : 1.0;  // the way the time moves
-    auto step_ms = [&](size_t l) { return over ? saving(l) : extra(l); };
+    auto step_ms = [&](size_t i) { return over ? saving(i) : extra(i); };
     auto off_target = [&](double ms) { return predicted + sign * ms - target; };  // after changing by ms
     double changed_ms = 0.0;
-    uint32_t changed = 0;
-    auto take = [&](uint32_t i, double ms) {
-        uint8_t& demotion = geometric ? states[i].budget_demotion : states[i].anim_demotion;
-        demotion = static_cast<uint8_t>(over ? demotion + 1 : demotion - 1);
-        changed_ms += ms, ++changed;
-    };
+    chosen_.clear();
     passed_.clear();
     for (const auto& [score, i] : ranked_) {
         if (changed_ms >= wanted) break;
-        const double ms = step_ms(headed(i));
+        const double ms = step_ms(i);
         if (sign * off_target(changed_ms + ms) > band) passed_.push_back(i);
-        else take(i, ms);
+        else chosen_.push_back(i), changed_ms += ms;
     }
     const double left = std::fabs(off_target(changed_ms));
+    bool coarse = false;
     for (size_t k = 0; changed_ms < wanted && left > band && k < passed_.size(); ++k) {
-        const double ms = step_ms(headed(passed_[k]));
+        const double ms = step_ms(passed_[k]);
         if (std::fabs(off_target(changed_ms + ms)) + band < left) {
-            take(passed_[k], ms);
+            chosen_.push_back(passed_[k]), changed_ms += ms, coarse = true;
             break;
         }
     }
+    // Under the band with only coarse promotions left (each would carry the time past the far edge,
+    // and none lands nearer by more than the band): the finest of them is combined with demotions of
+    // others, least significance per millisecond first, each finer than half the band, that bring the
+    // time back to the target. Taken instead of the steps above only when it lands inside the band,
+    // so the next update holds; its undoing would need a coarse step again (passed over as long as
+    // finer ones exist), so it cannot alternate. When the demotions cannot pull it into the band the
+    // part holds below its target, as before. Only for a shortfall that persists (held for three
+    // time constants of the smoothed time, 3 / smoothing updates) and while the band is the tolerance
+    // itself (not widened by noise): under load each passing dip below the band would otherwise trade
+    // one coarse promotion for many demotions and back (measured: 2-3 times the level changes).
+    demoted_.clear();
+    held_under_ = !over && chosen_.empty() ? held_under_ + 1 : 0;
+    const bool persistent = static_cast<float>(held_under_) * common_.smoothing >= 3.0f;
+    const bool steady = band <= part_.tolerance * part_.target_ms;
+    if (!over && !coarse && persistent && steady && left > band && !passed_.empty()) {
+        uint32_t finest = 0;
+        double finest_ms = 0.0;  // what it really costs; 0: no passed-over promotion would show
+        for (uint32_t i : passed_) {
+            const double ms = reached_extra(i);
+            if (ms > 0.0 && (finest_ms == 0.0 || ms < finest_ms)) finest = i, finest_ms = ms;
+        }
+        double excess = off_target(finest_ms);  // over the target after it alone
+        if (finest_ms > 0.0) {
+            rank(true, demotable_);
+            for (const auto& [score, i] : demotable_) {
+                if (excess <= 0.0) break;
+                const double ms = saving(i);
+                if (i == finest || excess - ms < -0.5 * band) continue;  // itself, or too coarse to pull back with
+                demoted_.push_back(i), excess -= ms;
+            }
+        }
+        if (finest_ms > 0.0 && std::fabs(excess) <= band) chosen_.assign(1, finest), held_under_ = 0;
+        else demoted_.clear();
+    }
+    for (uint32_t i : chosen_) {
+        uint8_t& demotion = geometric ? states[i].budget_demotion : states[i].anim_demotion;
+        demotion = static_cast<uint8_t>(over ? demotion + 1 : demotion - 1);
+    }
+    for (uint32_t i : demoted_) ++(geometric ? states[i].budget_demotion : states[i].anim_demotion);
+    const auto changed = static_cast<uint32_t>(chosen_.size() + demoted_.size());
     if (changed == 0) return step;
     // The effect shows as switches (anticipated at the next update) or as pending switches.
     settle_left_ = common_.settle_frames;

@@ -36,8 +36,12 @@ namespace aloha {
 ///    is reached. Either way a step that would carry the time beyond the far edge of the band (one
 ///    character whose level step costs more than the band) is passed over for finer ones; only when
 ///    those cannot reach the wanted change is the first passed-over step taken that lands nearer the
-///    target by more than the band (its undoing never could, so coarse steps do not oscillate). Then it
-///    waits settle_frames.
+///    target by more than the band (its undoing never could, so coarse steps do not oscillate). Under
+///    the band with only such coarse promotions left, the finest of them is combined with demotions of
+///    others (least significance per millisecond first, each finer than half the band) when together
+///    they land inside the band, the shortfall has persisted 3 / smoothing updates and noise has not
+///    widened the band (that promotion costed at the level it would really reach: a cap or the last
+///    level may swallow it); else the part holds. Then it waits settle_frames.
 /// Only characters not `always_full`, not headed for Hidden, and either held min_seconds at their level
 /// or with a switch pending are touched; at most max_demotion levels each.
 class PartBudget {
@@ -77,11 +81,15 @@ private:
     float ema_ = -1.0f;
     float noise_ = 0.0f;
     int settle_left_ = 0;
+    int held_under_ = 0;                              // updates in a row held under the band with only coarse promotions
     size_t levels_ = 0;
     std::vector<uint32_t> counts_;
     std::vector<uint8_t> last_level_;                 // each character's level at the last update
     std::vector<std::pair<float, uint32_t>> ranked_;  // (score, index) scratch
+    std::vector<std::pair<float, uint32_t>> demotable_;  // (score, index) of demotions to combine with (scratch)
     std::vector<uint32_t> passed_;                    // candidates passed over as too coarse (scratch)
+    std::vector<uint32_t> chosen_;                    // the step's characters, in the step's direction (scratch)
+    std::vector<uint32_t> demoted_;                   // demotions combined with a coarse promotion (scratch)
 };
 
 }  // namespace aloha

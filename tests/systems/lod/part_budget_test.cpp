@@ -266,5 +266,83 @@ TEST(PartBudget, ACoarseHeroIsPassedOverWithoutOscillation) {
                 sim.anim_truth, anim_target, sim.anim_steps.size(), sim.geom_truth, geom_target, sim.geom_steps.size());
 }
 
+// Three heroes whose dynamic walk costs far more than the band (0.4 ms against kinematic 0.006 ms),
+// among 500 kinematic and clip walkers (the plaza at 300 characters): a first target demotes the
+// heroes and a few fine steps; raised, it leaves room for 45% of a hero's step. The fine promotions
+// alone cannot fill it and a hero would carry the time 0.2 ms (three bands) over: without a finer
+// path the part held 12% under its target (1.238 ms against 1.415). Counts the heroes' animation
+// switches and the steps after the raise.
+struct CoarseUnder {
+    BudgetSim sim;
+    double hero = 0, target = 0;  // one hero's promotion (ms), the raised target
+    size_t hero_switches = 0;
+    std::vector<uint8_t> hero_levels;
+
+    // `fine_demotions`: whether the other walkers may be demoted (else they are all at the last level).
+    explicit CoarseUnder(bool fine_demotions) {
+        sim.anim_per_level = true;
+        sim.anim_cost[0] = 0.4;
+        sim.add(3, 3.0f, 3.0f);  // near: full
+        for (size_t i = 0; i < 3; ++i) sim.crowd.attrs[i].importance = 0.9f;
+        if (fine_demotions) sim.add(500, 12.0f, 40.0f);  // mid (kin) or far (clip)
+        else sim.add(500, 25.0f, 40.0f);                 // far (clip): nothing finer to demote
+        sim.frame();
+        hero = sim.anim_cost[0] - sim.anim_cost[1];
+        const double all_full = sim.anim_truth, heroes_down = all_full - 3.0 * hero;
+        sim.set_targets(10.0 * all_full, 0.0);  // room: the costs are learned with the heroes at full
+        run(30);
+        sim.set_targets(heroes_down - (fine_demotions ? 0.1 : 0.0), 0.0);
+        run(150);
+        for (size_t i = 0; i < 3; ++i) EXPECT_EQ(sim.crowd.states[i].anim_demotion, 1) << "hero " << i;
+        target = heroes_down + 0.45 * hero;
+        // 45% of a hero is more than 10% of the target (the issue's criterion) and more than the
+        // band (5%) plus the 0.1 ms of fine steps; a hero more than the gap plus the band.
+        EXPECT_GT(0.45 * hero, 0.1 * target);
+        EXPECT_GT(hero, 0.45 * hero + 0.1 + 0.05 * target);
+        sim.set_targets(target, 0.0);
+        sim.anim_steps.clear();
+        hero_switches = 0;
+        run(300);
+    }
+    void run(int frames) {
+        for (int f = 0; f < frames; ++f) {
+            sim.frame();
+            hero_levels.resize(3);
+            for (size_t i = 0; i < 3; ++i) {
+                hero_switches += sim.crowd.states[i].anim_level != hero_levels[i];
+                hero_levels[i] = sim.crowd.states[i].anim_level;
+            }
+        }
+    }
+};
+
+TEST(PartBudget, CoarseStepsUnderTheBandAreCombinedWithFinerOnes) {
+    CoarseUnder c(true);
+    // One hero comes back, paid for by demoting finer walkers: the time lands inside the band (5%),
+    // within the 10% the issue asks, in one direction and then holds.
+    EXPECT_NEAR(c.sim.anim_truth, c.target, 0.1 * c.target);
+    EXPECT_EQ(c.hero_switches, 1u);
+    EXPECT_LE(direction_changes(c.sim.anim_steps), 1);
+    EXPECT_LE(c.sim.anim_steps.size(), 4u);
+    // Settled: the last 150 frames took no step and switched no hero.
+    const size_t steps = c.sim.anim_steps.size(), switches = c.hero_switches;
+    c.run(150);
+    EXPECT_EQ(c.sim.anim_steps.size(), steps);
+    EXPECT_EQ(c.hero_switches, switches);
+    EXPECT_NEAR(c.sim.anim_truth, c.target, 0.1 * c.target);
+    std::printf("coarse under: %.3f ms (target %.3f, hero step %.3f, %zu steps)\n", c.sim.anim_truth, c.target, c.hero,
+                c.sim.anim_steps.size());
+}
+
+TEST(PartBudget, CoarseStepsUnderTheBandHoldWhenNothingFinerFits) {
+    CoarseUnder c(false);
+    // The only finer demotions left (the other two heroes, kin -> clip, 0.005 ms each) cannot pull a
+    // hero's 0.4 ms back into the band: the part holds under its target without a step or a switch.
+    EXPECT_TRUE(c.sim.anim_steps.empty());
+    EXPECT_EQ(c.hero_switches, 0u);
+    EXPECT_LT(c.sim.anim_truth, c.target - 0.05 * c.target);
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(c.sim.crowd.states[i].anim_demotion, 1) << "hero " << i;
+}
+
 }  // namespace
 }  // namespace aloha
