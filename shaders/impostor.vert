@@ -5,7 +5,8 @@
 // units (push base_colour: x width, y bottom, z height), scaled by the instance's scale. The cell is the
 // atlas direction nearest the camera's azimuth in the character's frame (local +Z forward) and the walk
 // phase row (offsets.x directions, offsets.y phase rows; the last row is the standing pose, used when
-// the phase is negative). Colour cells fill the atlas's top half, normal cells its bottom half.
+// the phase is negative). The atlas is packed (systems/render/impostor_packing.hpp): one texel holds the
+// colour and the normal of the same point, so its size is the baked image's width and half its height.
 // The quad covers only the cell's silhouette (set 1 binding 0, systems/render/crowd_renderer.hpp
 // impostor_cell_table), padded by a texel of the mip level the quad's screen size calls for (log2 of atlas
 // texels per pixel, rounded: v_level), so that the coarser level's wider silhouette is not cut.
@@ -27,11 +28,11 @@ layout(push_constant) uniform Push {
 } pc;
 layout(std430, set = 1, binding = 0) readonly buffer Cells { vec4 cells[]; };  // [0]: texel grid, then bounds
 
-layout(location = 0) out vec2 v_uv;             // colour-half texture coordinates
+layout(location = 0) out vec2 v_uv;             // packed atlas texture coordinates
 layout(location = 1) flat out vec4 v_colour;    // tint
-layout(location = 2) flat out vec4 v_right_fade; // xyz: quad right axis (world), w: fade
-layout(location = 3) flat out vec3 v_toward;    // quad normal towards the camera (world, horizontal)
-layout(location = 4) flat out vec3 v_level;     // xy: the atlas's size in texels at mip z (the quad's level)
+layout(location = 2) flat out vec4 v_light_fade; // xyz: direction to the key light in the quad's frame (x right,
+                                                 // y up, z towards the camera: the atlas normals' frame), w: fade
+layout(location = 3) flat out vec3 v_level;     // xy: the atlas's size in texels at mip z (the quad's level)
 
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
 
@@ -75,10 +76,11 @@ void main() {
     vec2 pad = (exp2(level) + 1.0) / grid.xy;
     vec2 c = mix(max(b.xy - pad, 0.0), min(b.zw + pad, 1.0), kCorners[gl_VertexIndex]);
     vec3 world = origin + scale * (right * (c.x - 0.5) * pc.base_colour.x + vec3(0.0, pc.base_colour.y + c.y * pc.base_colour.z, 0.0));
-    v_uv = vec2((v + c.x) / dirs, 0.5 * (k + 1.0 - c.y) / rows);
-    v_level = vec3(max(floor(vec2(grid.x * dirs, 2.0 * grid.y * rows) / exp2(level)), 1.0), level);
+    v_uv = vec2((v + c.x) / dirs, (k + 1.0 - c.y) / rows);
+    v_level = vec3(max(floor(vec2(grid.x * dirs, grid.y * rows) / exp2(level)), 1.0), level);
     v_colour = im.colour;
-    v_right_fade = vec4(right, im.forward_phase.w);
-    v_toward = toward;
+    // The quad's frame (right, up, toward) is orthonormal, so lighting the atlas normal in it with the light
+    // turned into it equals lighting the normal turned into the world (what shaders/lit_mesh.frag does).
+    v_light_fade = vec4(dot(pc.light.xyz, right), pc.light.y, dot(pc.light.xyz, toward), im.forward_phase.w);
     gl_Position = pc.view_proj * vec4(world, 1.0);
 }

@@ -290,6 +290,8 @@ private:
     std::vector<uint32_t> group_vertex_base_;
     std::vector<uint32_t> group_cursor_;
     std::vector<float> depth_;                        // per mesh: distance ahead of the camera (draw order)
+    std::vector<uint32_t> impostor_order_;            // impostors nearest first within each atlas's run
+    std::vector<float> impostor_depth_;               // per impostor: distance ahead of the camera
     std::vector<std::string> pass_names_;             // mesh pass labels, then fixed ones, by first use
     std::vector<uint32_t> draw_order_;                // topologies by pass (stable): the recording order
     std::vector<GpuPassTime> last_passes_;

@@ -4,6 +4,7 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
+#include "systems/render/impostor_order.hpp"
 #include "systems/render/proxy_mesh.hpp"
 
 #include <glm/gtc/matrix_access.hpp>
@@ -57,9 +58,11 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
     if (!frame.proxies.empty())
         std::memcpy(static_cast<void*>(instances + frame.meshes.size()), frame.proxies.data(),
                     frame.proxies.size_bytes());
+    // Impostors nearest first within each atlas's run (systems/render/impostor_order.hpp).
     if (!frame.impostors.empty())
-        std::memcpy(slot.instances.mapped() + size_t{impostor_base(frame)} * sizeof(ImpostorInstance), frame.impostors.data(),
-                    frame.impostors.size_bytes());
+        copy_impostors_nearest_first(frame.impostors, frame.camera.view,
+                                     reinterpret_cast<ImpostorInstance*>(slot.instances.mapped()) + impostor_base(frame), impostor_order_,
+                                     impostor_depth_);
     gpu::LitLighting lighting;
     lighting.sky = glm::vec4(frame.sky_colour, 1.0f);
     lighting.ground = glm::vec4(frame.ground_colour, 1.0f);

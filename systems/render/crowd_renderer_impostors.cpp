@@ -1,9 +1,11 @@
 // CrowdRenderer impostors: atlas registration and the instanced quad draws (shaders/impostor.*).
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
+#include "systems/render/impostor_packing.hpp"
 
 #include <algorithm>
 #include <cstddef>
+#include <string>
 
 namespace aloha {
 namespace {
@@ -15,8 +17,8 @@ static_assert(sizeof(ImpostorInstance) == 64 && offsetof(ImpostorInstance, atlas
 
 std::vector<glm::vec4> impostor_cell_table(const TextureImage& image, const ImpostorAtlasLayout& layout) {
     const uint32_t cw = image.width / layout.directions, ch = image.height / (2 * layout.rows);
-    uint32_t levels = 1;
-    for (uint32_t s = std::max(image.width, image.height); s > 1; s /= 2) ++levels;
+    uint32_t levels = 1;  // of the packed atlas: one half's size (pack_impostor_atlas)
+    for (uint32_t s = std::max(image.width, image.height / 2); s > 1; s /= 2) ++levels;
     std::vector<glm::vec4> table{glm::vec4(float(cw), float(ch), float(levels), 0.0f)};
     table.reserve(1 + size_t{layout.rows} * layout.directions);
     for (uint32_t r = 0; r < layout.rows; ++r)
@@ -48,16 +50,19 @@ Result<uint32_t> CrowdRenderer::register_impostor_atlas(const TextureImage& imag
                               std::to_string(layout.rows) + " whole cells");
     if (!(layout.width > 0.0f && layout.height > 0.0f))
         return gpu::gpu_error("register_impostor_atlas: '" + image.name + "' has an empty quad");
-    TextureImage clamped = image;  // cells at the edges must not wrap to the other side
-    clamped.wrap_u = clamped.wrap_v = TextureWrap::ClampToEdge;
-    clamped.nearest = false;
-    Result<uint32_t> texture = register_texture(clamped);
-    if (!texture) return texture.error();
+    if (image.rgba.size() != size_t{image.width} * image.height * 4)
+        return gpu::gpu_error("register_impostor_atlas: '" + image.name + "' has " + std::to_string(image.rgba.size()) + " bytes for " +
+                              std::to_string(image.width) + " x " + std::to_string(image.height) + " RGBA8 pixels");
+    // Colour and normal side by side in one texel: one texelFetch a fragment (shaders/impostor.frag).
+    const PackedImpostorAtlas packed = pack_impostor_atlas(image);
+    Result<gpu::Texture> packed_texture = gpu::Texture::create_rg32ui(ctx_, packed.width, packed.height, packed.levels, packed.texels);
+    if (!packed_texture) return packed_texture.error();
+    textures_.push_back(std::move(packed_texture).value());
     const std::vector<glm::vec4> table = impostor_cell_table(image, layout);
     Result<gpu::Buffer> cells = gpu::Buffer::create(ctx_, table.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     if (!cells) return cells.error();
     cells.value().write(std::as_bytes(std::span(table)));
-    const gpu::Texture& t = textures_[texture.value()];
+    const gpu::Texture& t = textures_.back();
     Result<VkDescriptorSet> set = pipes_.material_set(cells.value(), t.view(), t.sampler());
     if (!set) return set.error();
     atlases_.push_back({layout, std::move(cells).value(), set.value()});

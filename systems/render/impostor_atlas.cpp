@@ -132,7 +132,7 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
         std::memcpy(out.image.rgba.data() + half * width * height * 4, image.value().pixels.data(), size_t{width} * height * 4);
     }
     out.layout = {dirs, rows, cells.width_m, cells.bottom_m, cells.height_m};
-    out.texture_bytes = mip_chain_bytes(width, 2 * height);
+    out.texture_bytes = 2 * mip_chain_bytes(width, height);  // packed: (colour, normal) pairs over one half (impostor_packing.hpp)
     out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return out;
 }

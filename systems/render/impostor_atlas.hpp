@@ -47,7 +47,7 @@ struct ImpostorAtlas {
     TextureImage image;            ///< colour half on top, normal half below (see ImpostorAtlasLayout)
     ImpostorAtlasLayout layout;    ///< cells and the quad they cover
     double build_ms = 0.0;         ///< wall time of the bake (renderer set-up, two frames, read-backs)
-    uint64_t texture_bytes = 0;    ///< GPU memory of the mipmapped texture (RGBA8, full chain)
+    uint64_t texture_bytes = 0;    ///< GPU memory of the mipmapped texture (packed R32G32_UINT, full chain)
 };
 
 /// Bakes `in` on `ctx` (a renderer and target of its own, released before returning). Errors: fewer than

@@ -232,7 +232,7 @@ TEST(ImpostorAtlas, CellTableHoldsEachCellsCoveredTexels) {
     cover(3, 12);  // normal half
     const std::vector<glm::vec4> t = impostor_cell_table(image, ImpostorAtlasLayout{2, 2, 1.0f, 0.0f, 1.8f});
     ASSERT_EQ(t.size(), 5u);
-    EXPECT_EQ(t[0], glm::vec4(8.0f, 4.0f, 5.0f, 0.0f));  // cell texels, mip levels of 16 x 16
+    EXPECT_EQ(t[0], glm::vec4(8.0f, 4.0f, 5.0f, 0.0f));  // cell texels, mip levels of the packed 16 x 8
     EXPECT_EQ(t[1], glm::vec4(0.0f));                     // row 0, dir 0: empty
     // x from the left: [2, 5) / 8; y from the bottom: texel rows 1..2 down from the top are [1, 3) / 4 up.
     EXPECT_EQ(t[2], glm::vec4(2.0f / 8.0f, 1.0f / 4.0f, 5.0f / 8.0f, 3.0f / 4.0f));

@@ -1,0 +1,21 @@
+// Impostor draw order: the quads of each atlas's run nearest the camera first.
+#pragma once
+
+#include "systems/render/crowd_renderer.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+/// Copies `impostors` into `out` (as many records) with each run of equal atlas kept in place and sorted
+/// nearest first along the view direction of `view` (ties by input order): lavapipe tests depth before an
+/// alpha-tested fragment shader runs, so a near quad drawn first spares the far quads' pixels it hides.
+/// `order` and `depth` are scratch, resized to the count (their capacity is reused from call to call).
+void copy_impostors_nearest_first(std::span<const ImpostorInstance> impostors, const glm::mat4& view, ImpostorInstance* out,
+                                  std::vector<uint32_t>& order, std::vector<float>& depth);
+
+}  // namespace aloha
