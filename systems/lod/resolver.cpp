@@ -5,46 +5,12 @@
 
 namespace aloha {
 
-uint8_t demoted_geom_level(const RuleTable& table, uint8_t requested, uint8_t demotion) {
-    const int last = static_cast<int>(table.geom_levels.size()) - 1;
-    const int req = std::min<int>(requested, last);
-    if (table.geom_levels[req].method == GeomMethod::Hidden) return static_cast<uint8_t>(req);
-    int target = std::min(req + demotion, last);
-    while (target > req && table.geom_levels[target].method == GeomMethod::Hidden) --target;
-    return static_cast<uint8_t>(target);
-}
-
-uint8_t demoted_anim_level(const RuleTable& table, uint8_t requested, uint8_t demotion) {
-    const int last = static_cast<int>(table.anim_levels.size()) - 1;
-    return static_cast<uint8_t>(std::min(requested + demotion, last));
-}
-
 namespace {
 // Time held at a level stops growing here (a day): far past any hysteresis, and float keeps sub-frame steps.
 constexpr float kHeldCap = 86400.0f;
 inline float advance(float held, float dt) { return std::min(held + dt, kHeldCap); }
 inline float run_down(float left, float dt) { return std::max(left - dt, 0.0f); }
 }  // namespace
-
-LodTargets lod_targets(const RuleTable& table, const LodRequest& request, const LodState& state) {
-    LodTargets t;
-    t.geom = demoted_geom_level(table, request.geom_level, state.budget_demotion);
-    t.anim = demoted_anim_level(table, request.anim_level, state.anim_demotion);
-    const uint8_t cap_geom = std::min<uint8_t>(state.cap_geom_level, static_cast<uint8_t>(table.geom_levels.size() - 1));
-    if (cap_geom > t.geom && table.geom_levels[t.geom].method != GeomMethod::Hidden) t.geom = cap_geom;
-    t.anim = std::max(t.anim, std::min<uint8_t>(state.cap_anim_level, static_cast<uint8_t>(table.anim_levels.size() - 1)));
-    return t;
-}
-
-bool held_long_enough(const RuleTable& table, float held_s) { return held_s + 1e-6f >= table.hysteresis.min_seconds; }
-
-float seconds_wanted(const LodState& state, uint8_t target, float dt) {
-    return target == state.geom_wanted ? state.seconds_geom_wanted + dt : 0.0f;
-}
-
-bool wanted_long_enough(const RuleTable& table, uint8_t target, float wanted_s) {
-    return wanted_s + 1e-6f >= table.geom_levels[target].enter_after_s;
-}
 
 uint16_t transition_frames(float seconds, float dt) {
     if (!(seconds > 0.0f) || !(dt > 0.0f)) return 0;

@@ -6,6 +6,7 @@
 #include "components/lod.hpp"
 #include "systems/lod/rule_table.hpp"
 
+#include <algorithm>
 #include <span>
 #include <string>
 #include <vector>
@@ -14,9 +15,19 @@ namespace aloha {
 
 /// Geometric level for request `requested` after removing `demotion` levels: never demotes a Hidden
 /// level, never demotes into a Hidden level, clamps to the last level. Requires a non-empty table.
-[[nodiscard]] uint8_t demoted_geom_level(const RuleTable& table, uint8_t requested, uint8_t demotion);
+[[nodiscard]] inline uint8_t demoted_geom_level(const RuleTable& table, uint8_t requested, uint8_t demotion) {
+    const int last = static_cast<int>(table.geom_levels.size()) - 1;
+    const int req = std::min<int>(requested, last);
+    if (table.geom_levels[req].method == GeomMethod::Hidden) return static_cast<uint8_t>(req);
+    int target = std::min(req + demotion, last);
+    while (target > req && table.geom_levels[target].method == GeomMethod::Hidden) --target;
+    return static_cast<uint8_t>(target);
+}
 /// Animation level for request `requested` after removing `demotion` levels (clamped to the last).
-[[nodiscard]] uint8_t demoted_anim_level(const RuleTable& table, uint8_t requested, uint8_t demotion);
+[[nodiscard]] inline uint8_t demoted_anim_level(const RuleTable& table, uint8_t requested, uint8_t demotion) {
+    const int last = static_cast<int>(table.anim_levels.size()) - 1;
+    return static_cast<uint8_t>(std::min(requested + demotion, last));
+}
 
 /// The levels the resolver aims a character at this frame: the request demoted by the budget
 /// (budget_demotion, anim_demotion), then no richer than the caps allow (cap_geom_level,
@@ -26,7 +37,15 @@ struct LodTargets {
     uint8_t anim = 0;   ///< target animation level
 };
 /// See LodTargets. Requires a non-empty table.
-[[nodiscard]] LodTargets lod_targets(const RuleTable& table, const LodRequest& request, const LodState& state);
+[[nodiscard]] inline LodTargets lod_targets(const RuleTable& table, const LodRequest& request, const LodState& state) {
+    LodTargets t;
+    t.geom = demoted_geom_level(table, request.geom_level, state.budget_demotion);
+    t.anim = demoted_anim_level(table, request.anim_level, state.anim_demotion);
+    const uint8_t cap_geom = std::min<uint8_t>(state.cap_geom_level, static_cast<uint8_t>(table.geom_levels.size() - 1));
+    if (cap_geom > t.geom && table.geom_levels[t.geom].method != GeomMethod::Hidden) t.geom = cap_geom;
+    t.anim = std::max(t.anim, std::min<uint8_t>(state.cap_anim_level, static_cast<uint8_t>(table.anim_levels.size() - 1)));
+    return t;
+}
 
 /// The levels a character will have after this frame's resolve (a step of `dt` seconds) if the caps
 /// allowed everything: the uncapped target where the resolver may switch (held min_seconds, Hidden, or
@@ -36,15 +55,19 @@ struct LodTargets {
 
 /// True when a level held `held_s` seconds may switch under `table`'s hysteresis.min_seconds (a
 /// microsecond of slack, so frame times summed in float do not cost a frame).
-[[nodiscard]] bool held_long_enough(const RuleTable& table, float held_s);
+[[nodiscard]] inline bool held_long_enough(const RuleTable& table, float held_s) { return held_s + 1e-6f >= table.hysteresis.min_seconds; }
 
 /// Seconds geometric level `target` has been asked for without a break, counting this frame: 0 on the
 /// frame it is first asked for (it differs from `state.geom_wanted`), else the state's count + dt.
-[[nodiscard]] float seconds_wanted(const LodState& state, uint8_t target, float dt);
+[[nodiscard]] inline float seconds_wanted(const LodState& state, uint8_t target, float dt) {
+    return target == state.geom_wanted ? state.seconds_geom_wanted + dt : 0.0f;
+}
 
 /// True when a character asked for geometric level `target` for `wanted_s` seconds may enter it: its
 /// `enter_after_s` has passed (with the same slack as held_long_enough).
-[[nodiscard]] bool wanted_long_enough(const RuleTable& table, uint8_t target, float wanted_s);
+[[nodiscard]] inline bool wanted_long_enough(const RuleTable& table, uint8_t target, float wanted_s) {
+    return wanted_s + 1e-6f >= table.geom_levels[target].enter_after_s;
+}
 
 /// Frames a transition of `seconds` lasts at frame time `dt`: 0 for no transition, else
 /// round(seconds / dt), at least 1 (at most 65535). For consumers that count frames (the geometric

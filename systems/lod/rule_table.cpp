@@ -67,34 +67,6 @@ bool RuleTable::has_caps() const {
     return false;
 }
 
-GeomLod RuleTable::geom_lod(uint8_t level) const {
-    const size_t i = std::min<size_t>(level, geom_levels.size() - 1);
-    const GeomLevelDef& d = geom_levels[i];
-    GeomLod g;
-    g.level = static_cast<uint8_t>(i);
-    g.method = d.method;
-    g.layers = d.layers;
-    g.subdiv_level = d.subdiv_level;
-    g.theta_steps = d.theta_steps;
-    g.phi_steps = d.phi_steps;
-    g.geomorph_s = d.geomorph_s;
-    return g;
-}
-
-AnimLod RuleTable::anim_lod(uint8_t level) const {
-    const size_t i = std::min<size_t>(level, anim_levels.size() - 1);
-    const AnimLevelDef& d = anim_levels[i];
-    AnimLod a;
-    a.level = static_cast<uint8_t>(i);
-    a.walk = d.walk;
-    a.ik = d.ik;
-    a.ik_iterations = d.ik_iterations;
-    a.update_interval = d.update_interval;
-    a.crossfade_s = d.crossfade_s;
-    a.ik_tolerance = d.ik_tolerance;
-    return a;
-}
-
 Result<RuleTable> load_rules(const std::string& path, std::vector<Error>* all_errors) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) {

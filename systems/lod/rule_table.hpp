@@ -6,6 +6,7 @@
 #include "engine/core/result.hpp"
 #include "systems/lod/significance.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -170,9 +171,33 @@ struct RuleTable {
     /// True when some level (geometric or animation) has a cap.
     [[nodiscard]] bool has_caps() const;
     /// The GeomLod marshalled for level `level` (clamped to the last level).
-    [[nodiscard]] GeomLod geom_lod(uint8_t level) const;
+    [[nodiscard]] GeomLod geom_lod(uint8_t level) const {
+        const size_t i = std::min<size_t>(level, geom_levels.size() - 1);
+        const GeomLevelDef& d = geom_levels[i];
+        GeomLod g;
+        g.level = static_cast<uint8_t>(i);
+        g.method = d.method;
+        g.layers = d.layers;
+        g.subdiv_level = d.subdiv_level;
+        g.theta_steps = d.theta_steps;
+        g.phi_steps = d.phi_steps;
+        g.geomorph_s = d.geomorph_s;
+        return g;
+    }
     /// The AnimLod marshalled for level `level` (clamped to the last level).
-    [[nodiscard]] AnimLod anim_lod(uint8_t level) const;
+    [[nodiscard]] AnimLod anim_lod(uint8_t level) const {
+        const size_t i = std::min<size_t>(level, anim_levels.size() - 1);
+        const AnimLevelDef& d = anim_levels[i];
+        AnimLod a;
+        a.level = static_cast<uint8_t>(i);
+        a.walk = d.walk;
+        a.ik = d.ik;
+        a.ik_iterations = d.ik_iterations;
+        a.update_interval = d.update_interval;
+        a.crossfade_s = d.crossfade_s;
+        a.ik_tolerance = d.ik_tolerance;
+        return a;
+    }
 };
 
 /// Parses rule-file JSON `text`; `source_name` names it in errors. On failure the Error is the first

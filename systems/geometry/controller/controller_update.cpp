@@ -166,8 +166,8 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
     const size_t J = g.joint_count();
     FatSpringParams params = spring_params_;
     params.dt = dt;
-    std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region (the muscle layout's)
-    region_spring_params(params, g.muscles().fat_regions, tunings);
+    std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region (the muscle layout's): layered levels only
+    if (L.layered()) region_spring_params(params, g.muscles().fat_regions, tunings);
     const bool skin_level = L.lod.method == GeomMethod::SkinnedMesh || L.layered();
     const uint64_t n = characters.size();
     L.work_characters.fetch_add(n, std::memory_order_relaxed);
