@@ -85,8 +85,13 @@ void GeometryUpdateJob::RunSkin() const {
             }
             ids = std::span<const uint32_t>(scratch->data() + r.begin, n);
         }
-        // Grain: cheap methods in big chunks, rich ones one or a few characters each.
-        const size_t grain = method == GeomMethod::RigidProxy ? 256 : method == GeomMethod::SkinnedMesh ? 16 : 1;
+        // Grain: cheap methods in big chunks, rich ones one or a few characters each. An impostor has no skin to
+        // place (only its slot is marked), so its whole range is a few calls, not one per character: per call the
+        // controller adds to shared work counters, which two threads calling it per character fight over.
+        const size_t grain = method == GeomMethod::Impostor     ? 4096
+                             : method == GeomMethod::RigidProxy  ? 256
+                             : method == GeomMethod::SkinnedMesh ? 16
+                                                                 : 1;
         // Layered levels take the whole range, so their elements are the grouping's order at the same positions.
         const bool whole = method == GeomMethod::Layered || method == GeomMethod::Subdivided;
         const std::span<const uint32_t> elements(groups->order.data() + r.begin, r.end - r.begin);

@@ -5,6 +5,7 @@
 #include "tests/host/scene/world_test_util.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <cstdio>
@@ -147,7 +148,8 @@ TEST(World, RuleFileReloadKeepsCharacterState) {
     // next step() goes through the live-reload path (poll, clamp, geometry set_levels). Nothing may be
     // reset: both worlds must stay bit-identical, and the reload must really have happened.
     namespace fs = std::filesystem;
-    const fs::path dir = fs::temp_directory_path() / "aloha_world_reload";
+    // A folder of this process's own: two test runs at once (a CI clone beside a work tree) must not share it.
+    const fs::path dir = fs::temp_directory_path() / ("aloha_world_reload_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const fs::path rules = dir / "rules.json";
     fs::copy_file(std::string(ALOHA_SOURCE_DIR) + "/data/rules/default.json", rules, fs::copy_options::overwrite_existing);
