@@ -37,8 +37,7 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
     const glm::vec4 forward = glm::row(frame.camera.view, 2);  // view-space z of a world point (negative ahead)
     for (uint32_t i = 0; i < frame.meshes.size(); ++i) depth_[i] = -glm::dot(forward, frame.meshes[i].model[3]);
     for (size_t t = 0; t < nt; ++t)
-        std::sort(order_.begin() + group_start_[t], order_.begin() + group_start_[t] + group_count_[t],
-                  [&](uint32_t a, uint32_t b) { return depth_[a] < depth_[b] || (depth_[a] == depth_[b] && a < b); });
+        sort_nearest_first(std::span(order_).subspan(group_start_[t], group_count_[t]), depth_);
 
     std::byte* pos = slot.positions.mapped();
     std::byte* nrm = slot.normals.mapped();

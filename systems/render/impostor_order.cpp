@@ -7,6 +7,10 @@
 
 namespace aloha {
 
+void sort_nearest_first(std::span<uint32_t> order, std::span<const float> depth) {
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] < depth[b] || (depth[a] == depth[b] && a < b); });
+}
+
 void copy_impostors_nearest_first(std::span<const ImpostorInstance> impostors, const glm::mat4& view, ImpostorInstance* out,
                                   std::vector<uint32_t>& order, std::vector<float>& depth) {
     const auto n = static_cast<uint32_t>(impostors.size());
@@ -20,8 +24,7 @@ void copy_impostors_nearest_first(std::span<const ImpostorInstance> impostors, c
     for (uint32_t first = 0; first < n;) {
         uint32_t end = first + 1;
         while (end < n && impostors[end].atlas == impostors[first].atlas) ++end;
-        std::sort(order.begin() + first, order.begin() + end,
-                  [&](uint32_t a, uint32_t b) { return depth[a] < depth[b] || (depth[a] == depth[b] && a < b); });
+        sort_nearest_first(std::span(order).subspan(first, end - first), depth);
         first = end;
     }
     for (uint32_t k = 0; k < n; ++k) out[k] = impostors[order[k]];

@@ -1,4 +1,4 @@
-// Impostor draw order: the quads of each atlas's run nearest the camera first.
+// Draw order nearest the camera first: mesh runs and the quads of each impostor atlas's run.
 #pragma once
 
 #include "systems/render/crowd_renderer.hpp"
@@ -10,6 +10,9 @@
 #include <vector>
 
 namespace aloha {
+
+/// Sorts `order` (indices into `depth`) nearest first, ties by index: the draw order of meshes and impostors.
+void sort_nearest_first(std::span<uint32_t> order, std::span<const float> depth);
 
 /// Copies `impostors` into `out` (as many records) with each run of equal atlas kept in place and sorted
 /// nearest first along the view direction of `view` (ties by input order): lavapipe tests depth before an
