@@ -40,6 +40,19 @@ CameraKey sample_camera(const CameraDesc& camera, float t) {
     return out;
 }
 
+std::vector<glm::vec3> circle_route(const glm::vec3& center, const glm::vec3& start, float turn) {
+    const glm::vec3 off = start - center;
+    const float radius = std::max(kMinCircleRadius, std::hypot(off.x, off.z));
+    const float from = std::atan2(off.z, off.x);
+    std::vector<glm::vec3> points;
+    points.reserve(kCircleRouteWaypoints);
+    for (int k = 1; k <= kCircleRouteWaypoints; ++k) {
+        const float a = from + turn * glm::two_pi<float>() * static_cast<float>(k) / kCircleRouteWaypoints;
+        points.push_back(center + glm::vec3(radius * std::cos(a), 0.0f, radius * std::sin(a)));
+    }
+    return points;
+}
+
 uint64_t character_count(const SceneDesc& scene) {
     uint64_t n = scene.characters.size();
     for (const auto& c : scene.crowds) n += c.count;
@@ -74,6 +87,14 @@ std::vector<CharacterDesc> expand_characters(const SceneDesc& scene, uint64_t se
             if (pick < crowd.mix.walk) {
                 req.request.kind = RequestKind::Walk;
                 req.request.speed = rng.uniform(crowd.speed_min, crowd.speed_max);
+                if (crowd.walk_route == CrowdDesc::WalkRoute::Circle) {
+                    // Alternate walkers turn opposite ways; each starts facing along its circle.
+                    const float turn = i % 2 == 0 ? 1.0f : -1.0f;
+                    req.route = circle_route(crowd.center, c.position, turn);
+                    const glm::vec3 along = req.route.front() - c.position;
+                    if (glm::length(glm::vec2(along.x, along.z)) > 1e-4f)
+                        c.heading_deg = glm::degrees(std::atan2(along.x, along.z));
+                }
                 const float h = glm::radians(c.heading_deg);
                 req.request.target = glm::vec3(std::sin(h), 0.0f, std::cos(h));
             } else if (pick < crowd.mix.walk + crowd.mix.idle) {

@@ -60,6 +60,7 @@ struct RequestDesc {
     MotionRequest request;     ///< kind, timing, speed, target ...
     std::string clip;          ///< PlayClip: clip name
     std::string path;          ///< Walk: path name ("" = straight along request.target as a direction)
+    std::vector<glm::vec3> route;  ///< Walk: a looping route of this character's own (a crowd's `walk_route`); beats `path`
     std::string effector;      ///< Reach/LookAt: joint name
 };
 
@@ -82,6 +83,11 @@ struct CrowdMix {
     float reach = 0.1f;
 };
 
+/// Smallest circle a `circle` walker walks (m): one nearer the centre walks out to it first.
+inline constexpr float kMinCircleRadius = 1.0f;
+/// Waypoints of a generated circle route (a 22.5 degree turn at each).
+inline constexpr int kCircleRouteWaypoints = 16;
+
 /// A crowd generator: N characters on a grid or disc, deterministic from `seed`.
 struct CrowdDesc {
     int type = 0;
@@ -90,6 +96,9 @@ struct CrowdDesc {
     glm::vec3 center{0.0f};
     float spacing = 2.0f;          ///< grid spacing (m)
     float radius = 50.0f;          ///< disc radius (m)
+    /// Where walkers go: straight along their heading forever, or each round the crowd's centre at
+    /// its starting distance (at least kMinCircleRadius) on a looping route of its own.
+    enum class WalkRoute : uint8_t { Straight, Circle } walk_route = WalkRoute::Straight;
     uint64_t seed = 1;
     CrowdMix mix;
     float importance_min = 0.1f, importance_max = 0.6f;
@@ -120,6 +129,11 @@ struct SceneDesc {
 
 /// Camera placement at time `t` (linear between keys, clamped at the ends). Requires keys non-empty.
 CameraKey sample_camera(const CameraDesc& camera, float t);
+
+/// A looping route round `center` through `start`'s distance from it (at least kMinCircleRadius, on
+/// the ground plane of `center`): kCircleRouteWaypoints waypoints, the first one step ahead of
+/// `start`, counter-clockwise seen from above for `turn` = 1, clockwise for -1.
+std::vector<glm::vec3> circle_route(const glm::vec3& center, const glm::vec3& start, float turn);
 
 /// Expands every crowd generator of `scene` into placed characters (deterministic for a seed) and
 /// appends the explicitly placed ones first. `seed_override` != 0 replaces each crowd's seed.

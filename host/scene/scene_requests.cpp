@@ -133,6 +133,10 @@ void read_crowds(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& e
         else if (layout == "disc") c.layout = CrowdDesc::Layout::Disc;
         else r.error("layout", "unknown layout '" + layout + "' (expected grid or disc)");
         c.center = r.vec3("center", glm::vec3(0.0f));
+        const std::string route = r.string("walk_route", "straight");
+        if (route == "straight") c.walk_route = CrowdDesc::WalkRoute::Straight;
+        else if (route == "circle") c.walk_route = CrowdDesc::WalkRoute::Circle;
+        else r.error("walk_route", "unknown walk route '" + route + "' (expected straight or circle)");
         c.spacing = static_cast<float>(r.number("spacing", 2.0, 0.1, 1000.0));
         c.radius = static_cast<float>(r.number("radius", 50.0, 0.1, 1e5));
         c.seed = static_cast<uint64_t>(r.integer("seed", static_cast<int64_t>(scene.seed), 0, INT64_MAX));

@@ -95,7 +95,7 @@ DrawType CharacterRuntime::draw_type() const {
 
 void CharacterRuntime::add_paths(const SceneDesc& scene) {
     for (const auto& p : scene.paths) {
-        motion->add_path(p.points);
+        motion->add_path(p.points, p.loop);
         path_names.push_back(p.name);
     }
 }
@@ -109,6 +109,12 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
             const int clip = find_clip(type, rd.clip);
             if (clip < 0) return make_error(scene.file, where + ": unknown clip '" + rd.clip + "' for type '" + type.name + "'");
             req.clip = static_cast<uint16_t>(clip);
+        } else if (req.kind == RequestKind::Walk && !rd.route.empty()) {
+            // Its own looping route (a crowd's walk_route); ids stop below 0xFFFF, "no path".
+            if (motion->path_count() >= 0xFFFF)
+                return make_error(scene.file, where + ": more than 65535 walk paths and routes for type '" + type.name +
+                                                  "' (fewer circle walkers, or split them over types)");
+            req.path = motion->add_path(rd.route, true);
         } else if (req.kind == RequestKind::Walk && !rd.path.empty()) {
             const auto it = std::find(path_names.begin(), path_names.end(), rd.path);
             req.path = static_cast<uint16_t>(it - path_names.begin());

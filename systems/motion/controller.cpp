@@ -100,8 +100,8 @@ void MotionController::set_method_hook(MethodSlot slot, MethodHook hook, void* u
     releases_[static_cast<size_t>(slot)] = hook ? release : nullptr;
 }
 
-uint16_t MotionController::add_path(std::vector<glm::vec3> waypoints) {
-    paths_.push_back(std::move(waypoints));
+uint16_t MotionController::add_path(std::vector<glm::vec3> waypoints, bool loop) {
+    paths_.push_back(WalkPath{std::move(waypoints), loop});
     return static_cast<uint16_t>(paths_.size() - 1);
 }
 
@@ -242,8 +242,11 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
         if (placement && !ch.done) {
             glm::vec3 dir(0.0f);
             if (r.path != 0xFFFF && r.path < paths_.size()) {
-                const auto& wps = paths_[r.path];
-                while (ch.path_cursor < wps.size()) {
+                const WalkPath& path = paths_[r.path];
+                const auto& wps = path.points;
+                // A loop wraps to its first waypoint; one lap with every waypoint within reach (all
+                // of them on one spot) ends the walk instead of spinning.
+                for (size_t tried = 0; ch.path_cursor < wps.size() && tried <= wps.size(); ++tried) {
                     const glm::vec3 to = horizontal(wps[ch.path_cursor] - placement->position);
                     const float len = glm::length(to);
                     if (len > std::max(1e-3f, speed * dt)) {
@@ -251,8 +254,9 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
                         break;
                     }
                     ++ch.path_cursor;  // reached (or reachable this frame): head for the next one
+                    if (path.loop && ch.path_cursor == wps.size()) ch.path_cursor = 0;
                 }
-                if (ch.path_cursor >= wps.size()) ch.done = 1;
+                if (ch.path_cursor >= wps.size() || glm::length(dir) == 0.0f) ch.done = 1;
             } else {
                 const glm::vec3 h = horizontal(r.target);
                 const float len = glm::length(h);

@@ -104,7 +104,11 @@ public:
     /// callback. Not during an update.
     void set_method_hook(MethodSlot slot, MethodHook hook, void* user, MethodRelease release = nullptr);
     /// Adds a walk path (world waypoints, at least one) and returns its id for MotionRequest::path.
-    uint16_t add_path(std::vector<glm::vec3> waypoints);
+    /// A walker on a `loop` path heads for the first waypoint again after the last and walks until
+    /// its request's duration runs out; on an open path its walk ends at the last waypoint.
+    uint16_t add_path(std::vector<glm::vec3> waypoints, bool loop = false);
+    /// How many paths were added.
+    [[nodiscard]] size_t path_count() const { return paths_.size(); }
 
     /// Queues `request` for `character` (starts after the current one; a current request that would
     /// run forever is cross-faded out at the next update). Wakes a resting character.
@@ -321,7 +325,11 @@ private:
     std::array<MethodHook, 3> hooks_{};
     std::array<void*, 3> hook_users_{};
     std::array<MethodRelease, 3> releases_{};
-    std::vector<std::vector<glm::vec3>> paths_;
+    struct WalkPath {
+        std::vector<glm::vec3> points;
+        bool loop = false;
+    };
+    std::vector<WalkPath> paths_;
     std::vector<Character> chars_;
     std::vector<std::array<MotionRequest, kQueueCapacity>> queues_;  // per character: queued requests (ring at head)
     std::vector<uint32_t> active_;

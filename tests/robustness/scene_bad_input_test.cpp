@@ -78,6 +78,8 @@ TEST(SceneBadInput, HugeCountsAndNegativeSizes) {
                         {"/crowds/0/count"}));
     EXPECT_TRUE(refused(parse_in(dir, R"("crowds": [{"count": 10, "layout": "disc", "radius": -3}])"),
                         "S17 negative radius", "bad.json", {"/crowds/0/radius"}));
+    EXPECT_TRUE(refused(parse_in(dir, R"("crowds": [{"count": 10, "walk_route": "spiral"}])"), "S17b unknown walk route",
+                        "bad.json", {"/crowds/0/walk_route", "spiral"}));
     EXPECT_TRUE(refused(parse_in(dir, R"("characters": [{}], "viewport": {"width": -1280, "height": 720})"),
                         "S18 negative viewport width", "bad.json", {"/viewport/width"}));
     EXPECT_TRUE(refused(parse_in(dir, R"("characters": [{}], "frames": 1e300)"), "S19 frames 1e300", "bad.json",

@@ -143,6 +143,34 @@ TEST(World, RestingCharactersCostNothingInMotion) {
     EXPECT_EQ(moving, 1u);  // only the walker is in the motion pass
 }
 
+// A disc crowd with walk_route "circle" stays on its disc: each walker follows the chords of its own
+// circle (inside it), off them by at most one frame of travel, and is still walking at the end. In
+// those 6 s each walks at least 9 m, more than the disc's 8 m diameter, so walking straight (the
+// default route) any of them would have left it: the bound is not met by standing still.
+TEST(World, CircleWalkersStayOnTheirDisc) {
+    SceneDesc s = small_crowd(60, {1.0f, 0.0f, 0.0f});
+    s.characters.clear();
+    s.crowds[0].layout = CrowdDesc::Layout::Disc;
+    s.crowds[0].radius = 4.0f;
+    s.crowds[0].walk_route = CrowdDesc::WalkRoute::Circle;
+    s.crowds[0].speed_min = 1.5f, s.crowds[0].speed_max = 1.6f;
+    s.crowds[0].variant_types.clear();  // one body: no atlas and mesh bake per variant (test time)
+    s.crowds[0].variants = 0;
+    const float reach = std::max(s.crowds[0].radius, kMinCircleRadius) + s.crowds[0].speed_max * s.dt + 1e-3f;
+    auto w = make_world(s);
+    ASSERT_TRUE(w);
+    float farthest = 0.0f;
+    for (int f = 0; f < 360; ++f) {
+        w->step();
+        for (const Transform& x : character_group(w->registry()).span<Transform>())
+            farthest = std::max(farthest, std::hypot(x.position.x, x.position.z));
+    }
+    EXPECT_LE(farthest, reach);
+    size_t walking = 0;
+    for (const MotionState& m : character_group(w->registry()).span<MotionState>()) walking += m.active == RequestKind::Walk;
+    EXPECT_EQ(walking, 60u);
+}
+
 TEST(World, RuleFileReloadKeepsCharacterState) {
     // Two identical worlds; the rule file of one is rewritten (same rules, new modification time) so its
     // next step() goes through the live-reload path (poll, clamp, geometry set_levels). Nothing may be

@@ -247,6 +247,48 @@ TEST(MotionController, WalkFollowsPathWithRootMotion) {
     EXPECT_EQ(cursor, 2u);  // both waypoints passed
 }
 
+// A looping path: after the last waypoint the walker heads for the first again and walks until its
+// request's duration; a loop whose waypoints are all on one spot ends the walk instead of spinning.
+TEST(MotionController, WalkOnALoopPathGoesRoundUntilItsDuration) {
+    Fixture f(2);
+    MotionController mc(f.sk, f.clips, 2);
+    // A 2 m square from the start (the origin): 8 m a lap, 5.33 s at 1.5 m/s.
+    const uint16_t square = mc.add_path({glm::vec3(0, 0, 2), glm::vec3(2, 0, 2), glm::vec3(2, 0, 0), glm::vec3(0, 0, 0)}, true);
+    const uint16_t spot = mc.add_path({glm::vec3(0, 0, 0), glm::vec3(0, 0, 0)}, true);
+    MotionRequest walk;
+    walk.kind = RequestKind::Walk;
+    walk.speed = 1.5f;
+    walk.path = square;
+    walk.duration = 8.0f;  // a lap and a half
+    ASSERT_TRUE(mc.push_request(0, walk));
+    walk.path = spot;
+    walk.duration = -1.0f;
+    f.xs[1].position = glm::vec3(0.0f);
+    ASSERT_TRUE(mc.push_request(1, walk));
+    int frames = 0;
+    bool wrapped = false;
+    uint32_t last = 0;
+    float farthest = 0.0f;
+    while (frames < 2000) {
+        f.step(mc);
+        ++frames;
+        if (f.states[0].active != RequestKind::Walk) break;
+        wrapped |= f.states[0].path_cursor < last;
+        last = f.states[0].path_cursor;
+        // On the square's edges: never farther from its centre than a corner (+ one frame of travel).
+        farthest = std::max(farthest, glm::length(glm::vec2(f.xs[0].position.x - 1.0f, f.xs[0].position.z - 1.0f)));
+    }
+    EXPECT_TRUE(wrapped);                  // went round past the last waypoint
+    EXPECT_NEAR(frames, 8.0f / kDt, 2.0f);  // ended by its duration, not by the path
+    EXPECT_LE(farthest, std::sqrt(2.0f) + 1.5f * kDt + 1e-4f);
+    // 12 m walked: a lap (8 m) and half of the next (4 m), so at the square's opposite corner (2, 0, 2)
+    // within a frame of travel.
+    EXPECT_NEAR(f.xs[0].position.x, 2.0f, 0.03f);
+    EXPECT_NEAR(f.xs[0].position.z, 2.0f, 0.03f);
+    EXPECT_NE(f.states[1].active, RequestKind::Walk);  // the one-spot loop ended at once
+    EXPECT_EQ(f.xs[1].position, glm::vec3(0.0f));
+}
+
 // A walker turns towards its direction at 6 rad/s and, once facing it, keeps its rotation bit for bit
 // (the controller then skips the turn); a rotation set from outside is turned from again.
 TEST(MotionController, WalkerTurnsToItsDirectionAndFromARotationSetOutside) {
