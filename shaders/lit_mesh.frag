@@ -5,6 +5,9 @@
 // to face the camera (two-sided lighting, so meshes with either winding light the same). In box mode (offsets.w & 1)
 // N is the flat face normal from screen-space derivatives of the world position. With offsets.w & 4 the
 // world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes).
+// Built again with DITHER (the dithered pipelines, gpu::LitPipelines): a screen-door fade keeps only the
+// pixels whose 4x4 Bayer value is below offsets.w >> 8 (0..16, gpu::lit_dither_bits), the complement of an
+// impostor faded at -m (shaders/impostor.frag) for the same m; the pipelines without it never discard.
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -26,7 +29,15 @@ layout(location = 1) in vec4 v_world_v;    // xyz: world position, w: texture v
 layout(location = 2) flat in vec4 v_colour;
 layout(location = 0) out vec4 out_colour;
 
+#ifdef DITHER
+const uint kBayer[16] = uint[](0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
+#endif
+
 void main() {
+#ifdef DITHER
+    ivec2 q = ivec2(gl_FragCoord.xy) & 3;
+    if (kBayer[q.y * 4 + q.x] >= ((pc.offsets.w >> 8) & 31u)) discard;
+#endif
     const vec3 world = v_world_v.xyz;
     vec3 n = (pc.offsets.w & 1u) != 0u ? normalize(cross(dFdx(world), dFdy(world))) : normalize(v_normal_u.xyz);
     if (dot(n, pc.camera.xyz - world) < 0.0) n = -n;

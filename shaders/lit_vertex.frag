@@ -2,7 +2,8 @@
 // Vertex-lit fragment shader: the light shaders/lit_mesh.vert (built with VERTEX_LIT) computed at the vertices,
 // interpolated, times the base colour texture in textured mode (offsets.w & 2), clamped to [0, 1] as
 // shaders/lit_mesh.frag does. Two interpolants instead of three and no lighting per pixel: for characters
-// small on screen, where lavapipe's cost per triangle dominates (docs/PERFORMANCE.md).
+// small on screen, where lavapipe's cost per triangle dominates (docs/PERFORMANCE.md). Built again with
+// DITHER: the screen-door fade of shaders/lit_mesh.frag (pixels whose 4x4 Bayer value is below offsets.w >> 8).
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -18,7 +19,15 @@ layout(location = 0) in vec4 v_lit;
 layout(location = 1) in vec2 v_uv;
 layout(location = 0) out vec4 out_colour;
 
+#ifdef DITHER
+const uint kBayer[16] = uint[](0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9u, 15u, 7u, 13u, 5u);
+#endif
+
 void main() {
+#ifdef DITHER
+    ivec2 q = ivec2(gl_FragCoord.xy) & 3;
+    if (kBayer[q.y * 4 + q.x] >= ((pc.offsets.w >> 8) & 31u)) discard;
+#endif
     vec4 lit = v_lit;
     if ((pc.offsets.w & 2u) != 0u) lit *= texture(base_colour_texture, v_uv);
     out_colour = vec4(clamp(lit.rgb, 0.0, 1.0), lit.a);

@@ -9,9 +9,11 @@
 #include "shaders/impostor_vert.h"
 #include "shaders/line_vert.h"
 #include "shaders/lit_constant_frag.h"
+#include "shaders/lit_mesh_dither_frag.h"
 #include "shaders/lit_mesh_frag.h"
 #include "shaders/lit_mesh_vert.h"
 #include "shaders/lit_mesh_vertex_lit_vert.h"
+#include "shaders/lit_vertex_dither_frag.h"
 #include "shaders/lit_vertex_frag.h"
 
 #include <span>
@@ -121,6 +123,12 @@ glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light, const LitLi
     return glm::clamp(colour * (light.w * hemi + (1.0f - light.w) * glm::vec3(lighting.key) * diffuse), 0.0f, 1.0f);
 }
 
+uint32_t lit_dither_bits(float share) {
+    uint32_t kept = 0;  // Bayer values b (0..15) whose threshold (b + 0.5) / 16 is below the share
+    for (uint32_t b = 0; b < 16; ++b) kept += (static_cast<float>(b) + 0.5f) / 16.0f < share ? 1u : 0u;
+    return kept << 8;
+}
+
 glm::mat4 vulkan_clip_from_gl() {
     glm::mat4 m(1.0f);
     m[1][1] = -1.0f;  // y down
@@ -180,6 +188,8 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         constant_fragments ? std::span<const uint32_t>(k_lit_mesh_vert_spv) : std::span<const uint32_t>(k_lit_mesh_vertex_lit_vert_spv);
     const std::span<const uint32_t> vertex_frag =
         constant_fragments ? std::span<const uint32_t>(k_lit_constant_frag_spv) : std::span<const uint32_t>(k_lit_vertex_frag_spv);
+    const std::span<const uint32_t> vertex_dither_frag =
+        constant_fragments ? std::span<const uint32_t>(k_lit_mesh_dither_frag_spv) : std::span<const uint32_t>(k_lit_vertex_dither_frag_spv);
     constexpr VkPrimitiveTopology kTriangles = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     const std::pair<VkPipeline*, PipelineDesc> pipelines[] = {
         {&lp.mesh_, {k_lit_mesh_vert_spv, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
@@ -188,6 +198,12 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         {&lp.vertex_lit_culled_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
         {&lp.lines_, {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE}},
         {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        // Dithered (fading characters): lit as above plus the screen-door discard; with constant fragments the
+        // per-pixel shaders (profiling only: the fading few keep their look, not the constant cost).
+        {&lp.dithered_[0], {k_lit_mesh_vert_spv, k_lit_mesh_dither_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        {&lp.dithered_[1], {k_lit_mesh_vert_spv, k_lit_mesh_dither_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
+        {&lp.dithered_[2], {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        {&lp.dithered_[3], {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
     };
     for (const auto& [out, desc] : pipelines) {
         Result<VkPipeline> p = make_pipeline(lp.device_, lp.layout_, render_pass, desc);
@@ -209,7 +225,9 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       lines_(std::exchange(o.lines_, VK_NULL_HANDLE)),
       vertex_lit_(std::exchange(o.vertex_lit_, VK_NULL_HANDLE)),
       vertex_lit_culled_(std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE)),
-      impostor_(std::exchange(o.impostor_, VK_NULL_HANDLE)) {}
+      impostor_(std::exchange(o.impostor_, VK_NULL_HANDLE)) {
+    for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
+}
 
 LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
     if (this != &o) {
@@ -226,6 +244,7 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         vertex_lit_ = std::exchange(o.vertex_lit_, VK_NULL_HANDLE);
         vertex_lit_culled_ = std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE);
         impostor_ = std::exchange(o.impostor_, VK_NULL_HANDLE);
+        for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
     }
     return *this;
 }
@@ -238,6 +257,10 @@ void LitPipelines::destroy() {
     if (vertex_lit_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_, nullptr);
     if (vertex_lit_culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_culled_, nullptr);
     if (impostor_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, impostor_, nullptr);
+    for (VkPipeline& p : dithered_) {
+        if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
+        p = VK_NULL_HANDLE;
+    }
     if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
     for (VkDescriptorPool p : material_pools_) vkDestroyDescriptorPool(device_, p, nullptr);
     material_pools_.clear();

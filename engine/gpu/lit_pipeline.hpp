@@ -24,6 +24,12 @@ enum LitMode : uint32_t {
     kLitNormals = 4,       ///< per-pixel pipelines write 0.5 + 0.5 * the world normal instead of the lit colour
 };
 
+/// Bits 8..12 of LitPush::offsets.w for the dithered pipelines (LitPipelines::dithered): a mesh faded to
+/// `share` in [0, 1] of its pixels keeps those whose 4x4 Bayer value b has (b + 0.5) / 16 < share, exactly
+/// the pixels an impostor faded at -share does not keep (shaders/impostor.frag), so the two cover each pixel
+/// once. The same float comparison as that shader, so the split is exact for every share.
+[[nodiscard]] uint32_t lit_dither_bits(float share);
+
 /// Push constants shared by both pipelines (128 bytes, std430 layout of shaders/lit_mesh.vert).
 struct LitPush {
     glm::mat4 view_proj{1.0f};  ///< Vulkan clip space from world (see vulkan_clip_from_gl())
@@ -95,6 +101,10 @@ public:
     [[nodiscard]] VkPipeline vertex_lit() const { return vertex_lit_; }
     /// vertex_lit() with back faces culled.
     [[nodiscard]] VkPipeline vertex_lit_culled() const { return vertex_lit_culled_; }
+    /// The mesh (vertex_lit: the vertex-lit; culled: back faces culled) pipeline with a screen-door fade:
+    /// the fragment shaders built with DITHER keep only the pixels lit_dither_bits() in offsets.w names. Only
+    /// fading characters are drawn with it (the others' pipelines have no discard, so early depth stays on).
+    [[nodiscard]] VkPipeline dithered(bool vertex_lit, bool culled) const { return dithered_[(vertex_lit ? 2 : 0) + (culled ? 1 : 0)]; }
     /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
     [[nodiscard]] VkPipeline impostor() const { return impostor_; }
@@ -127,6 +137,7 @@ private:
     VkPipeline vertex_lit_ = VK_NULL_HANDLE;
     VkPipeline vertex_lit_culled_ = VK_NULL_HANDLE;
     VkPipeline impostor_ = VK_NULL_HANDLE;
+    VkPipeline dithered_[4] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};  ///< mesh, culled, vertex-lit, its culled
 };
 
 }  // namespace aloha::gpu

@@ -75,6 +75,11 @@ void World::mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs
             }
         });
     }
+    // A character fading into the impostor level is still drawn at the level it left, posed every frame
+    // (GeometryController::update_fades): the few in a cross-fade, not a pass over the impostors.
+    for (const auto& rt : types_)
+        for (const LevelFade& f : rt->geometry->fades())
+            if (f.into_impostor()) pose_use_[rt->element_of_character[f.character]] = static_cast<uint8_t>(PoseUse::EveryFrame);
 }
 
 void World::register_systems() {
@@ -292,6 +297,7 @@ void World::register_systems() {
         frame_settings(input);
         input.meshes = lists_.meshes;
         input.proxies = lists_.proxies;
+        input.proxy_fades = lists_.proxy_fades;
         input.lines = lists_.lines;
         input.impostors = lists_.impostors;
         Status s = renderer_->render(input, *target_);

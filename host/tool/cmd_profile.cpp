@@ -167,7 +167,10 @@ int run_profile(const CliOptions& options) {
         r.geom_methods = st.per_geom_method;
         r.walk_methods = st.per_walk_method;
         r.lod = sample_lod(world);
-        if (s.renderer) r.gpu = sample_gpu(*s.renderer);
+        if (s.renderer) {
+            r.gpu = sample_gpu(*s.renderer);
+            r.gpu.drawn_twice = world.render_lists().drawn_twice;
+        }
         if (fidelity) {
             auto fr = fidelity->measure();
             if (!fr.ok()) {

@@ -149,6 +149,7 @@ Status draw_image(WindowGpu& g, World& world, const ViewerState& state, const Vi
     append_pick_marker(world, state, lines);
     input.meshes = lists.meshes;
     input.proxies = lists.proxies;
+    input.proxy_fades = lists.proxy_fades;
     input.impostors = lists.impostors;
     input.lines = lines;
     if (Status s = g.renderer->render(input, img.view, FrameSync{img.acquired, VK_NULL_HANDLE}); !s.ok()) {

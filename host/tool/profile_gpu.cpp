@@ -20,7 +20,7 @@ GpuSample sample_gpu(const CrowdRenderer& renderer) {
 }
 
 nlohmann::json gpu_report(const std::vector<GpuSample>& samples) {
-    std::vector<double> upload, mib, draws;
+    std::vector<double> upload, mib, draws, twice;
     struct Pass {
         std::vector<double> ms;
         double draws = 0, instances = 0, triangles = 0;
@@ -31,6 +31,7 @@ nlohmann::json gpu_report(const std::vector<GpuSample>& samples) {
         upload.push_back(s.upload_ms);
         mib.push_back(double(s.upload_bytes) / double(1 << 20));
         draws.push_back(s.draws);
+        twice.push_back(s.drawn_twice);
         for (const GpuPassTime& p : s.passes) {
             auto [it, fresh] = passes.try_emplace(p.name);
             if (fresh) it->second.order = passes.size();
@@ -44,6 +45,7 @@ nlohmann::json gpu_report(const std::vector<GpuSample>& samples) {
     j["upload_ms"] = to_json(summarize(upload));
     j["upload_mib"] = to_json(summarize(mib));
     j["draws"] = to_json(summarize(draws));
+    j["drawn_twice"] = to_json(summarize(twice));  // characters in a cross-fade (impostor + mesh or proxies)
     std::vector<std::pair<size_t, std::string>> order;
     for (const auto& [name, p] : passes) order.emplace_back(p.order, name);
     std::sort(order.begin(), order.end());
@@ -78,6 +80,9 @@ std::string gpu_table(const nlohmann::json& render_passes) {
     const nlohmann::json& mib = render_passes["upload_mib"];
     std::ostringstream up;
     up << "  " << fmt(mib["mean"].get<double>()) << " MiB, " << fmt(render_passes["draws"]["mean"].get<double>()) << " draws";
+    if (render_passes.contains("drawn_twice"))
+        up << ", " << fmt(render_passes["drawn_twice"]["mean"].get<double>()) << " drawn twice (max "
+           << fmt(render_passes["drawn_twice"]["max"].get<double>()) << ")";
     row("  upload (CPU copy)", render_passes["upload_ms"], up.str());
     for (const auto& p : render_passes["passes"]) {
         std::ostringstream ex;

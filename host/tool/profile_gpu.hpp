@@ -17,6 +17,7 @@ struct GpuSample {
     double upload_ms = 0;            ///< CPU time copying the frame into the mapped buffers
     uint64_t upload_bytes = 0;       ///< bytes copied
     uint32_t draws = 0;              ///< draw calls recorded
+    uint32_t drawn_twice = 0;        ///< characters drawn at two levels (cross-fades: RenderLists::drawn_twice)
     double gpu_ms = -1;              ///< whole-frame GPU time (first to last timestamp)
     std::vector<GpuPassTime> passes; ///< per pass (empty without --gpu-passes)
 };
@@ -24,7 +25,7 @@ struct GpuSample {
 /// Reads the figures of the frame `renderer` last completed.
 [[nodiscard]] GpuSample sample_gpu(const CrowdRenderer& renderer);
 
-/// report.json's "render_passes": {"upload_ms", "upload_mib", "draws"} statistics and, per pass name, the
+/// report.json's "render_passes": {"upload_ms", "upload_mib", "draws", "drawn_twice"} statistics and, per pass name, the
 /// statistics of its ms over the frames it ran in, with its mean draws, instances and triangles.
 [[nodiscard]] nlohmann::json gpu_report(const std::vector<GpuSample>& samples);
 

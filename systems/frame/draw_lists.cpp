@@ -6,13 +6,6 @@
 
 namespace aloha {
 
-namespace {
-
-// The renderer's unit box is [-0.5, 0.5]^3; proxy boxes map [-1, 1]^3.
-const glm::mat4 kHalfToUnit = glm::scale(glm::mat4(1.0f), glm::vec3(2.0f));
-
-}  // namespace
-
 glm::vec4 character_colour(DebugColour mode, const LodState& state, const AnimLod& anim, bool proxy, bool textured) {
     switch (mode) {
         case DebugColour::ByLodLevel: return colour_for_level(state.geom_level);
@@ -37,13 +30,28 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
     out.proxies.clear();
     out.lines.clear();
     out.impostors.clear();
+    out.proxy_fades.clear();
+    out.drawn_twice = 0;
+    fading_proxies_.clear();
+    fading_runs_.clear();
+    const Frame f{renderer, transforms, states, anims, motion, settings};
+    // A character fading out of the impostor level into this range's drawn level: its share of pixels here,
+    // the rest drawn as its impostor (1: not fading, or no impostor to fade with).
+    auto fade_in = [&](const DrawType& draw, const GeometryController& gc, uint16_t type, uint32_t e, uint32_t id) {
+        const LevelFade* fade = settings.overlay ? nullptr : gc.fade(id);
+        if (!fade || fade->into_impostor() || !has_impostor(type)) return 1.0f;
+        const float share = fade->drawn_share();
+        out.impostors.push_back(impostor_instance(draw, type, e, f, share));
+        ++out.drawn_twice;
+        return share;
+    };
     for (const LevelRange& r : groups.ranges) {
         const DrawType& draw = types[r.type];
         const GeometryController& gc = *draw.geometry;
-        const GeomMethod method = gc.level(r.level).method;  // as this type draws the level
+        const GeomMethod method = gc.level(r.level).method;  // as this type draws it
         if (method == GeomMethod::Hidden) continue;
         if (method == GeomMethod::Impostor) {
-            gather_impostors(draw, r, groups, transforms, states, anims, motion, settings, out);
+            if (Status st = gather_impostors(draw, r, groups, f, out); !st.ok()) return st;
             continue;
         }
         if (method == GeomMethod::RigidProxy) {
@@ -53,7 +61,11 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
                 if (boxes.empty()) continue;
                 const glm::mat4 world = world_matrix(transforms[e]);
                 const glm::vec4 colour = character_colour(settings.colour, states[e], anims[e], true);
-                for (uint16_t j : draw.proxy_joints) out.proxies.push_back({world * boxes[j] * kHalfToUnit, colour});
+                const float share = fade_in(draw, gc, r.type, e, id);
+                std::vector<ProxyInstance>& to = share < 1.0f ? fading_proxies_ : out.proxies;
+                const auto first = static_cast<uint32_t>(to.size());
+                for (uint16_t j : draw.proxy_joints) to.push_back({proxy_box_matrix(world, boxes[j]), colour});
+                if (share < 1.0f) fading_runs_.push_back({first, static_cast<uint32_t>(to.size()) - first, share});
                 if (settings.overlay) overlays(draw, id, world, settings.overlay, out);
             }
             continue;
@@ -71,8 +83,16 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
             auto topology = this->topology(*renderer, r.type, draw, surface);
             if (!topology.ok()) return topology.error();
             out.meshes.push_back({topology.value(), surface.positions, surface.normals, world,
-                                  character_colour(settings.colour, states[e], anims[e], false, textured(r.type))});
+                                  character_colour(settings.colour, states[e], anims[e], false, textured(r.type)),
+                                  fade_in(draw, gc, r.type, e, id)});
         }
+    }
+    // The fading proxies last, so the others stay one draw (CrowdRenderer: one per gap between fade runs).
+    const auto base = static_cast<uint32_t>(out.proxies.size());
+    out.proxies.insert(out.proxies.end(), fading_proxies_.begin(), fading_proxies_.end());
+    for (ProxyFade run : fading_runs_) {
+        run.first += base;
+        out.proxy_fades.push_back(run);
     }
     return {};
 }

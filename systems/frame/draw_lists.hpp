@@ -33,6 +33,8 @@ struct RenderLists {
     std::vector<ProxyInstance> proxies;
     std::vector<LineSegment> lines;
     std::vector<ImpostorInstance> impostors;
+    std::vector<ProxyFade> proxy_fades;  ///< runs of `proxies` drawn dithered (fading characters' boxes, at the end)
+    uint32_t drawn_twice = 0;             ///< characters drawn twice (impostor + proxy or mesh) in a cross-fade
 };
 
 /// What the draw lists need of one character type.
@@ -69,7 +71,11 @@ public:
     /// Clears `out` and fills it with the characters of `groups` (positions walk elements of the spans).
     /// Proxies need no renderer; meshes need `renderer` for their topology ids (skipped when null).
     /// Impostors need their type's atlas (set_impostor) and take their walk phase from `motion` (per
-    /// element; empty: phase 0); a character that is not walking shows the standing row.
+    /// element; empty: phase 0); a character that is not walking shows the standing row. A character in
+    /// a cross-fade (GeometryController::fade, LevelFade) with an impostor atlas for its type is drawn
+    /// both as its impostor and at its drawn level (the entered one, or the one left: fade_surface /
+    /// fade_proxy_boxes), with complementary dithers (DeformableMesh::dither, ProxyFade, the impostor's
+    /// forward_phase.w = -share); without overlays only.
     /// Errors: the renderer refusing a topology, texture or material (the lists are then partial).
     Status gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
                   std::span<const Transform> transforms, std::span<const LodState> states,
@@ -83,9 +89,20 @@ public:
 
 private:
     void overlays(const DrawType& draw, uint32_t id, const glm::mat4& world, uint8_t bits, RenderLists& out);
-    void gather_impostors(const DrawType& draw, const LevelRange& r, const CharacterGroups& groups, std::span<const Transform> transforms,
-                          std::span<const LodState> states, std::span<const AnimLod> anims, std::span<const MotionState> motion,
-                          const DrawSettings& settings, RenderLists& out) const;
+    /// The draw inputs of one frame's gather (spans per element).
+    struct Frame {
+        CrowdRenderer* renderer;
+        std::span<const Transform> transforms;
+        std::span<const LodState> states;
+        std::span<const AnimLod> anims;
+        std::span<const MotionState> motion;
+        const DrawSettings& settings;
+    };
+    Status gather_impostors(const DrawType& draw, const LevelRange& r, const CharacterGroups& groups, const Frame& f, RenderLists& out);
+    /// Element e (character `id` of `type`) as its impostor, faded to show 1 - drawn_share of its pixels (1: all).
+    [[nodiscard]] ImpostorInstance impostor_instance(const DrawType& draw, uint16_t type, uint32_t e, const Frame& f, float drawn_share) const;
+    /// True when `type`'s impostor level is drawn (an atlas was set).
+    [[nodiscard]] bool has_impostor(uint16_t type) const { return type < impostors_.size() && impostors_[type].atlas >= 0; }
     struct Impostor {
         int64_t atlas = -1;    ///< renderer id, -1 = none
         float cycle_s = 1.0f;  ///< walk cycle (clip seconds)
@@ -96,6 +113,8 @@ private:
     std::vector<glm::vec3> muscle_scratch_;                  ///< one character's muscle surface (overlays)
     std::vector<std::string> pass_names_;                    ///< per geometric level: its GPU pass label
     std::vector<Impostor> impostors_;                        ///< per type: its impostor atlas
+    std::vector<ProxyInstance> fading_proxies_;              ///< this frame's dithered proxy boxes (appended last)
+    std::vector<ProxyFade> fading_runs_;                     ///< their runs, relative to fading_proxies_
 };
 
 /// The colour a character is drawn in: the debug palette of `mode`, else white over a textured type's

@@ -27,6 +27,8 @@ void run_range(const GeometryChunkRunner& run, size_t count, size_t grain, std::
 void apply_level_switches(std::span<const GeometryType> types, std::span<const CharacterRef> refs,
                           std::span<const LodState> states, std::span<const GeomLod> geom,
                           std::span<const uint32_t> changed, bool first_frame, float dt) {
+    for (const GeometryType& t : types)  // last frame's cross-fades move on (or end) before this frame's switches
+        if (t.controller) t.controller->advance_fades();
     if (first_frame) {
         for (size_t e = 0; e < refs.size(); ++e) types[refs[e].type].controller->begin_level(refs[e].id, states[e].geom_level, -1, 0);
         return;
@@ -100,6 +102,9 @@ void GeometryUpdateJob::RunSkin() const {
             t.controller->update_skin(r.level, ids.subspan(b, e - b), t.poses, dt, placed);
         });
     }
+    // Characters fading into the impostor level: the level they left, still drawn (a few per switch frame).
+    for (const GeometryType& t : types)
+        if (t.controller) t.controller->update_fades(t.poses, dt);
 }
 
 }  // namespace aloha

@@ -28,10 +28,12 @@ struct GeometryType {
 /// (a scheduler's parallel_for). Empty: serial.
 using GeometryChunkRunner = std::function<void(size_t count, size_t grain, const std::function<void(size_t, size_t)>& fn)>;
 
-/// Tells each character's controller about the geometric level the resolver chose: on the first
-/// frame every element enters its level (no morph); later, the elements listed in `changed` (the
-/// resolver's changed_indices, elements) whose geometric level moved begin it, geomorphing from the
-/// previous surface over transition_frames(geom.geomorph_s, dt) frames. types[refs[e].type] must exist.
+/// Tells each character's controller about the geometric level the resolver chose: first every
+/// controller's cross-fades advance a frame (GeometryController::advance_fades; call this once per frame);
+/// on the first frame every element enters its level (no morph); later, the elements listed in `changed`
+/// (the resolver's changed_indices, elements) whose geometric level moved begin it, geomorphing from the
+/// previous surface, or cross-fading into or out of an impostor level (LevelFade), over
+/// transition_frames(geom.geomorph_s, dt) frames. types[refs[e].type] must exist.
 void apply_level_switches(std::span<const GeometryType> types, std::span<const CharacterRef> refs,
                           std::span<const LodState> states, std::span<const GeomLod> geom,
                           std::span<const uint32_t> changed, bool first_frame, float dt);
@@ -57,7 +59,9 @@ struct GeometryUpdateJob {
     void RunMuscles() const;
     /// Skin stage: per range of a drawn level, the level's skin. Proxies and linear-blend skins depend
     /// on the pose alone, so only characters posed this frame, entering the level or morphing are
-    /// updated; richer levels run every frame (the fat springs move). Requires Validate().
+    /// updated; richer levels run every frame (the fat springs move). Then, serially, the surfaces of the
+    /// levels being cross-faded out of into an impostor level (GeometryController::update_fades; their
+    /// poses must be read every frame: PoseUse::EveryFrame). Requires Validate().
     void RunSkin() const;
 };
 

@@ -110,6 +110,16 @@ bool CrowdRenderer::Validate(const FrameInput& frame, std::vector<std::string>* 
         if (m.normals.size() != m.positions.size())
             fail(where() + std::to_string(m.normals.size()) + " normals for " + std::to_string(m.positions.size()) +
                  " positions");
+        if (!(m.dither >= 0.0f && m.dither <= 1.0f)) fail(where() + "dither " + std::to_string(m.dither) + " is not in [0, 1]");
+    }
+    uint64_t proxies_seen = 0;  // end of the last fade run
+    for (size_t i = 0; i < frame.proxy_fades.size(); ++i) {
+        const ProxyFade& f = frame.proxy_fades[i];
+        if (f.first < proxies_seen || uint64_t{f.first} + f.count > frame.proxies.size())
+            fail("proxy_fades[" + std::to_string(i) + "]: proxies [" + std::to_string(f.first) + ", " + std::to_string(uint64_t{f.first} + f.count) +
+                 ") overlap the run before or pass the " + std::to_string(frame.proxies.size()) + " proxies");
+        if (!(f.share >= 0.0f && f.share <= 1.0f)) fail("proxy_fades[" + std::to_string(i) + "]: share " + std::to_string(f.share) + " is not in [0, 1]");
+        proxies_seen = std::max<uint64_t>(proxies_seen, uint64_t{f.first} + f.count);
     }
     for (size_t i = 0; i < frame.impostors.size(); ++i)
         if (frame.impostors[i].atlas >= atlases_.size())

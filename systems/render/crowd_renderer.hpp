@@ -39,12 +39,23 @@ struct DeformableMesh {
     std::span<const glm::vec3> normals;      ///< same count as positions (need not be unit length)
     glm::mat4 model{1.0f};                   ///< world from model
     glm::vec4 colour{1.0f};                  ///< albedo (e.g. a debug palette colour)
+    float dither = 1.0f;                     ///< share of its pixels drawn: 1 all (the usual pipelines); in [0, 1) a
+                                             ///< screen-door fade (gpu::lit_dither_bits), the complement of an
+                                             ///< impostor with forward_phase.w = -dither (a cross-fade between them)
 };
 
 /// One rigid proxy: the unit box [-0.5, 0.5]^3 transformed by `model` (see bone_box_matrix).
 struct ProxyInstance {
     glm::mat4 model{1.0f};   ///< world from unit box
     glm::vec4 colour{1.0f};  ///< albedo
+};
+
+/// Proxies [first, first + count) of a frame drawn with a screen-door fade: `share` of their pixels, as
+/// DeformableMesh::dither (one fading character's boxes, cross-faded with its impostor).
+struct ProxyFade {
+    uint32_t first = 0;   ///< first proxy of the run
+    uint32_t count = 0;   ///< proxies in the run
+    float share = 1.0f;   ///< in [0, 1]
 };
 
 /// One impostor (the `impostor` geometric level): a camera-facing quad showing the cell of its type's atlas
@@ -59,6 +70,11 @@ struct ImpostorInstance {
     uint32_t atlas = 0;                               ///< id from CrowdRenderer::register_impostor_atlas
     uint32_t reserved[3] = {0, 0, 0};                 ///< padding (std430 uvec4)
 };
+
+/// ImpostorInstance::forward_phase.w of an impostor cross-faded with its mesh (or proxies) drawn at
+/// `drawn_share` (DeformableMesh::dither, ProxyFade::share): -drawn_share, so the two cover each pixel once;
+/// 1 (the whole impostor) when drawn_share <= 0.
+[[nodiscard]] inline float impostor_fade(float drawn_share) { return drawn_share > 0.0f ? -drawn_share : 1.0f; }
 
 /// How an impostor atlas image is laid out (systems/render/impostor_atlas.hpp builds one). The image's top
 /// half holds colour cells (RGB premultiplied by coverage in alpha), the bottom half normal cells (0.5 + 0.5 N
@@ -102,6 +118,9 @@ struct FrameInput {
     glm::vec3 key_colour{1.0f};                  ///< key light colour
     bool materials = true;                       ///< draw topologies' materials (base colour, texture); false:
                                                  ///< the instance colour alone (debug colourings)
+    std::span<const ProxyFade> proxy_fades;      ///< runs of `proxies` drawn dithered (ascending, disjoint; last, so
+                                                 ///< positional initialisers of the fields above still hold): one draw
+                                                 ///< each, the other proxies one draw per gap between runs
 };
 
 /// Light that reads as a character: a warm key light from the upper front right and a hemisphere from
@@ -184,7 +203,8 @@ public:
     /// Vertex count of a registered topology (0 when unknown).
     [[nodiscard]] uint32_t topology_vertex_count(uint32_t topology) const;
 
-    /// Lists every problem in `frame` (unknown topology, wrong vertex/normal counts); true when none.
+    /// Lists every problem in `frame` (unknown topology, wrong vertex/normal counts, dithers outside [0, 1],
+    /// proxy fade runs out of order or range); true when none.
     bool Validate(const FrameInput& frame, std::vector<std::string>* errors = nullptr) const;
     /// Uploads `frame` and submits its draws into `target` (formats must match the options). Waits only
     /// for the frame that last used this frame slot. Errors: invalid input, Vulkan failures.
@@ -269,6 +289,7 @@ private:
     uint32_t pass_id(std::string_view name);
     void end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass);
     uint32_t record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height);
+    uint32_t record_proxies(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
     [[nodiscard]] static uint32_t impostor_base(const FrameInput& frame);
 
     gpu::Context& ctx_;
@@ -283,7 +304,8 @@ private:
     gpu::Buffer no_uvs_;                              // one zero vec2: draws without UVs
     VkDescriptorSet plain_set_ = VK_NULL_HANDLE;      // no_uvs_ + white_
     std::vector<Slot> slots_;
-    // Per-frame scratch, reused (capacity only grows): meshes ordered by topology, group offsets.
+    // Per-frame scratch, reused (capacity only grows): meshes ordered by topology, group offsets. Groups are
+    // keyed 2 * topology + 1 for the dithered (fading) meshes of a topology, 2 * topology for the others.
     std::vector<uint32_t> order_;
     std::vector<uint32_t> group_start_;
     std::vector<uint32_t> group_count_;

@@ -14,36 +14,38 @@
 
 namespace aloha {
 uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
-    const size_t nt = topologies_.size();
-    // Counting sort of meshes by topology (stable, so the result depends only on the input order).
-    group_count_.assign(nt, 0);
-    for (const DeformableMesh& m : frame.meshes) ++group_count_[m.topology];
-    group_start_.assign(nt, 0);
-    group_vertex_base_.assign(nt, 0);
+    const size_t nt = topologies_.size(), ng = 2 * nt;
+    // Counting sort of meshes by group 2 * topology + dithered (stable, so the result depends only on the input
+    // order): a topology's fading meshes follow its others and are drawn with the dithered pipelines.
+    const auto group_of = [](const DeformableMesh& m) { return 2 * size_t{m.topology} + (m.dither < 1.0f ? 1 : 0); };
+    group_count_.assign(ng, 0);
+    for (const DeformableMesh& m : frame.meshes) ++group_count_[group_of(m)];
+    group_start_.assign(ng, 0);
+    group_vertex_base_.assign(ng, 0);
     uint32_t inst = 0;
     uint32_t vert = 0;
-    for (size_t t = 0; t < nt; ++t) {
-        group_start_[t] = inst;
-        group_vertex_base_[t] = vert;
-        inst += group_count_[t];
-        vert += group_count_[t] * topologies_[t].vertex_count;
+    for (size_t g = 0; g < ng; ++g) {
+        group_start_[g] = inst;
+        group_vertex_base_[g] = vert;
+        inst += group_count_[g];
+        vert += group_count_[g] * topologies_[g / 2].vertex_count;
     }
     group_cursor_.assign(group_start_.begin(), group_start_.end());
     order_.resize(frame.meshes.size());
-    for (uint32_t i = 0; i < frame.meshes.size(); ++i) order_[group_cursor_[frame.meshes[i].topology]++] = i;
-    // Within a topology, nearest first: lavapipe draws the instances in order and skips the shading of 4x4
+    for (uint32_t i = 0; i < frame.meshes.size(); ++i) order_[group_cursor_[group_of(frame.meshes[i])]++] = i;
+    // Within a group, nearest first: lavapipe draws the instances in order and skips the shading of 4x4
     // blocks whose depth test fails, so near characters hide the far ones' fragments (ties by input order).
     depth_.resize(frame.meshes.size());
     const glm::vec4 forward = glm::row(frame.camera.view, 2);  // view-space z of a world point (negative ahead)
     for (uint32_t i = 0; i < frame.meshes.size(); ++i) depth_[i] = -glm::dot(forward, frame.meshes[i].model[3]);
-    for (size_t t = 0; t < nt; ++t)
-        sort_nearest_first(std::span(order_).subspan(group_start_[t], group_count_[t]), depth_);
+    for (size_t g = 0; g < ng; ++g)
+        sort_nearest_first(std::span(order_).subspan(group_start_[g], group_count_[g]), depth_);
 
     std::byte* pos = slot.positions.mapped();
     std::byte* nrm = slot.normals.mapped();
     auto* instances = reinterpret_cast<gpu::LitInstance*>(slot.instances.mapped());
     uint64_t offset = 0;
-    // Meshes in topology order: vertices of group t start at group_vertex_base_[t] and follow one another.
+    // Meshes in group order: vertices of group g start at group_vertex_base_[g] and follow one another.
     for (uint32_t k = 0; k < order_.size(); ++k) {
         const DeformableMesh& m = frame.meshes[order_[k]];
         const size_t bytes = m.positions.size_bytes();
@@ -82,6 +84,38 @@ void CrowdRenderer::end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass) {
     // Bottom of pipe: on lavapipe this flushes the binned scene, so the pass's rasterisation is inside it.
     slot.passes.push_back(pass);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.queries, static_cast<uint32_t>(slot.passes.size()));
+}
+
+uint32_t CrowdRenderer::record_proxies(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push) {
+    if (frame.proxies.empty()) return 0;
+    // Box mode: indexed, non-instanced draws of unit boxes (see shaders/lit_mesh.vert), back faces culled (boxes
+    // are closed and wound counter-clockwise from outside): one draw per stretch between the fade runs, then
+    // one dithered draw per run.
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const auto meshes = static_cast<uint32_t>(frame.meshes.size()), n = static_cast<uint32_t>(frame.proxies.size());
+    vkCmdBindIndexBuffer(cmd, slot.proxy_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+    push.base_colour = glm::vec4(1.0f);
+    uint32_t draws = 0;
+    auto boxes = [&](uint32_t first, uint32_t count, uint32_t dither) {
+        push.offsets = glm::uvec4(0, 0, meshes + first, gpu::kLitBoxes | dither);
+        vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+        vkCmdDrawIndexed(cmd, kBoxIndexCount * count, 1, 0, 0, 0);
+        ++draws;
+    };
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.mesh_culled());
+    uint32_t cursor = 0;
+    for (const ProxyFade& f : frame.proxy_fades) {
+        if (f.first > cursor) boxes(cursor, f.first - cursor, 0u);
+        cursor = f.first + f.count;
+    }
+    if (cursor < n) boxes(cursor, n - cursor, 0u);
+    if (!frame.proxy_fades.empty()) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.dithered(false, true));
+        for (const ProxyFade& f : frame.proxy_fades)
+            if (f.count > 0) boxes(f.first, f.count, gpu::lit_dither_bits(f.share));
+    }
+    end_pass(cmd, slot, {pass_id("proxies"), draws, frame.proxies.size(), uint64_t(kBoxIndexCount / 3) * frame.proxies.size()});
+    return draws;
 }
 
 Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot) {
@@ -131,60 +165,66 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     VkPipeline bound = VK_NULL_HANDLE;
     PassRecord pass;
     bool in_pass = false;
+    // Instances [first, first + count) of group g (topology g / 2) with `pipeline`, `dither` bits in the mode.
+    auto draw_group = [&](uint32_t g, uint32_t first, uint32_t count, VkPipeline pipeline, uint32_t dither) {
+        const Topology& topo = topologies_[g / 2];
+        if (pipeline != bound) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+            bound = pipeline;
+        }
+        const uint32_t vertex_base = group_vertex_base_[g] + first * topo.vertex_count, instance_base = group_start_[g] + first;
+        if (!frame.materials || topo.ranges.empty()) {
+            push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, gpu::kLitMesh | normals | dither);
+            push.base_colour = glm::vec4(1.0f);
+            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+            vkCmdDrawIndexed(cmd, topo.index_count, count, 0, 0, 0);
+            ++draws;
+            return;
+        }
+        for (const Range& r : topo.ranges) {  // one draw per material, every instance of the run
+            const Material& m = materials_[r.material];
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
+            const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
+            push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, textured | normals | dither);
+            push.base_colour = m.colour;
+            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+            vkCmdDrawIndexed(cmd, r.index_count, count, r.first_index, 0, 0);
+            ++draws;
+        }
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
+    };
     for (const uint32_t t : draw_order_) {
-        if (group_count_[t] == 0) continue;
+        const uint32_t whole = 2 * t, faded = 2 * t + 1;
+        if (group_count_[whole] + group_count_[faded] == 0) continue;
         if (in_pass && pass.name != topologies_[t].pass) {
             end_pass(cmd, slot, pass);
             pass = {};
         }
         in_pass = true;
         pass.name = topologies_[t].pass;
-        pass.instances += group_count_[t];
-        pass.triangles += uint64_t(topologies_[t].index_count / 3) * group_count_[t];
+        pass.instances += group_count_[whole] + group_count_[faded];
+        pass.triangles += uint64_t(topologies_[t].index_count / 3) * (group_count_[whole] + group_count_[faded]);
         const uint32_t draws_before = draws;
         const Topology& topo = topologies_[t];
-        const VkPipeline want = topo.vertex_lighting ? (topo.cull_back_faces ? pipes_.vertex_lit_culled() : pipes_.vertex_lit())
-                                                     : (topo.cull_back_faces ? pipes_.mesh_culled() : pipes_.mesh());
-        if (want != bound) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, want);
-            bound = want;
-        }
         vkCmdBindIndexBuffer(cmd, topo.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        if (!frame.materials || topo.ranges.empty()) {
-            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], gpu::kLitMesh | normals);
-            push.base_colour = glm::vec4(1.0f);
-            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, topo.index_count, group_count_[t], 0, 0, 0);
-            ++draws;
-            pass.draws += draws - draws_before;
-            continue;
+        if (group_count_[whole] > 0) {
+            const VkPipeline want = topo.vertex_lighting ? (topo.cull_back_faces ? pipes_.vertex_lit_culled() : pipes_.vertex_lit())
+                                                         : (topo.cull_back_faces ? pipes_.mesh_culled() : pipes_.mesh());
+            draw_group(whole, 0, group_count_[whole], want, 0u);
         }
-        for (const Range& r : topo.ranges) {  // one draw per material, every instance of the topology
-            const Material& m = materials_[r.material];
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
-            const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
-            push.offsets = glm::uvec4(group_vertex_base_[t], topo.vertex_count, group_start_[t], textured | normals);
-            push.base_colour = m.colour;
-            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, r.index_count, group_count_[t], r.first_index, 0, 0);
-            ++draws;
+        // Fading meshes: one draw (per material) per run of equal dither bits, in the group's (nearest-first) order.
+        const VkPipeline dithered = pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces);
+        for (uint32_t k = 0; k < group_count_[faded];) {
+            const uint32_t bits = gpu::lit_dither_bits(frame.meshes[order_[group_start_[faded] + k]].dither);
+            uint32_t end = k + 1;
+            while (end < group_count_[faded] && gpu::lit_dither_bits(frame.meshes[order_[group_start_[faded] + end]].dither) == bits) ++end;
+            draw_group(faded, k, end - k, dithered, bits);
+            k = end;
         }
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
         pass.draws += draws - draws_before;
     }
     if (in_pass) end_pass(cmd, slot, pass);
-    if (!frame.proxies.empty()) {
-        // Box mode: one indexed, non-instanced draw of all proxies (see shaders/lit_mesh.vert), back faces
-        // culled (boxes are closed and wound counter-clockwise from outside).
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.mesh_culled());
-        push.offsets = glm::uvec4(0, 0, static_cast<uint32_t>(frame.meshes.size()), gpu::kLitBoxes);
-        push.base_colour = glm::vec4(1.0f);
-        vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-        vkCmdBindIndexBuffer(cmd, slot.proxy_indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, kBoxIndexCount * static_cast<uint32_t>(frame.proxies.size()), 1, 0, 0, 0);
-        ++draws;
-        end_pass(cmd, slot, {pass_id("proxies"), 1, frame.proxies.size(), uint64_t(kBoxIndexCount / 3) * frame.proxies.size()});
-    }
+    draws += record_proxies(frame, cmd, slot, push);
     draws += record_impostors(frame, cmd, slot, push, float(target.extent.height));
     if (!frame.lines.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.lines());

@@ -198,6 +198,45 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
     }
 }
 
+void GeometryController::update_fades(const PoseSource& poses, float dt) {
+    assert(dt > 0.0f);
+    if (fades_.empty()) return;
+    const CharacterGeometry& g = *geometry_;
+    const size_t J = g.joint_count();
+    FatSpringParams params = spring_params_;
+    params.dt = dt;
+    std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region: filled for the first layered level
+    bool tuned = false;
+    for (const LevelFade& f : fades_) {
+        if (!f.into_impostor()) continue;  // out of the impostor: the entered level's own stages run it
+        Level& L = *levels_[f.from_level];
+        const std::span<const glm::mat4> pose = poses.joints(f.character, J);
+        L.work_characters.fetch_add(1, std::memory_order_relaxed);
+        switch (L.lod.method) {
+            case GeomMethod::RigidProxy:
+                run_proxy(g, L, f.kept_slot, pose);
+                break;
+            case GeomMethod::SkinnedMesh:
+                L.work_vertices.fetch_add(L.control_vertices, std::memory_order_relaxed);
+                run_skinned(g, L, f.kept_slot, pose);
+                break;
+            case GeomMethod::Layered:
+            case GeomMethod::Subdivided:
+                L.work_vertices.fetch_add(L.control_vertices, std::memory_order_relaxed);
+                if (L.springs) L.work_springs.fetch_add(L.control_vertices, std::memory_order_relaxed);
+                if (!tuned) region_spring_params(params, g.muscles().fat_regions, tunings);
+                tuned = true;
+                run_muscles(g, L, f.kept_slot, pose);
+                if (L.springs) carry_springs(L, f.kept_slot, nullptr, dt);
+                run_layered_skin(g, L, f.kept_slot, params, tunings);
+                break;
+            case GeomMethod::Hidden:
+            case GeomMethod::Impostor:
+                break;
+        }
+    }
+}
+
 void GeometryController::update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt,
                                 const PlacementSource& placements) {
     update_muscles(level, characters, poses);

@@ -30,7 +30,8 @@ bool same_level_shape(const GeomLod& a, const GeomLod& b) {
 
 GeometryController::GeometryController(const CharacterGeometry& geometry, std::span<const GeomLod> levels, uint32_t capacity,
                                        bool keep_refined_surfaces)
-    : geometry_(&geometry), level_of_(capacity, kNoLevel), slot_of_(capacity, 0), keep_refined_(keep_refined_surfaces) {
+    : geometry_(&geometry), level_of_(capacity, kNoLevel), slot_of_(capacity, 0),
+      fade_index_(capacity, LevelFade::kNoSlot), keep_refined_(keep_refined_surfaces) {
     set_levels(levels);
 }
 
@@ -148,6 +149,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
 
 void GeometryController::set_levels(std::span<const GeomLod> levels) {
     assert(!levels.empty() && levels.size() < kNoLevel);
+    end_fades();  // kept slots live in levels that may be rebuilt: the running cross-fades end here
     // Every generated skin the levels use, simplified in one pass (build_level then finds them built).
     if (geometry_->muscle_count() > 0 && !geometry_->has_mesh()) {
         std::vector<std::pair<uint32_t, uint32_t>> skins;
@@ -203,6 +205,7 @@ void GeometryController::ensure_capacity(uint32_t character) {
     const size_t n = std::max<size_t>(size_t{character} + 1, 2 * level_of_.size());
     level_of_.resize(n, kNoLevel);
     slot_of_.resize(n, 0);
+    fade_index_.resize(n, LevelFade::kNoSlot);
 }
 
 void GeometryController::capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot) {
@@ -237,6 +240,7 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
     ensure_capacity(character);
     const uint8_t old = level_of_[character];
     if (old == level) return;
+    end_fade(character);  // a switch during a cross-fade ends it (its kept slot released)
     Level& to = *levels_[level];
     const uint32_t s = to.store.acquire();
     std::fill(to.store.spring_initialised(s).begin(), to.store.spring_initialised(s).end(), uint8_t{0});
@@ -251,7 +255,15 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
             to.store.frames_left(s)[0] = geomorph_frames;
             to.store.pending[s] = 1;
         }
-        from.store.release(os);
+        // Into or out of the impostor level: a cross-fade (LevelFade); into it, the drawn level's slot stays
+        // while fading if it has been shown.
+        const bool into_impostor = to.lod.method == GeomMethod::Impostor;
+        if (geomorph_frames >= 2 && crossfades(old, level) && (!into_impostor || from.store.valid[os])) {
+            begin_fade(character, old, into_impostor ? os : LevelFade::kNoSlot, geomorph_frames);
+            if (!into_impostor) from.store.release(os);
+        } else {
+            from.store.release(os);
+        }
     }
     level_of_[character] = level;
     slot_of_[character] = s;
@@ -261,16 +273,19 @@ void GeometryController::reserve(uint8_t level, uint32_t characters) { levels_.a
 
 void GeometryController::end_character(uint32_t character) {
     if (character >= level_of_.size() || level_of_[character] == kNoLevel) return;
+    end_fade(character);
     levels_[level_of_[character]]->store.release(slot_of_[character]);
     level_of_[character] = kNoLevel;
 }
 
 SurfaceView GeometryController::surface(uint32_t character) const {
-    SurfaceView view;
     const uint8_t l = level_of(character);
-    if (l == kNoLevel) return view;
+    return l == kNoLevel ? SurfaceView{} : slot_surface(l, slot_of_[character]);
+}
+
+SurfaceView GeometryController::slot_surface(uint8_t l, uint32_t s) const {
+    SurfaceView view;
     const Level& L = *levels_[l];
-    const uint32_t s = slot_of_[character];
     view.level = l;
     view.topology_key = topology_key(l);
     if (!L.mesh_level || !L.store.valid[s]) return view;

@@ -78,6 +78,30 @@ struct SurfaceView {
     std::span<const glm::vec3> normals;   ///< unit normals, same size
 };
 
+/// A cross-fade between an `impostor` level and a drawn level (rigid proxy or mesh), begun by
+/// GeometryController::begin_level for a switch of N >= 2 geomorph frames either way: the switch frame
+/// and the N - 2 after it show the character at both levels with complementary screen-door dithers (frame
+/// k = 1 .. N - 1 of the switch gives the entered level k / N of the pixels, as a geomorph's frame k is k / N
+/// of the way), frame N the entered level alone. Leaving a drawn level for the impostor keeps that level's
+/// slot meanwhile (update_fades keeps it posed); entering one from the impostor needs nothing kept.
+struct LevelFade {
+    static constexpr uint32_t kNoSlot = 0xFFFFFFFFu;  ///< kept_slot of a fade out of the impostor level
+    uint32_t character = 0;       ///< the character (id in its type)
+    uint8_t from_level = 0;       ///< the level it left
+    uint16_t frames_total = 0;    ///< N, the switch's geomorph frames (>= 2)
+    uint16_t frames_left = 0;     ///< frames after this one that still show both (N - k on frame k), >= 1
+    uint32_t kept_slot = kNoSlot; ///< the left drawn level's slot, kept while fading into the impostor
+
+    /// True when the character is entering the impostor level (the drawn level is the one left).
+    [[nodiscard]] bool into_impostor() const { return kept_slot != kNoSlot; }
+    /// Share of the character's pixels the drawn (proxy or mesh) side shows this frame, in (0, 1); the
+    /// impostor shows the rest (gpu::lit_dither_bits, ImpostorInstance::forward_phase.w = -share).
+    [[nodiscard]] float drawn_share() const {
+        const uint16_t entered = static_cast<uint16_t>(frames_total - frames_left);  // k: frames of the new level's share
+        return static_cast<float>(into_impostor() ? frames_left : entered) / static_cast<float>(frames_total);
+    }
+};
+
 /// The geometric controller of one character type.
 class GeometryController {
 public:
@@ -109,6 +133,26 @@ public:
     /// spawn); the controller's own record wins when they differ. Entering the current level again
     /// does nothing. Serial only. Requires level < level_count().
     void begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames);
+    /// Ends the frame's cross-fades: every LevelFade advances one frame, and those at their last frame end
+    /// (their kept slots released). Call once per frame before the frame's begin_level calls
+    /// (apply_level_switches does). Serial only.
+    void advance_fades();
+    /// The cross-fade `character` is in, or nullptr (see LevelFade).
+    [[nodiscard]] const LevelFade* fade(uint32_t character) const {
+        return character < fade_index_.size() && fade_index_[character] != LevelFade::kNoSlot ? &fades_[fade_index_[character]] : nullptr;
+    }
+    /// Every running cross-fade (order unspecified but deterministic).
+    [[nodiscard]] std::span<const LevelFade> fades() const { return fades_; }
+    /// The kept slots of fades into the impostor level: the left level's surface (or proxy boxes) for each
+    /// character's pose in `poses` this frame, as update_muscles + update_skin would (fat springs not carried
+    /// with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) last step.
+    void update_fades(const PoseSource& poses, float dt);
+    /// The surface `character` shows at the level it is fading out of (a LevelFade into the impostor level
+    /// from a mesh level), as surface() would there; empty otherwise.
+    [[nodiscard]] SurfaceView fade_surface(uint32_t character) const;
+    /// The proxy boxes of a character fading from a RigidProxy level into the impostor level; empty otherwise.
+    [[nodiscard]] std::span<const glm::mat4> fade_proxy_boxes(uint32_t character) const;
+
     /// Allocates room for `characters` characters at `level` at once (no-op when there is room), for a
     /// caller that knows they will all enter it. Serial only. Requires level < level_count().
     void reserve(uint8_t level, uint32_t characters);
@@ -214,11 +258,18 @@ private:
     void capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot);
     void control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out) const;
     void ensure_capacity(uint32_t character);
+    [[nodiscard]] SurfaceView slot_surface(uint8_t level, uint32_t slot) const;
+    [[nodiscard]] bool crossfades(uint8_t from, uint8_t to) const;
+    void begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames);
+    void end_fade(uint32_t character);
+    void end_fades();
 
     const CharacterGeometry* geometry_;
     std::vector<std::unique_ptr<Level>> levels_;
     std::vector<uint8_t> level_of_;
     std::vector<uint32_t> slot_of_;
+    std::vector<LevelFade> fades_;        ///< running cross-fades
+    std::vector<uint32_t> fade_index_;    ///< per character: its index in fades_, LevelFade::kNoSlot when none
     FatSpringParams spring_params_;
     bool keep_refined_ = true;
 };

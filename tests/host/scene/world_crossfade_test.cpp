@@ -1,0 +1,205 @@
+// A character switching between the impostor level and a drawn level in a World with a renderer: the
+// switch is cross-faded over the entered level's geomorph frames (LevelFade), the draw lists holding the
+// character twice with complementary shares, and the level being left stays posed while it fades.
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/offscreen_target.hpp"
+#include "host/scene/character_runtime.hpp"
+#include "host/scene/scene_loader.hpp"
+#include "host/scene/world.hpp"
+#include "systems/lod/resolver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace aloha {
+namespace {
+
+const std::string kData = std::string(ALOHA_SOURCE_DIR) + "/data/";
+
+// Geometric levels of data/rules/default.json.
+constexpr uint8_t kLayeredLow = 2, kSkinned = 3, kProxy = 4, kImpostor = 5;
+
+struct Fixture {
+    std::unique_ptr<gpu::Context> ctx;
+    std::unique_ptr<CrowdRenderer> renderer;
+    gpu::OffscreenTarget target;
+    std::unique_ptr<World> world;
+};
+
+// The close-up walker (one character on a circle) with the default rules, drawn into a 160 x 240 target.
+bool make(Fixture& f) {
+    auto scene = load_scene(kData + "scenes/closeup.json");
+    EXPECT_TRUE(scene.ok());
+    if (!scene.ok()) return false;
+    SceneDesc s = scene.value();
+    s.width = 160;
+    s.height = 240;
+    gpu::ContextOptions co;
+    co.validation = true;
+    co.device = "lavapipe";
+    auto ctx = gpu::Context::create(co);
+    EXPECT_TRUE(ctx.ok()) << (ctx.ok() ? "" : ctx.error().to_string());
+    if (!ctx.ok()) return false;
+    f.ctx = std::move(ctx).value();
+    auto renderer = CrowdRenderer::create(*f.ctx);
+    EXPECT_TRUE(renderer.ok());
+    if (!renderer.ok()) return false;
+    f.renderer = std::move(renderer).value();
+    auto target = gpu::OffscreenTarget::create(*f.ctx, s.width, s.height);
+    EXPECT_TRUE(target.ok());
+    if (!target.ok()) return false;
+    f.target = std::move(target).value();
+    auto world = World::create(s, {});
+    EXPECT_TRUE(world.ok()) << (world.ok() ? "" : world.error().to_string());
+    if (!world.ok()) return false;
+    f.world = std::move(world).value();
+    EXPECT_TRUE(f.world->attach_renderer(f.renderer.get(), &f.target).ok());
+    return true;
+}
+
+// Pins character 0 at `level` and steps past the hysteresis hold (0.2 s) so the next pin switches at once.
+void settle_at(World& w, uint8_t level) {
+    ASSERT_TRUE(w.pin_geom_level(0, level).ok());
+    for (int i = 0; i < 20; ++i) w.step();
+    ASSERT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
+    ASSERT_EQ(w.render_lists().drawn_twice, 0u);
+}
+
+// What one frame of a fade drew of the character: its drawn share on the drawn side (mesh or proxies) and
+// the impostor's fade value.
+struct Drawn {
+    uint32_t drawn_twice = 0;
+    size_t meshes = 0, proxies = 0, impostors = 0;
+    float mesh_dither = -1.0f, proxy_share = -1.0f, impostor_w = -2.0f;
+};
+
+Drawn drawn(const World& w) {
+    const RenderLists& l = w.render_lists();
+    Drawn d;
+    d.drawn_twice = l.drawn_twice;
+    d.meshes = l.meshes.size();
+    d.proxies = l.proxies.size();
+    d.impostors = l.impostors.size();
+    if (!l.meshes.empty()) d.mesh_dither = l.meshes[0].dither;
+    if (!l.proxy_fades.empty()) d.proxy_share = l.proxy_fades[0].share;
+    if (!l.impostors.empty()) d.impostor_w = l.impostors[0].forward_phase.w;
+    return d;
+}
+
+TEST(WorldCrossFade, SwitchesIntoAndOutOfTheImpostorFadeOverTheGeomorphFrames) {
+    Fixture f;
+    if (!make(f)) return;
+    World& w = *f.world;
+    const GeometryController& gc = *w.runtime(0).geometry;
+    // The frames of a switch into a level: its geomorph_s over the scene's dt (0.1 s at 1/60 s: 6), frame
+    // k = 1..N - 1 drawing both, the entered level with k / N of the pixels.
+    const uint16_t n_impostor = transition_frames(gc.level(kImpostor).geomorph_s, 0.0166667f);
+    const uint16_t n_skinned = transition_frames(gc.level(kSkinned).geomorph_s, 0.0166667f);
+    ASSERT_EQ(n_impostor, 6u);
+    ASSERT_EQ(n_skinned, 6u);
+
+    // skinned -> impostor: the skinned mesh, kept posed, fades out.
+    settle_at(w, kSkinned);
+    ASSERT_TRUE(w.pin_geom_level(0, kImpostor).ok());
+    std::vector<glm::vec3> reference, previous;
+    for (uint16_t k = 1; k <= n_impostor; ++k) {
+        SCOPED_TRACE("into the impostor, frame " + std::to_string(k));
+        w.step();
+        const Drawn d = drawn(w);
+        EXPECT_EQ(d.impostors, 1u);
+        if (k == n_impostor) {  // frame N: the impostor alone
+            EXPECT_EQ(d.drawn_twice, 0u);
+            EXPECT_EQ(d.meshes, 0u);
+            EXPECT_EQ(d.impostor_w, 1.0f);
+            EXPECT_TRUE(gc.fades().empty());
+            continue;
+        }
+        const float share = float(n_impostor - k) / float(n_impostor);
+        EXPECT_EQ(d.drawn_twice, 1u);
+        ASSERT_EQ(d.meshes, 1u);
+        EXPECT_EQ(d.mesh_dither, share);
+        EXPECT_EQ(d.impostor_w, -share);
+        // The mesh shown is the skinned level's surface for this frame's pose (the pose is evaluated while
+        // fading: PoseUse::EveryFrame), not the last one shown before the switch.
+        const SurfaceView kept = gc.fade_surface(0);
+        ASSERT_EQ(kept.level, kSkinned);
+        gc.reference_surface(w.draw_types()[0].poses, 0, kSkinned, reference);
+        ASSERT_EQ(reference.size(), kept.positions.size());
+        float worst = 0.0f, moved = 0.0f;
+        for (size_t i = 0; i < reference.size(); ++i) {
+            worst = std::max(worst, glm::length(reference[i] - kept.positions[i]));
+            if (!previous.empty()) moved = std::max(moved, glm::length(previous[i] - kept.positions[i]));
+        }
+        EXPECT_LT(worst, 1e-5f);  // the same linear-blend skin of the same pose: float rounding only
+        if (!previous.empty()) {
+            EXPECT_GT(moved, 1e-3f) << "the walker's skin moves between frames";
+        }
+        previous.assign(kept.positions.begin(), kept.positions.end());
+    }
+
+    // impostor -> skinned: the entered mesh fades in over the skinned level's frames.
+    for (int i = 0; i < 20; ++i) w.step();
+    ASSERT_TRUE(w.pin_geom_level(0, kSkinned).ok());
+    for (uint16_t k = 1; k <= n_skinned; ++k) {
+        SCOPED_TRACE("out of the impostor, frame " + std::to_string(k));
+        w.step();
+        const Drawn d = drawn(w);
+        ASSERT_EQ(d.meshes, 1u);
+        if (k == n_skinned) {
+            EXPECT_EQ(d.drawn_twice, 0u);
+            EXPECT_EQ(d.impostors, 0u);
+            EXPECT_EQ(d.mesh_dither, 1.0f);
+            continue;
+        }
+        const float share = float(k) / float(n_skinned);
+        EXPECT_EQ(d.drawn_twice, 1u);
+        ASSERT_EQ(d.impostors, 1u);
+        EXPECT_EQ(d.mesh_dither, share);
+        EXPECT_EQ(d.impostor_w, -share);
+    }
+
+    // layered -> impostor: the layered skin (muscles, fat springs) is kept and drawn while fading.
+    settle_at(w, kLayeredLow);
+    ASSERT_TRUE(w.pin_geom_level(0, kImpostor).ok());
+    for (uint16_t k = 1; k < n_impostor; ++k) {
+        w.step();
+        const Drawn d = drawn(w);
+        EXPECT_EQ(d.drawn_twice, 1u) << "frame " << k;
+        EXPECT_EQ(d.meshes, 1u) << "frame " << k;
+        EXPECT_EQ(gc.fade_surface(0).level, kLayeredLow);
+    }
+    w.step();
+    EXPECT_EQ(drawn(w).drawn_twice, 0u);
+
+    // impostor -> proxy: the proxy level's geomorph_s is 0 in the default rules, so it switches at once.
+    for (int i = 0; i < 20; ++i) w.step();
+    ASSERT_TRUE(w.pin_geom_level(0, kProxy).ok());
+    w.step();
+    EXPECT_EQ(drawn(w).drawn_twice, 0u);
+    EXPECT_EQ(drawn(w).impostors, 0u);
+    // proxy -> impostor: the boxes fade out as one dithered run.
+    for (int i = 0; i < 20; ++i) w.step();
+    ASSERT_TRUE(w.pin_geom_level(0, kImpostor).ok());
+    for (uint16_t k = 1; k < n_impostor; ++k) {
+        w.step();
+        const Drawn d = drawn(w);
+        const float share = float(n_impostor - k) / float(n_impostor);
+        EXPECT_EQ(d.drawn_twice, 1u) << "frame " << k;
+        ASSERT_EQ(w.render_lists().proxy_fades.size(), 1u) << "frame " << k;
+        EXPECT_EQ(w.render_lists().proxy_fades[0].count, d.proxies);
+        EXPECT_EQ(d.proxy_share, share);
+        EXPECT_EQ(d.impostor_w, -share);
+    }
+    w.step();
+    EXPECT_EQ(drawn(w).drawn_twice, 0u);
+    EXPECT_EQ(drawn(w).proxies, 0u);
+    EXPECT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
+    f.world.reset();
+    f.renderer.reset();
+    EXPECT_EQ(f.ctx->validation_message_count(), 0u);
+}
+
+}  // namespace
+}  // namespace aloha

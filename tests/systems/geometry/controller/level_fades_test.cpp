@@ -1,0 +1,172 @@
+// Cross-fades between the impostor level and a drawn level (LevelFade): their frames and shares, the slot
+// of the level left kept and posed while fading into the impostor, and every way a fade ends.
+#include "tests/systems/geometry/controller/test_humanoid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace aloha {
+namespace {
+
+using test::humanoid;
+
+constexpr uint8_t kLayered = 2, kSkinned = 3, kProxy = 4, kHidden = 5, kImpostor = 6;
+
+// test_levels() (0 Subdivided .. 5 Hidden) and an impostor level last.
+std::vector<GeomLod> levels_with_impostor() {
+    std::vector<GeomLod> levels = test::test_levels();
+    GeomLod impostor;
+    impostor.method = GeomMethod::Impostor;
+    impostor.level = kImpostor;
+    levels.push_back(impostor);
+    return levels;
+}
+
+std::vector<glm::vec3> copy(std::span<const glm::vec3> s) { return {s.begin(), s.end()}; }
+
+TEST(LevelFades, IntoTheImpostorTheLeftMeshStaysPosedForNMinusOneFrames) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, levels_with_impostor(), 2);
+    // Character 1 stays at the skinned level as the witness of what the fading character's mesh must show.
+    for (const uint32_t c : {0u, 1u}) ctl.begin_level(c, kSkinned, -1, 0);
+    const uint32_t both[2] = {0, 1}, witness[1] = {1};
+    size_t key = 100;
+    auto pose = test::clip_pose(g.skeleton(), humanoid().clip, key++);
+    ctl.update(kSkinned, both, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    constexpr uint16_t N = 6;
+    ctl.begin_level(0, kImpostor, kSkinned, N);
+    ASSERT_NE(ctl.fade(0), nullptr);
+    EXPECT_TRUE(ctl.fade(0)->into_impostor());
+    EXPECT_EQ(ctl.fade(0)->from_level, kSkinned);
+    EXPECT_EQ(ctl.fades().size(), 1u);
+    EXPECT_EQ(ctl.level_of(0), kImpostor);
+    EXPECT_EQ(ctl.characters_at(kSkinned), 2u);  // the witness and the kept slot
+    EXPECT_EQ(ctl.fade(1), nullptr);
+    for (uint16_t k = 1; k < N; ++k) {
+        SCOPED_TRACE("frame " + std::to_string(k));
+        if (k > 1) ctl.advance_fades();
+        ASSERT_NE(ctl.fade(0), nullptr);
+        EXPECT_EQ(ctl.fade(0)->frames_left, N - k);
+        EXPECT_EQ(ctl.fade(0)->drawn_share(), float(N - k) / float(N));  // the impostor has k / N
+        pose = test::clip_pose(g.skeleton(), humanoid().clip, key++);
+        ctl.update(kSkinned, witness, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+        ctl.update_fades(PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+        // The same linear-blend skin of the same pose as the witness's, bit for bit: the mesh fading out walks on.
+        const SurfaceView kept = ctl.fade_surface(0);
+        EXPECT_EQ(kept.level, kSkinned);
+        EXPECT_EQ(kept.topology_key, ctl.topology_key(kSkinned));
+        EXPECT_EQ(copy(kept.positions), copy(ctl.surface(1).positions));
+        EXPECT_EQ(copy(kept.normals), copy(ctl.surface(1).normals));
+        EXPECT_TRUE(ctl.surface(0).positions.empty());  // the impostor level has no surface
+    }
+    ctl.advance_fades();  // frame N: the impostor alone, the kept slot released
+    EXPECT_EQ(ctl.fade(0), nullptr);
+    EXPECT_TRUE(ctl.fades().empty());
+    EXPECT_EQ(ctl.characters_at(kSkinned), 1u);
+    EXPECT_TRUE(ctl.fade_surface(0).positions.empty());
+
+    // Out of the impostor: nothing is kept, the entered level's share grows k / N.
+    ctl.begin_level(0, kSkinned, kImpostor, N);
+    ASSERT_NE(ctl.fade(0), nullptr);
+    EXPECT_FALSE(ctl.fade(0)->into_impostor());
+    EXPECT_EQ(ctl.characters_at(kImpostor), 0u);
+    for (uint16_t k = 1; k < N; ++k) {
+        if (k > 1) ctl.advance_fades();
+        ASSERT_NE(ctl.fade(0), nullptr);
+        EXPECT_EQ(ctl.fade(0)->drawn_share(), float(k) / float(N));
+        EXPECT_TRUE(ctl.fade_surface(0).positions.empty());  // the entered level's own surface() is drawn
+    }
+    ctl.advance_fades();
+    EXPECT_EQ(ctl.fade(0), nullptr);
+}
+
+TEST(LevelFades, ProxyBoxesAndLayeredSkinsFadeOutPosed) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, levels_with_impostor(), 4);
+    // 0 and 1 proxies, 2 and 3 layered; 0 and 2 fade into the impostor, 1 is the proxies' witness.
+    const uint32_t proxies[2] = {0, 1}, layered[2] = {2, 3}, proxy_witness[1] = {1};
+    for (const uint32_t c : proxies) ctl.begin_level(c, kProxy, -1, 0);
+    for (const uint32_t c : layered) ctl.begin_level(c, kLayered, -1, 0);
+    size_t key = 300;
+    auto pose = test::clip_pose(g.skeleton(), humanoid().clip, key++);
+    ctl.update(kProxy, proxies, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    ctl.update(kLayered, layered, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    ctl.begin_level(0, kImpostor, kProxy, 3);
+    ctl.begin_level(2, kImpostor, kLayered, 3);
+    pose = test::clip_pose(g.skeleton(), humanoid().clip, key++);
+    ctl.update(kProxy, proxy_witness, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    ctl.update_fades(PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    const std::span<const glm::mat4> boxes = ctl.fade_proxy_boxes(0), witness_boxes = ctl.proxy_boxes(1);
+    ASSERT_FALSE(boxes.empty());
+    EXPECT_TRUE(std::equal(boxes.begin(), boxes.end(), witness_boxes.begin(), witness_boxes.end()));
+    EXPECT_TRUE(ctl.fade_surface(0).positions.empty());
+    // The layered skin: muscles, fat springs and skin run for the new pose (finite, at the level it left).
+    ASSERT_FALSE(ctl.fade_surface(2).positions.empty());
+    EXPECT_EQ(ctl.fade_surface(2).level, kLayered);
+    EXPECT_TRUE(ctl.fade_proxy_boxes(2).empty());
+    for (const glm::vec3& p : ctl.fade_surface(2).positions) EXPECT_TRUE(test::finite(p));
+    ctl.advance_fades();
+    ctl.advance_fades();  // N = 3: frames 1 and 2 show both
+    EXPECT_TRUE(ctl.fades().empty());
+    EXPECT_EQ(ctl.characters_at(kProxy), 1u);
+    EXPECT_EQ(ctl.characters_at(kLayered), 1u);
+}
+
+TEST(LevelFades, OnlyImpostorSwitchesOfTwoFramesOrMoreFadeAndEveryEndReleasesTheKeptSlot) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, levels_with_impostor(), 2);
+    const uint32_t one[1] = {0};
+    const auto pose = test::clip_pose(g.skeleton(), humanoid().clip, 50);
+    auto show = [&](uint8_t level) { ctl.update(level, one, PoseSource{pose.data(), 0}, 1.0f / 60.0f); };
+    // A mesh never shown (no update since it entered) has nothing to fade out.
+    ctl.begin_level(0, kSkinned, -1, 0);
+    ctl.begin_level(0, kImpostor, kSkinned, 6);
+    EXPECT_EQ(ctl.fade(0), nullptr);
+    EXPECT_EQ(ctl.characters_at(kSkinned), 0u);
+    // One frame is a pop (frame 1 of 1 is the new level alone), as for a geomorph.
+    ctl.begin_level(0, kSkinned, kImpostor, 1);
+    EXPECT_EQ(ctl.fade(0), nullptr);
+    show(kSkinned);
+    // Between drawn levels a geomorph, not a fade; to or from hidden nothing.
+    ctl.begin_level(0, kLayered, kSkinned, 6);
+    EXPECT_EQ(ctl.fade(0), nullptr);
+    show(kLayered);
+    ctl.begin_level(0, kHidden, kLayered, 6);
+    EXPECT_EQ(ctl.fade(0), nullptr);
+    ctl.begin_level(0, kImpostor, kHidden, 6);
+    EXPECT_EQ(ctl.fade(0), nullptr);
+    // A switch during a fade ends it (kept slot released) and starts the new one.
+    ctl.begin_level(0, kSkinned, kImpostor, 0);
+    show(kSkinned);
+    ctl.begin_level(0, kImpostor, kSkinned, 6);
+    ASSERT_NE(ctl.fade(0), nullptr);
+    EXPECT_EQ(ctl.characters_at(kSkinned), 1u);
+    ctl.begin_level(0, kLayered, kImpostor, 6);
+    ASSERT_NE(ctl.fade(0), nullptr);
+    EXPECT_FALSE(ctl.fade(0)->into_impostor());
+    EXPECT_EQ(ctl.characters_at(kSkinned), 0u);
+    EXPECT_EQ(ctl.fades().size(), 1u);
+    // Despawning and a rule reload end fades too.
+    show(kLayered);
+    ctl.begin_level(0, kImpostor, kLayered, 6);
+    EXPECT_EQ(ctl.characters_at(kLayered), 1u);
+    ctl.end_character(0);
+    EXPECT_TRUE(ctl.fades().empty());
+    EXPECT_EQ(ctl.characters_at(kLayered), 0u);
+    ctl.begin_level(1, kSkinned, -1, 0);
+    const uint32_t other[1] = {1};
+    ctl.update(kSkinned, other, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    ctl.begin_level(1, kImpostor, kSkinned, 6);
+    EXPECT_EQ(ctl.fades().size(), 1u);
+    ctl.set_levels(levels_with_impostor());
+    EXPECT_TRUE(ctl.fades().empty());
+    EXPECT_EQ(ctl.characters_at(kSkinned), 0u);
+    EXPECT_EQ(ctl.level_of(1), kImpostor);
+}
+
+}  // namespace
+}  // namespace aloha
