@@ -262,7 +262,7 @@ private:
     // What a steady step can be (Hot::steady): a looping clip, a straight walk played from a clip that
     // already faces its way, a reach or look-at; None = the full step (step_active).
     enum class Steady : uint8_t { None = 0, Clip = 1, WalkClip = 2, Hold = 3 };
-    // Phase 1's record of a character (80 bytes; Character is ~600): the counters every step reads and
+    // Phase 1's record of a character (80 bytes; Character is ~460): the counters every step reads and
     // writes, and, while `steady` is set, all a step of the current request needs (step_steady), whose
     // clocks then live here: Character::cur's copies are written back when it is posed and before any
     // full step or change (leave_steady).

@@ -1,6 +1,6 @@
 // Phase 1's steady step: a character playing a looping clip, walking straight from a clip while facing its
 // way, or reaching / looking, with nothing queued, fading, overlaid or inertialized, advances from its
-// 80-byte Hot record and its element's rows alone (the ~600-byte Character stays out of the cache). The
+// 80-byte Hot record and its element's rows alone (the ~460-byte Character stays out of the cache). The
 // result is step_active's, bit for bit: the same operations on the same values in the same order.
 #include "systems/motion/controller.hpp"
 
