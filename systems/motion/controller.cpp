@@ -13,8 +13,6 @@
 namespace aloha {
 
 namespace {
-constexpr float kTurnRate = 6.0f;  // rad/s: how fast a walker turns to face its direction of travel
-
 bool is_live(RequestKind k) { return k == RequestKind::PlayClip || k == RequestKind::Walk; }
 
 glm::vec3 horizontal(const glm::vec3& v) { return glm::vec3(v.x, 0.0f, v.z); }
@@ -45,11 +43,28 @@ glm::quat MotionController::turn(Channel& ch, const glm::quat& rotation, const g
 }
 
 MotionController::MotionController(const Skeleton& skeleton, const ClipLibrary& clips, size_t capacity)
-    : skeleton_(&skeleton), clips_(&clips), chars_(capacity), queues_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
+    : skeleton_(&skeleton), clips_(&clips), chars_(capacity), hot_(capacity), queues_(capacity), pool_(skeleton.joint_count(), capacity, &skeleton),
       snapshot_(skeleton.joint_count(), capacity, nullptr), scratch_(skeleton.joint_count(), 1, nullptr),
       keys_(skeleton.joint_count()), inertia_(skeleton.joint_count()) {
     active_.reserve(capacity);
     due_.reserve(capacity);
+}
+
+void MotionController::leave_steady(uint32_t c) {
+    Hot& h = hot_[c];
+    if (h.steady == Steady::None) return;
+    chars_[c].cur.time = h.time;
+    chars_[c].cur.request_time = h.request_time;
+    h.steady = Steady::None;
+}
+
+void MotionController::leave_steady_all() {
+    for (uint32_t c = 0; c < hot_.size(); ++c) leave_steady(c);
+}
+
+void MotionController::set_steady_steps(bool on) {
+    leave_steady_all();
+    steady_steps_ = on;
 }
 
 void MotionController::set_worker_slots(size_t count) {
@@ -58,6 +73,7 @@ void MotionController::set_worker_slots(size_t count) {
 }
 
 void MotionController::set_walk_rig(WalkRig rig, GaitParams gait) {
+    leave_steady_all();  // the walk methods the levels resolve to may change
     rig_ = std::move(rig);
     gait_ = gait;
     foot_lock_.emplace(*skeleton_, *rig_, chars_.size(), foot_lock_params_);
@@ -72,6 +88,7 @@ void MotionController::set_foot_lock(bool on, FootLockParams params) {
 void MotionController::set_walk_clip(ClipId clip) { set_walk_clips(std::span<const ClipId>(&clip, 1)); }
 
 void MotionController::set_walk_clips(std::span<const ClipId> clips) {
+    leave_steady_all();  // the walk methods the levels resolve to may change
     walk_clips_.clear();
     walk_clip_speeds_.clear();
     for (ClipId id : clips) {
@@ -95,6 +112,7 @@ int32_t MotionController::pick_walk_clip(float speed) const {
 }
 
 void MotionController::set_method_hook(MethodSlot slot, MethodHook hook, void* user, MethodRelease release) {
+    leave_steady_all();  // the walk methods the levels resolve to may change
     hooks_[static_cast<size_t>(slot)] = hook;
     hook_users_[static_cast<size_t>(slot)] = user;
     releases_[static_cast<size_t>(slot)] = hook ? release : nullptr;
@@ -110,12 +128,14 @@ void MotionController::activate(uint32_t c) {
     if (ch.active_index >= 0) return;
     ch.active_index = static_cast<int32_t>(active_.size());
     active_.push_back(c);
+    walk_dirty_ = true;
 }
 
 bool MotionController::push_request(uint32_t character, const MotionRequest& request) {
     if (character >= chars_.size()) return false;
     Character& ch = chars_[character];
     if (ch.count >= kQueueCapacity) return false;
+    leave_steady(character);  // a queued request may pre-empt the current one
     queues_[character][(ch.head + ch.count) % kQueueCapacity] = request;
     ++ch.count;
     activate(character);
@@ -125,6 +145,7 @@ bool MotionController::push_request(uint32_t character, const MotionRequest& req
 bool MotionController::interrupt(uint32_t character, const MotionRequest& request) {
     if (character >= chars_.size()) return false;
     Character& ch = chars_[character];
+    leave_steady(character);
     ch.count = 0;
     ch.head = 0;
     ch.cur.done = 1;  // the current request ends at the next update
@@ -132,7 +153,7 @@ bool MotionController::interrupt(uint32_t character, const MotionRequest& reques
 }
 
 void MotionController::begin_fade(uint32_t c, Character& ch, float seconds, bool live_prev) {
-    if (!(seconds > 0.0f) || ch.stale) {  // a stale pose was never shown: nothing to fade from
+    if (!(seconds > 0.0f) || hot_[c].stale) {  // a stale pose was never shown: nothing to fade from
         ch.fade_left = 0.0f;
         return;
     }
@@ -202,13 +223,23 @@ bool MotionController::kinematic_walking(const Character& ch, const AnimLod& lod
     return ch.cur.req.kind == RequestKind::Walk && rig_ && walk_method(lod) == WalkMethod::Kinematic;
 }
 
+float MotionController::clock_rate(const Channel& ch) {
+    if (ch.req.kind == RequestKind::PlayClip) return ch.req.speed;
+    const float natural = ch.walk_natural;
+    return natural > 1e-4f ? std::max(ch.req.speed, 0.0f) / natural : 1.0f;
+}
+
 void MotionController::advance_clock(Channel& ch, float seconds) const {
-    if (ch.req.kind == RequestKind::PlayClip) {
-        ch.time += seconds * ch.req.speed;
-    } else if (ch.req.kind == RequestKind::Walk && ch.walk_clip >= 0) {
-        const float natural = ch.walk_natural;
-        ch.time += seconds * (natural > 1e-4f ? std::max(ch.req.speed, 0.0f) / natural : 1.0f);
-    }
+    if (ch.req.kind == RequestKind::PlayClip || (ch.req.kind == RequestKind::Walk && ch.walk_clip >= 0))
+        ch.time += seconds * clock_rate(ch);
+}
+
+glm::vec3 MotionController::straight_direction(const MotionRequest& r, const glm::quat& rotation) {
+    const glm::vec3 h = horizontal(r.target);
+    const float len = glm::length(h);
+    glm::vec3 dir = len > 1e-6f ? h / len : horizontal(rotation * glm::vec3(0, 0, 1));
+    if (glm::length(dir) > 0.0f) dir = glm::normalize(dir);
+    return dir;
 }
 
 void MotionController::sync_walk_clock(Channel& ch, WalkMethod from, WalkMethod to) const {
@@ -258,10 +289,7 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
                 }
                 if (ch.path_cursor >= wps.size() || glm::length(dir) == 0.0f) ch.done = 1;
             } else {
-                const glm::vec3 h = horizontal(r.target);
-                const float len = glm::length(h);
-                dir = len > 1e-6f ? h / len : horizontal(placement->rotation * glm::vec3(0, 0, 1));
-                if (glm::length(dir) > 0.0f) dir = glm::normalize(dir);
+                dir = straight_direction(r, placement->rotation);
             }
             if (!ch.done) {
                 placement->position += dir * speed * dt;

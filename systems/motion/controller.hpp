@@ -162,6 +162,12 @@ public:
     /// Active characters per block of update_parallel's phase 1 (blocks run concurrently; default 2048,
     /// at least 1). Results do not depend on it. Not during an update.
     void set_step_block(size_t count) { step_block_ = std::max<size_t>(1, count); }
+    /// Lets phase 1 step characters in a steady request (a looping clip, a straight clip walk facing its
+    /// way, a reach or look-at) from a small record of their own (on by default); off, every step is the
+    /// full one. Results do not depend on it. Not during an update.
+    void set_steady_steps(bool on);
+    /// Characters the last update stepped by the steady step (work counter).
+    [[nodiscard]] size_t steady_count() const { return steady_count_; }
     /// Scratch slots available to evaluate_due.
     [[nodiscard]] size_t worker_slots() const { return workers_; }
     /// Where evaluate_due adds the wall time (ns) of each work item, at anim_cost_slot(AnimLod::level,
@@ -173,7 +179,7 @@ public:
     /// PoseUse). Empty (the default): every pose is read every frame. The span must outlive the updates.
     void set_pose_use(std::span<const uint8_t> use) { pose_use_ = use; }
     /// Characters whose pooled pose is stale (left out while PoseUse::Unseen).
-    [[nodiscard]] bool stale(uint32_t character) const { return chars_[character].stale != 0; }
+    [[nodiscard]] bool stale(uint32_t character) const { return hot_[character].stale != 0; }
     /// Characters due in the last begin_update, in evaluation order.
     [[nodiscard]] size_t due_count() const { return due_.size(); }
     /// Work items of the last begin_update for evaluate_due: the due characters, then the throttled
@@ -238,32 +244,49 @@ private:
         /// faded out and the pose beneath must be shown once exactly).
         [[nodiscard]] bool needs_pose() const { return first || (cleared && presence <= 0.0f && !shown_zero); }
     };
-    // Fields every update reads first; the channel faded from (read only while fading) last. The request
-    // queue (read only when a request starts) lives apart in queues_: phase 1 walks every active
-    // character each frame, so its stride is what the frame streams through memory.
+    // Everything else of a character (what a request switch, a fade, an overlay or a pose reads). Phase 1
+    // of a character in a steady request reads only its Hot record; the request queue (read only when a
+    // request starts) lives apart in queues_.
     struct Character {
         Channel cur;
         float fade_left = 0.0f, fade_total = 0.0f;
-        float since_posed = 0.0f;
         uint8_t fade_snapshot = 0;   // fade from the snapshot pose (else from the live prev channel)
         uint8_t has_walk_method = 0;
         WalkMethod walk_method = WalkMethod::ClipPlayback;
         uint8_t head = 0, count = 0;
         int32_t active_index = -1;
         uint8_t slots_in_use = 0;    // bit per MethodSlot used by the current request
-        int32_t keys_slot = -1;      // ThrottleKeys slot while interpolating between throttled updates
-        float keys_span = 0.0f;      // seconds from the start to the end key pose
         Overlay overlay;             // reach / look-at layered over the current request
         int32_t inertial_slot = -1;  // InertialOffsets slot while a level change is inertialized
         float inertial_elapsed = 0.0f, inertial_total = 0.0f;  // seconds into / of the transition
         uint8_t inertial_pending = 0;  // the offset is taken at the next pose (the change happened this frame)
         uint8_t inertial_done = 0;     // posed with the offset gone: the slot is released at the next update
-        int64_t last_anim = -1;        // anim_signature of the AnimLod at the last update (-1 before the first)
         uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the rest pose)
+        Channel prev;                  // the request faded from (while fade_left > 0 and !fade_snapshot)
+    };
+    // What a steady step can be (Hot::steady): a looping clip, a straight walk played from a clip that
+    // already faces its way, a reach or look-at; None = the full step (step_active).
+    enum class Steady : uint8_t { None = 0, Clip = 1, WalkClip = 2, Hold = 3 };
+    // Phase 1's record of a character (80 bytes; Character is ~460): the counters every step reads and
+    // writes, and, while `steady` is set, all a step of the current request needs (step_steady), whose
+    // clocks then live here: Character::cur's copies are written back when it is posed and before any
+    // full step or change (leave_steady).
+    struct alignas(16) Hot {
+        float time = 0.0f, request_time = 0.0f;  // steady: cur's clip clock and seconds since the start
+        float rate = 0.0f;                       // steady: clip seconds per second (clock_rate(cur))
+        float phase = 0.0f;                      // steady: cur.walk.phase (a clip walk leaves it)
+        glm::vec3 velocity{0.0f};                // WalkClip: direction * speed, as advance() computes it
+        float faced_max_turn = -1.0f;            // WalkClip: cur.faced_max_turn
+        glm::quat faced{1.0f, 0.0f, 0.0f, 0.0f}; // WalkClip: cur.faced (turn() returns it unchanged)
+        int64_t last_anim = -1;        // anim_signature of the AnimLod at the last update (-1 before the first)
+        float since_posed = 0.0f;      // seconds since the last pose
+        float since_locked = 0.0f;     // seconds since the foot lock last saw this character
+        float keys_span = 0.0f;        // seconds from the start to the end key pose
+        int32_t keys_slot = -1;        // ThrottleKeys slot while interpolating between throttled updates
+        Steady steady = Steady::None;
+        RequestKind kind = RequestKind::Rest;  // steady: cur.req.kind
         uint8_t stale = 0;             // posing skipped while unseen: the pool's pose (and keys) are old
         uint8_t keys_stale = 0;        // posed without its interpolation keys (read at updates only)
-        float since_locked = 0.0f;     // seconds since the foot lock last saw this character
-        Channel prev;                  // the request faded from (while fade_left > 0 and !fade_snapshot)
     };
     struct Due {
         uint32_t character;
@@ -284,26 +307,64 @@ private:
     // Runs the foot lock on the pose `d`'s character shows this frame (last, after keys and offsets).
     void lock_feet(const Due& d);
     void update_slots(uint32_t c, Character& ch);
-    // Phase 1's output of one block of active_ (blocks run concurrently, merged in order afterwards).
+    // Phase 1's output of one block of walk_ (blocks run concurrently, merged in order afterwards).
     struct StepBlock {
         std::vector<Due> due, between;
-        std::vector<uint32_t> resting;  // active_ positions to remove, descending
+        std::vector<uint32_t> resting;  // characters to take out of active_
+        size_t steady = 0;              // characters stepped by step_steady
     };
+    // An active character and its element (phase 1 walks these in element order: the rows stream).
+    struct Walker {
+        uint32_t character, element;
+    };
+    // Rebuilds walk_ (active_ in element order) when active_ or the element map changed since it was built.
+    void refresh_walk(std::span<const uint32_t> element_of_character, size_t elements);
     size_t begin_update_blocks(float dt, std::span<const AnimLod> lods, std::span<MotionState> states,
                                std::span<Transform> transforms, std::span<Velocity> velocities,
                                std::span<const uint32_t> element_of_character, const ChunkRunner* run_chunks);
-    void step_active(size_t k, float dt, std::span<MotionState> states, std::span<const uint32_t> element_of_character,
-                     StepBlock& out);
-    // Active positions phase 1 prefetches ahead of the one it steps (its record and element rows).
+    void step_active(const Walker& w, float dt, std::span<MotionState> states, StepBlock& out);
+    // The step of a character in a steady request from its Hot record alone (controller_steady.cpp), the same
+    // bits as step_active; false (nothing done) when it is not steady or its level or rotation changed.
+    bool step_steady(const Walker& w, float dt, std::span<MotionState> states, StepBlock& out);
+    // Where a step of `c` (element `e`) stands in its update schedule this frame.
+    struct Schedule {
+        uint64_t interval;  // AnimLod::update_interval, at least 1
+        bool on_phase;      // its turn in the interval
+        PoseUse use;        // what reads its pose (pose_use_)
+    };
+    // Advances the counters of every step (since posed, since locked, frames since update) and says where
+    // the character stands in its schedule.
+    Schedule tick(uint32_t c, uint32_t e, Hot& h, MotionState& st, const AnimLod& lod, float dt);
+    // Lists `c` due this frame (`started`: its request started) and resets its counters, takes or gives back
+    // its interpolation keys (`interpolate`) and sets their span to its next scheduled update.
+    void mark_due(uint32_t c, uint32_t e, Hot& h, MotionState& st, const Schedule& s, bool interpolate, bool started,
+                  float dt, StepBlock& out);
+    // After a full step: marks `c` steady (and fills its Hot record) when its next step can be step_steady's.
+    void enter_steady(uint32_t c, const Character& ch, const Transform& placement);
+    // Writes a steady character's clocks back to its Character and clears `steady` (before a full step or a change).
+    void leave_steady(uint32_t c);
+    // leave_steady for every character (a setter changed what the steps compute).
+    void leave_steady_all();
+    // What of an AnimLod shapes the pose: level, walk method, IK solver and iterations, update interval.
+    static int64_t anim_signature(const AnimLod& l) {
+        return static_cast<int64_t>(l.level) | static_cast<int64_t>(l.walk) << 8 | static_cast<int64_t>(l.ik) << 16 |
+               static_cast<int64_t>(l.ik_iterations) << 24 | static_cast<int64_t>(l.update_interval) << 32;
+    }
+    // Walk positions phase 1 prefetches ahead of the one it steps (their Hot records).
     static constexpr size_t kStepPrefetch = 8;
-    // Prefetches what step_active(k) reads: the character's record and its element's rows.
-    void prefetch_step(size_t k, std::span<MotionState> states, std::span<const uint32_t> element_of_character) const;
+    // Prefetches the Hot record of walk_[k]'s character.
+    void prefetch_step(size_t k) const;
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
     bool clip_driven(const Character& ch, const AnimLod& lod) const;
     // True when `ch` walks by the kinematic walk at `lod` (its pose predictable one interval ahead
     // from the phase and the placement moving at its velocity).
     bool kinematic_walking(const Character& ch, const AnimLod& lod) const;
     void advance_clock(Channel& ch, float seconds) const;
+    // Clip seconds per second of `ch`'s clock (PlayClip: its speed; a clip walk: speed over the clip's natural speed).
+    static float clock_rate(const Channel& ch);
+    // Horizontal unit direction a Walk without a path heads in (its target, else facing `rotation`).
+    static glm::vec3 straight_direction(const MotionRequest& r, const glm::quat& rotation);
+    static constexpr float kTurnRate = 6.0f;  // rad/s: how fast a walker turns to face its direction of travel
     // Carries a walk's place in its cycle across a change between clip playback and the procedural
     // walks (their clocks run only while used): clip time <-> phase * the clip's duration (the gait
     // cycle starts at the left touchdown, as the kinematic walk's phase 0), and a kinematic walk
@@ -332,8 +393,14 @@ private:
     };
     std::vector<WalkPath> paths_;
     std::vector<Character> chars_;
+    std::vector<Hot> hot_;  // per character, phase 1's record
     std::vector<std::array<MotionRequest, kQueueCapacity>> queues_;  // per character: queued requests (ring at head)
     std::vector<uint32_t> active_;
+    std::vector<Walker> walk_;          // active_ in element order, rebuilt by refresh_walk
+    std::vector<uint32_t> walk_map_;    // the element map walk_ was built with (empty: identity)
+    std::vector<uint32_t> by_element_;  // refresh_walk's scratch: the character at each element
+    std::vector<uint32_t> walk_moved_, walk_from_, walk_to_;  // refresh_walk's scratch: who moved, from, to
+    bool walk_dirty_ = true;            // active_ changed since walk_ was built
     PosePool pool_;      // slot i = character i
     PosePool snapshot_;  // slot i = pose character i fades from
     PosePool scratch_;   // slot w = worker w's pose of the request faded from
@@ -343,6 +410,8 @@ private:
     std::vector<Due> between_;  // throttled characters shown interpolated this frame
     std::vector<StepBlock> blocks_;  // phase 1 scratch per block of active_
     size_t step_block_ = 2048;       // active characters per block of phase 1
+    bool steady_steps_ = true;       // set_steady_steps
+    size_t steady_count_ = 0;        // steady_count
     std::mutex slots_mutex_;         // keys_, inertia_ and method releases while phase 1 runs in blocks
     ThrottleKeys keys_;
     InertialOffsets inertia_;

@@ -74,6 +74,8 @@ void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, con
 void MotionController::pose_one(const Due& d, size_t worker) {
     const uint32_t c = d.character;
     Character& ch = chars_[c];
+    Hot& h = hot_[c];
+    if (h.steady != Steady::None) ch.cur.time = h.time, ch.cur.request_time = h.request_time;  // its clocks live in h
     const AnimLod& lod = lods_[d.element];
     Transform& x = transforms_[d.element];
     Velocity& v = velocities_[d.element];
@@ -99,25 +101,25 @@ void MotionController::pose_one(const Due& d, size_t worker) {
     // Keys are only taken for a pose read every frame; one read at updates only shows this pose (the keys'
     // start) until its next update, so the pose one interval ahead is not evaluated.
     const bool keyed = pose_use_.empty() || pose_use_[d.element] == static_cast<uint8_t>(PoseUse::EveryFrame);
-    ch.keys_stale = ch.keys_slot >= 0 && !keyed ? 1 : 0;
-    if (ch.keys_slot >= 0 && keyed) {
+    h.keys_stale = h.keys_slot >= 0 && !keyed ? 1 : 0;
+    if (h.keys_slot >= 0 && keyed) {
         // Key poses for the frames until the next update: now, and one interval ahead.
-        const uint32_t slot = static_cast<uint32_t>(ch.keys_slot);
+        const uint32_t slot = static_cast<uint32_t>(h.keys_slot);
         apply_overlay(c, ch, lod, out, x, v, d.posed_dt, true);
         settle_inertia(ch, out, ch.inertial_elapsed);
         keys_.capture(slot, false, out.model);
         Channel ahead = ch.cur;
         Transform x_ahead = x;
-        advance_clock(ahead, ch.keys_span);
+        advance_clock(ahead, h.keys_span);
         if (kinematic_walking(ch, lod)) {
             // The walk one interval on: its phase advanced and the placement moved at its velocity (the
             // copy's planted feet stay in the world, so the keys carry them back as the root moves).
-            advance_walk_phase(ahead.walk, *rig_, std::max(ahead.req.speed, 0.0f), ch.keys_span, gait_);
-            x_ahead.position += v.linear * ch.keys_span;
+            advance_walk_phase(ahead.walk, *rig_, std::max(ahead.req.speed, 0.0f), h.keys_span, gait_);
+            x_ahead.position += v.linear * h.keys_span;
         }
-        evaluate(c, ahead, lod, scratch, x_ahead, v, ch.keys_span, false, false);
-        apply_overlay(c, ch, lod, scratch, x_ahead, v, ch.keys_span, false);
-        settle_inertia(ch, scratch, ch.inertial_elapsed + ch.keys_span);
+        evaluate(c, ahead, lod, scratch, x_ahead, v, h.keys_span, false, false);
+        apply_overlay(c, ch, lod, scratch, x_ahead, v, h.keys_span, false);
+        settle_inertia(ch, scratch, ch.inertial_elapsed + h.keys_span);
         keys_.capture(slot, true, std::as_const(scratch_).view(worker).model);
         return;
     }
@@ -157,8 +159,9 @@ void MotionController::lock_feet(const Due& d) {
     Character& ch = chars_[d.character];
     // Walks the controller poses kinematically or from clips; the dynamic walker's feet are its own.
     const bool walking = ch.cur.req.kind == RequestKind::Walk && ch.has_walk_method && ch.walk_method != WalkMethod::Dynamic;
-    foot_lock_->apply(d.character, ch.since_locked, transforms_[d.element], pool_.view(d.character).model, walking);
-    ch.since_locked = 0.0f;
+    Hot& h = hot_[d.character];
+    foot_lock_->apply(d.character, h.since_locked, transforms_[d.element], pool_.view(d.character).model, walking);
+    h.since_locked = 0.0f;
 }
 
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
@@ -174,8 +177,8 @@ void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
         if (i < due_.size()) {
             pose_one(d, worker);
         } else {
-            const Character& ch = chars_[d.character];
-            keys_.interpolate(static_cast<uint32_t>(ch.keys_slot), d.posed_dt / ch.keys_span, pool_.view(d.character).model);
+            const Hot& h = hot_[d.character];
+            keys_.interpolate(static_cast<uint32_t>(h.keys_slot), d.posed_dt / h.keys_span, pool_.view(d.character).model);
         }
         lock_feet(d);
         if (!timed) continue;

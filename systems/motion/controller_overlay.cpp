@@ -22,6 +22,7 @@ bool is_overlay_kind(RequestKind k) { return k == RequestKind::Reach || k == Req
 
 bool MotionController::set_overlay(uint32_t character, const MotionRequest& request, float weight) {
     if (character >= chars_.size() || !is_overlay_kind(request.kind)) return false;
+    leave_steady(character);  // a steady step has no overlay
     Overlay& o = chars_[character].overlay;
     const bool same = o.on && !o.cleared && o.req.kind == request.kind && o.req.effector == request.effector;
     if (!same) {

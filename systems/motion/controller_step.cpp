@@ -11,12 +11,6 @@
 namespace aloha {
 
 namespace {
-// What of an AnimLod shapes the pose: level, walk method, IK solver and iterations, update interval.
-int64_t anim_signature(const AnimLod& l) {
-    return static_cast<int64_t>(l.level) | static_cast<int64_t>(l.walk) << 8 | static_cast<int64_t>(l.ik) << 16 |
-           static_cast<int64_t>(l.ik_iterations) << 24 | static_cast<int64_t>(l.update_interval) << 32;
-}
-
 // Seconds an animation level change is inertialized over: the entered level's cross-fade time.
 float transition_seconds(const AnimLod& lod) { return lod.crossfade_s; }
 }  // namespace
@@ -53,19 +47,21 @@ size_t MotionController::begin_update_blocks(float dt, std::span<const AnimLod> 
     velocities_ = velocities;
     assert(dt >= 0.0f);
     assert(element_of_character.empty() || element_of_character.size() >= chars_.size());
+    refresh_walk(element_of_character, std::min({lods.size(), states.size(), transforms.size(), velocities.size()}));
     // Each character's step touches its own state only (slot pools and method releases are locked), so
-    // blocks of active_ run concurrently. Every block walks its part backwards and the blocks are merged
-    // last to first: the due order, and active_ after the removals, are those of one backward pass.
-    const size_t m = active_.size();
+    // blocks of walk_ run concurrently, merged in order: the due order is that of one pass in element order.
+    const size_t m = walk_.size();
     const size_t blocks = run_chunks && *run_chunks && m > step_block_ ? (m + step_block_ - 1) / step_block_ : 1;
     if (blocks_.size() < blocks) blocks_.resize(blocks);
     auto run_block = [&](size_t j) {
         StepBlock& out = blocks_[j];
         out.due.clear(), out.between.clear(), out.resting.clear();
+        out.steady = 0;
         const size_t b = j * step_block_, e = blocks == 1 ? m : std::min(m, b + step_block_);
-        for (size_t k = e; k-- > b;) {
-            if (k >= b + kStepPrefetch) prefetch_step(k - kStepPrefetch, states, element_of_character);
-            step_active(k, dt, states, element_of_character, out);
+        for (size_t k = b; k < e; ++k) {
+            if (k + kStepPrefetch < e) prefetch_step(k + kStepPrefetch);
+            if (steady_steps_ && step_steady(walk_[k], dt, states, out)) ++out.steady;
+            else step_active(walk_[k], dt, states, out);
         }
     };
     if (blocks == 1) {
@@ -75,47 +71,113 @@ size_t MotionController::begin_update_blocks(float dt, std::span<const AnimLod> 
             for (size_t j = jb; j < je; ++j) run_block(j);
         });
     }
-    for (size_t j = blocks; j-- > 0;) {
+    steady_count_ = 0;
+    for (size_t j = 0; j < blocks; ++j) {
         const StepBlock& out = blocks_[j];
+        steady_count_ += out.steady;
         due_.insert(due_.end(), out.due.begin(), out.due.end());
         between_.insert(between_.end(), out.between.begin(), out.between.end());
-        for (const uint32_t k : out.resting) {  // descending: swap-removal only moves visited entries
+        for (const uint32_t c : out.resting) {  // swap-removal from active_ (walk_ is rebuilt next update)
+            const auto k = static_cast<size_t>(chars_[c].active_index);
             const uint32_t moved = active_.back();
-            chars_[active_[k]].active_index = -1;
             active_[k] = moved;
-            if (k + 1 != active_.size()) chars_[moved].active_index = static_cast<int32_t>(k);
+            chars_[moved].active_index = static_cast<int32_t>(k);
+            chars_[c].active_index = -1;
             active_.pop_back();
+            walk_dirty_ = true;
         }
     }
     ++frame_;
     return due_.size();
 }
 
-void MotionController::prefetch_step(size_t k, std::span<MotionState> states,
-                                     std::span<const uint32_t> element_of_character) const {
+MotionController::Schedule MotionController::tick(uint32_t c, uint32_t e, Hot& h, MotionState& st, const AnimLod& lod,
+                                                  float dt) {
+    h.since_posed += dt;
+    h.since_locked += dt;
+    ++st.frames_since_update;
+    // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
+    const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
+    return {interval, (frame_ + c) % interval == 0, pose_use_.empty() ? PoseUse::EveryFrame : static_cast<PoseUse>(pose_use_[e])};
+}
+
+void MotionController::mark_due(uint32_t c, uint32_t e, Hot& h, MotionState& st, const Schedule& s, bool interpolate,
+                                bool started, float dt, StepBlock& out) {
+    h.stale = 0;
+    out.due.push_back(Due{c, e, h.since_posed, started});
+    st.frames_since_update = 0;
+    h.since_posed = 0.0f;
+    if (interpolate != (h.keys_slot >= 0)) {
+        const std::lock_guard<std::mutex> lock(slots_mutex_);
+        if (interpolate) h.keys_slot = static_cast<int32_t>(keys_.acquire());
+        else keys_.release(static_cast<uint32_t>(h.keys_slot)), h.keys_slot = -1;
+    }
+    // The end key is the next scheduled update's pose: a forced pose off the schedule (a switch,
+    // a transition start) spans only the frames left to it, so the keys join without a step.
+    const uint64_t to_next = s.interval - (frame_ + c) % s.interval;
+    h.keys_span = static_cast<float>(to_next) * dt;
+}
+
+void MotionController::refresh_walk(std::span<const uint32_t> element_of_character, size_t elements) {
+    const size_t n = chars_.size();
+    const std::span<const uint32_t> map = element_of_character.empty() ? element_of_character : element_of_character.first(n);
+    if (!walk_dirty_ && map.size() == walk_map_.size()) {
+        // The active set is the one walk_ holds: what moved is the characters whose element changed. A host
+        // that regroups swaps elements among its characters; when the active ones that moved took each
+        // other's elements, the walk keeps its elements and only the characters at them change.
+        walk_moved_.clear();
+        for (uint32_t c = 0; c < map.size(); ++c)
+            if (map[c] != walk_map_[c]) walk_moved_.push_back(c);
+        if (walk_moved_.empty()) return;
+        walk_from_.clear(), walk_to_.clear();
+        for (const uint32_t c : walk_moved_)
+            if (chars_[c].active_index >= 0) walk_from_.push_back(walk_map_[c]), walk_to_.push_back(map[c]);
+        std::sort(walk_from_.begin(), walk_from_.end());
+        std::sort(walk_to_.begin(), walk_to_.end());
+        const bool swapped = walk_from_ == walk_to_;
+        for (const uint32_t c : walk_moved_) {
+            if (swapped && chars_[c].active_index >= 0) {
+                auto at = std::lower_bound(walk_.begin(), walk_.end(), map[c],
+                                           [](const Walker& w, uint32_t e) { return w.element < e; });
+                assert(at != walk_.end() && at->element == map[c]);
+                at->character = c;
+            }
+            walk_map_[c] = map[c];
+        }
+        if (swapped) return;
+    }
+    walk_map_.assign(map.begin(), map.end());
+    // Scatter the active characters to their elements, then gather them in element order.
+    constexpr uint32_t kNone = 0xFFFFFFFFu;
+    by_element_.assign(map.empty() ? n : elements, kNone);
+    for (const uint32_t c : active_) {
+        assert(map.empty() || map[c] < elements);
+        by_element_[map.empty() ? c : map[c]] = c;
+    }
+    walk_.clear();
+    for (size_t e = 0; e < by_element_.size(); ++e)
+        if (by_element_[e] != kNone) walk_.push_back(Walker{by_element_[e], static_cast<uint32_t>(e)});
+    walk_dirty_ = false;
+}
+
+void MotionController::prefetch_step(size_t k) const {
 #if defined(__GNUC__) || defined(__clang__)
-    const uint32_t c = active_[k];
-    const uint32_t e = element_of_character.empty() ? c : element_of_character[c];
-    // The record's fields phase 1 reads (the hot head, up to the faded-from channel) and the element's
-    // rows: the element order is not the id order, so each row is a cache miss of its own.
-    const char* rec = reinterpret_cast<const char*>(&chars_[c]);
-    for (size_t off = 0; off < offsetof(Character, prev); off += 64) __builtin_prefetch(rec + off, 1, 3);
-    __builtin_prefetch(&lods_[e], 0, 3);
-    __builtin_prefetch(&states[e], 1, 3);
-    __builtin_prefetch(&transforms_[e], 1, 3);
-    __builtin_prefetch(&velocities_[e], 1, 3);
-    if (!pose_use_.empty()) __builtin_prefetch(&pose_use_[e], 0, 3);
+    // The character's Hot record: the walk is in element order, so each record is a cache miss of its own
+    // (the element's rows stream in order).
+    const char* rec = reinterpret_cast<const char*>(&hot_[walk_[k].character]);
+    __builtin_prefetch(rec, 1, 3);
+    __builtin_prefetch(rec + sizeof(Hot) - 1, 1, 3);
 #else
-    (void)k, (void)states, (void)element_of_character;
+    (void)k;
 #endif
 }
 
-void MotionController::step_active(size_t k, float dt, std::span<MotionState> states,
-                                   std::span<const uint32_t> element_of_character, StepBlock& out) {
-    const uint32_t c = active_[k];
-    const uint32_t e = element_of_character.empty() ? c : element_of_character[c];
+void MotionController::step_active(const Walker& w, float dt, std::span<MotionState> states, StepBlock& out) {
+    const uint32_t c = w.character, e = w.element;
     assert(e < lods_.size() && e < states.size() && e < transforms_.size() && e < velocities_.size());
+    leave_steady(c);  // its clocks back into the Character: this step reads them there
     Character& ch = chars_[c];
+    Hot& h = hot_[c];
     const AnimLod& lod = lods_[e];
     MotionState& st = states[e];
     Transform& x = transforms_[e];
@@ -156,8 +218,8 @@ void MotionController::step_active(size_t k, float dt, std::span<MotionState> st
     // shown now; the character is posed at once so the change never waits for its update phase.
     const bool posing = ch.cur.req.kind != RequestKind::Rest || ch.overlay.on;
     const int64_t signature = anim_signature(lod);
-    const bool level_changed = ch.last_anim >= 0 && ch.last_anim != signature;
-    ch.last_anim = signature;
+    const bool level_changed = h.last_anim >= 0 && h.last_anim != signature;
+    h.last_anim = signature;
     // Any level change is posed at once (even without a transition), so a throttled character's
     // keys restart on the new level's schedule instead of holding the old span's last key.
     const bool level_start = level_changed && posing && !switched;
@@ -166,7 +228,7 @@ void MotionController::step_active(size_t k, float dt, std::span<MotionState> st
         inertia_.release(static_cast<uint32_t>(ch.inertial_slot));
         ch.inertial_slot = -1;
     }
-    if (level_start && transition_seconds(lod) > 0.0f && !ch.stale) {  // a stale pose was never shown
+    if (level_start && transition_seconds(lod) > 0.0f && !h.stale) {  // a stale pose was never shown
         if (ch.inertial_slot < 0) {
             const std::lock_guard<std::mutex> lock(slots_mutex_);
             ch.inertial_slot = static_cast<int32_t>(inertia_.acquire());
@@ -179,43 +241,26 @@ void MotionController::step_active(size_t k, float dt, std::span<MotionState> st
         ch.inertial_elapsed += dt;
     }
 
-    ch.since_posed += dt;
-    ch.since_locked += dt;
-    ++st.frames_since_update;
-    // Throttled characters are spread over their interval by id, so the per-frame cost is flat.
-    const uint64_t interval = std::max<uint64_t>(1, lod.update_interval);
-    const bool on_phase = (frame_ + c) % interval == 0;
-    const PoseUse use = pose_use_.empty() ? PoseUse::EveryFrame : static_cast<PoseUse>(pose_use_[e]);
-    bool due = posing && (switched || level_start || on_phase || (ch.overlay.on && ch.overlay.needs_pose()) ||
-                          (ch.stale && use != PoseUse::Unseen) || (ch.keys_stale && use == PoseUse::EveryFrame));
+    const Schedule sched = tick(c, e, h, st, lod, dt);
+    const PoseUse use = sched.use;
+    bool due = posing && (switched || level_start || sched.on_phase || (ch.overlay.on && ch.overlay.needs_pose()) ||
+                          (h.stale && use != PoseUse::Unseen) || (h.keys_stale && use == PoseUse::EveryFrame));
     // Nobody reads the pose: a clip pose (a pure function of the clip clock, which ran on above) is left
     // stale and evaluated when the character is seen again. Methods with state of their own (walk
     // feet, IK, simulations), fades, overlays and inertialization are always posed.
     if (due && use == PoseUse::Unseen && clip_driven(ch, lod) && ch.fade_left <= 0.0f && !ch.overlay.on &&
         ch.inertial_slot < 0 && ch.slots_in_use == 0) {
-        ch.stale = 1;
+        h.stale = 1;
         due = false;
     }
     if (due) {
-        ch.stale = 0;
-        out.due.push_back(Due{c, e, ch.since_posed, switched});
-        st.frames_since_update = 0;
-        ch.since_posed = 0.0f;
         // Throttled clip playback and kinematic walks are shown interpolated between this update and
         // the next (a held pose would slide with the placement and jump at the next update).
-        const bool interpolate = interval > 1 && (clip_driven(ch, lod) || kinematic_walking(ch, lod)) && ch.fade_left <= 0.0f;
-        if (interpolate != (ch.keys_slot >= 0)) {
-            const std::lock_guard<std::mutex> lock(slots_mutex_);
-            if (interpolate) ch.keys_slot = static_cast<int32_t>(keys_.acquire());
-            else keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
-        }
-        // The end key is the next scheduled update's pose: a forced pose off the schedule (a switch,
-        // a transition start) spans only the frames left to it, so the keys join without a step.
-        const uint64_t to_next = interval - (frame_ + c) % interval;
-        ch.keys_span = static_cast<float>(to_next) * dt;
-    } else if (ch.keys_slot >= 0 && ch.cur.req.kind != RequestKind::Rest && !ch.stale && !ch.keys_stale &&
+        const bool interpolate = sched.interval > 1 && (clip_driven(ch, lod) || kinematic_walking(ch, lod)) && ch.fade_left <= 0.0f;
+        mark_due(c, e, h, st, sched, interpolate, switched, dt, out);
+    } else if (h.keys_slot >= 0 && ch.cur.req.kind != RequestKind::Rest && !h.stale && !h.keys_stale &&
                use == PoseUse::EveryFrame) {
-        out.between.push_back(Due{c, e, ch.since_posed, false});
+        out.between.push_back(Due{c, e, h.since_posed, false});
     }
 
     st.active = ch.cur.req.kind;
@@ -229,15 +274,17 @@ void MotionController::step_active(size_t k, float dt, std::span<MotionState> st
     st.at_rest = resting ? 1 : 0;
     if (resting) {
         v.linear = glm::vec3(0.0f);
-        if (ch.keys_slot >= 0 || ch.inertial_slot >= 0) {
+        if (h.keys_slot >= 0 || ch.inertial_slot >= 0) {
             const std::lock_guard<std::mutex> lock(slots_mutex_);
-            if (ch.keys_slot >= 0) keys_.release(static_cast<uint32_t>(ch.keys_slot)), ch.keys_slot = -1;
+            if (h.keys_slot >= 0) keys_.release(static_cast<uint32_t>(h.keys_slot)), h.keys_slot = -1;
             if (ch.inertial_slot >= 0) inertia_.release(static_cast<uint32_t>(ch.inertial_slot)), ch.inertial_slot = -1;
         }
-        ch.last_anim = -1;  // a level change while resting shows nothing: no transition on waking
+        h.last_anim = -1;  // a level change while resting shows nothing: no transition on waking
         if (foot_lock_) foot_lock_->reset(c);  // this character's entries only
-        out.resting.push_back(static_cast<uint32_t>(k));  // taken out of active_ after the blocks
+        out.resting.push_back(c);  // taken out of active_ after the blocks
+        return;
     }
+    if (steady_steps_) enter_steady(c, ch, x);
 }
 
 }  // namespace aloha

@@ -13,6 +13,7 @@ list(APPEND ALOHA_MOTION_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/controller.cpp
   ${CMAKE_CURRENT_LIST_DIR}/controller_eval.cpp
   ${CMAKE_CURRENT_LIST_DIR}/controller_step.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/controller_steady.cpp
   ${CMAKE_CURRENT_LIST_DIR}/controller_overlay.cpp
   ${CMAKE_CURRENT_LIST_DIR}/motion_metrics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/crowd_motion_meter.cpp

@@ -26,6 +26,7 @@ if(TARGET aloha_motion AND TARGET aloha_assets)
             ${CMAKE_CURRENT_LIST_DIR}/crowd_motion_meter_test.cpp
             ${CMAKE_CURRENT_LIST_DIR}/inertialize_test.cpp
             ${CMAKE_CURRENT_LIST_DIR}/foot_lock_test.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/controller_steady_test.cpp
     LIBS aloha::motion aloha::assets
     LABELS motion)
 endif()
