@@ -37,9 +37,6 @@ struct BudgetSim {
     std::vector<double> geom_cost{std::begin(kGeomCost), std::end(kGeomCost)};  // truth, ms per character per level
     std::vector<double> anim_cost{std::begin(kAnimCost), std::end(kAnimCost)};
     bool anim_per_level = false;                // animation told its per-level times too (as the World does)
-    std::vector<uint8_t> walking;               // per character: 1 walks, 0 costs anim_still_cost; empty: all walk
-    std::vector<double> anim_still_cost;        // truth for characters not walking, ms per level (with `walking`)
-    bool tell_classes = true;                   // with `walking`: the part is told each character's cost class
     double geom_truth = 0, anim_truth = 0;      // noise-free cost of the last frame
     double geom_ms = -1, anim_ms = -1;          // what the controllers are told
     std::vector<double> geom_level_ms, anim_level_ms;
@@ -65,8 +62,7 @@ struct BudgetSim {
     void frame() {
         if (anim.params().target_ms > 0) {
             const std::span<const double> per_level = anim_per_level ? std::span<const double>(anim_level_ms) : std::span<const double>();
-            const std::span<const uint8_t> classes = tell_classes ? std::span<const uint8_t>(walking) : std::span<const uint8_t>();
-            const BudgetStep s = anim.update(static_cast<float>(anim_ms), per_level, crowd.attrs, crowd.req, crowd.states, table, classes);
+            const BudgetStep s = anim.update(static_cast<float>(anim_ms), per_level, crowd.attrs, crowd.req, crowd.states, table);
             if (s.direction) anim_steps.push_back(s.direction);
         }
         if (geom.params().target_ms > 0) {
@@ -75,15 +71,11 @@ struct BudgetSim {
         }
         crowd.frame();
         geom_level_ms.assign(geom_cost.size(), 0.0);
-        const bool tell = !walking.empty() && tell_classes;
-        anim_level_ms.assign(anim_cost.size() * (tell ? kAnimCostClasses : 1), 0.0);
+        anim_level_ms.assign(anim_cost.size(), 0.0);
         anim_truth = geom_truth = 0.0;
-        for (size_t i = 0; i < crowd.states.size(); ++i) {
-            const LodState& s = crowd.states[i];
-            const bool walks = walking.empty() || walking[i] != 0;
+        for (const LodState& s : crowd.states) {
             geom_level_ms[s.geom_level] += geom_cost[s.geom_level];
-            anim_level_ms[tell ? anim_cost_slot(s.anim_level, walks) : s.anim_level] +=
-                walks ? anim_cost[s.anim_level] : anim_still_cost[s.anim_level];
+            anim_level_ms[s.anim_level] += anim_cost[s.anim_level];
         }
         for (double& l : geom_level_ms) geom_truth += l, l *= 1.0 + kNoise * (2.0 * rnd.next() - 1.0);
         for (double& l : anim_level_ms) anim_truth += l, l *= anim_per_level ? 1.0 + kNoise * (2.0 * rnd.next() - 1.0) : 1.0;
@@ -272,54 +264,6 @@ TEST(PartBudget, ACoarseHeroIsPassedOverWithoutOscillation) {
     EXPECT_LE(direction_changes(sim.geom_steps), 1);
     std::printf("phase 3: animation %.3f ms (target %.3f, %zu steps), geometry %.3f ms (target %.3f, %zu steps)\n",
                 sim.anim_truth, anim_target, sim.anim_steps.size(), sim.geom_truth, geom_target, sim.geom_steps.size());
-}
-
-// Walkers and characters that are not walking cost differently at the same animation level (the
-// plaza: a hero's dynamic walk ~0.1-0.3 ms, the same level playing an idle clip ~0.002 ms). Told
-// which is which (cost classes), the part learns each class's cost per level and demotes only
-// characters whose demotion saves time: no idler is demoted (each would save 0.0002 ms or less,
-// under the 1% of the band a demotion must save), and it settles within 10%. With one class per
-// level the idlers look as costly as the level's average and are demoted for nothing.
-TEST(PartBudget, WalkersAndOthersAreCostedApart) {
-    auto run = [](bool classes, size_t* idlers_demoted, double* error, BudgetSim* out) {
-        BudgetSim sim;
-        sim.anim_per_level = true;
-        sim.add(600);
-        sim.anim_still_cost = {0.0006, 0.0005, 0.0004};
-        std::vector<uint8_t> walking(600);
-        for (size_t i = 0; i < walking.size(); ++i) walking[i] = i % 2;
-        sim.walking = walking;
-        sim.tell_classes = classes;  // else the same truth, told per level only
-        sim.frame();
-        const double target = 0.6 * sim.anim_truth;
-        sim.set_targets(10.0 * sim.anim_truth, 0.0);  // room first: costs learned at the rules' levels
-        for (int f = 0; f < 30; ++f) sim.frame();
-        sim.set_targets(target, 0.0);
-        for (int f = 0; f < 300; ++f) sim.frame();
-        *idlers_demoted = 0;
-        for (size_t i = 0; i < walking.size(); ++i) *idlers_demoted += !walking[i] && sim.crowd.states[i].anim_demotion > 0;
-        *error = std::fabs(sim.anim_truth - target) / target;
-        if (out) *out = std::move(sim);
-    };
-    size_t idlers = 0;
-    double error = 0.0;
-    BudgetSim apart;
-    run(true, &idlers, &error, &apart);
-    EXPECT_EQ(idlers, 0u);
-    EXPECT_LE(error, 0.1);
-    // The walkers' learned cost per populated level within the noise (2%) plus the average's lag: 5%.
-    const auto& costs = apart.anim.costs().costs();
-    ASSERT_EQ(costs.size(), 3 * kAnimCostClasses);
-    std::vector<uint32_t> walkers_at(3, 0);
-    for (size_t i = 1; i < apart.crowd.states.size(); i += 2) ++walkers_at[apart.crowd.states[i].anim_level];
-    for (size_t l = 0; l < 3; ++l) {
-        if (walkers_at[l] <= 20) continue;  // too few to have a settled average
-        EXPECT_NEAR(costs[anim_cost_slot(l, true)], kAnimCost[l], 0.05 * kAnimCost[l]) << "level " << l;
-    }
-    size_t idlers_one_class = 0;
-    run(false, &idlers_one_class, &error, nullptr);
-    EXPECT_GT(idlers_one_class, 0u);
-    std::printf("idlers demoted: %zu with cost classes, %zu with one class per level\n", idlers, idlers_one_class);
 }
 
 // Three heroes whose dynamic walk costs far more than the band (0.4 ms against kinematic 0.006 ms),
