@@ -91,22 +91,22 @@ TEST(Crowd, CircleWalkersGetALoopRoundTheCentre) {
         const glm::vec3 off = b[i].position - centre;
         const float radius = std::max(kMinCircleRadius, std::hypot(off.x, off.z));
         for (const glm::vec3& p : route) {
-            EXPECT_NEAR(std::hypot(p.x - centre.x, p.z - centre.z), radius, 1e-4f * radius);
+            EXPECT_NEAR(std::hypot(p.x - centre.x, p.z - centre.z), radius, 1e-5f * radius);  // a few float roundings
             EXPECT_EQ(p.y, centre.y);
         }
         // The last waypoint is back at the start's angle (a whole turn), the first 1/16 turn on.
         const float start_angle = std::atan2(off.z, off.x);
         const glm::vec3 last = route.back() - centre;
-        EXPECT_NEAR(std::remainder(std::atan2(last.z, last.x) - start_angle, glm::two_pi<float>()), 0.0f, 1e-3f);
+        EXPECT_NEAR(std::remainder(std::atan2(last.z, last.x) - start_angle, glm::two_pi<float>()), 0.0f, 1e-4f);
         const glm::vec3 first = route.front() - centre;
         const float turned = std::remainder(std::atan2(first.z, first.x) - start_angle, glm::two_pi<float>());
-        EXPECT_NEAR(std::fabs(turned), glm::two_pi<float>() / kCircleRouteWaypoints, 1e-3f);
+        EXPECT_NEAR(std::fabs(turned), glm::two_pi<float>() / kCircleRouteWaypoints, 1e-4f);
         (turned > 0.0f ? ccw : cw) += 1;
         EXPECT_EQ(turned > 0.0f, i % 2 == 0);
         // Facing the first waypoint: heading h looks along (sin h, 0, cos h).
         const glm::vec3 to = route.front() - b[i].position;
         const float h = glm::radians(b[i].heading_deg);
-        EXPECT_NEAR(std::sin(h) * to.z - std::cos(h) * to.x, 0.0f, 1e-3f * glm::length(to));
+        EXPECT_NEAR(std::sin(h) * to.z - std::cos(h) * to.x, 0.0f, 1e-4f * glm::length(to));
         EXPECT_GT(std::sin(h) * to.x + std::cos(h) * to.z, 0.0f);
     }
     EXPECT_EQ(ccw, 200);
