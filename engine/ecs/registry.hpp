@@ -12,6 +12,7 @@
 #include "engine/ecs/group.hpp"
 #include "engine/ecs/group_data.hpp"
 #include "engine/ecs/storage.hpp"
+#include "engine/ecs/query.hpp"
 #include "engine/ecs/view.hpp"
 
 namespace aloha {
@@ -108,6 +109,13 @@ public:
     template <class... Ts>
     [[nodiscard]] View<const Ts...> view() const {
         return View<const Ts...>(find_storage<std::remove_const_t<Ts>>()...);
+    }
+
+    /// A query over the entities having every Ts, to keep across frames (see Query); creates missing
+    /// storages. It holds pointers into this registry, so it must not outlive it.
+    template <class... Ts>
+    [[nodiscard]] Query<Ts...> query() {
+        return Query<Ts...>(&storage<std::remove_const_t<Ts>>()...);
     }
 
     /// The owning group of Ts, created (and packed) on first use. Each storage can be owned by one

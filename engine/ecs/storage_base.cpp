@@ -26,6 +26,7 @@ void StorageBase::push_entity(Entity e) {
     page.dense[e.index % kPageSize] = static_cast<uint32_t>(dense_.size());
     page.generation[e.index % kPageSize] = e.generation;
     dense_.push_back(e);
+    ++layout_version_;
 }
 
 void StorageBase::notify_construct(Entity e) {
@@ -45,6 +46,7 @@ bool StorageBase::remove(Entity e) {
     pop_component(pos);
     dense_.pop_back();
     set_entry(e.index, kAbsent, kAbsent);
+    ++layout_version_;
     return true;
 }
 
@@ -52,6 +54,7 @@ void StorageBase::clear() {
     for (const Entity e : dense_) set_entry(e.index, kAbsent, kAbsent);
     dense_.clear();
     clear_components();
+    ++layout_version_;
     if (owner_ != nullptr) owner_->reset();
 }
 
@@ -64,6 +67,7 @@ void StorageBase::swap_positions(size_t a, size_t b) {
     set_position(ea.index, static_cast<uint32_t>(b));
     set_position(eb.index, static_cast<uint32_t>(a));
     swap_components(a, b);
+    ++layout_version_;
 }
 
 void StorageBase::apply_swaps(std::span<const SwapPair> swaps) {
@@ -72,6 +76,7 @@ void StorageBase::apply_swaps(std::span<const SwapPair> swaps) {
     for (const SwapPair s : swaps) {
         for (const uint32_t pos : {s.a, s.b}) set_position(dense_[pos].index, pos);
     }
+    if (!swaps.empty()) ++layout_version_;
 }
 
 bool StorageBase::consistent() const {

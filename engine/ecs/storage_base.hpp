@@ -74,6 +74,8 @@ public:
     }
     /// Where the dense position of entity index `index` is kept (for prefetching).
     [[nodiscard]] const uint32_t* position_slot(uint32_t index) const { return &page(index).dense[index % kPageSize]; }
+    /// Where the generation of entity index `index` is kept (for prefetching).
+    [[nodiscard]] const uint32_t* generation_slot(uint32_t index) const { return &page(index).generation[index % kPageSize]; }
     /// Dense position held for entity index `index`, whatever its generation, or kAbsent. Names `e`'s
     /// component only when the caller knows the index can only be held by `e` (a live entity of the
     /// registry that fills this storage: see View); find() checks the generation too.
@@ -147,6 +149,10 @@ public:
     /// Applies `swaps` in order (each swaps two dense positions), the way groups permute storages.
     void apply_swaps(std::span<const SwapPair> swaps);
 
+    /// Counts changes of which entity sits at which dense position (adds, removals, swaps, clears);
+    /// equal values mean an unchanged layout, so a Query can keep positions it looked up.
+    [[nodiscard]] uint64_t layout_version() const { return layout_version_; }
+
     /// The group that owns this storage, or nullptr.
     [[nodiscard]] GroupData* owner() const { return owner_; }
     /// Sets the owning group; requires no other owner (a storage belongs to at most one group).
@@ -183,6 +189,7 @@ private:
     std::vector<std::unique_ptr<detail::SparsePage>> owned_pages_;  // write side, same indexing; null where none
     std::vector<Entity> dense_;
     GroupData* owner_ = nullptr;
+    uint64_t layout_version_ = 0;
 };
 
 }  // namespace aloha

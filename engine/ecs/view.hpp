@@ -38,6 +38,16 @@ inline bool same_entities(const Entity* a, const Entity* b, size_t count) {
     return diff == 0;
 }
 
+/// Calls fn(e, components...) when fn takes the entity first (as fn(Entity, Ts&...)), else fn(components...).
+template <class... Ts, class Fn, class... Cs>
+inline void call_each(Fn& fn, Entity e, Cs&... components) {
+    if constexpr (std::is_invocable_v<Fn&, Entity, Ts&...>) {
+        fn(e, components...);
+    } else {
+        fn(components...);
+    }
+}
+
 }  // namespace detail
 
 /// Non-owning view over the storages of Ts (use `const T` for read-only access).
@@ -121,11 +131,7 @@ private:
 
     template <class Fn, class... Cs>
     static void call(Fn& fn, Entity e, Cs&... components) {
-        if constexpr (std::is_invocable_v<Fn&, Entity, Ts&...>) {
-            fn(e, components...);
-        } else {
-            fn(components...);
-        }
+        detail::call_each<Ts...>(fn, e, components...);
     }
 
     // The loop, driven by storage D. Where every other storage holds the same entity at the same dense

@@ -37,9 +37,9 @@ void SetPerEntity(benchmark::State& state) {
         double(state.range(0)), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-// The benchmarked work: Position += Velocity * dt through `view`.
+// The benchmarked work: Position += Velocity * dt through `view` (a View or a Query).
 template <class ViewT>
-void UpdatePositions(const ViewT& view) {
+void UpdatePositions(ViewT& view) {
     view.each([](Position& p, const Velocity& v) {
         p.x += v.x * kDt;
         p.y += v.y * kDt;
@@ -47,24 +47,42 @@ void UpdatePositions(const ViewT& view) {
     });
 }
 
-void BM_View(benchmark::State& state) {
+// How the benchmarked loop reaches the components: a View (looks every match up on each pass) or a
+// Query kept across passes (looks them up once, then reads its slot table; built before timing).
+enum class Access { kView, kQuery };
+
+// Runs UpdatePositions over r's Position + const Velocity through `access` for every iteration.
+template <Access access>
+void IteratePositions(benchmark::State& state, aloha::Registry& r) {
+    if constexpr (access == Access::kView) {
+        auto view = r.view<Position, const Velocity>();
+        for (auto _ : state) {
+            UpdatePositions(view);
+            benchmark::ClobberMemory();
+        }
+    } else {
+        auto query = r.query<Position, const Velocity>();
+        (void)query.count();  // builds the slot table
+        for (auto _ : state) {
+            UpdatePositions(query);
+            benchmark::ClobberMemory();
+        }
+        if (query.rebuilds() != 1) state.SkipWithError("query rebuilt on unchanged storages");
+    }
+}
+
+template <Access access>
+void BM_AllMatch(benchmark::State& state) {
     aloha::Registry r;
     Populate(r, state.range(0));
-    auto view = r.view<Position, const Velocity>();
-    for (auto _ : state) {
-        UpdatePositions(view);
-        benchmark::ClobberMemory();
-    }
+    IteratePositions<access>(state, r);
     SetPerEntity(state);
 }
 
 // Every entity has Position; 10% of them also get Velocity, added in creation order: a random 10%
-// (Bernoulli, fixed seed) when range(1) is 0, every tenth entity when it is 1. The view visits only
+// (Bernoulli, fixed seed) when range(1) is 0, every tenth entity when it is 1. The loop visits only
 // those, so the figure is ns per matching entity.
-void BM_ViewTenPercent(benchmark::State& state) {
-    aloha::Registry r;
-    const int64_t n = state.range(0);
-    const bool strided = state.range(1) != 0;
+int64_t PopulateTenPercent(aloha::Registry& r, int64_t n, bool strided) {
     r.reserve(size_t(n));
     r.storage<Position>().reserve(size_t(n));
     std::mt19937 rng(2);
@@ -78,20 +96,45 @@ void BM_ViewTenPercent(benchmark::State& state) {
             ++matches;
         }
     }
-    auto view = r.view<Position, const Velocity>();
-    if (view.count() != size_t(matches)) state.SkipWithError("view visits the wrong entities");
-    for (auto _ : state) {
-        UpdatePositions(view);
-        benchmark::ClobberMemory();
-    }
+    return matches;
+}
+
+void SetPerMatch(benchmark::State& state, int64_t matches) {
     state.SetItemsProcessed(int64_t(state.iterations()) * matches);
     state.counters["ns_per_match"] = benchmark::Counter(
         double(matches), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-// Same as BM_View (every entity has both components), but each storage is filled in its own shuffled
-// order, so the two dense orders disagree and every lookup into the other storage is a random access.
-void BM_ViewShuffled(benchmark::State& state) {
+template <Access access>
+void BM_TenPercent(benchmark::State& state) {
+    aloha::Registry r;
+    const int64_t matches = PopulateTenPercent(r, state.range(0), state.range(1) != 0);
+    if (r.view<Position, const Velocity>().count() != size_t(matches)) state.SkipWithError("view visits the wrong entities");
+    IteratePositions<access>(state, r);
+    SetPerMatch(state, matches);
+}
+
+// The Query's worst case: the random 10% with one structural change before every pass (one entity's
+// Velocity removed and put back), so every pass rebuilds the slot table before iterating.
+void BM_QueryTenPercentRebuiltEachPass(benchmark::State& state) {
+    aloha::Registry r;
+    const int64_t matches = PopulateTenPercent(r, state.range(0), false);
+    auto query = r.query<Position, const Velocity>();
+    const aloha::Entity moved = r.storage<Velocity>().entities()[0];
+    for (auto _ : state) {
+        r.remove<Velocity>(moved);
+        r.emplace<Velocity>(moved, 1.0f, 2.0f, 3.0f);
+        UpdatePositions(query);
+        benchmark::ClobberMemory();
+    }
+    if (query.rebuilds() != size_t(state.iterations())) state.SkipWithError("query did not rebuild each pass");
+    SetPerMatch(state, matches);
+}
+
+// Every entity has both components, but each storage is filled in its own shuffled order, so the two
+// dense orders disagree and every lookup into the other storage is a random access.
+template <Access access>
+void BM_Shuffled(benchmark::State& state) {
     aloha::Registry r;
     std::vector<aloha::Entity> es;
     for (int64_t i = 0; i < state.range(0); ++i) es.push_back(r.create());
@@ -100,13 +143,16 @@ void BM_ViewShuffled(benchmark::State& state) {
     for (const aloha::Entity e : es) r.emplace<Position>(e);
     std::shuffle(es.begin(), es.end(), rng);
     for (const aloha::Entity e : es) r.emplace<Velocity>(e, 1.0f, 2.0f, 3.0f);
-    auto view = r.view<Position, const Velocity>();
-    for (auto _ : state) {
-        UpdatePositions(view);
-        benchmark::ClobberMemory();
-    }
+    IteratePositions<access>(state, r);
     SetPerEntity(state);
 }
+
+void BM_View(benchmark::State& state) { BM_AllMatch<Access::kView>(state); }
+void BM_Query(benchmark::State& state) { BM_AllMatch<Access::kQuery>(state); }
+void BM_ViewTenPercent(benchmark::State& state) { BM_TenPercent<Access::kView>(state); }
+void BM_QueryTenPercent(benchmark::State& state) { BM_TenPercent<Access::kQuery>(state); }
+void BM_ViewShuffled(benchmark::State& state) { BM_Shuffled<Access::kView>(state); }
+void BM_QueryShuffled(benchmark::State& state) { BM_Shuffled<Access::kQuery>(state); }
 
 void BM_GroupSpans(benchmark::State& state) {
     aloha::Registry r;
@@ -187,12 +233,20 @@ void BM_CreateDestroyWithCommands(benchmark::State& state) {
 BENCHMARK(BM_PlainSoA)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_GroupSpans)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_View)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_Query)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_ViewTenPercent)
     ->ArgNames({"n", "strided"})
     ->Args({100'000, 0})
     ->Args({1'000'000, 0})
     ->Args({1'000'000, 1});
+BENCHMARK(BM_QueryTenPercent)
+    ->ArgNames({"n", "strided"})
+    ->Args({100'000, 0})
+    ->Args({1'000'000, 0})
+    ->Args({1'000'000, 1});
+BENCHMARK(BM_QueryTenPercentRebuiltEachPass)->Arg(1'000'000);
 BENCHMARK(BM_ViewShuffled)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_QueryShuffled)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_GroupResortOnePercent)->Arg(10'000)->Arg(100'000);
 BENCHMARK(BM_GroupRepartitionOnePercent)->Arg(10'000)->Arg(100'000);
 BENCHMARK(BM_CreateDestroyWithCommands)->Arg(10'000);
