@@ -24,6 +24,15 @@ uint64_t available_memory_bytes();
 /// Approximate bytes of per-character state per geometric level (for the profiler).
 [[nodiscard]] std::vector<uint64_t> memory_per_level(const World& world);
 
+/// A visible character that switched geometric level this frame, for attributing a switch frame's image
+/// change to level pairs: its levels and the screen rectangle of its bounds box (pixels, clamped to the
+/// viewport, x0 <= x < x1, y0 <= y < y1).
+struct SwitchRect {
+    uint8_t from = 0;                 ///< the level it left (LodState::prev_geom_level)
+    uint8_t to = 0;                   ///< the level it entered
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< pixel rectangle; empty when it crosses the near plane or is off screen
+};
+
 /// The frame as the profiler's fidelity check sees it (see reference_frame).
 struct ReferenceFrame {
     std::vector<DeformableMesh> meshes;           ///< visible characters at the reference level
@@ -31,6 +40,7 @@ struct ReferenceFrame {
     std::vector<double> deviation_max;            ///< per geometric level: largest deviation (px)
     std::vector<uint64_t> deviation_count;        ///< per geometric level: vertices measured
     uint32_t switches = 0;                        ///< visible characters that switched level this frame
+    std::vector<SwitchRect> switch_rects;         ///< those characters, one each
     std::vector<std::vector<glm::vec3>> positions, normals;     ///< storage behind `meshes`
     std::vector<glm::vec3> current_scratch, reference_scratch;  ///< reused per character
 };

@@ -6,6 +6,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace aloha {
 
 namespace {
@@ -18,6 +21,28 @@ bool to_pixels(const glm::mat4& view_proj, const glm::vec3& p, const glm::vec2& 
     if (!(c.w >= near_plane)) return false;
     out = glm::vec2((c.x / c.w * 0.5f + 0.5f) * viewport.x, (0.5f - c.y / c.w * 0.5f) * viewport.y);
     return true;
+}
+
+// The screen rectangle of a character's bounds box (feet at `t.position`, +-radius, 0..height, scaled),
+// clamped to the viewport; empty when a corner is nearer than the near plane.
+SwitchRect bounds_rect(const glm::mat4& view_proj, const Transform& t, const Bounds& b, const glm::vec2& viewport, float near_plane) {
+    SwitchRect out;
+    const float h = b.height * t.scale, r = b.radius * t.scale;
+    glm::vec2 lo(viewport), hi(0.0f);
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 corner = t.position + glm::vec3(k & 1 ? r : -r, k & 2 ? h : 0.0f, k & 4 ? r : -r);
+        glm::vec2 px;
+        if (!to_pixels(view_proj, corner, viewport, near_plane, px)) return out;
+        lo = glm::min(lo, px);
+        hi = glm::max(hi, px);
+    }
+    out.x0 = std::max(0, static_cast<int>(std::floor(lo.x)));
+    out.y0 = std::max(0, static_cast<int>(std::floor(lo.y)));
+    out.x1 = std::min(static_cast<int>(viewport.x), static_cast<int>(std::ceil(hi.x)));
+    out.y1 = std::min(static_cast<int>(viewport.y), static_cast<int>(std::ceil(hi.y)));
+    if (out.x1 < out.x0) out.x1 = out.x0;
+    if (out.y1 < out.y0) out.y1 = out.y0;
+    return out;
 }
 
 }  // namespace
@@ -36,9 +61,11 @@ Status reference_frame(World& host, ReferenceFrame& out) {
     out.deviation_max.assign(out.deviation_sum.size(), 0.0);
     out.deviation_count.assign(out.deviation_sum.size(), 0);
     out.switches = 0;
+    out.switch_rects.clear();
     auto g = character_group(host.registry());
     auto refs = g.span<CharacterRef>();
     auto transforms = g.span<Transform>();
+    auto bounds = g.span<Bounds>();
     auto attributes = g.span<LodAttributes>();
     auto states = g.span<LodState>();
     const uint8_t picture_level = reference_level(host.rules().table());
@@ -48,7 +75,13 @@ Status reference_frame(World& host, ReferenceFrame& out) {
     size_t used = 0;
     for (size_t i = 0; i < g.size(); ++i) {
         if (!attributes[i].visible) continue;
-        if (states[i].seconds_at_geom == 0.0f && host.frame() > 0) ++out.switches;
+        if (states[i].seconds_at_geom == 0.0f && host.frame() > 0) {
+            ++out.switches;
+            SwitchRect rect = bounds_rect(view_proj, transforms[i], bounds[i], viewport, camera.near_plane);
+            rect.from = states[i].prev_geom_level;
+            rect.to = states[i].geom_level;
+            out.switch_rects.push_back(rect);
+        }
         const CharacterRuntime& rt = host.runtime(refs[i].type);
         const PoseSource poses = rt.poses();
         const glm::mat4 world = world_matrix(transforms[i]);

@@ -262,7 +262,7 @@ int run_profile(const CliOptions& options) {
         std::vector<FidelityFrame> v;
         for (const auto& r : records) v.push_back(r.fidelity);
         return v;
-    }());
+    }(), gnames);
     {
         std::ofstream f(out + "/report.json");
         f << report.dump(2) << "\n";

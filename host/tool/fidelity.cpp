@@ -4,7 +4,9 @@
 #include "host/tool/session.hpp"
 #include "host/tool/stats.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace aloha::tool {
 
@@ -32,6 +34,57 @@ double mean_change(const gpu::Rgba8Image& a, const gpu::Rgba8Image& b) {
     for (size_t i = 0; i + 3 < a.pixels.size() && i + 3 < b.pixels.size(); i += 4)
         for (int c = 0; c < 3; ++c) sum += std::abs(double(a.pixels[i + c]) - double(b.pixels[i + c])), ++n;
     return n ? sum / (255.0 * double(n)) : 0.0;
+}
+
+// Per pixel, the summed |RGB change| between two frames of the same size (0..765); empty when they differ.
+void change_map(const gpu::Rgba8Image& a, const gpu::Rgba8Image& b, std::vector<uint16_t>& out) {
+    out.clear();
+    if (a.pixels.size() != b.pixels.size() || a.width != b.width || a.height != b.height) return;
+    out.resize(a.pixels.size() / 4);
+    for (size_t p = 0; p < out.size(); ++p) {
+        int sum = 0;
+        for (int c = 0; c < 3; ++c) sum += std::abs(int(a.pixels[4 * p + c]) - int(b.pixels[4 * p + c]));
+        out[p] = static_cast<uint16_t>(sum);
+    }
+}
+
+// The switch frame's change attributed to each kind of switch (SwitchPairChange): the union of the
+// rectangles of that kind's characters, read in this frame's and the previous frame's change maps.
+// `stamp` is scratch (one entry per pixel) marking the pixels already counted for a kind.
+std::vector<SwitchPairChange> pair_changes(std::span<const SwitchRect> rects, uint32_t width, const std::vector<uint16_t>& now,
+                                           const std::vector<uint16_t>& before, std::vector<uint32_t>& stamp, uint32_t& stamp_id) {
+    std::vector<SwitchPairChange> out;
+    if (now.empty() || width == 0) return out;
+    stamp.resize(now.size(), 0);
+    const double scale = 1.0 / (255.0 * 3.0 * double(now.size()));
+    std::vector<std::pair<uint8_t, uint8_t>> kinds;
+    for (const SwitchRect& r : rects)
+        if (std::find(kinds.begin(), kinds.end(), std::pair{r.from, r.to}) == kinds.end()) kinds.emplace_back(r.from, r.to);
+    std::sort(kinds.begin(), kinds.end());
+    for (const auto& [from, to] : kinds) {
+        SwitchPairChange pc;
+        pc.from = from;
+        pc.to = to;
+        const uint32_t id = ++stamp_id;
+        double sum = 0.0, sum_before = 0.0;
+        for (const SwitchRect& r : rects) {
+            if (r.from != from || r.to != to) continue;
+            if (pc.characters++ == 0) pc.x0 = r.x0, pc.y0 = r.y0, pc.x1 = r.x1, pc.y1 = r.y1;
+            pc.x0 = std::min(pc.x0, r.x0), pc.y0 = std::min(pc.y0, r.y0), pc.x1 = std::max(pc.x1, r.x1), pc.y1 = std::max(pc.y1, r.y1);
+            for (int y = r.y0; y < r.y1; ++y)
+                for (int x = r.x0; x < r.x1; ++x) {
+                    const size_t p = size_t(y) * width + size_t(x);
+                    if (p >= now.size() || stamp[p] == id) continue;
+                    stamp[p] = id;
+                    sum += now[p];
+                    if (p < before.size()) sum_before += before[p];
+                }
+        }
+        pc.change = sum * scale;
+        pc.change_before = sum_before * scale;
+        out.push_back(pc);
+    }
+    return out;
 }
 
 class Probe final : public FidelityProbe {
@@ -72,6 +125,9 @@ public:
         out.psnr_db = psnr(lod.value(), reference.value());
         out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(lod.value(), previous_);
         out.switches = frame_.switches;
+        change_before_.swap(change_now_);
+        change_map(lod.value(), previous_, change_now_);
+        if (out.switches > 0) out.by_pair = pair_changes(frame_.switch_rects, lod.value().width, change_now_, change_before_, stamp_, stamp_id_);
         previous_ = std::move(lod.value());
         return out;
     }
@@ -81,6 +137,9 @@ private:
     gpu::OffscreenTarget reference_target_;
     ReferenceFrame frame_;
     gpu::Rgba8Image previous_;
+    std::vector<uint16_t> change_now_, change_before_;  ///< per-pixel change maps of this frame and the one before
+    std::vector<uint32_t> stamp_;                       ///< pair_changes' scratch
+    uint32_t stamp_id_ = 0;
 };
 
 }  // namespace
@@ -92,7 +151,60 @@ Result<std::unique_ptr<FidelityProbe>> FidelityProbe::create(Session& session) {
     return std::unique_ptr<FidelityProbe>(std::move(probe));
 }
 
-nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames) {
+namespace {
+
+// The switch frames' change by kind of switch: per kind, the frames and characters, the change inside
+// its rectangles and the excess over the frame before (summed and largest); and the worst switch frame's
+// own breakdown. Levels are named by `names` where it has them.
+nlohmann::json popping_by_kind(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names) {
+    auto name = [&](uint8_t l) { return l < names.size() ? names[l] : std::to_string(l); };
+    auto kind_json = [&](const SwitchPairChange& p) {
+        return nlohmann::json{{"from", name(p.from)}, {"to", name(p.to)}, {"characters", p.characters}, {"change", p.change},
+                              {"change_before", p.change_before}, {"excess", p.change - p.change_before},
+                              {"rect_px", {p.x0, p.y0, p.x1, p.y1}}};
+    };
+    struct Sum {
+        uint32_t frames = 0, characters = 0;
+        double change = 0, excess = 0, max_excess = -1e300;
+    };
+    std::vector<std::pair<std::pair<uint8_t, uint8_t>, Sum>> sums;
+    size_t worst = frames.size();
+    for (size_t k = 1; k < frames.size(); ++k) {
+        const FidelityFrame& f = frames[k];
+        if (f.switches == 0) continue;
+        if (worst == frames.size() || f.changed_fraction > frames[worst].changed_fraction) worst = k;
+        for (const SwitchPairChange& p : f.by_pair) {
+            auto it = std::find_if(sums.begin(), sums.end(), [&](const auto& s) { return s.first == std::pair{p.from, p.to}; });
+            if (it == sums.end()) it = sums.insert(sums.end(), {{p.from, p.to}, Sum{}});
+            Sum& s = it->second;
+            ++s.frames;
+            s.characters += p.characters;
+            s.change += p.change;
+            s.excess += p.change - p.change_before;
+            s.max_excess = std::max(s.max_excess, p.change - p.change_before);
+        }
+    }
+    std::sort(sums.begin(), sums.end(), [](const auto& a, const auto& b) { return a.second.excess > b.second.excess; });
+    nlohmann::json kinds = nlohmann::json::array();
+    for (const auto& [key, s] : sums)
+        kinds.push_back({{"from", name(key.first)}, {"to", name(key.second)}, {"frames", s.frames}, {"characters", s.characters},
+                         {"change_sum", s.change}, {"excess_sum", s.excess}, {"excess_max", s.max_excess}});
+    nlohmann::json j;
+    j["kinds"] = kinds;
+    if (worst < frames.size()) {
+        nlohmann::json parts = nlohmann::json::array();
+        for (const SwitchPairChange& p : frames[worst].by_pair) parts.push_back(kind_json(p));
+        j["worst_switch_frame"] = {{"frame", worst}, {"change", frames[worst].changed_fraction}, {"kinds", parts}};
+    }
+    j["note"] = "Each kind's change is the image change inside the union of its switching characters' screen rectangles "
+                "(bounds boxes), in changed_fraction units; excess = that minus the same pixels' change one frame earlier "
+                "(their ordinary motion): an estimate of what the switch added. Rectangles of different kinds may overlap.";
+    return j;
+}
+
+}  // namespace
+
+nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& level_names) {
     nlohmann::json j;
     std::vector<double> mean, max, psnr_values, ordinary, at_switch;
     size_t levels = 0;
@@ -126,7 +238,8 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames) {
                     {"switch_frames", sw.count},
                     {"ordinary_change_p95", ord.p95},
                     {"switch_change_max", sw.max},
-                    {"switch_no_worse_than_ordinary_p95", sw.count == 0 || sw.max <= ord.p95}};
+                    {"switch_no_worse_than_ordinary_p95", sw.count == 0 || sw.max <= ord.p95},
+                    {"by_kind", popping_by_kind(frames, level_names)}};
     const double overall_mean = mean.empty() ? 0.0 : summarize(mean).mean;
     j["target_mean_deviation_under_1px"] = overall_mean < 1.0;
     j["note"] = "Deviation compares each mesh-level character's displayed control surface with its level-0 control "

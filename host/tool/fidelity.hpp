@@ -7,11 +7,26 @@
 #include <nlohmann/json.hpp>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace aloha::tool {
 
 struct Session;
+
+/// The part of a switch frame's image change inside the screen rectangles of the characters that made one
+/// kind of switch (level `from` -> level `to`), each pixel counted once per kind, in the units of
+/// FidelityFrame::changed_fraction (summed |RGB change| / (255 * 3 * every pixel of the frame)).
+/// `change_before` is the same pixels' change one frame earlier (their ordinary motion): the excess
+/// change - change_before estimates what the switch itself added.
+struct SwitchPairChange {
+    uint8_t from = 0;            ///< geometric level left
+    uint8_t to = 0;              ///< geometric level entered
+    uint32_t characters = 0;     ///< visible characters that made this switch this frame
+    double change = 0;           ///< change inside their rectangles, this frame
+    double change_before = 0;    ///< the same pixels' change on the frame before (0 on the first compared frame)
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< the rectangle around those characters' rectangles (pixels)
+};
 
 /// One measured frame.
 struct FidelityFrame {
@@ -22,6 +37,7 @@ struct FidelityFrame {
     double psnr_db = 0;                ///< LOD render vs full-detail render
     double changed_fraction = 0;       ///< mean absolute RGB change from the previous LOD frame (0..1)
     uint32_t switches = 0;             ///< visible characters that changed geometric level this frame
+    std::vector<SwitchPairChange> by_pair;  ///< switch frames: the change attributed to each kind of switch
 };
 
 /// Renders each frame a second time at full detail and compares. Lives inside a profile session.
@@ -35,7 +51,8 @@ public:
 };
 
 /// Summary: per-level mean/max deviation, PSNR stats, popping (largest change at switch frames vs the
-/// 95th percentile of ordinary frames) and whether the targets hold.
-nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames);
+/// 95th percentile of ordinary frames, and the switch frames' change by kind of switch) and whether the
+/// targets hold. `level_names` name the geometric levels in the by-kind figures (indices when short).
+nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& level_names = {});
 
 }  // namespace aloha::tool

@@ -2,6 +2,7 @@
 
 #include "systems/lod/resolver.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 namespace aloha {
@@ -35,9 +36,14 @@ void apply_level_switches(std::span<const GeometryType> types, std::span<const C
     }
     for (const uint32_t e : changed) {
         GeometryController& gc = *types[refs[e].type].controller;
-        if (gc.level_of(refs[e].id) == states[e].geom_level) continue;  // animation level only
+        const uint8_t old = gc.level_of(refs[e].id);
+        if (old == states[e].geom_level) continue;  // animation level only
+        // A geomorph takes the entered level's time; a cross-fade (impostor <-> drawn level) shows both levels
+        // and hides the same difference whichever way the switch goes, so it takes the longer of the two
+        // levels' times: a rigid proxy (geomorph_s 0: no surface to morph) fades with the impostor's.
+        const float left_s = old == GeometryController::kNoLevel ? 0.0f : gc.level(old).geomorph_s;
         gc.begin_level(refs[e].id, states[e].geom_level, static_cast<int8_t>(states[e].prev_geom_level),
-                       transition_frames(geom[e].geomorph_s, dt));
+                       transition_frames(geom[e].geomorph_s, dt), transition_frames(std::max(geom[e].geomorph_s, left_s), dt));
     }
 }
 

@@ -32,8 +32,9 @@ using GeometryChunkRunner = std::function<void(size_t count, size_t grain, const
 /// controller's cross-fades advance a frame (GeometryController::advance_fades; call this once per frame);
 /// on the first frame every element enters its level (no morph); later, the elements listed in `changed`
 /// (the resolver's changed_indices, elements) whose geometric level moved begin it, geomorphing from the
-/// previous surface, or cross-fading into or out of an impostor level (LevelFade), over
-/// transition_frames(geom.geomorph_s, dt) frames. types[refs[e].type] must exist.
+/// previous surface over transition_frames(geom.geomorph_s, dt) frames, or cross-fading into or out of an
+/// impostor level (LevelFade) over transition_frames of the longer of the left and entered levels'
+/// geomorph_s. types[refs[e].type] must exist.
 void apply_level_switches(std::span<const GeometryType> types, std::span<const CharacterRef> refs,
                           std::span<const LodState> states, std::span<const GeomLod> geom,
                           std::span<const uint32_t> changed, bool first_frame, float dt);

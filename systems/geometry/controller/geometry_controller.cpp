@@ -234,7 +234,8 @@ void GeometryController::capture_morph(const Level& from, uint32_t from_slot, Le
     geometry_->surface_map(from.display_key, to.display_key).apply(old, target);
 }
 
-void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames) {
+void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames,
+                                     uint16_t fade_frames) {
     assert(level < levels_.size());
     (void)previous_level;  // the controller's own record is authoritative
     ensure_capacity(character);
@@ -258,8 +259,8 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
         // Into or out of the impostor level: a cross-fade (LevelFade); into it, the drawn level's slot stays
         // while fading if it has been shown.
         const bool into_impostor = to.lod.method == GeomMethod::Impostor;
-        if (geomorph_frames >= 2 && crossfades(old, level) && (!into_impostor || from.store.valid[os])) {
-            begin_fade(character, old, into_impostor ? os : LevelFade::kNoSlot, geomorph_frames);
+        if (fade_frames >= 2 && crossfades(old, level) && (!into_impostor || from.store.valid[os])) {
+            begin_fade(character, old, into_impostor ? os : LevelFade::kNoSlot, fade_frames);
             if (!into_impostor) from.store.release(os);
         } else {
             from.store.release(os);

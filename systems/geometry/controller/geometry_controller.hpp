@@ -79,7 +79,8 @@ struct SurfaceView {
 };
 
 /// A cross-fade between an `impostor` level and a drawn level (rigid proxy or mesh), begun by
-/// GeometryController::begin_level for a switch of N >= 2 geomorph frames either way: the switch frame
+/// GeometryController::begin_level for a switch of N >= 2 fade frames either way (apply_level_switches: the
+/// longer of the two levels' geomorph_s, so impostor <-> rigid proxy fades too): the switch frame
 /// and the N - 2 after it show the character at both levels with complementary screen-door dithers (frame
 /// k = 1 .. N - 1 of the switch gives the entered level k / N of the pixels, as a geomorph's frame k is k / N
 /// of the way), frame N the entered level alone. Leaving a drawn level for the impostor keeps that level's
@@ -88,7 +89,7 @@ struct LevelFade {
     static constexpr uint32_t kNoSlot = 0xFFFFFFFFu;  ///< kept_slot of a fade out of the impostor level
     uint32_t character = 0;       ///< the character (id in its type)
     uint8_t from_level = 0;       ///< the level it left
-    uint16_t frames_total = 0;    ///< N, the switch's geomorph frames (>= 2)
+    uint16_t frames_total = 0;    ///< N, the switch's fade frames (>= 2)
     uint16_t frames_left = 0;     ///< frames after this one that still show both (N - k on frame k), >= 1
     uint32_t kept_slot = kNoSlot; ///< the left drawn level's slot, kept while fading into the impostor
 
@@ -129,10 +130,15 @@ public:
 
     /// `character` enters `level`: takes a slot there, starts a geomorph of `geomorph_frames` frames
     /// from its old surface when both levels are mesh levels and the old surface has been shown,
-    /// and releases the old slot. `previous_level` is the caller's view of the old level (-1 on
-    /// spawn); the controller's own record wins when they differ. Entering the current level again
-    /// does nothing. Serial only. Requires level < level_count().
-    void begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames);
+    /// and releases the old slot. A switch into or out of an impostor level from or to a drawn level
+    /// cross-fades instead (LevelFade) over `fade_frames` frames when that is 2 or more. `previous_level`
+    /// is the caller's view of the old level (-1 on spawn); the controller's own record wins when they
+    /// differ. Entering the current level again does nothing. Serial only. Requires level < level_count().
+    void begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames, uint16_t fade_frames);
+    /// The same with a cross-fade as long as the geomorph (fade_frames = geomorph_frames).
+    void begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames) {
+        begin_level(character, level, previous_level, geomorph_frames, geomorph_frames);
+    }
     /// Ends the frame's cross-fades: every LevelFade advances one frame, and those at their last frame end
     /// (their kept slots released). Call once per frame before the frame's begin_level calls
     /// (apply_level_switches does). Serial only.

@@ -1,5 +1,5 @@
 // A character switching between the impostor level and a drawn level in a World with a renderer: the
-// switch is cross-faded over the entered level's geomorph frames (LevelFade), the draw lists holding the
+// switch is cross-faded over the longer of the two levels' geomorph frames (LevelFade), the draw lists holding the
 // character twice with complementary shares, and the level being left stays posed while it fades.
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/offscreen_target.hpp"
@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,22 @@ Drawn drawn(const World& w) {
     return d;
 }
 
+// Frame k of a fade of n frames out of the impostor: the entered level's share `entered_share` (its mesh's
+// dither or its boxes' run share) is k / n and the impostor keeps the complement; frame n has no impostor.
+void expect_fade_in_frame(const Drawn& d, uint16_t k, uint16_t n, float entered_share, const std::string& what) {
+    SCOPED_TRACE(what + ", frame " + std::to_string(k));
+    if (k == n) {
+        EXPECT_EQ(d.drawn_twice, 0u);
+        EXPECT_EQ(d.impostors, 0u);
+        return;
+    }
+    const float share = float(k) / float(n);
+    EXPECT_EQ(d.drawn_twice, 1u);
+    EXPECT_EQ(d.impostors, 1u);
+    EXPECT_EQ(entered_share, share);
+    EXPECT_EQ(d.impostor_w, -share);
+}
+
 TEST(WorldCrossFade, SwitchesIntoAndOutOfTheImpostorFadeOverTheGeomorphFrames) {
     Fixture f;
     if (!make(f)) return;
@@ -143,27 +160,22 @@ TEST(WorldCrossFade, SwitchesIntoAndOutOfTheImpostorFadeOverTheGeomorphFrames) {
     for (int i = 0; i < 20; ++i) w.step();
     ASSERT_TRUE(w.pin_geom_level(0, kSkinned).ok());
     for (uint16_t k = 1; k <= n_skinned; ++k) {
-        SCOPED_TRACE("out of the impostor, frame " + std::to_string(k));
         w.step();
         const Drawn d = drawn(w);
-        ASSERT_EQ(d.meshes, 1u);
+        ASSERT_EQ(d.meshes, 1u) << "frame " << k;
+        expect_fade_in_frame(d, k, n_skinned, d.mesh_dither, "impostor -> skinned");
         if (k == n_skinned) {
-            EXPECT_EQ(d.drawn_twice, 0u);
-            EXPECT_EQ(d.impostors, 0u);
             EXPECT_EQ(d.mesh_dither, 1.0f);
-            continue;
         }
-        const float share = float(k) / float(n_skinned);
-        EXPECT_EQ(d.drawn_twice, 1u);
-        ASSERT_EQ(d.impostors, 1u);
-        EXPECT_EQ(d.mesh_dither, share);
-        EXPECT_EQ(d.impostor_w, -share);
     }
 
-    // layered -> impostor: the layered skin (muscles, fat springs) is kept and drawn while fading.
+    // layered -> impostor: the layered skin (muscles, fat springs) is kept and drawn while fading, over the
+    // longer of the two levels' times (layered_low 0.133 s: 8 frames).
+    const uint16_t n_layered = transition_frames(std::max(gc.level(kLayeredLow).geomorph_s, gc.level(kImpostor).geomorph_s), 0.0166667f);
+    ASSERT_EQ(n_layered, 8u);
     settle_at(w, kLayeredLow);
     ASSERT_TRUE(w.pin_geom_level(0, kImpostor).ok());
-    for (uint16_t k = 1; k < n_impostor; ++k) {
+    for (uint16_t k = 1; k < n_layered; ++k) {
         w.step();
         const Drawn d = drawn(w);
         EXPECT_EQ(d.drawn_twice, 1u) << "frame " << k;
@@ -173,12 +185,24 @@ TEST(WorldCrossFade, SwitchesIntoAndOutOfTheImpostorFadeOverTheGeomorphFrames) {
     w.step();
     EXPECT_EQ(drawn(w).drawn_twice, 0u);
 
-    // impostor -> proxy: the proxy level's geomorph_s is 0 in the default rules, so it switches at once.
+    // impostor -> proxy: the proxy level's geomorph_s is 0 in the default rules, but a fade takes the longer of
+    // the two levels' times: the boxes fade in over the impostor's N frames, k / N of the pixels on frame k, the
+    // impostor keeping the complement (it was a one-frame pop).
+    ASSERT_EQ(transition_frames(gc.level(kProxy).geomorph_s, 0.0166667f), 0u);
     for (int i = 0; i < 20; ++i) w.step();
     ASSERT_TRUE(w.pin_geom_level(0, kProxy).ok());
-    w.step();
-    EXPECT_EQ(drawn(w).drawn_twice, 0u);
-    EXPECT_EQ(drawn(w).impostors, 0u);
+    for (uint16_t k = 1; k <= n_impostor; ++k) {
+        w.step();
+        const Drawn d = drawn(w);
+        // The fading boxes are one dithered run (all of them) until frame N, then none.
+        const std::vector<ProxyFade>& runs = w.render_lists().proxy_fades;
+        EXPECT_EQ(runs.size(), k == n_impostor ? 0u : 1u) << "frame " << k;
+        if (!runs.empty()) {
+            EXPECT_EQ(runs[0].count, d.proxies);
+        }
+        EXPECT_GT(d.proxies, 0u) << "frame " << k;
+        expect_fade_in_frame(d, k, n_impostor, d.proxy_share, "impostor -> proxy");
+    }
     // proxy -> impostor: the boxes fade out as one dithered run.
     for (int i = 0; i < 20; ++i) w.step();
     ASSERT_TRUE(w.pin_geom_level(0, kImpostor).ok());
