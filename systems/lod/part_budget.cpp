@@ -15,6 +15,16 @@ float PartBudget::band_ms() const {
     return std::max(part_.tolerance * part_.target_ms, 2.0f * smoothed_noise);
 }
 
+int coarse_hold_updates(double step_ms, double band_ms, float smoothing) {
+    // A step k bands coarse moves the smoothed time by k bands; after k of its time constants
+    // (1 / smoothing updates each) what is left of it there is k e^-k bands, under one band for every
+    // k (k e^-k <= 1/e): the time then shows where the step put it, and a step twice as coarse holds
+    // twice as long.
+    if (!(band_ms > 0.0) || !(step_ms > band_ms) || !(smoothing > 0.0f)) return 0;
+    const double k = std::ceil(std::min(step_ms / band_ms, 1000.0));
+    return static_cast<int>(k * std::ceil(1.0 / smoothing));
+}
+
 PartBudget::PartBudget(BudgetKind kind, const BudgetPartParams& part, const BudgetParams& common)
     : kind_(kind), part_(part), common_(common) {}
 
@@ -28,6 +38,7 @@ void PartBudget::reset() {
     noise_ = 0.0f;
     settle_left_ = 0;
     held_under_ = 0;
+    hold_demote_ = hold_promote_ = 0;
     levels_ = 0;
     model_ = LevelCostModel();
 }
@@ -36,6 +47,8 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
                               std::span<const LodAttributes> attributes, std::span<const LodRequest> requests,
                               std::span<LodState> states, const RuleTable& table) {
     BudgetStep step;
+    hold_demote_ = std::max(0, hold_demote_ - 1);
+    hold_promote_ = std::max(0, hold_promote_ - 1);
     const bool geometric = kind_ == BudgetKind::Geometry;
     const size_t levels = geometric ? table.geom_levels.size() : table.anim_levels.size();
     if (levels != levels_) model_.set_levels(kind_, table), levels_ = levels, last_level_.clear();
@@ -150,48 +163,61 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     };
     rank(over, ranked_);
     if (ranked_.empty()) return step;
-    // In order, until the wanted change is reached. A step that would carry the time beyond the far
-    // edge of the band (one character whose level costs more than the band: a hero's dynamic walk, say)
-    // is passed over for the finer ones after it. Only when the finer ones cannot reach the wanted
-    // change is the first passed-over step taken that lands nearer the target by more than the band:
-    // the step back could never satisfy that too, so the pair cannot alternate.
+    // Steps coarser than the band (a hero's dynamic walk, a subdivided body: a few times the band)
+    // are units of their own, taken or passed over whole; the fine steps are the rest.
+    // 1. A gap that one coarse unit closes by itself (it lands inside the band: a hero sent to its
+    //    dynamic walk by the rules, say) is closed by that unit, the first in order, not by bulk fine
+    //    steps that would be undone, in bulk again, when the unit moves back.
+    // 2. Otherwise in order until the wanted change is reached, a step that would carry the time beyond
+    //    the far edge of the band passed over for the finer ones after it.
+    // 3. Over, when the finer ones cannot reach the wanted change: the first passed-over step that lands
+    //    nearer the target by more than the band (its undoing could never satisfy that too). Under, the
+    //    only coarse promotion that lands outside the band is the combination below: a lone one would
+    //    land over the band and be answered by bulk fine demotions, undone in bulk when it leaves.
+    // After a coarse step, no coarse step the other way for its hold (coarse_hold_updates).
     const double band = band_ms();
     const double sign = over ? -1.0 : 1.0;  // the way the time moves
     auto step_ms = [&](size_t i) { return over ? saving(i) : extra(i); };
     auto off_target = [&](double ms) { return predicted + sign * ms - target; };  // after changing by ms
-    double changed_ms = 0.0;
+    const bool coarse_held = (over ? hold_demote_ : hold_promote_) > 0;
+    double changed_ms = 0.0, coarse_ms = 0.0;  // coarse_ms: the coarsest step taken
     chosen_.clear();
     passed_.clear();
-    for (const auto& [score, i] : ranked_) {
-        if (changed_ms >= wanted) break;
-        const double ms = step_ms(i);
-        if (sign * off_target(changed_ms + ms) > band) passed_.push_back(i);
-        else chosen_.push_back(i), changed_ms += ms;
-    }
-    const double left = std::fabs(off_target(changed_ms));
-    bool coarse = false;
-    for (size_t k = 0; changed_ms < wanted && left > band && k < passed_.size(); ++k) {
-        const double ms = step_ms(passed_[k]);
-        if (std::fabs(off_target(changed_ms + ms)) + band < left) {
-            chosen_.push_back(passed_[k]), changed_ms += ms, coarse = true;
+    for (size_t k = 0; !coarse_held && std::fabs(predicted - target) > band && k < ranked_.size(); ++k) {
+        const double ms = step_ms(ranked_[k].second);
+        if (ms > band && std::fabs(off_target(ms)) <= band) {
+            chosen_.push_back(ranked_[k].second), changed_ms = coarse_ms = ms;
             break;
         }
     }
-    // Under the band with only coarse promotions left (each would carry the time past the far edge,
-    // and none lands nearer by more than the band): the finest of them is combined with demotions of
-    // others, least significance per millisecond first, each finer than half the band, that bring the
-    // time back to the target. Taken instead of the steps above only when it lands inside the band,
-    // so the next update holds; its undoing would need a coarse step again (passed over as long as
-    // finer ones exist), so it cannot alternate. When the demotions cannot pull it into the band the
-    // part holds below its target, as before. Only for a shortfall that persists (held for three
-    // time constants of the smoothed time, 3 / smoothing updates) and while the band is the tolerance
-    // itself (not widened by noise): under load each passing dip below the band would otherwise trade
-    // one coarse promotion for many demotions and back (measured: 2-3 times the level changes).
+    const bool one_unit = !chosen_.empty();
+    for (size_t k = 0; !one_unit && k < ranked_.size() && changed_ms < wanted; ++k) {
+        const uint32_t i = ranked_[k].second;
+        const double ms = step_ms(i);
+        if (sign * off_target(changed_ms + ms) > band || (coarse_held && ms > band)) passed_.push_back(i);
+        else chosen_.push_back(i), changed_ms += ms, coarse_ms = std::max(coarse_ms, ms > band ? ms : 0.0);
+    }
+    const double left = std::fabs(off_target(changed_ms));
+    for (size_t k = 0; over && !coarse_held && changed_ms < wanted && left > band && k < passed_.size(); ++k) {
+        const double ms = step_ms(passed_[k]);
+        if (std::fabs(off_target(changed_ms + ms)) + band < left) {
+            chosen_.push_back(passed_[k]), changed_ms += ms, coarse_ms = std::max(coarse_ms, ms);
+            break;
+        }
+    }
+    // Under the band with only coarse promotions left (each would carry the time past the far edge):
+    // the finest of them is combined with demotions of others, least significance per millisecond
+    // first, each finer than half the band, that bring the time back to the target. Taken only when
+    // it lands inside the band, so the next update holds. Only for a shortfall that persists (held for
+    // three time constants of the smoothed time, 3 / smoothing updates), while the band is the
+    // tolerance itself (not widened by noise) and no coarse promotion is held: under load each passing
+    // dip below the band would otherwise trade one coarse promotion for many demotions and back
+    // (measured: 2-3 times the level changes).
     demoted_.clear();
     held_under_ = !over && chosen_.empty() ? held_under_ + 1 : 0;
     const bool persistent = static_cast<float>(held_under_) * common_.smoothing >= 3.0f;
     const bool steady = band <= part_.tolerance * part_.target_ms;
-    if (!over && !coarse && persistent && steady && left > band && !passed_.empty()) {
+    if (!over && !coarse_held && persistent && steady && left > band && !passed_.empty()) {
         uint32_t finest = 0;
         double finest_ms = 0.0;  // what it really costs; 0: no passed-over promotion would show
         for (uint32_t i : passed_) {
@@ -208,9 +234,14 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
                 demoted_.push_back(i), excess -= ms;
             }
         }
-        if (finest_ms > 0.0 && std::fabs(excess) <= band) chosen_.assign(1, finest), held_under_ = 0;
-        else demoted_.clear();
+        if (finest_ms > 0.0 && std::fabs(excess) <= band)
+            chosen_.assign(1, finest), held_under_ = 0, coarse_ms = std::max(coarse_ms, finest_ms);
+        else
+            demoted_.clear();
     }
+    // A coarse step holds coarse steps the other way: a promotion back after a demotion (or the
+    // reverse) waits until the smoothed time has taken the step in.
+    if (coarse_ms > band) (over ? hold_promote_ : hold_demote_) = coarse_hold_updates(coarse_ms, band, common_.smoothing);
     for (uint32_t i : chosen_) {
         uint8_t& demotion = geometric ? states[i].budget_demotion : states[i].anim_demotion;
         demotion = static_cast<uint8_t>(over ? demotion + 1 : demotion - 1);
