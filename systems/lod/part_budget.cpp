@@ -108,6 +108,12 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     }
     const bool over = predicted > target;
     const double wanted = part_.gain * std::fabs(predicted - target);  // ms to save (over) or to spend (under)
+    // A coarse step the other way is still being taken in (its hold): an error it could explain (its
+    // size plus the band) is left alone, by fine steps too; answered in bulk, they would be undone
+    // in bulk once the step shows as it is.
+    if ((over ? hold_demote_ : hold_promote_) > 0 &&
+        std::fabs(predicted - target) <= (over ? held_demote_ms_ : held_promote_ms_) + band_ms())
+        return step;
 
     // Candidates: (significance, index), each judged at the level it is headed for. Characters held
     // by time hysteresis at a level they keep are left alone (a change would not show); one whose
@@ -165,40 +171,47 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     if (ranked_.empty()) return step;
     // Steps coarser than the band (a hero's dynamic walk, a subdivided body: a few times the band)
     // are units of their own, taken or passed over whole; the fine steps are the rest.
-    // 1. A gap that one coarse unit closes by itself (it lands inside the band: a hero sent to its
-    //    dynamic walk by the rules, say) is closed by that unit, the first in order, not by bulk fine
-    //    steps that would be undone, in bulk again, when the unit moves back.
+    // 1. A gap that one coarse unit closes by itself is closed by that unit, not by bulk fine steps
+    //    that would be undone, in bulk again, when the unit moves back: the first in order that lands
+    //    inside the band; over, else the demotion that lands nearest the target, under the band but
+    //    nearer than now by more than the band (a hero sent to its dynamic walk by the rules while the
+    //    time was just under the band: holding it back returns the time there).
     // 2. Otherwise in order until the wanted change is reached, a step that would carry the time beyond
     //    the far edge of the band passed over for the finer ones after it.
     // 3. Over, when the finer ones cannot reach the wanted change: the first passed-over step that lands
     //    nearer the target by more than the band (its undoing could never satisfy that too). Under, the
     //    only coarse promotion that lands outside the band is the combination below: a lone one would
     //    land over the band and be answered by bulk fine demotions, undone in bulk when it leaves.
-    // After a coarse step, no coarse step the other way for its hold (coarse_hold_updates).
+    // After a coarse step, steps the other way that it could explain wait for its hold (above).
     const double band = band_ms();
     const double sign = over ? -1.0 : 1.0;  // the way the time moves
     auto step_ms = [&](size_t i) { return over ? saving(i) : extra(i); };
     auto off_target = [&](double ms) { return predicted + sign * ms - target; };  // after changing by ms
-    const bool coarse_held = (over ? hold_demote_ : hold_promote_) > 0;
+    const double gap = std::fabs(predicted - target);
     double changed_ms = 0.0, coarse_ms = 0.0;  // coarse_ms: the coarsest step taken
     chosen_.clear();
     passed_.clear();
-    for (size_t k = 0; !coarse_held && std::fabs(predicted - target) > band && k < ranked_.size(); ++k) {
-        const double ms = step_ms(ranked_[k].second);
-        if (ms > band && std::fabs(off_target(ms)) <= band) {
-            chosen_.push_back(ranked_[k].second), changed_ms = coarse_ms = ms;
+    size_t unit = ranked_.size();
+    for (size_t k = 0; gap > band && k < ranked_.size(); ++k) {
+        const double ms = step_ms(ranked_[k].second), off = std::fabs(off_target(ms));
+        if (ms <= band) continue;
+        if (off <= band) {
+            unit = k;
             break;
         }
+        const bool nearer = over && off + band < gap;
+        if (nearer && (unit == ranked_.size() || off < std::fabs(off_target(step_ms(ranked_[unit].second))))) unit = k;
     }
+    if (unit < ranked_.size()) chosen_.push_back(ranked_[unit].second), changed_ms = coarse_ms = step_ms(ranked_[unit].second);
     const bool one_unit = !chosen_.empty();
     for (size_t k = 0; !one_unit && k < ranked_.size() && changed_ms < wanted; ++k) {
         const uint32_t i = ranked_[k].second;
         const double ms = step_ms(i);
-        if (sign * off_target(changed_ms + ms) > band || (coarse_held && ms > band)) passed_.push_back(i);
+        if (sign * off_target(changed_ms + ms) > band) passed_.push_back(i);
         else chosen_.push_back(i), changed_ms += ms, coarse_ms = std::max(coarse_ms, ms > band ? ms : 0.0);
     }
     const double left = std::fabs(off_target(changed_ms));
-    for (size_t k = 0; over && !coarse_held && changed_ms < wanted && left > band && k < passed_.size(); ++k) {
+    for (size_t k = 0; over && changed_ms < wanted && left > band && k < passed_.size(); ++k) {
         const double ms = step_ms(passed_[k]);
         if (std::fabs(off_target(changed_ms + ms)) + band < left) {
             chosen_.push_back(passed_[k]), changed_ms += ms, coarse_ms = std::max(coarse_ms, ms);
@@ -209,15 +222,15 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     // the finest of them is combined with demotions of others, least significance per millisecond
     // first, each finer than half the band, that bring the time back to the target. Taken only when
     // it lands inside the band, so the next update holds. Only for a shortfall that persists (held for
-    // three time constants of the smoothed time, 3 / smoothing updates), while the band is the
-    // tolerance itself (not widened by noise) and no coarse promotion is held: under load each passing
+    // three time constants of the smoothed time, 3 / smoothing updates) and while the band is the
+    // tolerance itself (not widened by noise): under load each passing
     // dip below the band would otherwise trade one coarse promotion for many demotions and back
     // (measured: 2-3 times the level changes).
     demoted_.clear();
     held_under_ = !over && chosen_.empty() ? held_under_ + 1 : 0;
     const bool persistent = static_cast<float>(held_under_) * common_.smoothing >= 3.0f;
     const bool steady = band <= part_.tolerance * part_.target_ms;
-    if (!over && !coarse_held && persistent && steady && left > band && !passed_.empty()) {
+    if (!over && persistent && steady && left > band && !passed_.empty()) {
         uint32_t finest = 0;
         double finest_ms = 0.0;  // what it really costs; 0: no passed-over promotion would show
         for (uint32_t i : passed_) {
@@ -239,9 +252,12 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
         else
             demoted_.clear();
     }
-    // A coarse step holds coarse steps the other way: a promotion back after a demotion (or the
-    // reverse) waits until the smoothed time has taken the step in.
-    if (coarse_ms > band) (over ? hold_promote_ : hold_demote_) = coarse_hold_updates(coarse_ms, band, common_.smoothing);
+    // A coarse step holds steps the other way that it could explain until the smoothed time has taken
+    // it in.
+    if (coarse_ms > band) {
+        (over ? hold_promote_ : hold_demote_) = coarse_hold_updates(coarse_ms, band, common_.smoothing);
+        (over ? held_promote_ms_ : held_demote_ms_) = coarse_ms;
+    }
     for (uint32_t i : chosen_) {
         uint8_t& demotion = geometric ? states[i].budget_demotion : states[i].anim_demotion;
         demotion = static_cast<uint8_t>(over ? demotion + 1 : demotion - 1);

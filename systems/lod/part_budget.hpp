@@ -90,8 +90,10 @@ private:
     float noise_ = 0.0f;
     int settle_left_ = 0;
     int held_under_ = 0;
-    int hold_demote_ = 0;                             // updates left before a coarse demotion may follow a coarse promotion
-    int hold_promote_ = 0;                            // updates left before a coarse promotion may follow a coarse demotion                              // updates in a row held under the band with only coarse promotions
+    int hold_demote_ = 0;                             // updates left of a coarse promotion's hold on demotions
+    int hold_promote_ = 0;                            // updates left of a coarse demotion's hold on promotions
+    double held_demote_ms_ = 0.0;                     // that promotion's size (ms): a larger excess is not held
+    double held_promote_ms_ = 0.0;                    // that demotion's size (ms): a larger shortfall is not held                              // updates in a row held under the band with only coarse promotions
     size_t levels_ = 0;
     std::vector<uint32_t> counts_;
     std::vector<uint8_t> last_level_;                 // each character's level at the last update
