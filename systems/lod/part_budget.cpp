@@ -39,6 +39,7 @@ void PartBudget::reset() {
     settle_left_ = 0;
     held_under_ = 0;
     hold_demote_ = hold_promote_ = 0;
+    held_demote_ms_ = held_promote_ms_ = 0.0;
     levels_ = 0;
     model_ = LevelCostModel();
 }
@@ -200,7 +201,8 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
             break;
         }
         const bool nearer = over && off + band < gap;
-        if (nearer && (unit == ranked_.size() || off < std::fabs(off_target(step_ms(ranked_[unit].second))))) unit = k;
+        const bool nearest = unit == ranked_.size() || off < std::fabs(off_target(step_ms(ranked_[unit].second)));
+        if (nearer && nearest) unit = k;
     }
     if (unit < ranked_.size()) chosen_.push_back(ranked_[unit].second), changed_ms = coarse_ms = step_ms(ranked_[unit].second);
     const bool one_unit = !chosen_.empty();
@@ -223,9 +225,9 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     // first, each finer than half the band, that bring the time back to the target. Taken only when
     // it lands inside the band, so the next update holds. Only for a shortfall that persists (held for
     // three time constants of the smoothed time, 3 / smoothing updates) and while the band is the
-    // tolerance itself (not widened by noise): under load each passing
-    // dip below the band would otherwise trade one coarse promotion for many demotions and back
-    // (measured: 2-3 times the level changes).
+    // tolerance itself (not widened by noise): under load each passing dip below the band would
+    // otherwise trade one coarse promotion for many demotions and back (measured: 2-3 times the
+    // level changes).
     demoted_.clear();
     held_under_ = !over && chosen_.empty() ? held_under_ + 1 : 0;
     const bool persistent = static_cast<float>(held_under_) * common_.smoothing >= 3.0f;
