@@ -41,21 +41,29 @@ void PartBudget::reset() {
     hold_demote_ = hold_promote_ = 0;
     held_demote_ms_ = held_promote_ms_ = 0.0;
     levels_ = 0;
+    classes_ = 1;
     model_ = LevelCostModel();
 }
 
 BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_ms,
                               std::span<const LodAttributes> attributes, std::span<const LodRequest> requests,
-                              std::span<LodState> states, const RuleTable& table) {
+                              std::span<LodState> states, const RuleTable& table, std::span<const uint8_t> cost_classes) {
     BudgetStep step;
     hold_demote_ = std::max(0, hold_demote_ - 1);
     hold_promote_ = std::max(0, hold_promote_ - 1);
     const bool geometric = kind_ == BudgetKind::Geometry;
     const size_t levels = geometric ? table.geom_levels.size() : table.anim_levels.size();
-    if (levels != levels_) model_.set_levels(kind_, table), levels_ = levels, last_level_.clear();
+    // Cost classes: walkers and the rest learn apart at each animation level when the host says which is which.
+    const size_t classes = !geometric && cost_classes.size() == states.size() ? kAnimCostClasses : 1;
+    if (levels != levels_ || classes != classes_)
+        model_.set_levels(kind_, table, classes), levels_ = levels, classes_ = classes, last_level_.clear();
     auto level_of = [&](const LodState& s) -> size_t { return std::min<size_t>(geometric ? s.geom_level : s.anim_level, levels - 1); };
-    counts_.assign(levels, 0);
-    for (const LodState& s : states) ++counts_[level_of(s)];
+    // What character i would cost (one more of its class) at level l.
+    auto cost_at = [&](size_t l, size_t i) {
+        return model_.marginal(l * classes + (classes > 1 && cost_classes[i] != 0 ? 1 : 0));
+    };
+    counts_.assign(levels * classes, 0);
+    for (size_t i = 0; i < states.size(); ++i) ++counts_[level_of(states[i]) * classes + (classes > 1 && cost_classes[i] != 0 ? 1 : 0)];
 
     // Switches since the last update are in this measurement in full but in the average only by its
     // weight: move the average by their predicted effect first, so it does not lag behind them.
@@ -64,7 +72,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     last_level_.resize(states.size());
     for (size_t i = 0; i < states.size(); ++i) {
         const size_t l = level_of(states[i]);
-        if (same_crowd && l != last_level_[i]) switched_ms += model_.marginal(l) - model_.marginal(last_level_[i]);
+        if (same_crowd && l != last_level_[i]) switched_ms += cost_at(l, i) - cost_at(last_level_[i], i);
         last_level_[i] = static_cast<uint8_t>(l);
     }
     if (std::isfinite(measured_ms) && measured_ms >= 0.0f) {
@@ -95,7 +103,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     };
     double pending_ms = 0.0;
     for (size_t i = 0; know_requests && i < states.size(); ++i)
-        pending_ms += model_.marginal(headed(i)) - model_.marginal(level_of(states[i]));
+        pending_ms += cost_at(headed(i), i) - cost_at(level_of(states[i]), i);
     const double predicted = ema_ + pending_ms;
     step.predicted_ms = static_cast<float>(predicted);
     if (settle_left_ > 0) {
@@ -127,11 +135,11 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     };
     auto saving = [&](size_t i) {
         const size_t l = headed(i);
-        return model_.marginal(l) - model_.marginal(one_poorer(l));
+        return cost_at(l, i) - cost_at(one_poorer(l), i);
     };
     auto extra = [&](size_t i) {
         const size_t l = headed(i);
-        return std::max(0.0, model_.marginal(l > 0 ? l - 1 : 0) - model_.marginal(l));
+        return std::max(0.0, cost_at(l > 0 ? l - 1 : 0, i) - cost_at(l, i));
     };
     // What giving character i one level back really costs: the level it would then be headed for
     // (through lod_targets, so a cap or a demotion past the last level that swallows the step costs
@@ -147,7 +155,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
             const LodTargets t = lod_targets(table, requests[i], promoted);
             up = std::min<size_t>(geometric ? t.geom : t.anim, levels - 1);
         }
-        return std::max(0.0, model_.marginal(up) - model_.marginal(l));
+        return std::max(0.0, cost_at(up, i) - cost_at(l, i));
     };
     // Fills `out` with the characters that may be demoted (or promoted) one level, least (most)
     // significance per millisecond first: the least noticed detail for the time it saves goes first,

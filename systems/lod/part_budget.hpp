@@ -75,11 +75,15 @@ public:
     void reset();
 
     /// Feeds the last frame's `measured_ms` (and, when available, `level_ms`: the time spent at each
-    /// level of this kind, size = level count) and steps when needed. `attributes` and `states` have
-    /// the same size; `requests` (the last frame's, same size) enables the prediction of pending
-    /// switches, empty disables it. Allocates only when the crowd or the level count grows.
+    /// level of this kind and cost class, size = level count * classes) and steps when needed.
+    /// `attributes` and `states` have the same size; `requests` (the last frame's, same size) enables
+    /// the prediction of pending switches, empty disables it. `cost_classes` (animation only, same
+    /// size, 1 = walking) makes the part learn and predict walkers' and other characters' costs apart
+    /// at each level (kAnimCostClasses; level_ms then per anim_cost_slot); empty: one class. Allocates
+    /// only when the crowd or the level count grows.
     BudgetStep update(float measured_ms, std::span<const double> level_ms, std::span<const LodAttributes> attributes,
-                      std::span<const LodRequest> requests, std::span<LodState> states, const RuleTable& table);
+                      std::span<const LodRequest> requests, std::span<LodState> states, const RuleTable& table,
+                      std::span<const uint8_t> cost_classes = {});
 
 private:
     BudgetKind kind_;
@@ -95,6 +99,7 @@ private:
     double held_demote_ms_ = 0.0;                     // that promotion's size (ms): a larger excess is not held
     double held_promote_ms_ = 0.0;                    // that demotion's size (ms): a larger shortfall is not held                              // updates in a row held under the band with only coarse promotions
     size_t levels_ = 0;
+    size_t classes_ = 1;                              // cost classes per level (model_.classes())
     std::vector<uint32_t> counts_;
     std::vector<uint8_t> last_level_;                 // each character's level at the last update
     std::vector<std::pair<float, uint32_t>> ranked_;  // (score, index) scratch

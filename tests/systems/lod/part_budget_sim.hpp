@@ -7,6 +7,7 @@
 #include "tests/systems/lod/lod_crowd_sim.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <span>
 #include <vector>
@@ -30,6 +31,9 @@ struct BudgetSim {
     std::vector<double> geom_cost{std::begin(kGeomCost), std::end(kGeomCost)};  // truth, ms per character per level
     std::vector<double> anim_cost{std::begin(kAnimCost), std::end(kAnimCost)};
     bool anim_per_level = false;                // animation told its per-level times too (as the World does)
+    std::vector<uint8_t> walking;               // per character: 1 walks, 0 costs anim_still_cost; empty: all walk
+    std::vector<double> anim_still_cost;        // truth for characters not walking, ms per level (with `walking`)
+    bool tell_classes = true;                   // with `walking`: the part is told each character's cost class
     double geom_truth = 0, anim_truth = 0;      // noise-free cost of the last frame
     double geom_ms = -1, anim_ms = -1;          // what the controllers are told
     std::vector<double> geom_level_ms, anim_level_ms;
@@ -55,7 +59,8 @@ struct BudgetSim {
     void frame() {
         if (anim.params().target_ms > 0) {
             const std::span<const double> per_level = anim_per_level ? std::span<const double>(anim_level_ms) : std::span<const double>();
-            const BudgetStep s = anim.update(static_cast<float>(anim_ms), per_level, crowd.attrs, crowd.req, crowd.states, table);
+            const std::span<const uint8_t> classes = tell_classes ? std::span<const uint8_t>(walking) : std::span<const uint8_t>();
+            const BudgetStep s = anim.update(static_cast<float>(anim_ms), per_level, crowd.attrs, crowd.req, crowd.states, table, classes);
             if (s.direction) anim_steps.push_back(s.direction);
         }
         if (geom.params().target_ms > 0) {
@@ -64,11 +69,15 @@ struct BudgetSim {
         }
         crowd.frame();
         geom_level_ms.assign(geom_cost.size(), 0.0);
-        anim_level_ms.assign(anim_cost.size(), 0.0);
+        const bool tell = !walking.empty() && tell_classes;
+        anim_level_ms.assign(anim_cost.size() * (tell ? kAnimCostClasses : 1), 0.0);
         anim_truth = geom_truth = 0.0;
-        for (const LodState& s : crowd.states) {
+        for (size_t i = 0; i < crowd.states.size(); ++i) {
+            const LodState& s = crowd.states[i];
+            const bool walks = walking.empty() || walking[i] != 0;
             geom_level_ms[s.geom_level] += geom_cost[s.geom_level];
-            anim_level_ms[s.anim_level] += anim_cost[s.anim_level];
+            anim_level_ms[tell ? anim_cost_slot(s.anim_level, walks) : s.anim_level] +=
+                walks ? anim_cost[s.anim_level] : anim_still_cost[s.anim_level];
         }
         for (double& l : geom_level_ms) geom_truth += l, l *= 1.0 + kNoise * (2.0 * rnd.next() - 1.0);
         for (double& l : anim_level_ms) anim_truth += l, l *= anim_per_level ? 1.0 + kNoise * (2.0 * rnd.next() - 1.0) : 1.0;

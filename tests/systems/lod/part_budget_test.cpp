@@ -110,5 +110,53 @@ TEST(PartBudget, InsideTheToleranceNothingMoves) {
     EXPECT_TRUE(sim.geom_steps.empty());
 }
 
+// Walkers and characters that are not walking cost differently at the same animation level (the
+// plaza: a hero's dynamic walk ~0.1-0.3 ms, the same level playing an idle clip ~0.002 ms). Told
+// which is which (cost classes), the part learns each class's cost per level and demotes only
+// characters whose demotion saves time: no idler is demoted (each would save 0.0002 ms or less,
+// under the 1% of the band a demotion must save), and it settles within 10%. With one class per
+// level the idlers look as costly as the level's average and are demoted for nothing.
+TEST(PartBudget, WalkersAndOthersAreCostedApart) {
+    auto run = [](bool classes, size_t* idlers_demoted, double* error, BudgetSim* out) {
+        BudgetSim sim;
+        sim.anim_per_level = true;
+        sim.add(600);
+        sim.anim_still_cost = {0.0006, 0.0005, 0.0004};
+        std::vector<uint8_t> walking(600);
+        for (size_t i = 0; i < walking.size(); ++i) walking[i] = i % 2;
+        sim.walking = walking;
+        sim.tell_classes = classes;  // else the same truth, told per level only
+        sim.frame();
+        const double target = 0.6 * sim.anim_truth;
+        sim.set_targets(10.0 * sim.anim_truth, 0.0);  // room first: costs learned at the rules' levels
+        for (int f = 0; f < 30; ++f) sim.frame();
+        sim.set_targets(target, 0.0);
+        for (int f = 0; f < 300; ++f) sim.frame();
+        *idlers_demoted = 0;
+        for (size_t i = 0; i < walking.size(); ++i) *idlers_demoted += !walking[i] && sim.crowd.states[i].anim_demotion > 0;
+        *error = std::fabs(sim.anim_truth - target) / target;
+        if (out) *out = std::move(sim);
+    };
+    size_t idlers = 0;
+    double error = 0.0;
+    BudgetSim apart;
+    run(true, &idlers, &error, &apart);
+    EXPECT_EQ(idlers, 0u);
+    EXPECT_LE(error, 0.1);
+    // The walkers' learned cost per populated level within the noise (2%) plus the average's lag: 5%.
+    const auto& costs = apart.anim.costs().costs();
+    ASSERT_EQ(costs.size(), 3 * kAnimCostClasses);
+    std::vector<uint32_t> walkers_at(3, 0);
+    for (size_t i = 1; i < apart.crowd.states.size(); i += 2) ++walkers_at[apart.crowd.states[i].anim_level];
+    for (size_t l = 0; l < 3; ++l) {
+        if (walkers_at[l] <= 20) continue;  // too few to have a settled average
+        EXPECT_NEAR(costs[anim_cost_slot(l, true)], kAnimCost[l], 0.05 * kAnimCost[l]) << "level " << l;
+    }
+    size_t idlers_one_class = 0;
+    run(false, &idlers_one_class, &error, nullptr);
+    EXPECT_GT(idlers_one_class, 0u);
+    std::printf("idlers demoted: %zu with cost classes, %zu with one class per level\n", idlers, idlers_one_class);
+}
+
 }  // namespace
 }  // namespace aloha
