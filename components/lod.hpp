@@ -1,6 +1,7 @@
 // Plain data for the level-of-detail pipeline: attributes -> request -> resolved state.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace aloha {
@@ -56,6 +57,12 @@ enum class WalkMethod : uint8_t {
 
 /// Inverse-kinematics solver choice.
 enum class IkSolver : uint8_t { None = 0, Ccd = 1, Dls = 2 };
+
+/// Kinds of animation work whose cost the animation budget learns apart at each level: a character
+/// that is not walking (clip, reach, look-at: no walk method runs; cost class 0) and one that walks.
+inline constexpr size_t kAnimCostClasses = 2;
+/// Index of (animation `level`, `walking`) in arrays kept per level and cost class.
+constexpr size_t anim_cost_slot(size_t level, bool walking) { return level * kAnimCostClasses + (walking ? 1 : 0); }
 
 /// Animation LOD parameters marshalled to the motion controller.
 struct AnimLod {

@@ -335,7 +335,7 @@ void World::step() {
     to_ms(geom_level_ns_, geom_level_ms_);
     to_ms(anim_level_ns_, anim_level_ms_);
     geom_level_ns_.assign(rules_.table().geom_levels.size(), 0);
-    anim_level_ns_.assign(rules_.table().anim_levels.size(), 0);
+    anim_level_ns_.assign(rules_.table().anim_levels.size() * kAnimCostClasses, 0);
     switches_[0] = switches_[1] = 0;
     refresh_type_views();
     scheduler_.run_frame(dt);

@@ -209,8 +209,9 @@ private:
     TierChoice tier_;
     std::vector<uint64_t> geom_level_ns_;            ///< this frame: muscle + skin time per geometric level
     std::vector<double> geom_level_ms_;              ///< the last frame's, ms (what the geometry budget learns from)
-    std::vector<uint64_t> anim_level_ns_;            ///< this frame: motion time per animation level
+    std::vector<uint64_t> anim_level_ns_;            ///< this frame: motion time per animation level and cost class (anim_cost_slot)
     std::vector<double> anim_level_ms_;              ///< the last frame's, ms (what the animation budget learns from)
+    std::vector<uint8_t> walking_;                   ///< each character's animation cost class (1: walking), for the budget
     uint32_t switches_[2] = {0, 0};
     uint32_t applied_rules_generation_ = 0;          ///< RuleSet::generation() whose settings are in force
     int motion_system_ = -1, muscle_system_ = -1, skin_system_ = -1;

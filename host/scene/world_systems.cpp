@@ -161,7 +161,12 @@ void World::register_systems() {
             m.animation_ms = static_cast<float>(last_animation_ms_);
             m.geometry_ms = static_cast<float>(last_geometry_ms_);
             if (geom_level_ms_.size() == table.geom_levels.size()) m.geometry_level_ms = geom_level_ms_;
-            if (anim_level_ms_.size() == table.anim_levels.size()) m.animation_level_ms = anim_level_ms_;
+            if (anim_level_ms_.size() == table.anim_levels.size() * kAnimCostClasses) m.animation_level_ms = anim_level_ms_;
+            // Each character's animation cost class (walking or not) as the motion system left it.
+            const auto motion = a.read<MotionState>();
+            walking_.resize(motion.size());
+            for (size_t i = 0; i < motion.size(); ++i) walking_[i] = motion[i].active == RequestKind::Walk ? 1 : 0;
+            m.animation_classes = walking_;
             budget_.update(m, a.read<LodAttributes>(), a.write<LodRequest>(), states, table);
         }
         // Level caps (at most N characters at a level or richer, by significance) before the resolver.

@@ -60,8 +60,19 @@ nlohmann::json part_json(const std::vector<double>& v, size_t from, double dt, c
     j["active"] = true;
     j["target_ms"] = p.target_ms;
     j["band_ms_at_end"] = p.band_ms;
-    j["learned_cost_ms_per_character"] = p.level_cost_ms;
-    j["learned_marginal_ms_per_character"] = p.level_marginal_ms;
+    // One list per cost class, each indexed by level (animation: walkers apart from the rest).
+    auto by_class = [&](const std::vector<double>& slots, size_t c) {
+        std::vector<double> out;
+        for (size_t s = c; s < slots.size(); s += std::max<size_t>(1, p.classes)) out.push_back(slots[s]);
+        return out;
+    };
+    const bool walkers_apart = p.classes == kAnimCostClasses;
+    j["learned_cost_ms_per_character"] = by_class(p.level_cost_ms, walkers_apart ? 1 : 0);
+    j["learned_marginal_ms_per_character"] = by_class(p.level_marginal_ms, walkers_apart ? 1 : 0);
+    if (walkers_apart) {  // the lists above are the walkers'
+        j["learned_cost_ms_per_character_not_walking"] = by_class(p.level_cost_ms, 0);
+        j["learned_marginal_ms_per_character_not_walking"] = by_class(p.level_marginal_ms, 0);
+    }
     if (from >= v.size()) {
         j["settled"] = nullptr;
         return j;

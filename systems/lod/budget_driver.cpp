@@ -54,7 +54,8 @@ void LodBudget::update(const BudgetMeasurement& m, std::span<const LodAttributes
     if (mode_ == BudgetStatus::Mode::Total) {
         total_.update(m.total_ms, attributes, states, table);
     } else if (mode_ == BudgetStatus::Mode::Parts) {
-        if (params_.animation.target_ms > 0.0f) animation_.update(m.animation_ms, m.animation_level_ms, attributes, requests, states, table);
+        if (params_.animation.target_ms > 0.0f)
+            animation_.update(m.animation_ms, m.animation_level_ms, attributes, requests, states, table, m.animation_classes);
         if (params_.geometry.target_ms > 0.0f)
             geometry_.update(m.geometry_ms, m.geometry_level_ms, attributes, requests, states, table);
     }
@@ -73,6 +74,7 @@ BudgetStatus LodBudget::status() const {
         p.band_ms = b.band_ms();
         p.level_cost_ms = b.costs().costs();
         p.level_marginal_ms = b.costs().marginals();
+        p.classes = b.costs().classes();
         return p;
     };
     if (mode_ == BudgetStatus::Mode::Parts) s.animation = part(animation_), s.geometry = part(geometry_);

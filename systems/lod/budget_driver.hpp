@@ -37,6 +37,7 @@ struct BudgetStatus {
         float band_ms = 0.0f;             ///< no step while the smoothed time is within target +- this
         std::vector<double> level_cost_ms;///< learned ms per character per level (average)
         std::vector<double> level_marginal_ms;  ///< learned ms of one character more per level (slope)
+        size_t classes = 1;               ///< cost classes per level: entries are level * classes + class
     };
     Part animation;                       ///< the motion system
     Part geometry;                        ///< the muscle + spring_skin systems
@@ -48,7 +49,11 @@ struct BudgetMeasurement {
     float animation_ms = -1.0f;               ///< the animation part
     float geometry_ms = -1.0f;                ///< the geometry part
     std::span<const double> geometry_level_ms;///< the geometry part's time per geometric level, or empty
-    std::span<const double> animation_level_ms;///< the animation part's time per animation level, or empty
+    /// The animation part's time per animation level and cost class (anim_cost_slot), or empty.
+    std::span<const double> animation_level_ms;
+    /// Each character's animation cost class (0: not walking, 1: walking), the size of the crowd, or
+    /// empty (every character class 0).
+    std::span<const uint8_t> animation_classes;
 };
 
 /// Owns the controllers and their mode.

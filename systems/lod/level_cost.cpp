@@ -22,22 +22,28 @@ double geometry_prior(const GeomLevelDef& l) {
     return 1.0;
 }
 
-// Relative cost of an animation level before anything is measured.
-double animation_prior(const AnimLevelDef& l) {
-    const double walk = l.walk == WalkMethod::Dynamic ? 40.0 : l.walk == WalkMethod::Kinematic ? 3.0 : 1.0;
+// Relative cost of an animation level before anything is measured, for a walker (its walk method
+// runs) or not (a clip sample).
+double animation_prior(const AnimLevelDef& l, bool walking) {
+    const double walk = !walking ? 1.0 : l.walk == WalkMethod::Dynamic ? 40.0 : l.walk == WalkMethod::Kinematic ? 3.0 : 1.0;
     const double ik = l.ik == IkSolver::Dls ? 0.4 * l.ik_iterations : l.ik == IkSolver::Ccd ? 0.2 * l.ik_iterations : 0.0;
     return (walk + ik) / std::max<double>(1.0, l.update_interval);
 }
 
 }  // namespace
 
-void LevelCostModel::set_levels(BudgetKind kind, const RuleTable& table) {
+void LevelCostModel::set_levels(BudgetKind kind, const RuleTable& table, size_t classes) {
+    classes = std::max<size_t>(1, classes);
     std::vector<double> prior;
-    if (kind == BudgetKind::Geometry)
-        for (const auto& l : table.geom_levels) prior.push_back(geometry_prior(l));
-    else
-        for (const auto& l : table.anim_levels) prior.push_back(animation_prior(l));
-    if (prior.size() == prior_.size() && scaled_) return;  // same shape: keep what was learned
+    if (kind == BudgetKind::Geometry) {
+        for (const auto& l : table.geom_levels)
+            for (size_t c = 0; c < classes; ++c) prior.push_back(geometry_prior(l));
+    } else {
+        for (const auto& l : table.anim_levels)
+            for (size_t c = 0; c < classes; ++c) prior.push_back(animation_prior(l, classes > 1 && c == 1));
+    }
+    if (prior.size() == prior_.size() && classes == classes_ && scaled_) return;  // same shape: keep what was learned
+    classes_ = classes;
     prior_ = std::move(prior);
     cost_ = prior_;
     marginal_ = prior_;
@@ -45,11 +51,11 @@ void LevelCostModel::set_levels(BudgetKind kind, const RuleTable& table) {
     scaled_ = false;
 }
 
-void LevelCostModel::observe(std::span<const uint32_t> counts, std::span<const double> level_ms, double total_ms,
+void LevelCostModel::observe(std::span<const uint32_t> counts, std::span<const double> slot_ms, double total_ms,
                              float weight) {
     if (counts.size() != cost_.size() || !std::isfinite(total_ms) || total_ms < 0.0) return;
-    const bool per_level = level_ms.size() == counts.size();
-    const double measured = per_level ? std::accumulate(level_ms.begin(), level_ms.end(), 0.0) : total_ms;
+    const bool per_slot = slot_ms.size() == counts.size();
+    const double measured = per_slot ? std::accumulate(slot_ms.begin(), slot_ms.end(), 0.0) : total_ms;
     if (!scaled_) {
         double predicted = 0.0;
         for (size_t l = 0; l < counts.size(); ++l) predicted += counts[l] * prior_[l];
@@ -60,11 +66,11 @@ void LevelCostModel::observe(std::span<const uint32_t> counts, std::span<const d
         scaled_ = true;
         return;
     }
-    if (per_level) {
+    if (per_slot) {
         for (size_t l = 0; l < counts.size(); ++l) {
-            if (!std::isfinite(level_ms[l]) || level_ms[l] < 0.0) continue;
-            if (counts[l] > 0) cost_[l] += weight * (level_ms[l] / counts[l] - cost_[l]);
-            fit_marginal(l, counts[l], level_ms[l], weight);
+            if (!std::isfinite(slot_ms[l]) || slot_ms[l] < 0.0) continue;
+            if (counts[l] > 0) cost_[l] += weight * (slot_ms[l] / counts[l] - cost_[l]);
+            fit_marginal(l, counts[l], slot_ms[l], weight);
         }
         return;
     }
@@ -103,14 +109,14 @@ void LevelCostModel::fit_marginal(size_t l, uint32_t count, double ms, float wei
 }
 
 
-double LevelCostModel::cost(size_t level) const {
+double LevelCostModel::cost(size_t slot) const {
     if (cost_.empty()) return 0.0;
-    return cost_[std::min(level, cost_.size() - 1)];
+    return cost_[std::min(slot, cost_.size() - 1)];
 }
 
-double LevelCostModel::marginal(size_t level) const {
+double LevelCostModel::marginal(size_t slot) const {
     if (marginal_.empty()) return 0.0;
-    return marginal_[std::min(level, marginal_.size() - 1)];
+    return marginal_[std::min(slot, marginal_.size() - 1)];
 }
 
 double LevelCostModel::predict(std::span<const uint32_t> counts) const {

@@ -15,6 +15,16 @@ float PartBudget::band_ms() const {
     return std::max(part_.tolerance * part_.target_ms, 2.0f * smoothed_noise);
 }
 
+int coarse_hold_updates(double step_ms, double band_ms, float smoothing) {
+    // A step k bands coarse moves the smoothed time by k bands; after k of its time constants
+    // (1 / smoothing updates each) what is left of it there is k e^-k bands, under one band for every
+    // k (k e^-k <= 1/e): the time then shows where the step put it, and a step twice as coarse holds
+    // twice as long.
+    if (!(band_ms > 0.0) || !(step_ms > band_ms) || !(smoothing > 0.0f)) return 0;
+    const double k = std::ceil(std::min(step_ms / band_ms, 1000.0));
+    return static_cast<int>(k * std::ceil(1.0 / smoothing));
+}
+
 PartBudget::PartBudget(BudgetKind kind, const BudgetPartParams& part, const BudgetParams& common)
     : kind_(kind), part_(part), common_(common) {}
 
@@ -28,20 +38,32 @@ void PartBudget::reset() {
     noise_ = 0.0f;
     settle_left_ = 0;
     held_under_ = 0;
+    hold_demote_ = hold_promote_ = 0;
+    held_demote_ms_ = held_promote_ms_ = 0.0;
     levels_ = 0;
+    classes_ = 1;
     model_ = LevelCostModel();
 }
 
 BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_ms,
                               std::span<const LodAttributes> attributes, std::span<const LodRequest> requests,
-                              std::span<LodState> states, const RuleTable& table) {
+                              std::span<LodState> states, const RuleTable& table, std::span<const uint8_t> cost_classes) {
     BudgetStep step;
+    hold_demote_ = std::max(0, hold_demote_ - 1);
+    hold_promote_ = std::max(0, hold_promote_ - 1);
     const bool geometric = kind_ == BudgetKind::Geometry;
     const size_t levels = geometric ? table.geom_levels.size() : table.anim_levels.size();
-    if (levels != levels_) model_.set_levels(kind_, table), levels_ = levels, last_level_.clear();
+    // Cost classes: walkers and the rest learn apart at each animation level when the host says which is which.
+    const size_t classes = !geometric && cost_classes.size() == states.size() ? kAnimCostClasses : 1;
+    if (levels != levels_ || classes != classes_)
+        model_.set_levels(kind_, table, classes), levels_ = levels, classes_ = classes, last_level_.clear();
     auto level_of = [&](const LodState& s) -> size_t { return std::min<size_t>(geometric ? s.geom_level : s.anim_level, levels - 1); };
-    counts_.assign(levels, 0);
-    for (const LodState& s : states) ++counts_[level_of(s)];
+    // What character i would cost (one more of its class) at level l.
+    auto cost_at = [&](size_t l, size_t i) {
+        return model_.marginal(l * classes + (classes > 1 && cost_classes[i] != 0 ? 1 : 0));
+    };
+    counts_.assign(levels * classes, 0);
+    for (size_t i = 0; i < states.size(); ++i) ++counts_[level_of(states[i]) * classes + (classes > 1 && cost_classes[i] != 0 ? 1 : 0)];
 
     // Switches since the last update are in this measurement in full but in the average only by its
     // weight: move the average by their predicted effect first, so it does not lag behind them.
@@ -50,7 +72,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     last_level_.resize(states.size());
     for (size_t i = 0; i < states.size(); ++i) {
         const size_t l = level_of(states[i]);
-        if (same_crowd && l != last_level_[i]) switched_ms += model_.marginal(l) - model_.marginal(last_level_[i]);
+        if (same_crowd && l != last_level_[i]) switched_ms += cost_at(l, i) - cost_at(last_level_[i], i);
         last_level_[i] = static_cast<uint8_t>(l);
     }
     if (std::isfinite(measured_ms) && measured_ms >= 0.0f) {
@@ -81,7 +103,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     };
     double pending_ms = 0.0;
     for (size_t i = 0; know_requests && i < states.size(); ++i)
-        pending_ms += model_.marginal(headed(i)) - model_.marginal(level_of(states[i]));
+        pending_ms += cost_at(headed(i), i) - cost_at(level_of(states[i]), i);
     const double predicted = ema_ + pending_ms;
     step.predicted_ms = static_cast<float>(predicted);
     if (settle_left_ > 0) {
@@ -95,6 +117,12 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     }
     const bool over = predicted > target;
     const double wanted = part_.gain * std::fabs(predicted - target);  // ms to save (over) or to spend (under)
+    // A coarse step the other way is still being taken in (its hold): an error it could explain (its
+    // size plus the band) is left alone, by fine steps too; answered in bulk, they would be undone
+    // in bulk once the step shows as it is.
+    if ((over ? hold_demote_ : hold_promote_) > 0 &&
+        std::fabs(predicted - target) <= (over ? held_demote_ms_ : held_promote_ms_) + band_ms())
+        return step;
 
     // Candidates: (significance, index), each judged at the level it is headed for. Characters held
     // by time hysteresis at a level they keep are left alone (a change would not show); one whose
@@ -107,11 +135,11 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     };
     auto saving = [&](size_t i) {
         const size_t l = headed(i);
-        return model_.marginal(l) - model_.marginal(one_poorer(l));
+        return cost_at(l, i) - cost_at(one_poorer(l), i);
     };
     auto extra = [&](size_t i) {
         const size_t l = headed(i);
-        return std::max(0.0, model_.marginal(l > 0 ? l - 1 : 0) - model_.marginal(l));
+        return std::max(0.0, cost_at(l > 0 ? l - 1 : 0, i) - cost_at(l, i));
     };
     // What giving character i one level back really costs: the level it would then be headed for
     // (through lod_targets, so a cap or a demotion past the last level that swallows the step costs
@@ -127,7 +155,7 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
             const LodTargets t = lod_targets(table, requests[i], promoted);
             up = std::min<size_t>(geometric ? t.geom : t.anim, levels - 1);
         }
-        return std::max(0.0, model_.marginal(up) - model_.marginal(l));
+        return std::max(0.0, cost_at(up, i) - cost_at(l, i));
     };
     // Fills `out` with the characters that may be demoted (or promoted) one level, least (most)
     // significance per millisecond first: the least noticed detail for the time it saves goes first,
@@ -150,48 +178,69 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     };
     rank(over, ranked_);
     if (ranked_.empty()) return step;
-    // In order, until the wanted change is reached. A step that would carry the time beyond the far
-    // edge of the band (one character whose level costs more than the band: a hero's dynamic walk, say)
-    // is passed over for the finer ones after it. Only when the finer ones cannot reach the wanted
-    // change is the first passed-over step taken that lands nearer the target by more than the band:
-    // the step back could never satisfy that too, so the pair cannot alternate.
+    // Steps coarser than the band (a hero's dynamic walk, a subdivided body: a few times the band)
+    // are units of their own, taken or passed over whole; the fine steps are the rest.
+    // 1. A gap that one coarse unit closes by itself is closed by that unit, not by bulk fine steps
+    //    that would be undone, in bulk again, when the unit moves back: the first in order that lands
+    //    inside the band; over, else the demotion that lands nearest the target, under the band but
+    //    nearer than now by more than the band (a hero sent to its dynamic walk by the rules while the
+    //    time was just under the band: holding it back returns the time there).
+    // 2. Otherwise in order until the wanted change is reached, a step that would carry the time beyond
+    //    the far edge of the band passed over for the finer ones after it.
+    // 3. Over, when the finer ones cannot reach the wanted change: the first passed-over step that lands
+    //    nearer the target by more than the band (its undoing could never satisfy that too). Under, the
+    //    only coarse promotion that lands outside the band is the combination below: a lone one would
+    //    land over the band and be answered by bulk fine demotions, undone in bulk when it leaves.
+    // After a coarse step, steps the other way that it could explain wait for its hold (above).
     const double band = band_ms();
     const double sign = over ? -1.0 : 1.0;  // the way the time moves
     auto step_ms = [&](size_t i) { return over ? saving(i) : extra(i); };
     auto off_target = [&](double ms) { return predicted + sign * ms - target; };  // after changing by ms
-    double changed_ms = 0.0;
+    const double gap = std::fabs(predicted - target);
+    double changed_ms = 0.0, coarse_ms = 0.0;  // coarse_ms: the coarsest step taken
     chosen_.clear();
     passed_.clear();
-    for (const auto& [score, i] : ranked_) {
-        if (changed_ms >= wanted) break;
+    size_t unit = ranked_.size();
+    for (size_t k = 0; gap > band && k < ranked_.size(); ++k) {
+        const double ms = step_ms(ranked_[k].second), off = std::fabs(off_target(ms));
+        if (ms <= band) continue;
+        if (off <= band) {
+            unit = k;
+            break;
+        }
+        const bool nearer = over && off + band < gap;
+        const bool nearest = unit == ranked_.size() || off < std::fabs(off_target(step_ms(ranked_[unit].second)));
+        if (nearer && nearest) unit = k;
+    }
+    if (unit < ranked_.size()) chosen_.push_back(ranked_[unit].second), changed_ms = coarse_ms = step_ms(ranked_[unit].second);
+    const bool one_unit = !chosen_.empty();
+    for (size_t k = 0; !one_unit && k < ranked_.size() && changed_ms < wanted; ++k) {
+        const uint32_t i = ranked_[k].second;
         const double ms = step_ms(i);
         if (sign * off_target(changed_ms + ms) > band) passed_.push_back(i);
-        else chosen_.push_back(i), changed_ms += ms;
+        else chosen_.push_back(i), changed_ms += ms, coarse_ms = std::max(coarse_ms, ms > band ? ms : 0.0);
     }
     const double left = std::fabs(off_target(changed_ms));
-    bool coarse = false;
-    for (size_t k = 0; changed_ms < wanted && left > band && k < passed_.size(); ++k) {
+    for (size_t k = 0; over && changed_ms < wanted && left > band && k < passed_.size(); ++k) {
         const double ms = step_ms(passed_[k]);
         if (std::fabs(off_target(changed_ms + ms)) + band < left) {
-            chosen_.push_back(passed_[k]), changed_ms += ms, coarse = true;
+            chosen_.push_back(passed_[k]), changed_ms += ms, coarse_ms = std::max(coarse_ms, ms);
             break;
         }
     }
-    // Under the band with only coarse promotions left (each would carry the time past the far edge,
-    // and none lands nearer by more than the band): the finest of them is combined with demotions of
-    // others, least significance per millisecond first, each finer than half the band, that bring the
-    // time back to the target. Taken instead of the steps above only when it lands inside the band,
-    // so the next update holds; its undoing would need a coarse step again (passed over as long as
-    // finer ones exist), so it cannot alternate. When the demotions cannot pull it into the band the
-    // part holds below its target, as before. Only for a shortfall that persists (held for three
-    // time constants of the smoothed time, 3 / smoothing updates) and while the band is the tolerance
-    // itself (not widened by noise): under load each passing dip below the band would otherwise trade
-    // one coarse promotion for many demotions and back (measured: 2-3 times the level changes).
+    // Under the band with only coarse promotions left (each would carry the time past the far edge):
+    // the finest of them is combined with demotions of others, least significance per millisecond
+    // first, each finer than half the band, that bring the time back to the target. Taken only when
+    // it lands inside the band, so the next update holds. Only for a shortfall that persists (held for
+    // three time constants of the smoothed time, 3 / smoothing updates) and while the band is the
+    // tolerance itself (not widened by noise): under load each passing dip below the band would
+    // otherwise trade one coarse promotion for many demotions and back (measured: 2-3 times the
+    // level changes).
     demoted_.clear();
     held_under_ = !over && chosen_.empty() ? held_under_ + 1 : 0;
     const bool persistent = static_cast<float>(held_under_) * common_.smoothing >= 3.0f;
     const bool steady = band <= part_.tolerance * part_.target_ms;
-    if (!over && !coarse && persistent && steady && left > band && !passed_.empty()) {
+    if (!over && persistent && steady && left > band && !passed_.empty()) {
         uint32_t finest = 0;
         double finest_ms = 0.0;  // what it really costs; 0: no passed-over promotion would show
         for (uint32_t i : passed_) {
@@ -208,8 +257,16 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
                 demoted_.push_back(i), excess -= ms;
             }
         }
-        if (finest_ms > 0.0 && std::fabs(excess) <= band) chosen_.assign(1, finest), held_under_ = 0;
-        else demoted_.clear();
+        if (finest_ms > 0.0 && std::fabs(excess) <= band)
+            chosen_.assign(1, finest), held_under_ = 0, coarse_ms = std::max(coarse_ms, finest_ms);
+        else
+            demoted_.clear();
+    }
+    // A coarse step holds steps the other way that it could explain until the smoothed time has taken
+    // it in.
+    if (coarse_ms > band) {
+        (over ? hold_promote_ : hold_demote_) = coarse_hold_updates(coarse_ms, band, common_.smoothing);
+        (over ? held_promote_ms_ : held_demote_ms_) = coarse_ms;
     }
     for (uint32_t i : chosen_) {
         uint8_t& demotion = geometric ? states[i].budget_demotion : states[i].anim_demotion;

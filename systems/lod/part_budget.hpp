@@ -16,6 +16,11 @@
 
 namespace aloha {
 
+/// Updates a coarse step of `step_ms` (more than `band_ms`) holds coarse steps the other way:
+/// ceil(step / band) time constants (1 / smoothing updates each) of the smoothed time; 0 for a step
+/// within the band.
+[[nodiscard]] int coarse_hold_updates(double step_ms, double band_ms, float smoothing);
+
 /// One part's controller. Call update() once per frame before the resolver with the part's measured
 /// time of the last frame; it edits LodState::budget_demotion (geometry) or anim_demotion (animation).
 ///
@@ -33,15 +38,18 @@ namespace aloha {
 ///    (marginal cost of the level it is headed for - that of one level poorer) until the wanted saving
 ///    is reached; characters whose demotion would save under 1% of the band are passed over. Under: it
 ///    promotes demoted characters, most significance per millisecond first, until the wanted extra cost
-///    is reached. Either way a step that would carry the time beyond the far edge of the band (one
-///    character whose level step costs more than the band) is passed over for finer ones; only when
-///    those cannot reach the wanted change is the first passed-over step taken that lands nearer the
+///    is reached. Steps coarser than the band (one character whose level step costs more: a hero's
+///    dynamic walk) are units of their own: a gap that one of them closes by itself (landing inside
+///    the band) is closed by it, not by bulk fine steps; otherwise a step that would carry the time
+///    beyond the far edge of the band is passed over for finer ones, and only over the band, when
+///    those cannot reach the wanted change, is the first passed-over step taken that lands nearer the
 ///    target by more than the band (its undoing never could, so coarse steps do not oscillate). Under
 ///    the band with only such coarse promotions left, the finest of them is combined with demotions of
 ///    others (least significance per millisecond first, each finer than half the band) when together
 ///    they land inside the band, the shortfall has persisted 3 / smoothing updates and noise has not
 ///    widened the band (that promotion costed at the level it would really reach: a cap or the last
-///    level may swallow it); else the part holds. Then it waits settle_frames.
+///    level may swallow it); else the part holds. After any coarse step no coarse step the other way
+///    is taken for coarse_hold_updates(). Then it waits settle_frames.
 /// Only characters not `always_full`, not headed for Hidden, and either held min_seconds at their level
 /// or with a switch pending are touched; at most max_demotion levels each.
 class PartBudget {
@@ -67,11 +75,15 @@ public:
     void reset();
 
     /// Feeds the last frame's `measured_ms` (and, when available, `level_ms`: the time spent at each
-    /// level of this kind, size = level count) and steps when needed. `attributes` and `states` have
-    /// the same size; `requests` (the last frame's, same size) enables the prediction of pending
-    /// switches, empty disables it. Allocates only when the crowd or the level count grows.
+    /// level of this kind and cost class, size = level count * classes) and steps when needed.
+    /// `attributes` and `states` have the same size; `requests` (the last frame's, same size) enables
+    /// the prediction of pending switches, empty disables it. `cost_classes` (animation only, same
+    /// size, 1 = walking) makes the part learn and predict walkers' and other characters' costs apart
+    /// at each level (kAnimCostClasses; level_ms then per anim_cost_slot); empty: one class. Allocates
+    /// only when the crowd or the level count grows.
     BudgetStep update(float measured_ms, std::span<const double> level_ms, std::span<const LodAttributes> attributes,
-                      std::span<const LodRequest> requests, std::span<LodState> states, const RuleTable& table);
+                      std::span<const LodRequest> requests, std::span<LodState> states, const RuleTable& table,
+                      std::span<const uint8_t> cost_classes = {});
 
 private:
     BudgetKind kind_;
@@ -81,8 +93,13 @@ private:
     float ema_ = -1.0f;
     float noise_ = 0.0f;
     int settle_left_ = 0;
-    int held_under_ = 0;                              // updates in a row held under the band with only coarse promotions
+    int held_under_ = 0;
+    int hold_demote_ = 0;                             // updates left of a coarse promotion's hold on demotions
+    int hold_promote_ = 0;                            // updates left of a coarse demotion's hold on promotions
+    double held_demote_ms_ = 0.0;                     // that promotion's size (ms): a larger excess is not held
+    double held_promote_ms_ = 0.0;                    // that demotion's size (ms): a larger shortfall is not held                              // updates in a row held under the band with only coarse promotions
     size_t levels_ = 0;
+    size_t classes_ = 1;                              // cost classes per level (model_.classes())
     std::vector<uint32_t> counts_;
     std::vector<uint8_t> last_level_;                 // each character's level at the last update
     std::vector<std::pair<float, uint32_t>> ranked_;  // (score, index) scratch

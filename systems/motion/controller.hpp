@@ -129,9 +129,10 @@ public:
     [[nodiscard]] size_t steady_count() const { return steady_count_; }
     /// Scratch slots available to evaluate_due.
     [[nodiscard]] size_t worker_slots() const { return workers_; }
-    /// Where evaluate_due adds the wall time (ns) of each work item, by the character's AnimLod::level
-    /// (levels past the end are not timed); empty (the default) times nothing. The frame budget's
-    /// animation part learns its per-level costs from it. The span must outlive the updates.
+    /// Where evaluate_due adds the wall time (ns) of each work item, at anim_cost_slot(AnimLod::level,
+    /// walking) (walking: the character's current request is a walk; slots past the end are not
+    /// timed); empty (the default) times nothing. The frame budget's animation part learns its costs
+    /// per level and cost class from it. The span must outlive the updates.
     void set_level_timing(std::span<uint64_t> level_ns) { level_ns_ = level_ns; }
     /// What the next updates may leave out, per element (indexed like the update's spans; values
     /// PoseUse). Empty (the default): every pose is read every frame. The span must outlive the updates.

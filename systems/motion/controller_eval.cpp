@@ -166,8 +166,9 @@ void MotionController::lock_feet(const Due& d) {
 
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
     end = std::min(end, work_count());
-    // Per-level time of this chunk, added to level_ns_ once at the end (one clock read per item).
-    std::array<uint64_t, 256> chunk_ns{};
+    // Per level and cost class time of this chunk, added to level_ns_ once at the end (one clock read
+    // per item).
+    std::array<uint64_t, 256 * kAnimCostClasses> chunk_ns{};
     const bool timed = !level_ns_.empty();
     auto now = [] { return static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()); };
     uint64_t last = timed ? now() : 0;
@@ -182,7 +183,7 @@ void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
         lock_feet(d);
         if (!timed) continue;
         const uint64_t t = now();
-        chunk_ns[lods_[d.element].level] += t - last;
+        chunk_ns[anim_cost_slot(lods_[d.element].level, chars_[d.character].cur.req.kind == RequestKind::Walk)] += t - last;
         last = t;
     }
     for (size_t l = 0; timed && l < level_ns_.size() && l < chunk_ns.size(); ++l)
