@@ -41,7 +41,6 @@ void PartBudget::reset() {
     hold_demote_ = hold_promote_ = 0;
     held_demote_ms_ = held_promote_ms_ = 0.0;
     levels_ = 0;
-    classes_ = 1;
     model_ = LevelCostModel();
 }
 
@@ -55,15 +54,15 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     const size_t levels = geometric ? table.geom_levels.size() : table.anim_levels.size();
     // Cost classes: walkers and the rest learn apart at each animation level when the host says which is which.
     const size_t classes = !geometric && cost_classes.size() == states.size() ? kAnimCostClasses : 1;
-    if (levels != levels_ || classes != classes_)
-        model_.set_levels(kind_, table, classes), levels_ = levels, classes_ = classes, last_level_.clear();
+    if (levels != levels_ || classes != model_.classes())
+        model_.set_levels(kind_, table, classes), levels_ = levels, last_level_.clear();
     auto level_of = [&](const LodState& s) -> size_t { return std::min<size_t>(geometric ? s.geom_level : s.anim_level, levels - 1); };
+    // The model's slot of character i at level l (its level and cost class).
+    auto slot = [&](size_t l, size_t i) { return l * classes + (classes > 1 && cost_classes[i] != 0 ? 1 : 0); };
     // What character i would cost (one more of its class) at level l.
-    auto cost_at = [&](size_t l, size_t i) {
-        return model_.marginal(l * classes + (classes > 1 && cost_classes[i] != 0 ? 1 : 0));
-    };
+    auto cost_at = [&](size_t l, size_t i) { return model_.marginal(slot(l, i)); };
     counts_.assign(levels * classes, 0);
-    for (size_t i = 0; i < states.size(); ++i) ++counts_[level_of(states[i]) * classes + (classes > 1 && cost_classes[i] != 0 ? 1 : 0)];
+    for (size_t i = 0; i < states.size(); ++i) ++counts_[slot(level_of(states[i]), i)];
 
     // Switches since the last update are in this measurement in full but in the average only by its
     // weight: move the average by their predicted effect first, so it does not lag behind them.

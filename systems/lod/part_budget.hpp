@@ -93,13 +93,12 @@ private:
     float ema_ = -1.0f;
     float noise_ = 0.0f;
     int settle_left_ = 0;
-    int held_under_ = 0;
+    int held_under_ = 0;                              // updates in a row held under the band with only coarse promotions
     int hold_demote_ = 0;                             // updates left of a coarse promotion's hold on demotions
     int hold_promote_ = 0;                            // updates left of a coarse demotion's hold on promotions
     double held_demote_ms_ = 0.0;                     // that promotion's size (ms): a larger excess is not held
-    double held_promote_ms_ = 0.0;                    // that demotion's size (ms): a larger shortfall is not held                              // updates in a row held under the band with only coarse promotions
+    double held_promote_ms_ = 0.0;                    // that demotion's size (ms): a larger shortfall is not held
     size_t levels_ = 0;
-    size_t classes_ = 1;                              // cost classes per level (model_.classes())
     std::vector<uint32_t> counts_;
     std::vector<uint8_t> last_level_;                 // each character's level at the last update
     std::vector<std::pair<float, uint32_t>> ranked_;  // (score, index) scratch

@@ -41,6 +41,20 @@ std::map<uint64_t, int> ViewVisits(Registry& r) {
     return seen;
 }
 
+// Creates `n` entities, each with Owned and those whose creation index passes `tagged` with Tagged too;
+// returns them in creation order.
+template <class Tagged_>
+std::vector<Entity> Populate(Registry& r, int n, Tagged_ tagged) {
+    std::vector<Entity> es;
+    for (int i = 0; i < n; ++i) {
+        const Entity e = r.create();
+        es.push_back(e);
+        r.emplace<Owned>(e, Owned{e.bits(), 0});
+        if (tagged(i)) r.emplace<Tagged>(e, e.bits());
+    }
+    return es;
+}
+
 TEST(Query, MatchesTheViewUnderRandomStructuralChanges) {
     Registry r;
     auto q = r.query<Owned, const Tagged>();
@@ -79,13 +93,7 @@ TEST(Query, MatchesTheViewUnderRandomStructuralChanges) {
 
 TEST(Query, RebuildsOnlyAfterALayoutChange) {
     Registry r;
-    std::vector<Entity> es;
-    for (int i = 0; i < 100; ++i) {
-        const Entity e = r.create();
-        es.push_back(e);
-        r.emplace<Owned>(e, Owned{e.bits(), 0});
-        if (i % 3 == 0) r.emplace<Tagged>(e, e.bits());
-    }
+    const std::vector<Entity> es = Populate(r, 100, [](int i) { return i % 3 == 0; });
     auto q = r.query<Owned, const Tagged>();
     EXPECT_EQ(q.count(), 34u);
     EXPECT_EQ(q.rebuilds(), 1u);
@@ -114,13 +122,7 @@ TEST(Query, RebuildsOnlyAfterALayoutChange) {
 
 TEST(Query, FollowsAnOwningGroupsReordering) {
     Registry r;
-    std::vector<Entity> es;
-    for (int i = 0; i < 300; ++i) {
-        const Entity e = r.create();
-        es.push_back(e);
-        r.emplace<Owned>(e, Owned{e.bits(), 0});
-        if (i % 2 == 0) r.emplace<Tagged>(e, e.bits());
-    }
+    Populate(r, 300, [](int i) { return i % 2 == 0; });
     auto q = r.query<Owned, const Tagged>();
     EXPECT_EQ(QueryVisits(q), ViewVisits(r));
     // The group packs both storages (moving entities), then sorting by key moves them again.
@@ -139,13 +141,7 @@ TEST(Query, WritesReachEachEntitysOwnComponent) {
     // Mixed layout: the first 200 entities have both components at the same positions (kept as a
     // range), then Tagged is added in reverse order for the next 200 (table entries).
     Registry r;
-    std::vector<Entity> es;
-    for (int i = 0; i < 400; ++i) {
-        const Entity e = r.create();
-        es.push_back(e);
-        r.emplace<Owned>(e, Owned{e.bits(), 0});
-        if (i < 200) r.emplace<Tagged>(e, e.bits());
-    }
+    const std::vector<Entity> es = Populate(r, 400, [](int i) { return i < 200; });
     for (int i = 399; i >= 200; --i) r.emplace<Tagged>(es[size_t(i)], es[size_t(i)].bits());
     auto q = r.query<Owned, const Tagged>();
     for (int round = 0; round < 3; ++round) {
