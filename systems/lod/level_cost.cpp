@@ -89,8 +89,18 @@ void LevelCostModel::fit_marginal(size_t l, uint32_t count, double ms, float wei
     // Moving least squares of the level's time against its count, over a window four times longer
     // than the average's (the count changes only when a controller steps). A level's time often has a
     // part that does not scale with its count (a parallel loop per body type, say): the slope is what
-    // one more or one fewer character really costs. Until the count has varied enough to tell, or
-    // when it has not varied lately, the last slope (at first the average) stands.
+    // one more or one fewer character really costs.
+    //
+    // Ridge regression toward the average (the slope of a level with no fixed part): the slope is
+    // (cov + lambda * average) / (var + lambda) with lambda = (kSpread * mean count)^2, at least 4 (a
+    // count that moves by one or two characters tells nothing). Why: the machine's own speed drifts
+    // while the count moves (this VM: 1.6x between runs, 15 -> 8 ms within one), so a time that is
+    // (average * count) * (1 + d) has a covariance error up to d * mean time * count spread s, and the
+    // slope error up to d * average * mean count * s / (s^2 + lambda) <= d * average / (2 * kSpread):
+    // with kSpread 0.3, a 30% drift moves the marginal by at most half the average, however little the
+    // count varied. A count spread of kSpread * mean gives the measured slope half the weight; a count
+    // that ranges over the whole crowd (a fixed part that matters) gives it most.
+    constexpr double kSpread = 0.3;
     Fit& f = fits_[l];
     const double w = 0.25 * weight, n = count;
     if (!f.seen) f = Fit{n, ms, n * n, n * ms, true};
@@ -98,16 +108,11 @@ void LevelCostModel::fit_marginal(size_t l, uint32_t count, double ms, float wei
     f.t += w * (ms - f.t);
     f.nn += w * (n * n - f.nn);
     f.nt += w * (n * ms - f.nt);
-    const double var = f.nn - f.n * f.n;
-    if (var >= std::max(4.0, 0.0025 * f.n * f.n)) {
-        const double slope = (f.nt - f.n * f.t) / var;
-        marginal_[l] = std::clamp(slope, 0.0, 2.0 * std::max(cost_[l], prior_[l]));
-        f.fitted = true;
-    } else if (!f.fitted) {
-        marginal_[l] = cost_[l];
-    }
+    const double var = std::max(0.0, f.nn - f.n * f.n);
+    const double lambda = std::max(4.0, kSpread * kSpread * f.n * f.n);
+    const double slope = (f.nt - f.n * f.t + lambda * cost_[l]) / (var + lambda);
+    marginal_[l] = std::clamp(slope, 0.0, 2.0 * std::max(cost_[l], prior_[l]));
 }
-
 
 double LevelCostModel::cost(size_t slot) const {
     if (cost_.empty()) return 0.0;

@@ -22,7 +22,8 @@ enum class BudgetKind : uint8_t { Animation, Geometry };
 /// scaled by the first measurement. With per-slot times (the World times the geometry loop of each
 /// level, and the motion controller each character's pose by its animation level and whether it
 /// walks) each slot's average is a moving average of measured ms / characters, and its marginal
-/// cost a moving least-squares slope of its time against its count; with only a total, both follow
+/// cost a moving least-squares slope of its time against its count shrunk toward the average (ridge);
+/// with only a total, both follow
 /// the total by normalised least mean squares (the error spread over the slots in proportion to
 /// their counts), never below 1% of their prior.
 class LevelCostModel {
@@ -36,7 +37,8 @@ public:
     /// Average ms per character in `slot` (clamped to the last slot).
     [[nodiscard]] double cost(size_t slot) const;
     /// What one character more or fewer in `slot` costs (ms): the slope of the slot's time against
-    /// its count, learned as counts change (the average until then). Steps are planned with it.
+    /// its count, shrunk toward the average as far as the count has varied too little to tell (ridge
+    /// regression, see fit_marginal). Steps are planned with it.
     [[nodiscard]] double marginal(size_t slot) const;
     /// Predicted total ms for `counts` (per slot).
     [[nodiscard]] double predict(std::span<const uint32_t> counts) const;
@@ -50,7 +52,7 @@ public:
 private:
     struct Fit {  // moving averages of count, time, count^2, count * time
         double n = 0, t = 0, nn = 0, nt = 0;
-        bool seen = false, fitted = false;
+        bool seen = false;
     };
     void fit_marginal(size_t level, uint32_t count, double ms, float weight);
     std::vector<double> prior_, cost_, marginal_;
