@@ -3,6 +3,7 @@
 
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/geometry/spring_skin/peeled.hpp"
+#include "systems/geometry/spring_skin/strain_limit.hpp"
 
 #include <atomic>
 #include <span>
@@ -30,6 +31,8 @@ struct GeometryController::Level {
     const SubdivisionTopology* subdivision = nullptr;  ///< Subdivided
     SkinSurfaceKey display_key;                    ///< the displayed surface (mesh levels): geomorph correspondences
     std::span<const uint32_t> indices;             ///< the level's triangle list
+    SkinEdges control_edges;                       ///< mesh levels: the control surface's edges (strain limiting)
+    SkinEdges refined_edges;                       ///< Subdivided: the refined surface's edges
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)
     std::vector<uint16_t> vertex_material;         ///< material per displayed vertex (empty: all 0)
     SlotStore store;                               ///< per-character storage
@@ -48,11 +51,10 @@ struct GeometryController::Level {
     [[nodiscard]] bool layered() const {
         return lod.method == GeomMethod::Layered || lod.method == GeomMethod::Subdivided;
     }
-    /// The control surface of slot `s` (morphed positions or the spring ends). A Subdivided level
-    /// morphs after refinement, so its control surface is never the morphed one.
-    [[nodiscard]] std::span<const glm::vec3> control(uint32_t s) const {
-        return springs && (subdivision || !store.shows_morph[s]) ? store.spring_end(s) : store.positions(s);
-    }
+    /// The shown control surface of slot `s`: the placed skin (spring ends with the fat layer) strain
+    /// limited, morphed while a switch morphs. A Subdivided level morphs after refinement, so its
+    /// control surface is never the morphed one.
+    [[nodiscard]] std::span<const glm::vec3> control(uint32_t s) const { return store.positions(s); }
 };
 
 /// Points `job`'s bind inputs at the mesh `level` skins: the type's real mesh, or the level's generated

@@ -9,7 +9,8 @@
 
 namespace aloha {
 
-void GeometryController::control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out) const {
+void GeometryController::control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out,
+                                         bool strain_limited) const {
     const CharacterGeometry& g = *geometry_;
     out.assign(level.control_vertices, glm::vec3(0.0f));
     if (!level.mesh_level) return;
@@ -21,6 +22,7 @@ void GeometryController::control_surface(const Level& level, std::span<const glm
         LinearBlendSkinJob job{palette, {}, {}, {}, {}, out, normals};
         set_lbs_source(g, level, job);
         job.Run();
+        if (strain_limited) limit_skin_strain(level.control_edges, out);
         return;
     }
     // Layered / Subdivided control surface with the fat springs at rest (their rest ends).
@@ -34,19 +36,28 @@ void GeometryController::control_surface(const Level& level, std::span<const glm
     const BlendSpringJob skin{level.theta_steps, level.phi_steps, g.muscle_count(), spring_params_, false, mpos, mnrm,
                               level.skin->bindings, {out, {}, {}, {}}};
     skin.Run();
+    if (strain_limited) limit_skin_strain(level.control_edges, out);
 }
 
 void GeometryController::reference_surface(const PoseSource& poses, uint32_t character, uint8_t reference_level,
-                                           std::vector<glm::vec3>& positions) const {
+                                           std::vector<glm::vec3>& positions, bool strain_limited) const {
     const Level& R = *levels_.at(reference_level);
     positions.clear();
     if (!R.mesh_level) return;
-    control_surface(R, poses.joints(character, geometry_->joint_count()), positions);
+    control_surface(R, poses.joints(character, geometry_->joint_count()), positions, strain_limited);
     if (!R.subdivision) return;
     std::vector<glm::vec3> refined(R.subdivision->refined_vertex_count);
     const SubdivideJob refine{R.subdivision, positions, refined, {}};
     refine.Run();
+    if (strain_limited) limit_skin_strain(R.refined_edges, refined, kRefinedStrainIterations);
     positions = std::move(refined);
+}
+
+std::span<const glm::vec3> GeometryController::fat_spring_ends(uint32_t character) const {
+    const uint8_t l = level_of(character);
+    if (l == kNoLevel || !levels_[l]->springs) return {};
+    const uint32_t s = slot_of_[character];
+    return levels_[l]->store.valid[s] ? levels_[l]->store.spring_end(s) : std::span<const glm::vec3>();
 }
 
 void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t character, uint8_t reference_level,

@@ -74,6 +74,10 @@ void run_skinned(const CharacterGeometry& g, Level& L, uint32_t s, std::span<con
     set_lbs_source(g, L, job);
     assert(job.Validate());
     job.Run();
+    // The skinned normals are kept where the limit moved a vertex: its moves are small next to a
+    // triangle (a crease's fold, not a new shape), and the authored or bind normals light it better
+    // than face normals of the coarse mesh would.
+    limit_skin_strain(L.control_edges, st.positions(s));
     if (!apply_morph(st, s, st.positions(s), st.positions(s))) return;
     // While morphing, light the shape that is shown.
     accumulate_vertex_normals(st.positions(s), L.indices, st.normals(s));
@@ -119,10 +123,14 @@ void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const Fa
                               L.spring_region, L.spring_region.empty() ? std::span<const FatSpringParams>() : tunings};
     assert(skin.Validate());
     skin.Run();
-    const std::span<const glm::vec3> fresh = L.springs ? st.spring_end(s) : st.positions(s);
+    // The shown control surface: the skin strain limited (strain_limit.hpp). With the fat layer the
+    // spring ends are copied first, so the limit shapes what is shown and never the springs' state.
+    const std::span<glm::vec3> fresh = st.positions(s);
+    if (L.springs) std::copy(st.spring_end(s).begin(), st.spring_end(s).end(), fresh.begin());
+    limit_skin_strain(L.control_edges, fresh);
     if (!L.subdivision) {
-        const std::span<const glm::vec3> control = apply_morph(st, s, fresh, st.positions(s)) ? st.positions(s) : fresh;
-        accumulate_vertex_normals(control, L.indices, st.normals(s));
+        apply_morph(st, s, fresh, fresh);
+        accumulate_vertex_normals(fresh, L.indices, st.normals(s));
         return;
     }
     // Subdivided: morph after refinement, on the surface that is displayed (the old level's displayed
@@ -135,8 +143,11 @@ void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const Fa
     const SubdivideJob refine{L.subdivision, fresh, positions, morphing ? std::span<glm::vec3>() : normals};
     assert(refine.Validate());
     refine.Run();
-    // While morphing, light the shape that is shown.
-    if (apply_morph(st, s, positions, positions)) accumulate_vertex_normals(positions, L.indices, normals);
+    // The displayed (refined) surface's edges are limited too: refinement averages the control edges
+    // but can still fold a crease past the limits. While morphing, or after a limit moved the surface,
+    // light the shape that is shown.
+    const bool limited = limit_skin_strain(L.refined_edges, positions, kRefinedStrainIterations);
+    if (apply_morph(st, s, positions, positions) || limited) accumulate_vertex_normals(positions, L.indices, normals);
 }
 
 }  // namespace

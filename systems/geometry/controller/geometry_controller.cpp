@@ -6,6 +6,7 @@
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/controller/fat_regions.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
+#include "systems/geometry/spring_skin/subdivision.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -143,7 +144,18 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     } else if (level->mesh_level) {
         level->indices = real ? std::span<const uint32_t>(g.mesh().indices) : std::span<const uint32_t>(skin->indices);
     }
-    if (level->mesh_level) set_surface_attributes(g, *level);
+    if (level->mesh_level) {
+        set_surface_attributes(g, *level);
+        const std::span<const glm::vec3> rest = real ? std::span<const glm::vec3>(g.mesh().positions) : std::span<const glm::vec3>(skin->rest_positions);
+        level->control_edges = build_skin_edges(real ? std::span<const uint32_t>(g.mesh().indices) : std::span<const uint32_t>(skin->indices), rest);
+        if (subdivision) {
+            std::vector<glm::vec3> refined(subdivision->refined_vertex_count);
+            const SubdivideJob refine{subdivision, rest, refined, {}};
+            assert(refine.Validate());
+            refine.Run();
+            level->refined_edges = build_skin_edges(subdivision->triangles, refined);
+        }
+    }
     return level;
 }
 
@@ -221,6 +233,7 @@ void GeometryController::capture_morph(const Level& from, uint32_t from_slot, Le
             const SubdivideJob refine{from.subdivision, old, refined, {}};
             assert(refine.Validate());
             refine.Run();
+            limit_skin_strain(from.refined_edges, refined, kRefinedStrainIterations);
             old = refined;
         }
     }

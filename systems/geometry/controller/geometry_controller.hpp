@@ -245,10 +245,14 @@ public:
     void set_spring_params(const FatSpringParams& params) { spring_params_ = params; }
 
     /// The surface `character` would have at `reference_level` for its pose in `poses`, computed
-    /// without touching any state (springs at rest, no morph). Empty for RigidProxy / Hidden.
-    /// Allocates (a measurement tool, not per-frame code).
+    /// without touching any state (springs at rest, no morph), strain limited as shown unless
+    /// `strain_limited` is false (the fat layer's own rest ends, to compare with fat_spring_ends).
+    /// Empty for RigidProxy / Hidden. Allocates (a measurement tool, not per-frame code).
     void reference_surface(const PoseSource& poses, uint32_t character, uint8_t reference_level,
-                           std::vector<glm::vec3>& positions) const;
+                           std::vector<glm::vec3>& positions, bool strain_limited = true) const;
+    /// The fat layer of `character` as its springs left it at the last update (before the skin's
+    /// strain limit: what the spring dynamics alone did); empty at a level without fat springs.
+    [[nodiscard]] std::span<const glm::vec3> fat_spring_ends(uint32_t character) const;
     /// Matched point pairs for fidelity: for every vertex of the character's current control surface
     /// (the displayed surface, before subdivision) `current` gets the vertex and `reference` the
     /// reference level's control surface (springs at rest) at the same (muscle, theta, phi) (bilinear
@@ -262,7 +266,8 @@ public:
 private:
     std::unique_ptr<Level> build_level(const GeomLod& lod, uint8_t index, uint8_t revision) const;
     void capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot);
-    void control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out) const;
+    void control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out,
+                         bool strain_limited = true) const;
     void ensure_capacity(uint32_t character);
     [[nodiscard]] SurfaceView slot_surface(uint8_t level, uint32_t slot) const;
     [[nodiscard]] bool crossfades(uint8_t from, uint8_t to) const;

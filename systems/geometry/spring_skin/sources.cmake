@@ -6,4 +6,5 @@ list(APPEND ALOHA_GEOMETRY_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/skin_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/peeled.cpp
   ${CMAKE_CURRENT_LIST_DIR}/subdivision.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/geomorph.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/geomorph.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/strain_limit.cpp)

@@ -4,8 +4,9 @@
 // limit, a 180 degree snap or a teleport does not fling the skin, and the muscle layout's per-region
 // tuning takes effect.
 //
-// The skin's deviation d = skin - rest end is measured against reference_surface (the same pose with
-// the springs at rest). The pose is held fixed, so every deviation comes from the root's motion.
+// The skin's deviation d = skin - rest end is measured on the fat layer (fat_spring_ends) against
+// reference_surface (the same pose with the springs at rest), both before the skin's strain limit
+// (strain_limit.hpp), which shapes what is shown on top of the springs. The pose is held fixed, so every deviation comes from the root's motion.
 // Bounds (fat_spring.hpp): the strain limit keeps |d| <= D = max_strain * h, with the spring's rest
 // length h <= H = sum_k w_k |o_k| (its binding's blended offsets; frames orthonormal), and the rate
 // limit keeps the relative speed <= w_n D. Once the root stands still the rest ends are fixed and each
@@ -74,8 +75,8 @@ struct Walker {
     // Per vertex: |skin - rest end| (model space).
     std::vector<float> deviation() const {
         std::vector<glm::vec3> rest;
-        ctl.reference_surface(types[0].poses, 0, 0, rest);
-        const std::span<const glm::vec3> skin = ctl.surface(0).positions;
+        ctl.reference_surface(types[0].poses, 0, 0, rest, /*strain_limited=*/false);
+        const std::span<const glm::vec3> skin = ctl.fat_spring_ends(0);
         std::vector<float> d(skin.size());
         for (size_t i = 0; i < skin.size(); ++i) d[i] = test::finite(skin[i]) ? glm::length(skin[i] - rest[i]) : INFINITY;
         return d;
@@ -83,8 +84,8 @@ struct Walker {
     // The largest signed deviation along model +Z (the direction of travel in these runs).
     float forward_overshoot() const {
         std::vector<glm::vec3> rest;
-        ctl.reference_surface(types[0].poses, 0, 0, rest);
-        const std::span<const glm::vec3> skin = ctl.surface(0).positions;
+        ctl.reference_surface(types[0].poses, 0, 0, rest, /*strain_limited=*/false);
+        const std::span<const glm::vec3> skin = ctl.fat_spring_ends(0);
         float most = -INFINITY;
         for (size_t i = 0; i < skin.size(); ++i) most = std::max(most, skin[i].z - rest[i].z);
         return most;
@@ -257,8 +258,8 @@ TEST(FatWorld, LandingThrowsTheSkinDownThenSettles) {
     std::vector<glm::vec3> rest;
     for (int f = 0; f < 30; ++f) {  // stands for 0.5 s after the landing
         w.step(at(position), dt);
-        w.ctl.reference_surface(w.types[0].poses, 0, 0, rest);
-        const std::span<const glm::vec3> skin = w.ctl.surface(0).positions;
+        w.ctl.reference_surface(w.types[0].poses, 0, 0, rest, /*strain_limited=*/false);
+        const std::span<const glm::vec3> skin = w.ctl.fat_spring_ends(0);
         last = 0.0f;
         for (size_t i = 0; i < skin.size(); ++i) {
             const float d = glm::length(skin[i] - rest[i]);

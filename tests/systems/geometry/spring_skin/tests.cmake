@@ -7,5 +7,6 @@ aloha_test(skin_tests
     ${CMAKE_CURRENT_LIST_DIR}/subdivision_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/geomorph_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/grid_sample_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/strain_limit_test.cpp
   LIBS aloha::geometry aloha_opensubdiv
   LABELS geometry)
