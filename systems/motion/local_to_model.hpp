@@ -30,8 +30,17 @@ struct LocalToModelJob {
     void Run() const;
 };
 
-/// The kernel behind LocalToModelJob on raw pointers (for batched loops); `count` joints.
+/// The kernel behind LocalToModelJob on raw pointers (for batched loops); `count` joints. Uses the AVX2
+/// form when the CPU has it and `allow_avx2` (same bits either way).
 void local_to_model(const int16_t* parents, const glm::vec3* translations, const glm::quat* rotations,
-                    const glm::vec3* scales, const glm::mat4* root, glm::mat4* model, size_t count);
+                    const glm::vec3* scales, const glm::mat4* root, glm::mat4* model, size_t count,
+                    bool allow_avx2 = true);
+
+namespace l2m_simd {
+/// The AVX2 form of local_to_model (local_to_model_avx2.cpp), roots under `top`; requires AVX2
+/// (clip_simd::avx2_available()).
+void local_to_model_avx2(const int16_t* parents, const glm::vec3* translations, const glm::quat* rotations,
+                         const glm::vec3* scales, const glm::mat4& top, glm::mat4* model, size_t count);
+}  // namespace l2m_simd
 
 }  // namespace aloha
