@@ -1,13 +1,16 @@
 // AVX2 form of local_to_model (local_to_model.hpp), compiled for AVX2 with a target attribute and chosen
-// at run time when the CPU has it. One joint at a time, like the portable loop, but the local matrix is
-// built with eight-lane shuffles and products instead of scalar ones and two model columns are formed
-// per 256-bit operation. Every value is the portable loop's expression evaluated in the same order with
+// at run time when the CPU has it. The local matrices of 8 joints at a time are built with one joint per
+// lane (structure of arrays, like ozz-animation's SoaTransform), then the parent products run joint by
+// joint with two model columns per 256-bit operation, the parent's columns kept in registers when it is
+// the previous joint. Every value is the portable loop's expression evaluated in the same order with
 // the same roundings (no FMA; a - b as a + (-b), 2x as x + x, adding -0 as the identity): same bits,
 // which tests/systems/motion/pose_test.cpp checks.
 #include "systems/motion/local_to_model.hpp"
 
 #if defined(__GNUC__) && defined(__x86_64__)
 #include <immintrin.h>
+
+#include <algorithm>
 
 #define ALOHA_AVX2 __attribute__((target("avx2")))
 
@@ -19,101 +22,173 @@ static_assert(sizeof(glm::mat4) == 16 * sizeof(float) && sizeof(glm::quat) == 4 
                   sizeof(glm::vec3) == 3 * sizeof(float),
               "local_to_model_avx2 reads GLM types as packed floats");
 
-// The local matrix (rotation columns scaled per axis) from the quaternion q = (x, y, z, w), as the
-// portable loop writes it: with products xx.. wz,
-//   d = 1 - 2 [yy + zz, xx + zz, xx + yy],  P = 2 [xy + wz, yz + wx, zx + wy],  M = 2 [xy - wz, yz - wx, zx - wy],
-//   column 0 = [d0 P0 M2] sx,  column 1 = [M0 d1 P1] sy,  column 2 = [P2 M1 d2] sz:
-// d and M already sit in their lanes; P rotated by one lane (Pr = [P2 P0 P1]) fills the rest. Every
-// operation runs on both 128-bit halves (q in both), so columns 0 | 1 come out of one blend pair.
-// Shuffle immediates: lane i of the result takes lane (imm >> 2i) & 3.
-constexpr int kYzx = _MM_SHUFFLE(3, 0, 2, 1);  // [y z x .]
-constexpr int kZxy = _MM_SHUFFLE(3, 1, 0, 2);  // [z x y .]
-constexpr int kW = _MM_SHUFFLE(3, 3, 3, 3);
-constexpr int kYxx = _MM_SHUFFLE(3, 0, 0, 1);
-constexpr int kZzy = _MM_SHUFFLE(3, 1, 2, 2);
+constexpr size_t kChunk = 8;  // joints per local-matrix batch (one per AVX2 lane)
+constexpr size_t kGroup = 2;  // poses run together by local_to_model_many
 
-// x, y, z of `v` in lanes 0-2. kLast reads exactly the 12 bytes of v; otherwise 16 (the caller
-// guarantees the next element follows; lane 3 of the translation is never used).
-template <bool kLast>
-ALOHA_AVX2 inline __m128 load3(const float* v) {
-    if constexpr (kLast) return _mm_setr_ps(v[0], v[1], v[2], 0.0f);
-    else return _mm_loadu_ps(v);
+// Per-joint operands of the model product: a = [column 0 | column 1] and b = [column 2 | translation] of
+// the local matrix (lane 3 of each half unused).
+struct LocalColumns {
+    __m256 a, b;
+};
+
+// 4x4 transpose inside each 128-bit half: rows r0..r3 in, columns out (in place).
+ALOHA_AVX2 inline void transpose4(__m256& r0, __m256& r1, __m256& r2, __m256& r3) {
+    const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+    const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+    r0 = _mm256_shuffle_ps(t0, t2, 0x44);
+    r1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+    r2 = _mm256_shuffle_ps(t1, t3, 0x44);
+    r3 = _mm256_shuffle_ps(t1, t3, 0xEE);
 }
 
-// model = parent * TRS(t, q, s) for one joint, model columns 0 | 1 in m01 and 2 | 3 in m23; the
-// parent's columns come as p0 = [c0 | c0], p1 = [c1 | c1], p2 = [c2 | c2], p3 = [-0 | c3].
-template <bool kLast>
-ALOHA_AVX2 inline void joint(const float* t, const float* q, const float* s, __m256 p0, __m256 p1, __m256 p2,
-                             __m256 p3, __m256* m01, __m256* m23) {
-    const __m256 one = _mm256_set1_ps(1.0f);
-    const __m256 q8 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(q));
-    const __m256 qq = _mm256_mul_ps(q8, q8);
-    const __m256 pr = _mm256_mul_ps(q8, _mm256_shuffle_ps(q8, q8, kYzx));                  // xy yz zx
-    const __m256 wq = _mm256_mul_ps(_mm256_shuffle_ps(q8, q8, kW), q8);                    // wx wy wz
-    const __m256 wz = _mm256_shuffle_ps(wq, wq, kZxy);                                     // wz wx wy
-    const __m256 sum = _mm256_add_ps(_mm256_shuffle_ps(qq, qq, kYxx), _mm256_shuffle_ps(qq, qq, kZzy));
-    const __m256 d = _mm256_sub_ps(one, _mm256_add_ps(sum, sum));
-    const __m256 plus = _mm256_add_ps(pr, wz), minus = _mm256_sub_ps(pr, wz);
-    const __m256 p = _mm256_add_ps(plus, plus), m = _mm256_add_ps(minus, minus);
-    const __m256 prot = _mm256_shuffle_ps(p, p, kZxy);                                     // P2 P0 P1
-    // Lanes: column 0 = [d P M] in the lower half, column 1 = [M d P] in the upper; column 2 = [P M d].
-    const __m256 c01 = _mm256_blend_ps(_mm256_blend_ps(d, prot, 0x42), m, 0x14);
-    const __m128 c2 = _mm_blend_ps(_mm_blend_ps(_mm256_castps256_ps128(d), _mm256_castps256_ps128(prot), 0x1),
-                                   _mm256_castps256_ps128(m), 0x2);
-    // Scales: sx on the lower half, sy on the upper, then sz.
-    const __m256 s01 = _mm256_blend_ps(_mm256_broadcast_ss(s), _mm256_broadcast_ss(s + 1), 0xF0);
-    const __m256 col01 = _mm256_mul_ps(c01, s01);
-    const __m128 col2 = _mm_mul_ps(c2, _mm_broadcast_ss(s + 2));
-    const __m256 col2t = _mm256_insertf128_ps(_mm256_castps128_ps256(col2), load3<kLast>(t), 1);
-    // Model columns: ((p0 l_c0 + p1 l_c1) + p2 l_c2) (+ p3 for the translation), the portable order.
-    *m01 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(p0, _mm256_permute_ps(col01, 0x00)),
-                                       _mm256_mul_ps(p1, _mm256_permute_ps(col01, 0x55))),
-                         _mm256_mul_ps(p2, _mm256_permute_ps(col01, 0xAA)));
-    *m23 = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(p0, _mm256_permute_ps(col2t, 0x00)),
-                                                     _mm256_mul_ps(p1, _mm256_permute_ps(col2t, 0x55))),
-                                       _mm256_mul_ps(p2, _mm256_permute_ps(col2t, 0xAA))),
+// How a chunk of 8 joints may be read: kInner chunks are followed by more joints, so every element
+// (a vec3 too) is read with 16 bytes; the last chunk reads its last vec3 exactly (kLastFull: all 8
+// joints present; kPartial: only the first n, the rest read as zero).
+enum class Reads { kInner, kLastFull, kPartial };
+
+// Element i (`kStride` floats at p) as four floats (lane 3 of a vec3 unused), read as `kReads` allows.
+template <Reads kReads, size_t kStride>
+ALOHA_AVX2 inline __m128 load_element(const float* p, size_t i, size_t n) {
+    if constexpr (kReads == Reads::kPartial)
+        if (i >= n) return _mm_setzero_ps();
+    if constexpr (kReads != Reads::kInner && kStride == 3)
+        if (i + 1 == n) return _mm_setr_ps(p[3 * i], p[3 * i + 1], p[3 * i + 2], 0.0f);
+    return _mm_loadu_ps(p + kStride * i);
+}
+
+// Elements 0..7 of `kStride` floats at p, transposed: lane i of out[c] is component c of element i.
+template <Reads kReads, size_t kStride>
+ALOHA_AVX2 inline void load_soa(const float* p, size_t n, __m256 out[4]) {
+    for (size_t i = 0; i < 4; ++i)
+        out[i] = _mm256_insertf128_ps(_mm256_castps128_ps256(load_element<kReads, kStride>(p, i, n)),
+                                      load_element<kReads, kStride>(p, i + 4, n), 1);
+    transpose4(out[0], out[1], out[2], out[3]);
+}
+
+// 1 - 2 (a + b), with 2 e as e + e (exact, as the portable loop's 2.0f * e).
+ALOHA_AVX2 inline __m256 diag(__m256 a, __m256 b) {
+    const __m256 e = _mm256_add_ps(a, b);
+    return _mm256_sub_ps(_mm256_set1_ps(1.0f), _mm256_add_ps(e, e));
+}
+
+// 2 e as e + e.
+ALOHA_AVX2 inline __m256 twice(__m256 e) { return _mm256_add_ps(e, e); }
+
+// The local matrices of 8 joints (rotation columns scaled per axis, then the translation), as the
+// portable loop writes them, with one lane per joint: products xx.. wz, then
+//   column 0 = [1 - 2 (yy + zz), 2 (xy + wz), 2 (xz - wy)] sx,
+//   column 1 = [2 (xy - wz), 1 - 2 (xx + zz), 2 (yz + wx)] sy,
+//   column 2 = [2 (xz + wy), 2 (yz - wx), 1 - 2 (xx + yy)] sz.
+// t, q, s point at joint 0 of the 8, read as `kReads` allows (load_element).
+template <Reads kReads>
+ALOHA_AVX2 inline void local_columns8(const float* t, const float* q, const float* s, size_t n,
+                                      LocalColumns out[kChunk]) {
+    __m256 qv[4], sv[4];
+    load_soa<kReads, 4>(q, n, qv);
+    load_soa<kReads, 3>(s, n, sv);
+    const __m256 x = qv[0], y = qv[1], z = qv[2], w = qv[3];
+    const __m256 xx = _mm256_mul_ps(x, x), yy = _mm256_mul_ps(y, y), zz = _mm256_mul_ps(z, z);
+    const __m256 xy = _mm256_mul_ps(x, y), xz = _mm256_mul_ps(x, z), yz = _mm256_mul_ps(y, z);
+    const __m256 wx = _mm256_mul_ps(w, x), wy = _mm256_mul_ps(w, y), wz = _mm256_mul_ps(w, z);
+    __m256 c0[4] = {_mm256_mul_ps(diag(yy, zz), sv[0]), _mm256_mul_ps(twice(_mm256_add_ps(xy, wz)), sv[0]),
+                    _mm256_mul_ps(twice(_mm256_sub_ps(xz, wy)), sv[0]), _mm256_setzero_ps()};
+    __m256 c1[4] = {_mm256_mul_ps(twice(_mm256_sub_ps(xy, wz)), sv[1]), _mm256_mul_ps(diag(xx, zz), sv[1]),
+                    _mm256_mul_ps(twice(_mm256_add_ps(yz, wx)), sv[1]), _mm256_setzero_ps()};
+    __m256 c2[4] = {_mm256_mul_ps(twice(_mm256_add_ps(xz, wy)), sv[2]),
+                    _mm256_mul_ps(twice(_mm256_sub_ps(yz, wx)), sv[2]), _mm256_mul_ps(diag(xx, yy), sv[2]),
+                    _mm256_setzero_ps()};
+    // Back to one joint per row: c?[i] = [joint i | joint i + 4].
+    transpose4(c0[0], c0[1], c0[2], c0[3]);
+    transpose4(c1[0], c1[1], c1[2], c1[3]);
+    transpose4(c2[0], c2[1], c2[2], c2[3]);
+    for (size_t i = 0; i < 4; ++i) {
+        out[i].a = _mm256_permute2f128_ps(c0[i], c1[i], 0x20);
+        out[i + 4].a = _mm256_permute2f128_ps(c0[i], c1[i], 0x31);
+        out[i].b = _mm256_insertf128_ps(c2[i], load_element<kReads, 3>(t, i, n), 1);
+        out[i + 4].b =
+            _mm256_permute2f128_ps(c2[i], _mm256_castps128_ps256(load_element<kReads, 3>(t, i + 4, n)), 0x21);
+    }
+}
+
+// Model columns 0 | 1 and 2 | 3 of one joint from its local columns and its parent's columns
+// p0 = [c0 | c0], p1 = [c1 | c1], p2 = [c2 | c2], p3 = [-0 | c3]: ((p0 l_k0 + p1 l_k1) + p2 l_k2)
+// (+ p3 for the translation), the portable order.
+ALOHA_AVX2 inline void model_columns(const LocalColumns& l, __m256 p0, __m256 p1, __m256 p2, __m256 p3, __m256* m01,
+                                     __m256* m23) {
+    *m01 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(p0, _mm256_permute_ps(l.a, 0x00)),
+                                       _mm256_mul_ps(p1, _mm256_permute_ps(l.a, 0x55))),
+                         _mm256_mul_ps(p2, _mm256_permute_ps(l.a, 0xAA)));
+    *m23 = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(p0, _mm256_permute_ps(l.b, 0x00)),
+                                                     _mm256_mul_ps(p1, _mm256_permute_ps(l.b, 0x55))),
+                                       _mm256_mul_ps(p2, _mm256_permute_ps(l.b, 0xAA))),
                          p3);
 }
 
-// Runs joints [first, end) (kLast: the one last joint of the array, whose vec3 reads stop at its end).
-template <bool kLast>
-ALOHA_AVX2 inline void joints(const int16_t* parents, const float* t, const float* q, const float* s,
-                              const float* top, float* out, size_t first, size_t end, __m256* m01, __m256* m23) {
+// Local columns of joints [first, first + 8) of one pose into `out` (n of them present).
+ALOHA_AVX2 inline void local_chunk(const PosePointers& pose, size_t first, size_t n, size_t count,
+                                   LocalColumns out[kChunk]) {
+    const float* t = &pose.translations[first].x;
+    const float* q = &pose.rotations[first].x;
+    const float* s = &pose.scales[first].x;
+    if (first + kChunk < count) local_columns8<Reads::kInner>(t, q, s, n, out);
+    else if (n == kChunk) local_columns8<Reads::kLastFull>(t, q, s, n, out);
+    else local_columns8<Reads::kPartial>(t, q, s, n, out);
+}
+
+// local_to_model for K poses of one skeleton, joint by joint together: their parent chains are
+// independent, so the K products of a joint overlap instead of waiting on one chain's latency.
+template <size_t K>
+ALOHA_AVX2 void run_group(const int16_t* parents, const PosePointers* poses, const float* top, size_t count) {
     const __m256 negzero = _mm256_set1_ps(-0.0f);
-    for (size_t j = first; j < end; ++j) {
-        const int p = parents[j];
-        __m256 p0, p1, p2, p3;
-        if (p >= 0 && static_cast<size_t>(p) + 1 == j) {
-            // Parent is the previous joint: its columns are still in registers (no store-to-load trip).
-            p0 = _mm256_permute2f128_ps(*m01, *m01, 0x00);
-            p1 = _mm256_permute2f128_ps(*m01, *m01, 0x11);
-            p2 = _mm256_permute2f128_ps(*m23, *m23, 0x00);
-            p3 = _mm256_blend_ps(negzero, *m23, 0xF0);
-        } else {
-            const float* pm = p < 0 ? top : out + 16 * static_cast<size_t>(p);
-            p0 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(pm));
-            p1 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(pm + 4));
-            p2 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(pm + 8));
-            p3 = _mm256_insertf128_ps(negzero, _mm_loadu_ps(pm + 12), 1);
+    float* out[K];
+    __m256 m01[K], m23[K];
+    for (size_t c = 0; c < K; ++c) {
+        out[c] = &poses[c].model[0][0].x;
+        m01[c] = _mm256_setzero_ps();
+        m23[c] = _mm256_setzero_ps();
+    }
+    LocalColumns local[K][kChunk];
+    for (size_t first = 0; first < count; first += kChunk) {
+        const size_t n = std::min(kChunk, count - first);
+        for (size_t c = 0; c < K; ++c) local_chunk(poses[c], first, n, count, local[c]);
+        for (size_t i = 0; i < n; ++i) {
+            const size_t j = first + i;
+            const int p = parents[j];
+            if (p >= 0 && static_cast<size_t>(p) + 1 == j) {
+                // Parent is the previous joint: its columns are still in registers (no store-to-load trip).
+                for (size_t c = 0; c < K; ++c) {
+                    const __m256 p0 = _mm256_permute2f128_ps(m01[c], m01[c], 0x00);
+                    const __m256 p1 = _mm256_permute2f128_ps(m01[c], m01[c], 0x11);
+                    const __m256 p2 = _mm256_permute2f128_ps(m23[c], m23[c], 0x00);
+                    const __m256 p3 = _mm256_blend_ps(negzero, m23[c], 0xF0);
+                    model_columns(local[c][i], p0, p1, p2, p3, &m01[c], &m23[c]);
+                }
+            } else {
+                for (size_t c = 0; c < K; ++c) {
+                    const float* pm = p < 0 ? top : out[c] + 16 * static_cast<size_t>(p);
+                    const __m256 p0 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(pm));
+                    const __m256 p1 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(pm + 4));
+                    const __m256 p2 = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(pm + 8));
+                    const __m256 p3 = _mm256_insertf128_ps(negzero, _mm_loadu_ps(pm + 12), 1);
+                    model_columns(local[c][i], p0, p1, p2, p3, &m01[c], &m23[c]);
+                }
+            }
+            for (size_t c = 0; c < K; ++c) {
+                _mm256_storeu_ps(out[c] + 16 * j, m01[c]);
+                _mm256_storeu_ps(out[c] + 16 * j + 8, m23[c]);
+            }
         }
-        joint<kLast>(t + 3 * j, q + 4 * j, s + 3 * j, p0, p1, p2, p3, m01, m23);
-        _mm256_storeu_ps(out + 16 * j, *m01);
-        _mm256_storeu_ps(out + 16 * j + 8, *m23);
     }
 }
 
 }  // namespace
 
-ALOHA_AVX2 void local_to_model_avx2(const int16_t* parents, const glm::vec3* translations, const glm::quat* rotations,
-                                    const glm::vec3* scales, const glm::mat4& top, glm::mat4* model, size_t count) {
+ALOHA_AVX2 void local_to_model_avx2(const int16_t* parents, const PosePointers* poses, size_t pose_count,
+                                    const glm::mat4& top, size_t count) {
     if (count == 0) return;
-    const float* t = &translations[0].x;
-    const float* q = &rotations[0].x;
-    const float* s = &scales[0].x;
-    float* out = &model[0][0].x;
-    __m256 m01 = _mm256_setzero_ps(), m23 = _mm256_setzero_ps();
-    joints<false>(parents, t, q, s, &top[0].x, out, 0, count - 1, &m01, &m23);
-    joints<true>(parents, t, q, s, &top[0].x, out, count - 1, count, &m01, &m23);
+    size_t c = 0;
+    for (; c + kGroup <= pose_count; c += kGroup) run_group<kGroup>(parents, poses + c, &top[0].x, count);
+    for (; c < pose_count; ++c) run_group<1>(parents, poses + c, &top[0].x, count);
 }
 
 }  // namespace aloha::l2m_simd
@@ -122,8 +197,7 @@ ALOHA_AVX2 void local_to_model_avx2(const int16_t* parents, const glm::vec3* tra
 
 namespace aloha::l2m_simd {
 
-void local_to_model_avx2(const int16_t*, const glm::vec3*, const glm::quat*, const glm::vec3*, const glm::mat4&,
-                         glm::mat4*, size_t) {}
+void local_to_model_avx2(const int16_t*, const PosePointers*, size_t, const glm::mat4&, size_t) {}
 
 }  // namespace aloha::l2m_simd
 

@@ -96,6 +96,36 @@ TEST(LocalToModel, Avx2MatchesPortableBits) {
     }
 }
 
+// local_to_model_many (poses run in pairs joint by joint by the AVX2 form) gives every pose the bits of
+// its own portable local_to_model call, for 1..7 poses (pairs and a single left over) of 1..70 joints.
+TEST(LocalToModel, ManyPosesMatchOneCallEach) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+    for (size_t n : {1u, 7u, 8u, 9u, 70u}) {
+        std::vector<int16_t> parents(n);
+        for (size_t j = 0; j < n; ++j)
+            parents[j] = j == 0 ? int16_t{-1} : static_cast<int16_t>(rng() % 2 ? j - 1 : rng() % j);
+        for (size_t poses = 1; poses <= 7; ++poses) {
+            std::vector<glm::vec3> t(n * poses), s(n * poses);
+            std::vector<glm::quat> r(n * poses);
+            for (size_t i = 0; i < n * poses; ++i) {
+                t[i] = glm::vec3(u(rng), u(rng), u(rng));
+                s[i] = glm::vec3(u(rng), u(rng), u(rng));
+                r[i] = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)) + glm::quat(1e-3f, 0.0f, 0.0f, 0.0f));
+            }
+            std::vector<glm::mat4> many(n * poses), one(n * poses);
+            std::vector<PosePointers> ptrs(poses);
+            for (size_t c = 0; c < poses; ++c) {
+                ptrs[c] = PosePointers{&t[c * n], &r[c * n], &s[c * n], &many[c * n]};
+                local_to_model(parents.data(), &t[c * n], &r[c * n], &s[c * n], nullptr, &one[c * n], n, false);
+            }
+            local_to_model_many(parents.data(), ptrs.data(), poses, n);
+            EXPECT_EQ(std::memcmp(many.data(), one.data(), n * poses * sizeof(glm::mat4)), 0)
+                << poses << " poses of " << n << " joints";
+        }
+    }
+}
+
 TEST(Blend, WeightsZeroAndOneGiveTheInputsExactly) {
     const glm::vec3 at[2] = {{1, 2, 3}, {0.1f, 0.2f, 0.3f}}, bt[2] = {{-1, 5, 0}, {7, 8, 9}};
     const glm::quat ar[2] = {glm::angleAxis(0.3f, glm::vec3(1, 0, 0)), glm::angleAxis(1.0f, glm::vec3(0, 1, 0))};
