@@ -1,10 +1,9 @@
 // Local-to-model, blending and the batched pose pool job.
 #include "systems/motion/blend.hpp"
+#include "systems/motion/clip_quant.hpp"
 #include "systems/motion/local_to_model.hpp"
 #include "systems/motion/pose_pool.hpp"
 #include "tests/systems/motion/motion_test_util.hpp"
-
-#include "systems/motion/clip_quant.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -64,7 +63,8 @@ TEST(LocalToModel, ValidateRejectsChildBeforeParent) {
 // The AVX2 local-to-model (chosen at run time) evaluates the portable loop's expressions in the same
 // order, so the two must agree bit for bit: random trees (parents before children, several roots), random
 // rotations (some not normalised, some with zero components), signed and zero scales, a general root
-// matrix (non-zero last row), and every joint count from 1 to 9 (the last joint's reads are separate).
+// matrix (non-zero last row), and 1-5, 8, 9, 64 and 200 joints (partial and full last chunks of 8, whose
+// last joint is read exactly).
 TEST(LocalToModel, Avx2MatchesPortableBits) {
     if (!clip_simd::avx2_available()) GTEST_SKIP() << "CPU has no AVX2: only the portable loop runs";
     std::mt19937 rng(7);
