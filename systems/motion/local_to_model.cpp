@@ -1,5 +1,7 @@
 #include "systems/motion/local_to_model.hpp"
 
+#include "systems/motion/clip_quant.hpp"
+
 namespace aloha {
 
 glm::mat4 compose_trs(const glm::vec3& t, const glm::quat& q, const glm::vec3& s) {
@@ -15,9 +17,16 @@ glm::mat4 compose_trs(const glm::vec3& t, const glm::quat& q, const glm::vec3& s
 }
 
 void local_to_model(const int16_t* parents, const glm::vec3* translations, const glm::quat* rotations,
-                    const glm::vec3* scales, const glm::mat4* root, glm::mat4* model, size_t count) {
+                    const glm::vec3* scales, const glm::mat4* root, glm::mat4* model, size_t count,
+                    bool allow_avx2) {
     static const glm::mat4 kIdentity(1.0f);
     const glm::mat4& top = root ? *root : kIdentity;
+    if (allow_avx2 && clip_simd::avx2_available()) {
+        const PosePointers pose{translations, rotations, scales, model};
+        l2m_simd::local_to_model_avx2(parents, &pose, 1, top, count);
+        return;
+    }
+    // Portable loop; the AVX2 form evaluates every expression below in the same order (same bits).
     for (size_t j = 0; j < count; ++j) {
         const glm::quat& q = rotations[j];
         const glm::vec3& s = scales[j];
@@ -38,6 +47,17 @@ void local_to_model(const int16_t* parents, const glm::vec3* translations, const
         M[2] = p0 * l20 + p1 * l21 + p2 * l22;
         M[3] = p0 * t.x + p1 * t.y + p2 * t.z + p3;
     }
+}
+
+void local_to_model_many(const int16_t* parents, const PosePointers* poses, size_t pose_count, size_t count,
+                         bool allow_avx2) {
+    if (allow_avx2 && clip_simd::avx2_available()) {
+        l2m_simd::local_to_model_avx2(parents, poses, pose_count, glm::mat4(1.0f), count);
+        return;
+    }
+    for (size_t c = 0; c < pose_count; ++c)
+        local_to_model(parents, poses[c].translations, poses[c].rotations, poses[c].scales, nullptr, poses[c].model,
+                       count, false);
 }
 
 bool LocalToModelJob::Validate(std::vector<std::string>* errors) const {

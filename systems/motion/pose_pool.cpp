@@ -2,6 +2,8 @@
 
 #include "systems/motion/local_to_model.hpp"
 
+#include <algorithm>
+
 namespace aloha {
 
 PosePool::PosePool(int joint_count, size_t slot_count, const Skeleton* rest)
@@ -66,14 +68,23 @@ void AnimateBatchJob::Run() const {
     const AnimationClip& c = *clip;
     const int16_t* parents = skeleton->parents().data();
     const size_t n = static_cast<size_t>(skeleton->joint_count());
-    for (size_t i = 0; i < times.size(); ++i) {
-        const float t = wrap_clip_time(times[i], c.duration(), loop);
-        int k = 0;
-        float alpha = 0.0f;
-        find_key(c, t, &caches[i], &k, &alpha);
-        PoseView v = pool->view(slots[i]);
-        sample_blocks(c, k, alpha, v.translations.data(), v.rotations.data(), v.scales.data());
-        local_to_model(parents, v.translations.data(), v.rotations.data(), v.scales.data(), nullptr, v.model.data(), n);
+    // Characters in groups: sample each, then convert the group together (local_to_model_many overlaps
+    // their parent chains); the group's local poses are still in cache when converted.
+    constexpr size_t kGroup = 4;
+    PosePointers group[kGroup];
+    for (size_t first = 0; first < times.size(); first += kGroup) {
+        const size_t count = std::min(kGroup, times.size() - first);
+        for (size_t g = 0; g < count; ++g) {
+            const size_t i = first + g;
+            const float t = wrap_clip_time(times[i], c.duration(), loop);
+            int k = 0;
+            float alpha = 0.0f;
+            find_key(c, t, &caches[i], &k, &alpha);
+            PoseView v = pool->view(slots[i]);
+            sample_blocks(c, k, alpha, v.translations.data(), v.rotations.data(), v.scales.data());
+            group[g] = PosePointers{v.translations.data(), v.rotations.data(), v.scales.data(), v.model.data()};
+        }
+        local_to_model_many(parents, group, count, n);
     }
 }
 

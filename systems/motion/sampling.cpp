@@ -74,7 +74,8 @@ void sample_blocks(const AnimationClip& clip, int k, float alpha, glm::vec3* tra
                    glm::vec3* scales) {
     const size_t n = static_cast<size_t>(clip.joints_);
     const size_t ka = static_cast<size_t>(k) * clip.block_;
-    const size_t kb = clip.key_count() > 1 ? ka + clip.block_ : ka;
+    // Block k + 1, or k itself for the last key (sampled at alpha 0: weight 0 on it, and no read past the keys).
+    const size_t kb = k + 1 < clip.key_count() ? ka + clip.block_ : ka;
     const float wa = 1.0f - alpha;
     const float wb = alpha;
     const ClipSection& st = clip.sections_[AnimationClip::kTranslations];

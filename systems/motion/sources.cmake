@@ -5,6 +5,7 @@ list(APPEND ALOHA_MOTION_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/clip_decode_avx2.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sampling.cpp
   ${CMAKE_CURRENT_LIST_DIR}/local_to_model.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/local_to_model_avx2.cpp
   ${CMAKE_CURRENT_LIST_DIR}/blend.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pose_pool.cpp)
 list(APPEND ALOHA_MOTION_SOURCES

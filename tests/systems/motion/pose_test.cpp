@@ -1,5 +1,6 @@
 // Local-to-model, blending and the batched pose pool job.
 #include "systems/motion/blend.hpp"
+#include "systems/motion/clip_quant.hpp"
 #include "systems/motion/local_to_model.hpp"
 #include "systems/motion/pose_pool.hpp"
 #include "tests/systems/motion/motion_test_util.hpp"
@@ -7,6 +8,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <random>
 #include <utility>
 
 namespace aloha {
@@ -55,6 +58,72 @@ TEST(LocalToModel, ValidateRejectsChildBeforeParent) {
     std::vector<std::string> errors;
     EXPECT_FALSE(job.Validate(&errors));
     EXPECT_EQ(errors.size(), 2u);  // model too short + parent order
+}
+
+// The AVX2 local-to-model (chosen at run time) evaluates the portable loop's expressions in the same
+// order, so the two must agree bit for bit: random trees (parents before children, several roots), random
+// rotations (some not normalised, some with zero components), signed and zero scales, a general root
+// matrix (non-zero last row), and 1-5, 8, 9, 64 and 200 joints (partial and full last chunks of 8, whose
+// last joint is read exactly).
+TEST(LocalToModel, Avx2MatchesPortableBits) {
+    if (!clip_simd::avx2_available()) GTEST_SKIP() << "CPU has no AVX2: only the portable loop runs";
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+    auto pick = [&](float v) { return (rng() % 5 == 0) ? ((rng() % 2) ? 0.0f : -0.0f) : v; };
+    glm::mat4 root;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) root[c][r] = u(rng);
+    for (size_t n : {1u, 2u, 3u, 4u, 5u, 8u, 9u, 64u, 200u}) {
+        std::vector<int16_t> parents(n);
+        std::vector<glm::vec3> t(n), s(n);
+        std::vector<glm::quat> r(n);
+        for (size_t j = 0; j < n; ++j) {
+            const size_t up = rng() % 2 ? j - 1 : rng() % std::max<size_t>(j, 1);  // chains and branches
+            parents[j] = (j == 0 || rng() % 7 == 0) ? int16_t{-1} : static_cast<int16_t>(up);
+            t[j] = glm::vec3(pick(u(rng)), pick(u(rng)), pick(u(rng)));
+            s[j] = glm::vec3(pick(u(rng)), pick(u(rng)), pick(u(rng)));
+            const glm::quat q(pick(u(rng)), pick(u(rng)), pick(u(rng)), pick(u(rng)));
+            r[j] = rng() % 3 == 0 ? q : glm::normalize(q + glm::quat(1e-3f, 0.0f, 0.0f, 0.0f));
+        }
+        const glm::mat4* tops[2] = {nullptr, &root};
+        for (const glm::mat4* top : tops) {
+            std::vector<glm::mat4> fast(n), portable(n);
+            local_to_model(parents.data(), t.data(), r.data(), s.data(), top, fast.data(), n, true);
+            local_to_model(parents.data(), t.data(), r.data(), s.data(), top, portable.data(), n, false);
+            EXPECT_EQ(std::memcmp(fast.data(), portable.data(), n * sizeof(glm::mat4)), 0)
+                << n << " joints, root " << (top ? "general" : "identity");
+        }
+    }
+}
+
+// local_to_model_many (poses run in pairs joint by joint by the AVX2 form) gives every pose the bits of
+// its own portable local_to_model call, for 1..7 poses (pairs and a single left over) of 1..70 joints.
+TEST(LocalToModel, ManyPosesMatchOneCallEach) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+    for (size_t n : {1u, 7u, 8u, 9u, 70u}) {
+        std::vector<int16_t> parents(n);
+        for (size_t j = 0; j < n; ++j)
+            parents[j] = j == 0 ? int16_t{-1} : static_cast<int16_t>(rng() % 2 ? j - 1 : rng() % j);
+        for (size_t poses = 1; poses <= 7; ++poses) {
+            std::vector<glm::vec3> t(n * poses), s(n * poses);
+            std::vector<glm::quat> r(n * poses);
+            for (size_t i = 0; i < n * poses; ++i) {
+                t[i] = glm::vec3(u(rng), u(rng), u(rng));
+                s[i] = glm::vec3(u(rng), u(rng), u(rng));
+                r[i] = glm::normalize(glm::quat(u(rng), u(rng), u(rng), u(rng)) + glm::quat(1e-3f, 0.0f, 0.0f, 0.0f));
+            }
+            std::vector<glm::mat4> many(n * poses), one(n * poses);
+            std::vector<PosePointers> ptrs(poses);
+            for (size_t c = 0; c < poses; ++c) {
+                ptrs[c] = PosePointers{&t[c * n], &r[c * n], &s[c * n], &many[c * n]};
+                local_to_model(parents.data(), &t[c * n], &r[c * n], &s[c * n], nullptr, &one[c * n], n, false);
+            }
+            local_to_model_many(parents.data(), ptrs.data(), poses, n);
+            EXPECT_EQ(std::memcmp(many.data(), one.data(), n * poses * sizeof(glm::mat4)), 0)
+                << poses << " poses of " << n << " joints";
+        }
+    }
 }
 
 TEST(Blend, WeightsZeroAndOneGiveTheInputsExactly) {
