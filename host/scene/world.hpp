@@ -70,6 +70,10 @@ struct WorldOptions {
     uint8_t overlay = 0;                   ///< OverlayBits: bones, muscle outlines, fat springs
     bool keep_refined_surfaces = true;     ///< false (runs with no renderer): subdivided skins are
                                            ///< computed each frame but not kept (see GeometryController)
+    bool overlap_gpu = false;              ///< true: the render system submits the frame and returns, so the GPU
+                                           ///< draws it while the next step()'s CPU systems run (the renderer
+                                           ///< waits for a frame slot when it comes round again); read back the
+                                           ///< target on the renderer's queue or after finish_rendering()
     bool pose_every_character = false;     ///< true: every character's pose is current every frame, seen or
                                            ///< not (tools that read every pose: motion metrics, export);
                                            ///< false: poses nobody reads are left out (PoseUse)
@@ -90,6 +94,9 @@ public:
     /// Attaches a renderer and target for the Render phase (mesh topologies are registered with it on
     /// first use); nullptr detaches.
     Status attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target);
+    /// Waits until the GPU has drawn every frame submitted so far (only overlap_gpu leaves any in flight)
+    /// and makes last_gpu_ms() the newest frame's. Errors: Vulkan failures.
+    Status finish_rendering();
     /// The view the LOD is computed for: from the next step() on, `key` seen with a vertical field of
     /// view of `fov_y_deg` on a `viewport` (pixels) replaces the scene's camera path (a viewer's free
     /// camera, a resized window). std::nullopt returns to the scene camera.
@@ -127,7 +134,8 @@ public:
     void frame_settings(FrameInput& frame) const;
     /// The last frame's draw lists.
     [[nodiscard]] const RenderLists& render_lists() const { return lists_; }
-    /// Per-frame statistics of the last Render phase (GPU ms; -1 without a renderer).
+    /// GPU ms of the newest frame the GPU has finished (-1 without a renderer): the last Render phase's,
+    /// or with overlap_gpu an earlier frame's until finish_rendering().
     [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
     /// The last frame's CPU systems (every phase before Render), ms: what a single-total budget steers.
     [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }

@@ -5,6 +5,7 @@
 namespace aloha {
 
 Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target) {
+    if (Status s = finish_rendering(); !s.ok()) return s;  // nothing of ours left in flight on the old one
     renderer_ = renderer;
     target_ = target;
     draws_.clear_impostors();
@@ -12,6 +13,13 @@ Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* tar
     impostor_built_.clear();
     reset_draws();
     return build_impostors();
+}
+
+Status World::finish_rendering() {
+    if (!renderer_) return {};
+    Status s = renderer_->finish();
+    if (s.ok()) last_gpu_ms_ = renderer_->last_gpu_ms();
+    return s;
 }
 
 void World::reset_draws() {

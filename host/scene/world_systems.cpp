@@ -301,7 +301,7 @@ void World::register_systems() {
         input.lines = lists_.lines;
         input.impostors = lists_.impostors;
         Status s = renderer_->render(input, *target_);
-        if (s.ok()) s = renderer_->finish();
+        if (s.ok() && !options_.overlap_gpu) s = renderer_->finish();  // else drawn while the next step runs
         render_status_ = s;
         last_gpu_ms_ = renderer_->last_gpu_ms();
     }));

@@ -20,7 +20,7 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 // What the subcommands write into: CliOptions plus the text of options converted after the parse.
 struct Bindings {
     CliOptions o;
-    std::string lod = "on", budget, occlusion = "on", counts, characters, frames, frame_range, selection;
+    std::string lod = "on", budget, occlusion = "on", gpu_overlap = "off", counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
@@ -115,6 +115,10 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
     profile->add_flag("--constant-fragments", b.o.constant_fragments,
                       "meshes and proxies drawn unlit with a constant-colour fragment shader, to tell the fragment "
                       "cost from the vertex and binning cost (profiling only)");
+    profile->add_option("--gpu-overlap", b.gpu_overlap,
+                        "on: the GPU draws a frame while the next frame's CPU systems run (two frames in flight; the "
+                        "whole frame is the interval between frames); off: each frame waits for its GPU work (default off: not yet shown faster, docs/PERFORMANCE.md)")
+        ->check(on_off());
     add_colour(*profile, b);
     add_common(*profile, b, false);
 
@@ -167,6 +171,7 @@ void convert(Bindings& b) {
     auto ms = [](const std::string& s, std::optional<double>& out) { if (!s.empty()) out = std::stod(s); };
     o.lod = b.lod == "on";
     o.occlusion = b.occlusion == "on";
+    o.gpu_overlap = b.gpu_overlap == "on";
     if (!b.budget.empty()) o.budget = b.budget == "on";
     ms(b.budget_ms, o.budget_ms);
     ms(b.budget_single_ms, o.budget_single_ms);
