@@ -74,53 +74,76 @@ bool StrainLimitJob::Validate(std::vector<std::string>* errors) const {
     }
     if (!(limits.lo > 0.0f && limits.lo <= 1.0f)) fail("lo must be in (0, 1]");
     if (!(limits.hi >= 1.0f)) fail("hi must be at least 1");
+    if (!(limits.accept_lo > 0.0f && limits.accept_lo <= limits.lo && limits.accept_hi >= limits.hi))
+        fail("accepted bounds must hold [lo, hi] and accept_lo must be positive");
     return ok;
 }
 
+namespace {
+
+// Projects edge e back inside [lo, hi] x its rest length if it is outside; true when it was outside.
+inline bool project_edge(glm::vec3* p, const uint32_t* ends, const float* rest, size_t e, float lo, float hi,
+                         uint32_t& projected) {
+    glm::vec3& a = p[ends[2 * e]];
+    glm::vec3& b = p[ends[2 * e + 1]];
+    const glm::vec3 d = b - a;
+    const float len2 = glm::dot(d, d), rest2 = rest[e] * rest[e];
+    if (len2 >= lo * lo * rest2 && len2 <= hi * hi * rest2) return false;
+    const float len = std::sqrt(len2);
+    if (!(len > 1e-12f * rest[e])) return true;  // collapsed to a point: no direction to push along
+    // To just inside the limit (1e-4 of it), so float rounding does not leave it a hair outside.
+    const float goal = (len2 < lo * lo * rest2 ? lo * (1.0f + 1e-4f) : hi * (1.0f - 1e-4f)) * rest[e];
+    const glm::vec3 move = (0.5f * (len - goal) / len) * d;
+    a += move;
+    b -= move;
+    ++projected;
+    return true;
+}
+
+}  // namespace
+
 StrainLimitResult StrainLimitJob::Run() const {
+    // Full Gauss-Seidel passes, each projecting every edge outside [lo, hi], until a pass finds every
+    // edge within the accepted bounds [accept_lo, accept_hi] (wider than [lo, hi]: the projections
+    // aim inside by that margin, so a pass that starts within the accepted bounds ends near them) or
+    // the passes are spent.
     const uint32_t* ends = edges->ends.data();
     const float* rest = edges->rest.data();
     const size_t count = edges->rest.size();
-    const float lo2 = limits.lo * limits.lo, hi2 = limits.hi * limits.hi;
+    const float lo = limits.lo, hi = limits.hi;
+    const float accept_lo2 = limits.accept_lo * limits.accept_lo, accept_hi2 = limits.accept_hi * limits.accept_hi;
     glm::vec3* p = positions.data();
     StrainLimitResult result;
-    uint32_t outside = 0;
-    for (uint32_t pass = 0; pass < limits.iterations; ++pass) {
-        outside = 0;
+    bool unaccepted = true;
+    for (uint32_t pass = 0; pass < limits.iterations && unaccepted; ++pass) {
+        unaccepted = false;
+        uint32_t projected = 0;
         for (size_t e = 0; e < count; ++e) {
-            glm::vec3& a = p[ends[2 * e]];
-            glm::vec3& b = p[ends[2 * e + 1]];
-            const glm::vec3 d = b - a;
+            const glm::vec3 d = p[ends[2 * e + 1]] - p[ends[2 * e]];
             const float len2 = glm::dot(d, d), rest2 = rest[e] * rest[e];
-            if (len2 >= lo2 * rest2 && len2 <= hi2 * rest2) continue;
-            ++outside;
-            const float len = std::sqrt(len2);
-            if (!(len > 1e-12f * rest[e])) continue;  // collapsed to a point: no direction to push along
-            // To just inside the limit (1e-4 of it), so float rounding does not leave it a hair outside.
-            const float goal = (len2 < lo2 * rest2 ? limits.lo * (1.0f + 1e-4f) : limits.hi * (1.0f - 1e-4f)) * rest[e];
-            const glm::vec3 move = (0.5f * (len - goal) / len) * d;
-            a += move;
-            b -= move;
-            ++result.projected;
+            unaccepted |= len2 < accept_lo2 * rest2 || len2 > accept_hi2 * rest2;
+            project_edge(p, ends, rest, e, lo, hi, projected);
         }
-        if (outside == 0) break;
+        result.projected += projected;
+        if (projected == 0) unaccepted = false;
     }
     // Seams follow their welded vertex (only where something moved: otherwise the surface is as placed).
     for (size_t k = 0; result.projected > 0 && k < edges->copies.size(); k += 2) p[edges->copies[k]] = p[edges->copies[k + 1]];
-    if (outside == 0 || limits.iterations == 0) return result;
-    // Count what is left after the last pass.
-    outside = 0;
+    if (!unaccepted) return result;
+    // Passes spent: count what is left outside the accepted bounds.
     for (size_t e = 0; e < count; ++e) {
         const glm::vec3 d = p[ends[2 * e + 1]] - p[ends[2 * e]];
         const float len2 = glm::dot(d, d), rest2 = rest[e] * rest[e];
-        result.outside += len2 < lo2 * rest2 || len2 > hi2 * rest2;
+        result.outside += len2 < accept_lo2 * rest2 || len2 > accept_hi2 * rest2;
     }
     return result;
 }
 
 bool limit_skin_strain(const SkinEdges& edges, std::span<glm::vec3> positions, uint32_t iterations) {
     if (edges.rest.empty()) return false;
-    const StrainLimitJob job{&edges, {kSkinStrain.lo, kSkinStrain.hi, iterations}, positions};
+    StrainLimits limits = kSkinStrain;
+    limits.iterations = iterations;
+    const StrainLimitJob job{&edges, limits, positions};
     assert(job.Validate());
     return job.Run().projected > 0;
 }

@@ -2,8 +2,9 @@
 // describe rigid cloth behavior"): skin stretches and compresses only so far. After the skin is placed
 // (spring ends or linear-blend skinning), every edge whose length left [lo, hi] x its bind length is
 // projected back to the nearest limit, both ends moved half the error along the edge, Gauss-Seidel,
-// until none is outside or the iterations are spent. Edges inside the limits are only measured
-// (squared lengths, no square root), so a frame with nothing to fix costs one pass over the edges.
+// until a pass starts with every edge within the accepted bounds (a little wider than the limits) or
+// the passes are spent. Edges inside the limits are only measured (squared lengths, no square root),
+// so a frame with nothing to fix costs one pass over the edges.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -31,20 +32,22 @@ struct SkinEdges {
 
 /// Limits on edge length relative to the bind length.
 struct StrainLimits {
-    float lo = 0.55f;     ///< shortest allowed, fraction of the bind length (0 < lo <= 1)
-    float hi = 1.8f;      ///< longest allowed (hi >= 1)
+    float lo = 0.55f;         ///< edges shorter than lo x bind length are projected (0 < lo <= 1)
+    float hi = 1.8f;          ///< edges longer than hi x bind length are projected (hi >= 1)
     uint32_t iterations = 8;  ///< most passes over the edges (0: the job does nothing)
+    float accept_lo = 0.5f;   ///< passes stop once every edge is within [accept_lo, accept_hi] (<= lo)
+    float accept_hi = 2.0f;   ///< (>= hi)
 };
 
 /// The skin's limits in the geometric controller: the issue-14 bounds of a torn or collapsed skin edge
-/// are [0.5, 2] x bind length; projecting to [0.55, 1.8] leaves room for what the last pass leaves
-/// unsettled and for Catmull-Clark refinement (whose edges are averages of the control edges).
-inline constexpr StrainLimits kSkinStrain{0.55f, 1.8f, 8};
+/// are [0.5, 2] x bind length, accepted; projecting to [0.55, 1.8] leaves room for what the last pass
+/// leaves unsettled and for Catmull-Clark refinement (whose edges are averages of the control edges).
+inline constexpr StrainLimits kSkinStrain{0.55f, 1.8f, 8, 0.5f, 2.0f};
 
 /// What a StrainLimitJob did.
 struct StrainLimitResult {
     uint32_t projected = 0;  ///< edge projections made, over every pass
-    uint32_t outside = 0;    ///< edges still outside the limits after the last pass (0: converged)
+    uint32_t outside = 0;    ///< edges outside the accepted bounds when the passes were spent (0: converged)
 };
 
 /// Projects the edges of one surface's `positions` back into the limits.
