@@ -47,6 +47,12 @@ SkinEdges build_skin_edges(std::span<const uint32_t> indices, std::span<const gl
         out.ends.push_back(b);
         out.rest.push_back(rest);
     }
+    out.vertex_first.assign(bind.size() + 1, 0);
+    for (uint32_t v : out.ends) ++out.vertex_first[v + 1];
+    for (size_t v = 0; v < bind.size(); ++v) out.vertex_first[v + 1] += out.vertex_first[v];
+    out.vertex_edges.resize(out.ends.size());
+    std::vector<uint32_t> fill(out.vertex_first.begin(), out.vertex_first.end() - 1);
+    for (size_t k = 0; k < out.ends.size(); ++k) out.vertex_edges[fill[out.ends[k]]++] = static_cast<uint32_t>(k / 2);
     return out;
 }
 
@@ -66,6 +72,8 @@ bool StrainLimitJob::Validate(std::vector<std::string>* errors) const {
                 break;
             }
         if (edges->copies.size() % 2 != 0) fail("welded copies are not pairs");
+        if (edges->vertex_first.size() != positions.size() + 1 || edges->vertex_edges.size() != edges->ends.size())
+            fail("the edges' vertex adjacency is for another surface");
         for (uint32_t v : edges->copies)
             if (v >= positions.size()) {
                 fail("a welded vertex is outside the positions");
@@ -81,56 +89,89 @@ bool StrainLimitJob::Validate(std::vector<std::string>* errors) const {
 
 namespace {
 
-// Projects edge e back inside [lo, hi] x its rest length if it is outside; true when it was outside.
-inline bool project_edge(glm::vec3* p, const uint32_t* ends, const float* rest, size_t e, float lo, float hi,
-                         uint32_t& projected) {
+// Per-thread scratch of the passes after the first: generation stamps of the vertices moved and of
+// the edges queued in the current pass, and the lists themselves.
+struct PassScratch {
+    std::vector<uint32_t> vertex_stamp, edge_stamp, moved, queued;
+    uint32_t generation = 0;
+    // A new generation (stamps from earlier ones mean nothing), sized for `vertices` and `edges`.
+    uint32_t next(size_t vertices, size_t edges) {
+        if (vertex_stamp.size() < vertices) vertex_stamp.resize(vertices, 0);
+        if (edge_stamp.size() < edges) edge_stamp.resize(edges, 0);
+        if (++generation == 0) {
+            std::fill(vertex_stamp.begin(), vertex_stamp.end(), 0u);
+            std::fill(edge_stamp.begin(), edge_stamp.end(), 0u);
+            generation = 1;
+        }
+        return generation;
+    }
+};
+
+// Measures edge e (clears `accepted` when it is outside [accept_lo, accept_hi] x its rest length) and
+// projects it back inside [lo, hi] when outside; true when its ends moved.
+inline bool limit_edge(glm::vec3* p, const uint32_t* ends, const float* rest, size_t e, const StrainLimits& l,
+                       bool& accepted) {
     glm::vec3& a = p[ends[2 * e]];
     glm::vec3& b = p[ends[2 * e + 1]];
     const glm::vec3 d = b - a;
     const float len2 = glm::dot(d, d), rest2 = rest[e] * rest[e];
-    if (len2 >= lo * lo * rest2 && len2 <= hi * hi * rest2) return false;
+    if (len2 < l.accept_lo * l.accept_lo * rest2 || len2 > l.accept_hi * l.accept_hi * rest2) accepted = false;
+    if (len2 >= l.lo * l.lo * rest2 && len2 <= l.hi * l.hi * rest2) return false;
     const float len = std::sqrt(len2);
-    if (!(len > 1e-12f * rest[e])) return true;  // collapsed to a point: no direction to push along
+    if (!(len > 1e-12f * rest[e])) return false;  // collapsed to a point: no direction to push along
     // To just inside the limit (1e-4 of it), so float rounding does not leave it a hair outside.
-    const float goal = (len2 < lo * lo * rest2 ? lo * (1.0f + 1e-4f) : hi * (1.0f - 1e-4f)) * rest[e];
+    const float goal = (len2 < l.lo * l.lo * rest2 ? l.lo * (1.0f + 1e-4f) : l.hi * (1.0f - 1e-4f)) * rest[e];
     const glm::vec3 move = (0.5f * (len - goal) / len) * d;
     a += move;
     b -= move;
-    ++projected;
     return true;
 }
 
 }  // namespace
 
 StrainLimitResult StrainLimitJob::Run() const {
-    // Full Gauss-Seidel passes, each projecting every edge outside [lo, hi], until a pass finds every
-    // edge within the accepted bounds [accept_lo, accept_hi] (wider than [lo, hi]: the projections
-    // aim inside by that margin, so a pass that starts within the accepted bounds ends near them) or
-    // the passes are spent.
     const uint32_t* ends = edges->ends.data();
     const float* rest = edges->rest.data();
-    const size_t count = edges->rest.size();
-    const float lo = limits.lo, hi = limits.hi;
-    const float accept_lo2 = limits.accept_lo * limits.accept_lo, accept_hi2 = limits.accept_hi * limits.accept_hi;
+    const size_t count = edges->rest.size(), vertices = positions.size();
     glm::vec3* p = positions.data();
     StrainLimitResult result;
-    bool unaccepted = true;
-    for (uint32_t pass = 0; pass < limits.iterations && unaccepted; ++pass) {
-        unaccepted = false;
-        uint32_t projected = 0;
-        for (size_t e = 0; e < count; ++e) {
-            const glm::vec3 d = p[ends[2 * e + 1]] - p[ends[2 * e]];
-            const float len2 = glm::dot(d, d), rest2 = rest[e] * rest[e];
-            unaccepted |= len2 < accept_lo2 * rest2 || len2 > accept_hi2 * rest2;
-            project_edge(p, ends, rest, e, lo, hi, projected);
+    if (limits.iterations == 0 || count == 0) return result;
+    thread_local PassScratch scratch;
+    PassScratch& s = scratch;
+    // Moves of a pass: both ends of edge e, each recorded once per generation.
+    auto note_moved = [&](size_t e, uint32_t gen) {
+        ++result.projected;
+        for (int k = 0; k < 2; ++k) {
+            const uint32_t v = ends[2 * e + k];
+            if (s.vertex_stamp[v] != gen) s.vertex_stamp[v] = gen, s.moved.push_back(v);
         }
-        result.projected += projected;
-        if (projected == 0) unaccepted = false;
+    };
+    // Pass 1: every edge.
+    uint32_t gen = s.next(vertices, count);
+    s.moved.clear();
+    bool accepted = true;
+    for (size_t e = 0; e < count; ++e)
+        if (limit_edge(p, ends, rest, e, limits, accepted)) note_moved(e, gen);
+    // Later passes: the edges at the vertices the pass before moved; stop once a pass finds every one
+    // of them accepted (the others have not changed since they were accepted).
+    for (uint32_t pass = 1; pass < limits.iterations && !accepted && !s.moved.empty(); ++pass) {
+        gen = s.next(vertices, count);
+        s.queued.clear();
+        for (uint32_t v : s.moved)
+            for (uint32_t k = edges->vertex_first[v]; k < edges->vertex_first[v + 1]; ++k) {
+                const uint32_t e = edges->vertex_edges[k];
+                if (s.edge_stamp[e] != gen) s.edge_stamp[e] = gen, s.queued.push_back(e);
+            }
+        s.moved.clear();
+        accepted = true;
+        for (uint32_t e : s.queued)
+            if (limit_edge(p, ends, rest, e, limits, accepted)) note_moved(e, gen);
     }
     // Seams follow their welded vertex (only where something moved: otherwise the surface is as placed).
     for (size_t k = 0; result.projected > 0 && k < edges->copies.size(); k += 2) p[edges->copies[k]] = p[edges->copies[k + 1]];
-    if (!unaccepted) return result;
+    if (accepted) return result;
     // Passes spent: count what is left outside the accepted bounds.
+    const float accept_lo2 = limits.accept_lo * limits.accept_lo, accept_hi2 = limits.accept_hi * limits.accept_hi;
     for (size_t e = 0; e < count; ++e) {
         const glm::vec3 d = p[ends[2 * e + 1]] - p[ends[2 * e]];
         const float len2 = glm::dot(d, d), rest2 = rest[e] * rest[e];

@@ -3,8 +3,9 @@
 // (spring ends or linear-blend skinning), every edge whose length left [lo, hi] x its bind length is
 // projected back to the nearest limit, both ends moved half the error along the edge, Gauss-Seidel,
 // until a pass starts with every edge within the accepted bounds (a little wider than the limits) or
-// the passes are spent. Edges inside the limits are only measured (squared lengths, no square root),
-// so a frame with nothing to fix costs one pass over the edges.
+// the passes are spent. The first pass measures every edge (squared lengths, no square root), so a
+// frame with nothing to fix costs one pass; later passes revisit only the edges at a vertex the pass
+// before moved (no other edge's length can have changed), so the folds cost passes, not the surface.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -24,6 +25,8 @@ struct SkinEdges {
     std::vector<uint32_t> ends;    ///< edge e joins ends[2e] and ends[2e + 1] (welded vertices)
     std::vector<float> rest;       ///< bind length of edge e (> 0; zero-length edges are left out)
     std::vector<uint32_t> copies;  ///< pairs (vertex, the welded vertex whose position it takes)
+    std::vector<uint32_t> vertex_first;  ///< edges at vertex v: vertex_edges[vertex_first[v], vertex_first[v + 1])
+    std::vector<uint32_t> vertex_edges;  ///< (size: vertices + 1 and 2 x edges)
 };
 
 /// The unique edges of `indices` (triangles) with their lengths on `bind`, vertices at one bind

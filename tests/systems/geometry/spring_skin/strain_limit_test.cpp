@@ -100,7 +100,7 @@ TEST(StrainLimit, ValidateListsEveryProblem) {
     std::vector<glm::vec3> too_few(2);
     std::vector<std::string> errors;
     EXPECT_FALSE((StrainLimitJob{&e, StrainLimits{0.0f, 0.5f, 4}, too_few}.Validate(&errors)));
-    EXPECT_EQ(errors.size(), 4u);  // an end outside, lo, hi, accepted bounds not holding [lo, hi]
+    EXPECT_EQ(errors.size(), 5u);  // an end outside, adjacency for another surface, lo, hi, accepted bounds
     errors.clear();
     EXPECT_FALSE((StrainLimitJob{nullptr, StrainLimits{}, too_few}.Validate(&errors)));
     EXPECT_EQ(errors.size(), 1u);
