@@ -195,9 +195,13 @@ ALOHA_AVX2 void local_to_model_avx2(const int16_t* parents, const PosePointers* 
 
 #else  // no AVX2 form: local_to_model runs its portable loop
 
+#include <cassert>
+
 namespace aloha::l2m_simd {
 
-void local_to_model_avx2(const int16_t*, const PosePointers*, size_t, const glm::mat4&, size_t) {}
+void local_to_model_avx2(const int16_t*, const PosePointers*, size_t, const glm::mat4&, size_t) {
+    assert(false && "local_to_model_avx2 called where clip_simd::avx2_available() is false");
+}
 
 }  // namespace aloha::l2m_simd
 

@@ -4,6 +4,9 @@
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/geometry/spring_skin/peeled.hpp"
 #include "systems/geometry/spring_skin/strain_limit.hpp"
+#include "systems/geometry/spring_skin/subdivision.hpp"
+
+#include <cassert>
 
 #include <atomic>
 #include <span>
@@ -71,6 +74,17 @@ inline void set_lbs_source(const CharacterGeometry& g, const GeometryController:
         job.joints = level.skin->joints;
         job.weights = level.skin->weights;
     }
+}
+
+/// The displayed surface of the Subdivided level `L`: `control` refined into `refined` (and `normals`
+/// when given), then, when `strain_limited`, its edges limited (strain_limit.hpp). True when the limit
+/// moved it (normals given are then stale). Requires L.subdivision and sizes that match it.
+inline bool refine_displayed(const GeometryController::Level& L, std::span<const glm::vec3> control, std::span<glm::vec3> refined,
+                             std::span<glm::vec3> normals = {}, bool strain_limited = true) {
+    const SubdivideJob refine{L.subdivision, control, refined, normals};
+    assert(refine.Validate());
+    refine.Run();
+    return strain_limited && limit_skin_strain(L.refined_edges, refined, kRefinedStrainIterations);
 }
 
 /// True when two parameter sets give the same storage and topology (method, T, P, subdivision).

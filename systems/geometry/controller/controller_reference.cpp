@@ -47,9 +47,7 @@ void GeometryController::reference_surface(const PoseSource& poses, uint32_t cha
     control_surface(R, poses.joints(character, geometry_->joint_count()), positions, strain_limited);
     if (!R.subdivision) return;
     std::vector<glm::vec3> refined(R.subdivision->refined_vertex_count);
-    const SubdivideJob refine{R.subdivision, positions, refined, {}};
-    refine.Run();
-    if (strain_limited) limit_skin_strain(R.refined_edges, refined, kRefinedStrainIterations);
+    refine_displayed(R, positions, refined, {}, strain_limited);
     positions = std::move(refined);
 }
 

@@ -140,13 +140,10 @@ void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const Fa
     const bool keep = L.keep_refined, morphing = st.frames_left(s)[0] > 0;
     const std::span<glm::vec3> positions = keep ? st.refined_positions(s) : sized(scratch.refined_positions, refined);
     const std::span<glm::vec3> normals = keep ? st.refined_normals(s) : sized(scratch.refined_normals, refined);
-    const SubdivideJob refine{L.subdivision, fresh, positions, morphing ? std::span<glm::vec3>() : normals};
-    assert(refine.Validate());
-    refine.Run();
     // The displayed (refined) surface's edges are limited too: refinement averages the control edges
     // but can still fold a crease past the limits. While morphing, or after a limit moved the surface,
     // light the shape that is shown.
-    const bool limited = limit_skin_strain(L.refined_edges, positions, kRefinedStrainIterations);
+    const bool limited = refine_displayed(L, fresh, positions, morphing ? std::span<glm::vec3>() : normals);
     if (apply_morph(st, s, positions, positions) || limited) accumulate_vertex_normals(positions, L.indices, normals);
 }
 

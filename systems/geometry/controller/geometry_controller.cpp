@@ -6,7 +6,6 @@
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/controller/fat_regions.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
-#include "systems/geometry/spring_skin/subdivision.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -146,14 +145,15 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
     }
     if (level->mesh_level) {
         set_surface_attributes(g, *level);
-        const std::span<const glm::vec3> rest = real ? std::span<const glm::vec3>(g.mesh().positions) : std::span<const glm::vec3>(skin->rest_positions);
-        level->control_edges = build_skin_edges(real ? std::span<const uint32_t>(g.mesh().indices) : std::span<const uint32_t>(skin->indices), rest);
+        // Strain limiting measures edges against the surface at the skeleton's rest pose (what the
+        // level shows there: for a real mesh its skinned rest positions, not the bind-pose file data).
+        std::vector<glm::vec3> rest;
+        std::vector<uint32_t> triangles;
+        g.rest_surface({level->display_key.theta_steps, level->display_key.phi_steps, 0}, rest, triangles);
+        level->control_edges = build_skin_edges(triangles, rest);
         if (subdivision) {
-            std::vector<glm::vec3> refined(subdivision->refined_vertex_count);
-            const SubdivideJob refine{subdivision, rest, refined, {}};
-            assert(refine.Validate());
-            refine.Run();
-            level->refined_edges = build_skin_edges(subdivision->triangles, refined);
+            g.rest_surface(level->display_key, rest, triangles);
+            level->refined_edges = build_skin_edges(triangles, rest);
         }
     }
     return level;
@@ -230,10 +230,7 @@ void GeometryController::capture_morph(const Level& from, uint32_t from_slot, Le
             old = from.store.refined_positions(from_slot);
         } else {
             refined.resize(from.subdivision->refined_vertex_count);
-            const SubdivideJob refine{from.subdivision, old, refined, {}};
-            assert(refine.Validate());
-            refine.Run();
-            limit_skin_strain(from.refined_edges, refined, kRefinedStrainIterations);
+            refine_displayed(from, old, refined);
             old = refined;
         }
     }
