@@ -119,6 +119,7 @@ void add_lod_report(const World& world, const std::vector<LodSample>& samples, d
     const char* mode = b.mode == BudgetStatus::Mode::Parts ? "parts" : b.mode == BudgetStatus::Mode::Total ? "total" : "off";
     nlohmann::json budget = {{"mode", mode}};
     if (b.mode == BudgetStatus::Mode::Total) budget["target_ms"] = b.params.target_ms;
+    if (b.mode == BudgetStatus::Mode::Parts) budget["trim_smoothing"] = b.params.trim_smoothing;
     budget["animation"] = part_json(anim, anim_from, dt, b.animation);
     budget["geometry"] = part_json(geom, geom_from, dt, b.geometry);
     budget["settled_from_frame"] = from < samples.size() ? nlohmann::json(from) : nlohmann::json(nullptr);

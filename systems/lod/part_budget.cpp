@@ -15,6 +15,13 @@ float PartBudget::band_ms() const {
     return std::max(part_.tolerance * part_.target_ms, 2.0f * smoothed_noise);
 }
 
+float PartBudget::trim_band_ms() const {
+    // As band_ms(), for the noise left in the slow average.
+    const float a = common_.trim_smoothing;
+    const float smoothed_noise = a > 0.0f ? 1.25f * noise_ * std::sqrt(a / (2.0f - a)) : 0.0f;
+    return std::max(part_.tolerance * part_.target_ms, 2.0f * smoothed_noise);
+}
+
 int coarse_hold_updates(double step_ms, double band_ms, float smoothing) {
     // A step k bands coarse moves the smoothed time by k bands; after k of its time constants
     // (1 / smoothing updates each) what is left of it there is k e^-k bands, under one band for every
@@ -34,7 +41,7 @@ void PartBudget::set_params(const BudgetPartParams& part, const BudgetParams& co
 }
 
 void PartBudget::reset() {
-    ema_ = -1.0f;
+    ema_ = trim_ = -1.0f;
     noise_ = 0.0f;
     settle_left_ = 0;
     held_under_ = 0;
@@ -77,15 +84,17 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     if (std::isfinite(measured_ms) && measured_ms >= 0.0f) {
         model_.observe(counts_, level_ms, measured_ms, common_.cost_smoothing);
         if (ema_ < 0.0f) {
-            ema_ = measured_ms;
+            ema_ = trim_ = measured_ms;
         } else {
             ema_ = std::max(0.0f, ema_ + static_cast<float>(switched_ms));
+            trim_ = std::max(0.0f, trim_ + static_cast<float>(switched_ms));
             // A lone spike (another process took the core) moves the average by at most 3 noise widths:
             // a sustained change still gets through in a few frames, a one-frame outlier cannot trigger a step.
             const float limit = 3.0f * std::max(noise_, part_.tolerance * part_.target_ms);
             const float dev = std::clamp(measured_ms - ema_, -limit, limit);
             noise_ += common_.smoothing * (std::fabs(dev) - noise_);
             ema_ += common_.smoothing * dev;
+            trim_ += common_.trim_smoothing * std::clamp(measured_ms - trim_, -limit, limit);
         }
     }
     step.smoothed_ms = ema_;
@@ -103,14 +112,24 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     double pending_ms = 0.0;
     for (size_t i = 0; know_requests && i < states.size(); ++i)
         pending_ms += cost_at(headed(i), i) - cost_at(level_of(states[i]), i);
-    const double predicted = ema_ + pending_ms;
+    // Two time scales when trimming is on: an error of the fast average beyond the reaction band (a
+    // crowd that doubled, a camera cut) is answered from it at once; inside that band the slow average
+    // steers, so swings of the measured time faster than its window are not chased.
+    const double target = part_.target_ms;
+    const double fast = ema_ + pending_ms;
+    const bool trimming = common_.trim_smoothing > 0.0f &&
+                          std::fabs(fast - target) <= std::max<double>(part_.react_tolerance * target, band_ms());
+    // Beyond the reaction band the slow average's history is obsolete (the time moved for real): it
+    // restarts from the fast one, so it does not drag the trimming back towards the old level.
+    if (!trimming) trim_ = ema_;
+    const double predicted = trimming ? trim_ + pending_ms : fast;
+    const double band = trimming ? trim_band_ms() : band_ms();
     step.predicted_ms = static_cast<float>(predicted);
     if (settle_left_ > 0) {
         --settle_left_;
         return step;
     }
-    const double target = part_.target_ms;
-    if (std::fabs(predicted - target) <= band_ms()) {
+    if (std::fabs(predicted - target) <= band) {
         held_under_ = 0;
         return step;
     }
@@ -120,14 +139,14 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     // size plus the band) is left alone, by fine steps too; answered in bulk, they would be undone
     // in bulk once the step shows as it is.
     if ((over ? hold_demote_ : hold_promote_) > 0 &&
-        std::fabs(predicted - target) <= (over ? held_demote_ms_ : held_promote_ms_) + band_ms())
+        std::fabs(predicted - target) <= (over ? held_demote_ms_ : held_promote_ms_) + band)
         return step;
 
     // Candidates: (significance, index), each judged at the level it is headed for. Characters held
     // by time hysteresis at a level they keep are left alone (a change would not show); one whose
     // switch is pending may be retargeted. A demotion predicted to save under 1% of the band is not
     // worth a visible switch (a hundred of them would not move the time across the band): passed over.
-    const double least_saving = 0.01 * band_ms();
+    const double least_saving = 0.01 * band;
     auto one_poorer = [&](size_t l) -> size_t {
         if (!geometric) return std::min(l + 1, levels - 1);
         return demoted_geom_level(table, static_cast<uint8_t>(l), 1);
@@ -191,7 +210,6 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     //    only coarse promotion that lands outside the band is the combination below: a lone one would
     //    land over the band and be answered by bulk fine demotions, undone in bulk when it leaves.
     // After a coarse step, steps the other way that it could explain wait for its hold (above).
-    const double band = band_ms();
     const double sign = over ? -1.0 : 1.0;  // the way the time moves
     auto step_ms = [&](size_t i) { return over ? saving(i) : extra(i); };
     auto off_target = [&](double ms) { return predicted + sign * ms - target; };  // after changing by ms

@@ -50,6 +50,9 @@ namespace aloha {
 ///    widened the band (that promotion costed at the level it would really reach: a cap or the last
 ///    level may swallow it); else the part holds. After any coarse step no coarse step the other way
 ///    is taken for coarse_hold_updates(). Then it waits settle_frames.
+/// With BudgetParams::trim_smoothing > 0 a slow average steers steps 3 and after whenever the fast
+/// one is within target * (1 +- react_tolerance) (the fast one beyond it, restarting the slow one
+/// from itself): swings faster than the slow window are left alone, the mean is still held.
 /// Only characters not `always_full`, not headed for Hidden, and either held min_seconds at their level
 /// or with a switch pending are touched; at most max_demotion levels each.
 class PartBudget {
@@ -69,6 +72,11 @@ public:
     /// Half-width of the band around the target inside which no step is taken (ms): target *
     /// tolerance, or twice the noise left in the smoothed time when that is larger.
     [[nodiscard]] float band_ms() const;
+    /// Half-width of the trimming band (trim_smoothing > 0): target * tolerance, or twice the noise
+    /// left in the slow average when that is larger.
+    [[nodiscard]] float trim_band_ms() const;
+    /// Slow (trim) average of the measured time (ms); negative before the first update.
+    [[nodiscard]] float trim_ms() const { return trim_; }
     /// The learned per-level costs.
     [[nodiscard]] const LevelCostModel& costs() const { return model_; }
     /// Forgets the smoothed time, the settle countdown and the learned costs.
@@ -91,6 +99,7 @@ private:
     BudgetParams common_;
     LevelCostModel model_;
     float ema_ = -1.0f;
+    float trim_ = -1.0f;                              // slow average (trim_smoothing), same adjustments as ema_
     float noise_ = 0.0f;
     int settle_left_ = 0;
     int held_under_ = 0;                              // updates in a row held under the band with only coarse promotions

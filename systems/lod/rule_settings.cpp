@@ -56,13 +56,14 @@ void parse_budget_part(JsonObjectReader& b, const char* key, RuleFile& in, Budge
     const json* j = b.child(key);
     if (!j) return;
     const std::string p = std::string("/budget/") + key;
-    if (!j->is_object()) return in.err(p, "expected an object {target_ms, tolerance, gain, max_demotion}");
+    if (!j->is_object()) return in.err(p, "expected an object {target_ms, tolerance, gain, max_demotion, react_tolerance}");
     JsonObjectReader r = in.object(*j, p);
     r.allow({"description"});
     part->target_ms = static_cast<float>(r.number("target_ms", part->target_ms, 0.001, 10000.0, /*required=*/true));
     r.read("tolerance", part->tolerance, 0.0, 0.5);
     r.read("gain", part->gain, 0.01, 1.0);
     r.read("max_demotion", part->max_demotion, 0, 255);
+    r.read("react_tolerance", part->react_tolerance, 0.0, 0.9);
     r.reject_unknown_keys();
 }
 
@@ -80,6 +81,7 @@ void parse_budget(const json& value, RuleFile& in, RuleTable& table) {
     b.read("settle_frames", bp.settle_frames, 0, 1000);
     b.read("max_demotion", bp.max_demotion, 0, 255);
     b.read("cost_smoothing", bp.cost_smoothing, 0.001, 1.0);
+    b.read("trim_smoothing", bp.trim_smoothing, 0.0, 1.0);
     bp.animation.max_demotion = bp.geometry.max_demotion = bp.max_demotion;
     parse_budget_part(b, "animation", in, &bp.animation);
     parse_budget_part(b, "geometry", in, &bp.geometry);

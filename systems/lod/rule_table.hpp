@@ -78,6 +78,9 @@ struct BudgetPartParams {
     float tolerance = 0.05f;     ///< no step while the smoothed time is within target * (1 +- tolerance)
     float gain = 0.7f;           ///< fraction of the predicted error corrected per step, in (0, 1]
     uint8_t max_demotion = 3;    ///< most levels this part may remove from one character
+    /// With trimming on (BudgetParams::trim_smoothing > 0): the fast average acts only when it is
+    /// outside target * (1 +- react_tolerance); inside, the slow trim average steers (tolerance band).
+    float react_tolerance = 0.25f;
 };
 
 /// Frame-budget settings (section "budget" of a rule file). Either a single total (`target_ms`, the
@@ -93,6 +96,11 @@ struct BudgetParams {
     uint16_t settle_frames = 4;  ///< frames to wait after a step before the next one
     uint8_t max_demotion = 3;    ///< single total: most levels the budget may remove from one character
     float cost_smoothing = 0.2f; ///< parts: EMA weight of each new per-level cost measurement, in (0, 1]
+    /// Parts: EMA weight of the slow "trim" average (0 = off: the fast average alone steers). On, the
+    /// fast average (`smoothing`) answers only errors beyond each part's react_tolerance and the slow
+    /// one trims the rest, so cost swings faster than its window (gait cycles, thread partition) are
+    /// averaged out instead of chased with level changes.
+    float trim_smoothing = 0.0f;
     BudgetPartParams animation;  ///< the motion system's time
     BudgetPartParams geometry;   ///< the muscle + spring_skin systems' time
 

@@ -37,6 +37,15 @@ TEST(BudgetDriver, TheFilesBudgetRunsWithoutOverrides) {
     EXPECT_FLOAT_EQ(t.budget->geometry.gain, 0.5f);
     EXPECT_EQ(t.budget->geometry.max_demotion, 2);
     EXPECT_EQ(t.budget->animation.max_demotion, 3);  // the section's default
+    EXPECT_FLOAT_EQ(t.budget->trim_smoothing, 0.0f);  // trimming off unless the file turns it on
+    EXPECT_FLOAT_EQ(t.budget->animation.react_tolerance, 0.25f);
+    json trimmed = with_parts(1.5, 6.0);
+    trimmed["budget"]["trim_smoothing"] = 0.02;
+    trimmed["budget"]["animation"]["react_tolerance"] = 0.3;
+    const RuleTable tt = must_parse(trimmed);
+    EXPECT_FLOAT_EQ(tt.budget->trim_smoothing, 0.02f);
+    EXPECT_FLOAT_EQ(tt.budget->animation.react_tolerance, 0.3f);
+    EXPECT_FLOAT_EQ(tt.budget->geometry.react_tolerance, 0.25f);
     LodBudget b;
     std::vector<LodState> states(4);
     b.configure(t, {}, states);
@@ -163,6 +172,12 @@ TEST(BudgetDriver, BadBudgetSectionsAreRefusedWithTheirPath) {
     json range = with_parts(1.0, 2.0);
     range["budget"]["animation"]["gain"] = 0.0;
     EXPECT_NE(errors_of(range).find("/budget/animation/gain"), std::string::npos);
+    json react = with_parts(1.0, 2.0);
+    react["budget"]["geometry"]["react_tolerance"] = 1.5;
+    EXPECT_NE(errors_of(react).find("/budget/geometry/react_tolerance"), std::string::npos);
+    json trim = with_parts(1.0, 2.0);
+    trim["budget"]["trim_smoothing"] = -0.1;
+    EXPECT_NE(errors_of(trim).find("/budget/trim_smoothing"), std::string::npos);
     json flag = with_parts(1.0, 2.0);
     flag["budget"]["enabled"] = "yes";
     EXPECT_NE(errors_of(flag).find("expected true or false"), std::string::npos);
