@@ -4,6 +4,7 @@
 #pragma once
 
 #include "components/transform.hpp"
+#include "host/scene/character_bounds.hpp"
 #include "host/scene/character_type.hpp"
 #include "host/scene/scene_desc.hpp"
 #include "systems/frame/draw_lists.hpp"
@@ -47,11 +48,19 @@ public:
     [[nodiscard]] DrawType draw_type() const;
     /// Adds `scene`'s walk paths to the motion controller (path ids in scene order).
     void add_paths(const SceneDesc& scene);
+    /// Measures `extent` (TypeExtent: rest pose and every clip key, and the skin beyond the joints: the
+    /// mesh's, else the generated skin of the richest mesh level of `levels`, else 10% of the height)
+    /// and sets type.radius to its body radius. Call after init_geometry.
+    void measure_bounds(std::span<const GeomLod> levels);
+    /// Bounds radius of scene character `c` of this type: the body radius, widened to what the IK chain
+    /// of each of its reaches and look-ats (requests and overlay) can sweep. Requires measure_bounds().
+    [[nodiscard]] float bounds_radius(const CharacterDesc& c) const;
     /// Queues scene character `index` (`c`, id `id` of this type): its requests and overlay, with clip,
     /// path and joint names resolved. Errors name the scene file, the character and the unknown name.
     Status queue_requests(const SceneDesc& scene, size_t index, const CharacterDesc& c, uint32_t id);
 
     CharacterType type;
+    TypeExtent extent;                            ///< how far the type's joints and skin reach (measure_bounds)
     std::unique_ptr<IkHookContext> ik;            ///< reach / look-at state (outlives `motion`)
     std::unique_ptr<DynamicHookContext> dynamics; ///< dynamic-walk simulations (outlives `motion`)
     std::unique_ptr<MotionController> motion;

@@ -35,7 +35,8 @@ struct CharacterType {
                                             ///< one material for a type without a mesh)
     std::vector<TextureImage> textures;     ///< indexed by SurfaceMaterial::texture
     float height = 1.8f;            ///< standing height (m), for bounds
-    float radius = 0.4f;            ///< horizontal radius (m), for bounds
+    float radius = 0.4f;            ///< horizontal radius (m), for bounds: the rest joints at load, widened
+                                    ///< to every clip pose and the skin by CharacterRuntime::measure_bounds
     std::vector<std::string> notes; ///< what was skipped or assumed while loading
     HumanoidMap map;                ///< canonical humanoid joints in `skeleton` (map.humanoid: all required found)
     RigFrame frame;                 ///< axes and units the file was found in (or given)

@@ -151,6 +151,7 @@ Result<std::vector<std::unique_ptr<CharacterRuntime>>> make_character_runtimes(c
         out.push_back(std::make_unique<CharacterRuntime>(std::move(type.value()), per_type[t]));
         out.back()->add_paths(scene);
         if (Status s = out.back()->init_geometry(static_cast<uint16_t>(t), levels, keep_refined_surfaces); !s.ok()) return s.error();
+        out.back()->measure_bounds(levels);
     }
     return out;
 }
@@ -261,7 +262,7 @@ Status World::spawn_characters() {
         const Entity e = registry_.create();
         registry_.emplace<Transform>(e, character_placement(c));
         registry_.emplace<Velocity>(e);
-        registry_.emplace<Bounds>(e, Bounds{rt.type.height, rt.type.radius});
+        registry_.emplace<Bounds>(e, Bounds{rt.type.height, rt.bounds_radius(c)});
         registry_.emplace<Importance>(e, Importance{c.importance});
         registry_.emplace<CharacterRef>(e, CharacterRef{static_cast<uint16_t>(c.type), id});
         registry_.emplace<LodAttributes>(e);

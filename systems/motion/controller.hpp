@@ -59,6 +59,8 @@ public:
     /// speed, at the rate that matches the speed exactly (stride kept, cadence warped), so stance
     /// feet stay planted. Unknown ids and clips without travel are left out.
     void set_walk_clips(std::span<const ClipId> clips);
+    /// The walk clip a walk at `speed` m/s plays (the natural speed nearest by ratio), or -1 without walk clips.
+    [[nodiscard]] int32_t pick_walk_clip(float speed) const;
     /// Registers the implementation of a method (nullptr removes it) and optionally its release
     /// callback. Not during an update.
     void set_method_hook(MethodSlot slot, MethodHook hook, void* user, MethodRelease release = nullptr);
@@ -338,7 +340,6 @@ private:
     GaitParams gait_;
     std::vector<ClipId> walk_clips_;       // gait cycles, any order
     std::vector<float> walk_clip_speeds_;  // their natural speeds (m/s)
-    [[nodiscard]] int32_t pick_walk_clip(float speed) const;
     std::array<MethodHook, 3> hooks_{};
     std::array<void*, 3> hook_users_{};
     std::array<MethodRelease, 3> releases_{};

@@ -32,7 +32,7 @@ struct MiniGame {
             const uint32_t id = rt.spawned++;
             rt.element_of_character[id] = uint32_t(refs.size());
             if (Status st = rt.queue_requests(scene, refs.size(), c, id); !st.ok()) return st;
-            transforms.push_back(character_placement(c)), bounds.push_back({rt.type.height, rt.type.radius});
+            transforms.push_back(character_placement(c)), bounds.push_back({rt.type.height, rt.bounds_radius(c)});
             importance.push_back({c.importance}), refs.push_back({uint16_t(c.type), id});
             lod.emplace_back().always_full = c.always_full, motion.emplace_back().pose_slot = id;
         }
