@@ -168,7 +168,8 @@ void BM_ViewTenPercentChangedEachPass(benchmark::State& state) {
 }
 
 // Every entity has both components, but each storage is filled in its own shuffled order, so the two
-// dense orders disagree and every lookup into the other storage is a random access.
+// dense orders disagree: the stateless view's lookup of every entity in the other storage's sparse page
+// is a random access, and so (for every access kind) is the component it finds there.
 void PopulateShuffled(aloha::Registry& r, int64_t n) {
     std::vector<aloha::Entity> es;
     for (int64_t i = 0; i < n; ++i) es.push_back(r.create());
