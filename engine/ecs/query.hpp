@@ -25,6 +25,7 @@ namespace aloha {
 /// Registry::view() keeps such a table per list of component types itself (see ViewCache).
 template <class... Ts>
 class Query {
+    static_assert(sizeof...(Ts) <= SlotTable::kMaxColumns, "too many component types for a slot table");
     static constexpr size_t kCount = sizeof...(Ts);
 
 public:

@@ -1,6 +1,8 @@
 #include "engine/ecs/slot_table.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 
 namespace aloha {
 
@@ -27,24 +29,38 @@ size_t SlotTable::count() const {
     return n;
 }
 
-// Walks the driving storage, looks every entity up in the others (index and generation) and records
-// matches: same-position stretches of at least kMinRange as ranges, the rest as entries.
 void SlotTable::build(std::span<const StorageBase* const> storages, std::span<const uint64_t> versions) {
+    assert(!storages.empty() && storages.size() <= kMaxColumns);
     reset(versions);
-    const size_t cols = storages.size();
     size_t driver = 0;
-    for (size_t s = 1; s < cols; ++s) driver = storages[s]->size() < storages[driver]->size() ? s : driver;
+    for (size_t s = 1; s < storages.size(); ++s) driver = storages[s]->size() < storages[driver]->size() ? s : driver;
     driver_ = driver;
     driver_storage_ = storages[driver];
+    // At most one entry per driver entity; grown (never shrunk) so rebuilds reuse the memory.
+    const size_t n = storages[driver]->size();
+    if (rows_.size() < n * columns_) rows_.resize(n * columns_);
+    switch (columns_) {
+        case 1: walk<1>(storages, driver); break;
+        case 2: walk<2>(storages, driver); break;
+        case 3: walk<3>(storages, driver); break;
+        case 4: walk<4>(storages, driver); break;
+        default: walk<0>(storages, driver); break;
+    }
+}
+
+// Walks the driving storage, looks every entity up in the others (index and generation) and records
+// matches: same-position stretches of at least kMinRange as ranges, the rest as entries.
+template <size_t kCols>
+void SlotTable::walk(std::span<const StorageBase* const> storages, size_t driver) {
+    const size_t cols = kCols != 0 ? kCols : columns_;
+    constexpr size_t kRoom = kCols != 0 ? kCols : kMaxColumns;
     std::vector<SparseIndex> sparse;
     sparse.reserve(cols);
     for (const StorageBase* s : storages) sparse.push_back(s->sparse());
     const std::span<const Entity> ents = storages[driver]->entities();
     const auto n = static_cast<uint32_t>(ents.size());
-    // At most one entry per driver entity; grown (never shrunk) so rebuilds reuse the memory.
-    if (rows_.size() < size_t(n) * cols) rows_.resize(size_t(n) * cols);
-    std::vector<uint32_t> row(cols);      // the entity being looked at
-    std::vector<uint32_t> in_run(cols);   // an entry of a stretch too short for a range
+    std::array<uint32_t, kRoom> row{};     // the entity being looked at
+    std::array<uint32_t, kRoom> in_run{};  // an entry of a stretch too short for a range
     uint32_t run_begin = 0;  // start of the current same-position stretch
     uint32_t run_end = 0;
     auto close_run = [&] {
@@ -53,7 +69,7 @@ void SlotTable::build(std::span<const StorageBase* const> storages, std::span<co
         } else {
             for (uint32_t k = run_begin; k < run_end; ++k) {
                 std::fill(in_run.begin(), in_run.end(), k);
-                append_row(in_run.data());
+                append_row<kCols>(in_run.data());
             }
         }
         run_begin = run_end;
@@ -79,15 +95,18 @@ void SlotTable::build(std::span<const StorageBase* const> storages, std::span<co
         }
         close_run();
         run_begin = run_end = k + 1;
-        if (present) append_row(row.data());
+        if (present) append_row<kCols>(row.data());
     }
     close_run();
 }
 
+template <size_t kCols>
 void SlotTable::append_row(const uint32_t* row) {
+    const size_t cols = kCols != 0 ? kCols : columns_;
     const auto at = static_cast<uint32_t>(used_rows_);
     if (segments_.empty() || segments_.back().aligned) segments_.push_back(Segment{at, at, false});
-    std::copy(row, row + columns_, rows_.begin() + std::ptrdiff_t(used_rows_ * columns_));
+    uint32_t* out = rows_.data() + used_rows_ * cols;
+    for (size_t c = 0; c < cols; ++c) out[c] = row[c];
     ++used_rows_;
     ++segments_.back().end;
 }

@@ -57,7 +57,11 @@ public:
 
     /// True when built at exactly `versions` (one per storage, in column order).
     [[nodiscard]] bool current(std::span<const uint64_t> versions) const;
-    /// Records the matches of `storages` (non-null, one per column) whose layouts are at `versions`.
+    /// Most storages a table can have.
+    static constexpr size_t kMaxColumns = 16;
+
+    /// Records the matches of `storages` (non-null, one per column, at most kMaxColumns) whose layouts
+    /// are at `versions`.
     void build(std::span<const StorageBase* const> storages, std::span<const uint64_t> versions);
     /// Records "nothing matches" at `versions` (a storage is missing).
     void build_empty(std::span<const uint64_t> versions);
@@ -107,7 +111,12 @@ private:
         }
     }
 
+    // The build's walk for kCols columns (0: any number up to kMaxColumns), so the usual counts get
+    // their per-entity loops unrolled.
+    template <size_t kCols>
+    void walk(std::span<const StorageBase* const> storages, size_t driver);
     // Appends one entry (`columns_` positions), opening a table segment when the last one is a range.
+    template <size_t kCols>
     void append_row(const uint32_t* row);
     // Starts a build at `versions`: forgets the old matches.
     void reset(std::span<const uint64_t> versions);

@@ -46,6 +46,7 @@ inline bool same_entities(const Entity* a, const Entity* b, size_t count) {
 template <class... Ts>
 class View {
     static_assert(sizeof...(Ts) > 0, "a view needs at least one component type");
+    static_assert(sizeof...(Ts) <= SlotTable::kMaxColumns, "too many component types for a slot table");
     static constexpr size_t kCount = sizeof...(Ts);
 
 public:
