@@ -19,4 +19,18 @@ void Registry::clear() {
     entities_.clear();
 }
 
+ViewCache& Registry::view_cache(std::span<const ComponentTypeId> key) const {
+    const std::lock_guard<std::mutex> lock(caches_mutex_);
+    for (const auto& c : caches_) {
+        if (c->is_for(key)) return *c;
+    }
+    std::vector<const StorageBase*> storages;
+    for (const ComponentTypeId id : key) {
+        assert(id < storages_.size() && storages_[id] && "a cached view's storages must exist");
+        storages.push_back(storages_[id].get());
+    }
+    caches_.push_back(std::make_unique<ViewCache>(key, storages));
+    return *caches_.back();
+}
+
 }  // namespace aloha

@@ -5,6 +5,10 @@
 #include <array>
 #include <cassert>
 #include <memory>
+#include <mutex>
+#include <span>
+#include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -14,6 +18,7 @@
 #include "engine/ecs/storage.hpp"
 #include "engine/ecs/query.hpp"
 #include "engine/ecs/view.hpp"
+#include "engine/ecs/view_cache.hpp"
 
 namespace aloha {
 
@@ -101,14 +106,21 @@ public:
     }
 
     /// A view over the entities having every Ts (`const T` for read-only); creates missing storages.
+    /// It uses this registry's ViewCache for the list of Ts (constness ignored; see ViewCache for
+    /// when the cache is read and when the stateless loop runs). Calls from several threads are fine
+    /// once the storages exist (the scheduler's systems); it must not outlive the registry.
     template <class... Ts>
     [[nodiscard]] View<Ts...> view() {
-        return View<Ts...>(&storage<std::remove_const_t<Ts>>()...);
+        const std::tuple<StorageFor<Ts>*...> storages{&storage<std::remove_const_t<Ts>>()...};  // before the cache
+        return View<Ts...>(&view_cache(cache_key<Ts...>()), std::get<StorageFor<Ts>*>(storages)...);
     }
-    /// A read-only view; a missing storage makes it empty.
+    /// A read-only view, cached like the one above; a missing storage makes it empty (and uncached).
     template <class... Ts>
     [[nodiscard]] View<const Ts...> view() const {
-        return View<const Ts...>(find_storage<std::remove_const_t<Ts>>()...);
+        if (((find_storage<std::remove_const_t<Ts>>() == nullptr) || ...)) {
+            return View<const Ts...>(find_storage<std::remove_const_t<Ts>>()...);
+        }
+        return View<const Ts...>(&view_cache(cache_key<Ts...>()), find_storage<std::remove_const_t<Ts>>()...);
     }
 
     /// A query over the entities having every Ts, to keep across frames (see Query); creates missing
@@ -138,9 +150,20 @@ public:
     void clear();
 
 private:
+    // The component type ids of Ts (constness ignored), in order: the key of their ViewCache.
+    template <class... Ts>
+    static std::span<const ComponentTypeId> cache_key() {
+        static const std::array<ComponentTypeId, sizeof...(Ts)> key{component_type_id<std::remove_const_t<Ts>>()...};
+        return key;
+    }
+    // The ViewCache for the type list `key` (its storages must exist), created on first use. Thread-safe.
+    ViewCache& view_cache(std::span<const ComponentTypeId> key) const;
+
     EntityPool entities_;
     std::vector<std::unique_ptr<StorageBase>> storages_;  // indexed by ComponentTypeId
     std::vector<std::unique_ptr<GroupData>> groups_;      // destroyed before storages_
+    mutable std::mutex caches_mutex_;                      // guards caches_ (not the caches' contents)
+    mutable std::vector<std::unique_ptr<ViewCache>> caches_;  // one per type list views asked for
 };
 
 }  // namespace aloha

@@ -10,7 +10,9 @@
 #include <type_traits>
 #include <utility>
 
+#include "engine/ecs/slot_table.hpp"
 #include "engine/ecs/storage.hpp"
+#include "engine/ecs/view_cache.hpp"
 
 namespace aloha {
 
@@ -21,16 +23,6 @@ using StorageFor = std::conditional_t<std::is_const_v<T>, const Storage<std::rem
 
 namespace detail {
 
-/// Hints the cache to fetch `p` (for writing when `kWrite`); does nothing on other compilers.
-template <bool kWrite>
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p, kWrite ? 1 : 0, 3);
-#else
-    (void)p;
-#endif
-}
-
 /// True when the `count` entities at `a` and `b` are equal (compiled to a few wide compares).
 inline bool same_entities(const Entity* a, const Entity* b, size_t count) {
     uint64_t diff = 0;
@@ -38,19 +30,14 @@ inline bool same_entities(const Entity* a, const Entity* b, size_t count) {
     return diff == 0;
 }
 
-/// Calls fn(e, components...) when fn takes the entity first (as fn(Entity, Ts&...)), else fn(components...).
-template <class... Ts, class Fn, class... Cs>
-inline void call_each(Fn& fn, Entity e, Cs&... components) {
-    if constexpr (std::is_invocable_v<Fn&, Entity, Ts&...>) {
-        fn(e, components...);
-    } else {
-        fn(components...);
-    }
-}
-
 }  // namespace detail
 
 /// Non-owning view over the storages of Ts (use `const T` for read-only access).
+/// A view from Registry::view() carries the registry's ViewCache for its type list: each() reads the
+/// cache's slot table when the storages' layouts have not changed since the previous call (see
+/// ViewCache for exactly when), and otherwise runs the stateless loop below, which looks every entity
+/// up in the sparse pages. A view built from storages directly is always stateless. Both visit the
+/// same entities in the same order: the dense order of the smallest storage (the first on ties).
 /// Structural changes to the viewed storages while iterating are not allowed: record them in a
 /// CommandBuffer and apply it afterwards.
 /// The storages must hold live entities of one registry (Registry::emplace requires a live entity and
@@ -59,22 +46,33 @@ inline void call_each(Fn& fn, Entity e, Cs&... components) {
 template <class... Ts>
 class View {
     static_assert(sizeof...(Ts) > 0, "a view needs at least one component type");
+    static_assert(sizeof...(Ts) <= SlotTable::kMaxColumns, "too many component types for a slot table");
     static constexpr size_t kCount = sizeof...(Ts);
 
 public:
     /// Builds a view over the given storages; a null storage makes the view empty.
     explicit View(StorageFor<Ts>*... storages) : storages_(storages...) {}
+    /// Builds a view that uses `cache` (kept over exactly these storages, none null), as
+    /// Registry::view() does.
+    View(ViewCache* cache, StorageFor<Ts>*... storages) : storages_(storages...), cache_(cache) {}
 
     /// Calls fn(Entity, Ts&...) or fn(Ts&...) for each entity that has every Ts, in the dense
     /// order of the smallest storage.
     template <class Fn>
     void each(Fn&& fn) const {
+        if (cache_ != nullptr) {
+            if (const SlotTable* table = cache_->acquire()) {
+                const std::tuple<Ts*...> comps{std::get<StorageFor<Ts>*>(storages_)->components().data()...};
+                table->each(fn, comps);
+                return;
+            }
+        }
         const size_t driver = smallest();
         if (driver == kCount) return;
         dispatch(fn, driver, std::index_sequence_for<Ts...>{});
     }
 
-    /// Number of entities the view visits (walks the driving storage).
+    /// Number of entities the view visits (one each() call: for a cached view it counts as a call).
     [[nodiscard]] size_t count() const {
         size_t n = 0;
         each([&n](Entity, Ts&...) { ++n; });
@@ -90,6 +88,8 @@ public:
         return ((std::get<StorageFor<Ts>*>(storages_) != nullptr &&
                  std::get<StorageFor<Ts>*>(storages_)->contains(e)) && ...);
     }
+    /// The registry's cache this view uses, or nullptr for a stateless view.
+    [[nodiscard]] const ViewCache* cache() const { return cache_; }
 
 private:
     // Entities checked per aligned-run step, and looked up per gather block.
@@ -227,6 +227,7 @@ private:
     }
 
     std::tuple<StorageFor<Ts>*...> storages_;
+    ViewCache* cache_ = nullptr;
 };
 
 }  // namespace aloha

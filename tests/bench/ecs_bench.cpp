@@ -1,6 +1,7 @@
-// ECS iteration over two packed components (Position += Velocity * dt) via View, via Group spans,
-// and via a plain struct-of-arrays loop, the lower bound. Reported per entity (ns_per_entity), or
-// per entity the view visits (ns_per_match) where only some entities match.
+// ECS iteration over two packed components (Position += Velocity * dt) via the registry's (cached)
+// View, a stateless View, a Query, Group spans, and a plain struct-of-arrays loop, the lower bound.
+// Reported per entity (ns_per_entity), or per entity the view visits (ns_per_match) where only some
+// entities match.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -39,7 +40,7 @@ void SetPerEntity(benchmark::State& state) {
 
 // The benchmarked work: Position += Velocity * dt through `view` (a View or a Query).
 template <class ViewT>
-void UpdatePositions(ViewT& view) {
+void UpdatePositions(ViewT&& view) {
     view.each([](Position& p, const Velocity& v) {
         p.x += v.x * kDt;
         p.y += v.y * kDt;
@@ -47,15 +48,28 @@ void UpdatePositions(ViewT& view) {
     });
 }
 
-// How the benchmarked loop reaches the components: a View (looks every match up on each pass) or a
-// Query kept across passes (looks them up once, then reads its slot table; built before timing).
-enum class Access { kView, kQuery };
+// How the benchmarked loop reaches the components:
+// - kView: `r.view<...>().each(...)` on every pass, as a system calls it. The registry's ViewCache
+//   reads its slot table once the layout has stayed put across two calls; the two calls before timing
+//   get it there, so this is the steady state (the first call after a structural change is the
+//   ChangedEachPass cases below);
+// - kStatelessView: a View built from the storages (no cache), which looks every match up each pass;
+// - kQuery: a Query kept across passes (looks them up once, then reads its slot table; built before timing).
+enum class Access { kView, kStatelessView, kQuery };
 
 // Runs UpdatePositions over r's Position + const Velocity through `access` for every iteration.
 template <Access access>
 void IteratePositions(benchmark::State& state, aloha::Registry& r) {
     if constexpr (access == Access::kView) {
-        auto view = r.view<Position, const Velocity>();
+        for (int warm = 0; warm < 2; ++warm) (void)r.view<Position, const Velocity>().count();
+        for (auto _ : state) {
+            UpdatePositions(r.view<Position, const Velocity>());
+            benchmark::ClobberMemory();
+        }
+        const aloha::ViewCache* cache = r.view<Position, const Velocity>().cache();
+        if (cache == nullptr || cache->builds() != 1) state.SkipWithError("view cache not built exactly once");
+    } else if constexpr (access == Access::kStatelessView) {
+        const aloha::View<Position, const Velocity> view(&r.storage<Position>(), &r.storage<Velocity>());
         for (auto _ : state) {
             UpdatePositions(view);
             benchmark::ClobberMemory();
@@ -131,27 +145,64 @@ void BM_QueryTenPercentRebuiltEachPass(benchmark::State& state) {
     SetPerMatch(state, matches);
 }
 
-// Every entity has both components, but each storage is filled in its own shuffled order, so the two
-// dense orders disagree and every lookup into the other storage is a random access.
-template <Access access>
-void BM_Shuffled(benchmark::State& state) {
+// The first call after a structural change, every pass: one entity's Velocity removed and put back
+// before each `r.view<...>().each(...)`, so the registry's cache is never current and the view runs
+// its stateless loop (what a system gets on the frame after entities were added, removed or moved).
+void ViewChangedEachPass(benchmark::State& state, aloha::Registry& r) {
+    const aloha::Entity moved = r.storage<Velocity>().entities()[0];
+    for (auto _ : state) {
+        r.remove<Velocity>(moved);
+        r.emplace<Velocity>(moved, 1.0f, 2.0f, 3.0f);
+        UpdatePositions(r.view<Position, const Velocity>());
+        benchmark::ClobberMemory();
+    }
+    const aloha::ViewCache* cache = r.view<Position, const Velocity>().cache();
+    if (cache == nullptr || cache->builds() != 0) state.SkipWithError("view cache built on a changing layout");
+}
+
+void BM_ViewTenPercentChangedEachPass(benchmark::State& state) {
     aloha::Registry r;
+    const int64_t matches = PopulateTenPercent(r, state.range(0), false);
+    ViewChangedEachPass(state, r);
+    SetPerMatch(state, matches);
+}
+
+// Every entity has both components, but each storage is filled in its own shuffled order, so the two
+// dense orders disagree: the stateless view's lookup of every entity in the other storage's sparse page
+// is a random access, and so (for every access kind) is the component it finds there.
+void PopulateShuffled(aloha::Registry& r, int64_t n) {
     std::vector<aloha::Entity> es;
-    for (int64_t i = 0; i < state.range(0); ++i) es.push_back(r.create());
+    for (int64_t i = 0; i < n; ++i) es.push_back(r.create());
     std::mt19937 rng(1);
     std::shuffle(es.begin(), es.end(), rng);
     for (const aloha::Entity e : es) r.emplace<Position>(e);
     std::shuffle(es.begin(), es.end(), rng);
     for (const aloha::Entity e : es) r.emplace<Velocity>(e, 1.0f, 2.0f, 3.0f);
+}
+
+template <Access access>
+void BM_Shuffled(benchmark::State& state) {
+    aloha::Registry r;
+    PopulateShuffled(r, state.range(0));
     IteratePositions<access>(state, r);
     SetPerEntity(state);
 }
 
+void BM_ViewShuffledChangedEachPass(benchmark::State& state) {
+    aloha::Registry r;
+    PopulateShuffled(r, state.range(0));
+    ViewChangedEachPass(state, r);
+    SetPerEntity(state);
+}
+
 void BM_View(benchmark::State& state) { BM_AllMatch<Access::kView>(state); }
+void BM_ViewStateless(benchmark::State& state) { BM_AllMatch<Access::kStatelessView>(state); }
 void BM_Query(benchmark::State& state) { BM_AllMatch<Access::kQuery>(state); }
 void BM_ViewTenPercent(benchmark::State& state) { BM_TenPercent<Access::kView>(state); }
+void BM_ViewStatelessTenPercent(benchmark::State& state) { BM_TenPercent<Access::kStatelessView>(state); }
 void BM_QueryTenPercent(benchmark::State& state) { BM_TenPercent<Access::kQuery>(state); }
 void BM_ViewShuffled(benchmark::State& state) { BM_Shuffled<Access::kView>(state); }
+void BM_ViewStatelessShuffled(benchmark::State& state) { BM_Shuffled<Access::kStatelessView>(state); }
 void BM_QueryShuffled(benchmark::State& state) { BM_Shuffled<Access::kQuery>(state); }
 
 void BM_GroupSpans(benchmark::State& state) {
@@ -230,22 +281,24 @@ void BM_CreateDestroyWithCommands(benchmark::State& state) {
 
 }  // namespace
 
+// The 10% cases' sizes: random at 100k and 1M, every tenth at 1M.
+void TenPercentArgs(benchmark::internal::Benchmark* b) {
+    b->ArgNames({"n", "strided"})->Args({100'000, 0})->Args({1'000'000, 0})->Args({1'000'000, 1});
+}
+
 BENCHMARK(BM_PlainSoA)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_GroupSpans)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_View)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_ViewStateless)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_Query)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
-BENCHMARK(BM_ViewTenPercent)
-    ->ArgNames({"n", "strided"})
-    ->Args({100'000, 0})
-    ->Args({1'000'000, 0})
-    ->Args({1'000'000, 1});
-BENCHMARK(BM_QueryTenPercent)
-    ->ArgNames({"n", "strided"})
-    ->Args({100'000, 0})
-    ->Args({1'000'000, 0})
-    ->Args({1'000'000, 1});
+BENCHMARK(BM_ViewTenPercent)->Apply(TenPercentArgs);
+BENCHMARK(BM_ViewStatelessTenPercent)->Apply(TenPercentArgs);
+BENCHMARK(BM_ViewTenPercentChangedEachPass)->Arg(1'000'000);
+BENCHMARK(BM_QueryTenPercent)->Apply(TenPercentArgs);
 BENCHMARK(BM_QueryTenPercentRebuiltEachPass)->Arg(1'000'000);
 BENCHMARK(BM_ViewShuffled)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_ViewStatelessShuffled)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
+BENCHMARK(BM_ViewShuffledChangedEachPass)->Arg(1'000'000);
 BENCHMARK(BM_QueryShuffled)->Arg(10'000)->Arg(100'000)->Arg(1'000'000);
 BENCHMARK(BM_GroupResortOnePercent)->Arg(10'000)->Arg(100'000);
 BENCHMARK(BM_GroupRepartitionOnePercent)->Arg(10'000)->Arg(100'000);

@@ -8,21 +8,14 @@
 #include <vector>
 
 #include "engine/ecs/registry.hpp"
+#include "tests/engine/ecs/owned_components.hpp"
 
 namespace aloha {
 namespace {
 
-// Each component remembers its owner, so a component reached through the wrong slot shows.
-struct Owned {
-    uint64_t owner = 0;
-    int hits = 0;
-};
-struct Tagged {
-    uint64_t owner = 0;
-};
-struct Extra {
-    uint64_t owner = 0;
-};
+using test::Extra;
+using test::Owned;
+using test::Tagged;
 
 // (entity bits) -> visits, by the query, with every component checked against its owner.
 std::map<uint64_t, int> QueryVisits(Query<Owned, const Tagged>& q) {
@@ -39,20 +32,6 @@ std::map<uint64_t, int> ViewVisits(Registry& r) {
     std::map<uint64_t, int> seen;
     r.view<Owned, const Tagged>().each([&](Entity e, Owned&, const Tagged&) { ++seen[e.bits()]; });
     return seen;
-}
-
-// Creates `n` entities, each with Owned and those whose creation index passes `tagged` with Tagged too;
-// returns them in creation order.
-template <class Tagged_>
-std::vector<Entity> Populate(Registry& r, int n, Tagged_ tagged) {
-    std::vector<Entity> es;
-    for (int i = 0; i < n; ++i) {
-        const Entity e = r.create();
-        es.push_back(e);
-        r.emplace<Owned>(e, Owned{e.bits(), 0});
-        if (tagged(i)) r.emplace<Tagged>(e, e.bits());
-    }
-    return es;
 }
 
 TEST(Query, MatchesTheViewUnderRandomStructuralChanges) {
@@ -93,7 +72,7 @@ TEST(Query, MatchesTheViewUnderRandomStructuralChanges) {
 
 TEST(Query, RebuildsOnlyAfterALayoutChange) {
     Registry r;
-    const std::vector<Entity> es = Populate(r, 100, [](int i) { return i % 3 == 0; });
+    const std::vector<Entity> es = test::PopulateOwned(r, 100, [](int i) { return i % 3 == 0; });
     auto q = r.query<Owned, const Tagged>();
     EXPECT_EQ(q.count(), 34u);
     EXPECT_EQ(q.rebuilds(), 1u);
@@ -122,7 +101,7 @@ TEST(Query, RebuildsOnlyAfterALayoutChange) {
 
 TEST(Query, FollowsAnOwningGroupsReordering) {
     Registry r;
-    Populate(r, 300, [](int i) { return i % 2 == 0; });
+    test::PopulateOwned(r, 300, [](int i) { return i % 2 == 0; });
     auto q = r.query<Owned, const Tagged>();
     EXPECT_EQ(QueryVisits(q), ViewVisits(r));
     // The group packs both storages (moving entities), then sorting by key moves them again.
@@ -141,7 +120,7 @@ TEST(Query, WritesReachEachEntitysOwnComponent) {
     // Mixed layout: the first 200 entities have both components at the same positions (kept as a
     // range), then Tagged is added in reverse order for the next 200 (table entries).
     Registry r;
-    const std::vector<Entity> es = Populate(r, 400, [](int i) { return i < 200; });
+    const std::vector<Entity> es = test::PopulateOwned(r, 400, [](int i) { return i < 200; });
     for (int i = 399; i >= 200; --i) r.emplace<Tagged>(es[size_t(i)], es[size_t(i)].bits());
     auto q = r.query<Owned, const Tagged>();
     for (int round = 0; round < 3; ++round) {
