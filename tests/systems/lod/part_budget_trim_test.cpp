@@ -96,7 +96,9 @@ TEST(PartBudgetTrim, ALargeChangeIsStillAnsweredAtOnce) {
     const int fast = frames_to_reconverge(0.0f), trimmed = frames_to_reconverge(0.02f);
     std::printf("back within 10%% after %d frames (fast only) and %d (trimmed)\n", fast + 1, trimmed + 1);
     ASSERT_LT(fast, 60);
-    // Trimmed: the fast steps bring it inside the reaction band; what is left inside it the trim closes.
+    // Trimmed: the fast steps bring it inside the reaction band; what is left inside it the trim closes,
+    // starting from the fast average (the slow one restarts there). The 30 frames of slack are a
+    // regression guard (half a second), not derived: measured 23 frames against 25.
     EXPECT_LE(trimmed, fast + 30);
 }
 
