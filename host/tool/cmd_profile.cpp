@@ -373,6 +373,7 @@ int run_profile(const CliOptions& options) {
                   << fmt(double(a.texture_bytes) / 1048576.0) << " MiB with mips\n";
     std::cout << lod_summary(report);
     if (motion) std::cout << motion->table(table);
+    if (fidelity) std::cout << fidelity_summary(report["fidelity"]);
     std::cout << "state hash " << state_hash(world) << "; reports in " << out << "/\n";
     return 0;
 }

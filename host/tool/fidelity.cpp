@@ -1,11 +1,14 @@
 #include "host/scene/world_diagnostics.hpp"
 #include "host/tool/fidelity.hpp"
 
+#include "host/tool/pop_statistics.hpp"
 #include "host/tool/session.hpp"
 #include "host/tool/stats.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <cstdio>
 #include <span>
 
 namespace aloha::tool {
@@ -51,8 +54,10 @@ void change_map(const gpu::Rgba8Image& a, const gpu::Rgba8Image& b, std::vector<
 // The switch frame's change attributed to each kind of switch (SwitchPairChange): the union of the
 // rectangles of that kind's characters, read in this frame's and the previous frame's change maps.
 // `stamp` is scratch (one entry per pixel) marking the pixels already counted for a kind.
+// `history` holds the change maps of the frames before, most recent first (history[0]: the frame before).
 std::vector<SwitchPairChange> pair_changes(std::span<const SwitchRect> rects, uint32_t width, const std::vector<uint16_t>& now,
-                                           const std::vector<uint16_t>& before, std::vector<uint32_t>& stamp, uint32_t& stamp_id) {
+                                           const std::deque<std::vector<uint16_t>>& history, std::vector<uint32_t>& stamp,
+                                           uint32_t& stamp_id) {
     std::vector<SwitchPairChange> out;
     if (now.empty() || width == 0) return out;
     stamp.resize(now.size(), 0);
@@ -66,7 +71,8 @@ std::vector<SwitchPairChange> pair_changes(std::span<const SwitchRect> rects, ui
         pc.from = from;
         pc.to = to;
         const uint32_t id = ++stamp_id;
-        double sum = 0.0, sum_before = 0.0;
+        double sum = 0.0;
+        std::vector<double> sum_history(history.size(), 0.0);
         for (const SwitchRect& r : rects) {
             if (r.from != from || r.to != to) continue;
             if (pc.characters++ == 0) pc.x0 = r.x0, pc.y0 = r.y0, pc.x1 = r.x1, pc.y1 = r.y1;
@@ -77,11 +83,13 @@ std::vector<SwitchPairChange> pair_changes(std::span<const SwitchRect> rects, ui
                     if (p >= now.size() || stamp[p] == id) continue;
                     stamp[p] = id;
                     sum += now[p];
-                    if (p < before.size()) sum_before += before[p];
+                    for (size_t h = 0; h < history.size(); ++h)
+                        if (p < history[h].size()) sum_history[h] += history[h][p];
                 }
         }
         pc.change = sum * scale;
-        pc.change_before = sum_before * scale;
+        for (const double h : sum_history) pc.history.push_back(h * scale);
+        pc.change_before = pc.history.empty() ? 0.0 : pc.history.front();
         out.push_back(pc);
     }
     return out;
@@ -125,9 +133,13 @@ public:
         out.psnr_db = psnr(lod.value(), reference.value());
         out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(lod.value(), previous_);
         out.switches = frame_.switches;
-        change_before_.swap(change_now_);
         change_map(lod.value(), previous_, change_now_);
-        if (out.switches > 0) out.by_pair = pair_changes(frame_.switch_rects, lod.value().width, change_now_, change_before_, stamp_, stamp_id_);
+        if (out.switches > 0) out.by_pair = pair_changes(frame_.switch_rects, lod.value().width, change_now_, history_, stamp_, stamp_id_);
+        if (!change_now_.empty()) {  // the first frame has no change map: no history yet
+            if (history_.size() == kPopHistoryFrames) history_.pop_back();
+            history_.push_front(std::move(change_now_));
+            change_now_ = {};
+        }
         previous_ = std::move(lod.value());
         return out;
     }
@@ -137,7 +149,8 @@ private:
     gpu::OffscreenTarget reference_target_;
     ReferenceFrame frame_;
     gpu::Rgba8Image previous_;
-    std::vector<uint16_t> change_now_, change_before_;  ///< per-pixel change maps of this frame and the one before
+    std::vector<uint16_t> change_now_;                   ///< per-pixel change map of this frame
+    std::deque<std::vector<uint16_t>> history_;          ///< the maps of up to kPopHistoryFrames frames before, newest first
     std::vector<uint32_t> stamp_;                       ///< pair_changes' scratch
     uint32_t stamp_id_ = 0;
 };
@@ -202,6 +215,40 @@ nlohmann::json popping_by_kind(const std::vector<FidelityFrame>& frames, const s
     return j;
 }
 
+// The local pop test (pop_statistics.hpp) over every kind of switch on every switch frame: one event each,
+// its rectangles' change against theirs on up to kPopHistoryFrames frames before.
+// The events above their history are listed (frame, kind, change, the history's largest), at most 20.
+nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names) {
+    constexpr size_t kMinHistory = 4, kListed = 20;
+    auto name = [&](uint8_t l) { return l < names.size() ? names[l] : std::to_string(l); };
+    std::vector<LocalPopEvent> events;
+    nlohmann::json above = nlohmann::json::array();
+    for (size_t k = 0; k < frames.size(); ++k)
+        for (const SwitchPairChange& p : frames[k].by_pair) {
+            events.push_back({p.change, p.history});
+            const double largest = p.history.empty() ? 0.0 : *std::max_element(p.history.begin(), p.history.end());
+            if (p.history.size() >= kMinHistory && p.change > largest && above.size() < kListed)
+                above.push_back({{"frame", k}, {"from", name(p.from)}, {"to", name(p.to)}, {"characters", p.characters},
+                                 {"change", p.change}, {"history_max", largest}, {"rect_px", {p.x0, p.y0, p.x1, p.y1}}});
+        }
+    const LocalPopSummary s = local_pop_summary(events, kMinHistory);
+    return {{"history_frames", kPopHistoryFrames},
+            {"above_history_events", above},
+            {"min_history_frames", kMinHistory},
+            {"events", s.events},
+            {"invisible", s.invisible},
+            {"short_history", s.short_history},
+            {"above_history", s.above},
+            {"expected_above_without_pops", s.expected_above},
+            {"p_value", s.p_value},
+            {"worst_ratio_to_history_max", s.worst_ratio},
+            {"no_more_pops_than_chance", s.no_more_than_chance},
+            {"note", "One event per kind of switch per switch frame: the change inside its characters' rectangles against "
+                     "the same pixels' change on each of the frames before. Without pops the switch frame is the largest of "
+                     "h + 1 with probability 1 / (h + 1); p_value is the chance of at least above_history such events "
+                     "(Poisson-binomial). Events without change now or before (hidden, off-screen) are not tested."}};
+}
+
 }  // namespace
 
 nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& level_names) {
@@ -239,7 +286,8 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames, const s
                     {"ordinary_change_p95", ord.p95},
                     {"switch_change_max", sw.max},
                     {"switch_no_worse_than_ordinary_p95", sw.count == 0 || sw.max <= ord.p95},
-                    {"by_kind", popping_by_kind(frames, level_names)}};
+                    {"by_kind", popping_by_kind(frames, level_names)},
+                    {"local", local_popping(frames, level_names)}};
     const double overall_mean = mean.empty() ? 0.0 : summarize(mean).mean;
     j["target_mean_deviation_under_1px"] = overall_mean < 1.0;
     j["note"] = "Deviation compares each mesh-level character's displayed control surface with its level-0 control "
@@ -247,6 +295,23 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames, const s
                 "compare and count only in the PSNR, whose reference renders every visible character at the richest "
                 "layered level.";
     return j;
+}
+
+std::string fidelity_summary(const nlohmann::json& report) {
+    if (!report.contains("popping")) return {};
+    const nlohmann::json& p = report["popping"];
+    const nlohmann::json& l = p["local"];
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "fidelity: PSNR %.2f dB (min %.2f), mean deviation %.2f px; switch frames' largest change %.6f against the "
+                  "ordinary p95 %.6f (%s); local: %zu of %zu switches above their pixels' last changes, %.1f expected "
+                  "without pops, p = %.3f (%s)\n",
+                  report["psnr_db"]["mean"].get<double>(), report["psnr_db"]["min"].get<double>(),
+                  report["mean_deviation_px"]["mean"].get<double>(), p["switch_change_max"].get<double>(),
+                  p["ordinary_change_p95"].get<double>(), p["switch_no_worse_than_ordinary_p95"].get<bool>() ? "ok" : "OVER",
+                  l["above_history"].get<size_t>(), l["events"].get<size_t>(), l["expected_above_without_pops"].get<double>(),
+                  l["p_value"].get<double>(), l["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS");
+    return line;
 }
 
 }  // namespace aloha::tool

@@ -25,8 +25,12 @@ struct SwitchPairChange {
     uint32_t characters = 0;     ///< visible characters that made this switch this frame
     double change = 0;           ///< change inside their rectangles, this frame
     double change_before = 0;    ///< the same pixels' change on the frame before (0 on the first compared frame)
+    std::vector<double> history; ///< the same pixels' change on up to kPopHistoryFrames frames before, most recent first
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< the rectangle around those characters' rectangles (pixels)
 };
+
+/// How many frames before a switch its pixels' change is kept for the local pop test (pop_statistics.hpp).
+inline constexpr size_t kPopHistoryFrames = 8;
 
 /// One measured frame.
 struct FidelityFrame {
@@ -54,5 +58,8 @@ public:
 /// 95th percentile of ordinary frames, and the switch frames' change by kind of switch) and whether the
 /// targets hold. `level_names` name the geometric levels in the by-kind figures (indices when short).
 nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& level_names = {});
+
+/// Console lines for a fidelity_report(): PSNR, deviation, the whole-frame and the local popping figures.
+[[nodiscard]] std::string fidelity_summary(const nlohmann::json& report);
 
 }  // namespace aloha::tool
