@@ -21,6 +21,14 @@ double poisson_binomial_at_least(std::span<const double> p, size_t k) {
     return std::min(1.0, tail);
 }
 
+LocalPopEvent share_of_frame(const LocalPopEvent& raw, double frame_change, std::span<const double> history_frame_change) {
+    LocalPopEvent out;
+    out.change = frame_change > 0.0 ? raw.change / frame_change : 0.0;
+    for (size_t h = 0; h < raw.history.size() && h < history_frame_change.size(); ++h)
+        if (history_frame_change[h] > 0.0) out.history.push_back(raw.history[h] / history_frame_change[h]);
+    return out;
+}
+
 LocalPopSummary local_pop_summary(std::span<const LocalPopEvent> events, size_t min_history) {
     assert(min_history >= 1);
     LocalPopSummary s;

@@ -10,7 +10,8 @@
 // with probability 1 / (h + 1), so the count of switches above their history follows a Poisson-binomial law
 // with those probabilities; a count improbably high under it (one-sided p < 0.05) means the switches pop.
 // A trend rising over the history makes "above" likelier without a pop (the test then errs towards
-// reporting pops); a falling one the other way.
+// reporting pops); a falling one the other way, which share_of_frame() takes out where it is the whole
+// picture's.
 #pragma once
 
 #include <cstddef>
@@ -37,6 +38,14 @@ struct LocalPopSummary {
     double worst_ratio = 0;      ///< largest change / the largest of its history (tested switches with some history)
     bool no_more_than_chance = true;  ///< p_value >= 0.05
 };
+
+/// `raw` as shares of the whole frame's change: its change over `frame_change` (the switch frame's) and
+/// history[h] over history_frame_change[h] (the same frames' whole change, most recent first). A trend of
+/// the whole picture (a camera closing in, a crowd slowing down) scales every pixel's change together and
+/// would make "above its history" likelier (or rarer) with no pop; the shares cancel it, while a switch
+/// that adds change to its own pixels still raises their share. History frames without change are dropped;
+/// a switch frame without change gives an event without change (left out as invisible).
+[[nodiscard]] LocalPopEvent share_of_frame(const LocalPopEvent& raw, double frame_change, std::span<const double> history_frame_change);
 
 /// The local test over `events`; events with fewer than `min_history` (>= 1) frames of history are
 /// counted in short_history and not tested.

@@ -95,5 +95,41 @@ TEST(PopStatistics, ChangeOverAStillHistoryCountsAsAbove) {
     EXPECT_TRUE(s.no_more_than_chance);
 }
 
+// A camera closing in: every pixel's change grows 10% a frame. On the raw changes a switch that adds nothing
+// is above its 8-frame history most of the time; as shares of the whole frame's change, at chance.
+TEST(PopStatistics, SharesOfTheFrameCancelAWholePictureTrend) {
+    std::mt19937 rng(3);
+    std::lognormal_distribution<double> noise(0.0, 0.3);
+    std::vector<LocalPopEvent> raw, shares;
+    for (int i = 0; i < 400; ++i) {
+        // Frames 0..8: frame 8 is the switch frame; the switch's pixels hold a tenth of each frame's change.
+        std::vector<double> whole(9), local(9);
+        for (int f = 0; f < 9; ++f) {
+            whole[size_t(f)] = 0.01 * std::pow(1.1, f) * noise(rng);
+            local[size_t(f)] = 0.1 * whole[size_t(f)] * noise(rng);
+        }
+        LocalPopEvent e{local[8], {}};
+        std::vector<double> history_whole;
+        for (int h = 7; h >= 0; --h) e.history.push_back(local[size_t(h)]), history_whole.push_back(whole[size_t(h)]);
+        raw.push_back(e);
+        shares.push_back(share_of_frame(e, whole[8], history_whole));
+    }
+    const LocalPopSummary r = local_pop_summary(raw, 4), s = local_pop_summary(shares, 4);
+    EXPECT_LT(r.p_value, 1e-6);  // the trend alone looks like pops
+    const double sd = std::sqrt(400.0 * (1.0 / 9.0) * (8.0 / 9.0));
+    EXPECT_LE(std::abs(double(s.above) - s.expected_above), 4.0 * sd);
+    EXPECT_GT(s.p_value, 1e-4);
+}
+
+TEST(PopStatistics, ShareOfFrameDropsStillFrames) {
+    const LocalPopEvent e{0.02, {0.01, 0.03, 0.02}};
+    const LocalPopEvent s = share_of_frame(e, 0.1, std::vector<double>{0.05, 0.0, 0.1});
+    EXPECT_NEAR(s.change, 0.2, 1e-15);
+    ASSERT_EQ(s.history.size(), 2u);
+    EXPECT_NEAR(s.history[0], 0.2, 1e-15);
+    EXPECT_NEAR(s.history[1], 0.2, 1e-15);
+    EXPECT_EQ(share_of_frame(e, 0.0, std::vector<double>{0.05}).change, 0.0);
+}
+
 }  // namespace
 }  // namespace aloha::tool
