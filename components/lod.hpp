@@ -46,6 +46,7 @@ struct GeomLod {
     uint16_t theta_steps = 8;    ///< super-ellipsoid steps around (theta), the one tessellation parameter
     uint16_t phi_steps = 6;      ///< steps from pole to pole (phi)
     float geomorph_s = 0.0f;     ///< seconds to morph from the previous surface when this level is entered
+    float simplify_error = 0.0f; ///< SkinnedMesh: triangle list simplified within this fraction of the height (0: not)
 };
 
 /// How cyclic locomotion is produced at an animation level (from cheapest to richest).

@@ -66,9 +66,12 @@ struct Parser {
         r.renamed("geomorph_frames", "geomorph_s", lod_detail::kSecondsNotFrames);
         r.read("enter_after_s", d.enter_after_s, 0.0, 600.0);
         r.read("max_characters", d.max_characters, 0, 1.0e9);
+        r.read("simplify_error", d.simplify_error, 0.0, 0.25);
         r.reject_unknown_keys();
         if (d.method == GeomMethod::Subdivided && d.subdiv_level == 0)
             err(p + "/subdivision", "method 'subdivided' needs subdivision >= 1");
+        if (d.simplify_error > 0.0f && d.method != GeomMethod::SkinnedMesh)
+            err(p + "/simplify_error", "only a 'skinned_mesh' level can be simplified (the other methods build their own surfaces)");
         if (!d.name.empty() && table.find_geom_level(d.name) >= 0)
             err(p + "/name", "duplicate geometric level name '" + d.name + "'");
         table.geom_levels.push_back(std::move(d));

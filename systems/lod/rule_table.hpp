@@ -49,6 +49,7 @@ struct GeomLevelDef {
     uint8_t subdiv_level = 0;               ///< Catmull-Clark levels (Subdivided only)
     uint8_t layers = kLayerSkeleton;        ///< LayerBits
     float geomorph_s = 0.0f;                ///< morph seconds when this level is entered
+    float simplify_error = 0.0f;            ///< skinned_mesh: simplified triangles, error / height (0: the full list)
     float enter_after_s = 0.0f;             ///< seconds this level must be asked for without a break before
                                             ///< a character enters it (leaving it is not delayed)
     uint32_t max_characters = kNoCap;       ///< cap: at most this many characters here or richer
@@ -190,6 +191,7 @@ struct RuleTable {
         g.theta_steps = d.theta_steps;
         g.phi_steps = d.phi_steps;
         g.geomorph_s = d.geomorph_s;
+        g.simplify_error = d.simplify_error;
         return g;
     }
     /// The AnimLod marshalled for level `level` (clamped to the last level).

@@ -34,6 +34,7 @@ struct GeometryController::Level {
     const SubdivisionTopology* subdivision = nullptr;  ///< Subdivided
     SkinSurfaceKey display_key;                    ///< the displayed surface (mesh levels): geomorph correspondences
     std::span<const uint32_t> indices;             ///< the level's triangle list
+    std::vector<uint32_t> simplified_indices;      ///< SkinnedMesh with simplify_error: the list `indices` shows
     SkinEdges control_edges;                       ///< mesh levels: the control surface's edges (strain limiting)
     SkinEdges refined_edges;                       ///< Subdivided: the refined surface's edges
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)

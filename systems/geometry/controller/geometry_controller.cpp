@@ -5,6 +5,7 @@
 #include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/controller_level.hpp"
 #include "systems/geometry/controller/fat_regions.hpp"
+#include "systems/geometry/controller/simplified_indices.hpp"
 #include "systems/geometry/spring_skin/skin_mesh.hpp"
 
 #include <algorithm>
@@ -20,6 +21,7 @@ bool same_level_shape(const GeomLod& a, const GeomLod& b) {
         case GeomMethod::Impostor:
             return true;
         case GeomMethod::SkinnedMesh:
+            return a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps && a.simplify_error == b.simplify_error;
         case GeomMethod::Layered:
             return a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps;
         case GeomMethod::Subdivided:
@@ -142,6 +144,14 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
         level->indices = subdivision->triangles;
     } else if (level->mesh_level) {
         level->indices = real ? std::span<const uint32_t>(g.mesh().indices) : std::span<const uint32_t>(skin->indices);
+        if (lod.method == GeomMethod::SkinnedMesh && lod.simplify_error > 0.0f) {
+            // Fewer triangles over the same vertices (simplified_indices.hpp): the skinning, the UVs and a
+            // geomorph to or from the full list (same display_key: vertex by vertex) are unchanged.
+            const std::span<const glm::vec3> rest = real ? std::span<const glm::vec3>(g.mesh().positions)
+                                                         : std::span<const glm::vec3>(skin->rest_positions);
+            level->simplified_indices = simplify_indices(rest, level->indices, lod.simplify_error).indices;
+            level->indices = level->simplified_indices;
+        }
     }
     if (level->mesh_level) {
         set_surface_attributes(g, *level);

@@ -195,6 +195,15 @@ TEST(RuleParser, LevelFieldErrors) {
     EXPECT_TRUE(has_error(e, "/animation_levels/2/name", "duplicate animation level name 'kin'")) << join_errors(e);
 }
 
+TEST(RuleParser, SimplifyErrorOnlyOnSkinnedMeshAndInRange) {
+    json j = small_rules();
+    j["geometric_levels"][0]["simplify_error"] = 0.01;  // not a skinned_mesh level
+    j["geometric_levels"][1]["simplify_error"] = 0.5;   // above the 0.25 limit
+    const auto e = errors_of(j);
+    EXPECT_TRUE(has_error(e, "/geometric_levels/0/simplify_error", "only a 'skinned_mesh' level")) << join_errors(e);
+    EXPECT_TRUE(has_error(e, "/geometric_levels/1/simplify_error", "out of range")) << join_errors(e);
+}
+
 TEST(RuleParser, UnknownKeysAndTiersAreErrors) {
     json j = small_rules();
     j["hysteresis"]["min_frame"] = 3;
