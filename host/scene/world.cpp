@@ -277,6 +277,9 @@ Status World::spawn_characters() {
         registry_.emplace<MotionState>(e, ms);
         if (Status st = rt.queue_requests(scene_, i, c, id); !st.ok()) return st;
     }
+    type_first_.assign(types_.size(), 0);
+    for (size_t t = 1; t < types_.size(); ++t) type_first_[t] = type_first_[t - 1] + types_[t - 1]->count;
+    switch_records_.assign(chars.size(), SwitchRecord{});
     regroup();
     return {};
 }
@@ -338,6 +341,7 @@ void World::step() {
     geom_level_ns_.assign(rules_.table().geom_levels.size(), 0);
     anim_level_ns_.assign(rules_.table().anim_levels.size() * kAnimCostClasses, 0);
     switches_[0] = switches_[1] = 0;
+    switch_causes_ = SwitchCauseCounts{};
     refresh_type_views();
     scheduler_.run_frame(dt);
     last_cpu_ms_ = static_cast<double>(scheduler_.latest_ns_before(WorldPhase::Render)) * 1e-6;

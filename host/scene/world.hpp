@@ -25,6 +25,7 @@
 #include "systems/lod/occlusion.hpp"
 #include "systems/lod/rule_set.hpp"
 #include "systems/lod/stats.hpp"
+#include "systems/lod/switch_causes.hpp"
 #include "systems/lod/tier.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
@@ -145,6 +146,8 @@ public:
     [[nodiscard]] double last_geometry_ms() const { return last_geometry_ms_; }
     /// Characters that switched geometric [0] / animation [1] level in the last frame.
     [[nodiscard]] std::array<uint32_t, 2> last_level_switches() const { return {switches_[0], switches_[1]}; }
+    /// The last frame's level switches by cause (the rules or the budget's edits; SwitchCauseJob).
+    [[nodiscard]] const SwitchCauseCounts& last_switch_causes() const { return switch_causes_; }
     /// The frame budget's mode, settings and state.
     [[nodiscard]] BudgetStatus budget_status() const { return budget_.status(); }
     /// The hardware tier the rules are evaluated at, and why.
@@ -221,6 +224,10 @@ private:
     std::vector<double> anim_level_ms_;              ///< the last frame's, ms (what the animation budget learns from)
     std::vector<uint8_t> walking_;                   ///< each character's animation cost class (1: walking), for the budget
     uint32_t switches_[2] = {0, 0};
+    SwitchCauseCounts switch_causes_;                ///< this frame's switches by cause
+    std::vector<SwitchRecord> switch_records_;       ///< per character (spawn index): its last switches' demotions
+    std::vector<uint32_t> switch_keys_;              ///< this frame's changed characters' spawn indices (scratch)
+    std::vector<uint32_t> type_first_;               ///< spawn index of each type's first character
     uint32_t applied_rules_generation_ = 0;          ///< RuleSet::generation() whose settings are in force
     int motion_system_ = -1, muscle_system_ = -1, skin_system_ = -1;
     double last_animation_ms_ = 0.0, last_geometry_ms_ = 0.0;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <type_traits>
 
@@ -214,6 +215,23 @@ void World::register_systems() {
             changed += block_out[k][0];
             switches_[0] += block_out[k][1];
             switches_[1] += block_out[k][2];
+        }
+        // Why they switched (the rules or the budget's edits): a profiling count, O(switches).
+        if (!first_frame_ && options_.lod && changed > 0) {
+            const auto refs = a.read<CharacterRef>();
+            switch_keys_.resize(changed);
+            for (size_t c = 0; c < changed; ++c) switch_keys_[c] = type_first_[refs[changed_[c]].type] + refs[changed_[c]].id;
+            SwitchCauseJob causes;
+            causes.table = &table;
+            causes.requests = a.read<LodRequest>();
+            causes.states = states;
+            causes.changed = std::span<const uint32_t>(changed_.data(), changed);
+            causes.keys = switch_keys_;
+            causes.records = switch_records_;
+            causes.frame = frame_;
+            causes.undo_frames = dt > 0.0f ? static_cast<uint64_t>(std::lround(1.0f / dt)) : 60;  // one second
+            causes.out = &switch_causes_;
+            if (causes.Validate()) causes.Run();
         }
         // Marshal level switches to the geometric controllers (geomorph from the old surface).
         apply_level_switches(geometry_types_, a.read<CharacterRef>(), states, a.read<GeomLod>(),

@@ -18,6 +18,7 @@ LodSample sample_lod(const World& world) {
     const auto switches = world.last_level_switches();
     s.geom_switches = switches[0];
     s.anim_switches = switches[1];
+    s.causes = world.last_switch_causes();
     s.cpu_ms = world.last_cpu_ms();
     s.visible = world.lod_stats().visible;
     s.occluded = world.lod_stats().occluded;
@@ -86,6 +87,33 @@ nlohmann::json part_json(const std::vector<double>& v, size_t from, double dt, c
 
 }  // namespace
 
+nlohmann::json switch_cause_report(std::span<const LodSample> samples, double dt) {
+    const double seconds = double(samples.size()) * dt;
+    const size_t window = dt > 0 ? std::max<size_t>(1, size_t(std::lround(1.0 / dt))) : 1;
+    nlohmann::json out = nlohmann::json::object();
+    const char* kinds[2] = {"geometric", "animation"};
+    for (size_t k = 0; k < 2; ++k) {
+        SwitchCauseCounts sum;
+        double net = 0, swapped = 0, down = 0, up = 0;
+        for (size_t i = 0; i < samples.size(); ++i) {
+            sum.add(samples[i].causes);
+            down += samples[i].causes.budget_down[k], up += samples[i].causes.budget_up[k];
+            if ((i + 1) % window == 0 || i + 1 == samples.size()) {
+                net += std::fabs(down - up), swapped += 2.0 * std::min(down, up);
+                down = up = 0;
+            }
+        }
+        auto per_s = [&](double x) { return seconds > 0 ? x / seconds : 0.0; };
+        out[kinds[k]] = {{"rules", per_s(sum.rules[k])},
+                         {"budget_demotions", per_s(sum.budget_down[k])},
+                         {"budget_promotions", per_s(sum.budget_up[k])},
+                         {"budget_undone_within_1s", per_s(sum.undone[k])},
+                         {"budget_net_per_1s_window", per_s(net)},
+                         {"budget_swapped_per_1s_window", per_s(swapped)}};
+    }
+    return out;
+}
+
 void add_lod_report(const World& world, const std::vector<LodSample>& samples, double dt, nlohmann::json& report) {
     const RuleTable& table = world.rules().table();
     const TierChoice& tier = world.tier();
@@ -119,7 +147,7 @@ void add_lod_report(const World& world, const std::vector<LodSample>& samples, d
     const char* mode = b.mode == BudgetStatus::Mode::Parts ? "parts" : b.mode == BudgetStatus::Mode::Total ? "total" : "off";
     nlohmann::json budget = {{"mode", mode}};
     if (b.mode == BudgetStatus::Mode::Total) budget["target_ms"] = b.params.target_ms;
-    if (b.mode == BudgetStatus::Mode::Parts) budget["trim_smoothing"] = b.params.trim_smoothing;
+    if (b.mode == BudgetStatus::Mode::Parts) budget["trim_smoothing"] = b.params.trim_smoothing, budget["dwell"] = b.params.dwell;
     budget["animation"] = part_json(anim, anim_from, dt, b.animation);
     budget["geometry"] = part_json(geom, geom_from, dt, b.geometry);
     budget["settled_from_frame"] = from < samples.size() ? nlohmann::json(from) : nlohmann::json(nullptr);
@@ -135,6 +163,8 @@ void add_lod_report(const World& world, const std::vector<LodSample>& samples, d
                                              {"animation", settled_anim / settled_seconds},
                                              {"seconds", settled_seconds}}
                             : nlohmann::json(nullptr);
+    report["level_change_causes_settled"] =
+        settled_seconds > 0 ? switch_cause_report(std::span<const LodSample>(samples).subspan(from), dt) : nlohmann::json(nullptr);
     report["occlusion"] = {{"enabled", world.options().occlusion},
                            {"fully_occluded_per_frame", samples.empty() ? 0.0 : double(occluded) / double(samples.size())},
                            {"visible_per_frame", samples.empty() ? 0.0 : double(visible) / double(samples.size())},
@@ -209,6 +239,13 @@ std::string lod_summary(const nlohmann::json& r) {
         o << "; settled (last " << st["seconds"].get<double>() << " s): geometric " << st["geometric"].get<double>()
           << ", animation " << st["animation"].get<double>();
     o << "\n";
+    if (const auto& c = r["level_change_causes_settled"]; !c.is_null() && b["mode"] != "off")
+        for (const char* kind : {"geometric", "animation"})
+            o << "  " << kind << " settled by cause: rules " << c[kind]["rules"].get<double>() << ", budget down "
+              << c[kind]["budget_demotions"].get<double>() << " / up " << c[kind]["budget_promotions"].get<double>()
+              << " (undone within 1 s " << c[kind]["budget_undone_within_1s"].get<double>() << "; per 1 s window net "
+              << c[kind]["budget_net_per_1s_window"].get<double>() << ", swapped " << c[kind]["budget_swapped_per_1s_window"].get<double>()
+              << ")\n";
     const auto& occ = r["occlusion"];
     if (occ["enabled"].get<bool>())
         o << "occlusion: " << occ["fully_occluded_per_frame"].get<double>() << " of " << occ["visible_per_frame"].get<double>()

@@ -20,6 +20,7 @@ struct LodSample {
     double geometry_ms = 0;       ///< the geometry part's measured time (muscle + spring_skin)
     uint32_t geom_switches = 0;   ///< characters that switched geometric level
     uint32_t anim_switches = 0;   ///< characters that switched animation level
+    SwitchCauseCounts causes;     ///< those switches by cause (the rules, the budget's demotions / promotions)
     double cpu_ms = 0;            ///< the CPU systems' time (what a single-total budget steers)
     uint32_t visible = 0;         ///< characters in the view frustum
     uint32_t occluded = 0;        ///< of those, fully occluded by the crowd
@@ -38,8 +39,15 @@ struct LodSample {
 /// measured frames (`dt` seconds each), added to `report`. Each active budget part gets its time over
 /// every measured frame and, under "settled", over the frames from where its controller settled
 /// (settled_from, 10% of the target); level changes per second are given over every measured frame
-/// and over the settled frames (from where every active controller had settled).
+/// and over the settled frames (from where every active controller had settled), the settled ones
+/// also by cause (level_change_causes_settled: switch_cause_report).
 void add_lod_report(const World& world, const std::vector<LodSample>& samples, double dt, nlohmann::json& report);
+
+/// Per second over `samples` (`dt` seconds each): switches by cause per kind (the rules; the budget's
+/// demotions, promotions, and those that undid the same character's last budget switch within a second),
+/// and the budget's switches split over windows of one second into net (|demotions - promotions|) and
+/// swapped (2 min(demotions, promotions)): characters traded at an unchanged count.
+[[nodiscard]] nlohmann::json switch_cause_report(std::span<const LodSample> samples, double dt);
 
 /// The geometric controllers' work counters (GeometryController::work) per geometric level, summed
 /// over the character types: counters only grow, so the work of a run is the difference of two reads.

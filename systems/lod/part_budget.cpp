@@ -22,6 +22,11 @@ float PartBudget::trim_band_ms() const {
     return std::max(part_.tolerance * part_.target_ms, 2.0f * smoothed_noise);
 }
 
+int PartBudget::dwell_updates() const {
+    if (!(common_.dwell > 0.0f) || !(common_.smoothing > 0.0f)) return 0;
+    return static_cast<int>(std::ceil(common_.dwell / common_.smoothing - 1e-4f));
+}
+
 int coarse_hold_updates(double step_ms, double band_ms, float smoothing) {
     // A step k bands coarse moves the smoothed time by k bands; after k of its time constants
     // (1 / smoothing updates each) what is left of it there is k e^-k bands, under one band for every
@@ -45,6 +50,7 @@ void PartBudget::reset() {
     noise_ = 0.0f;
     settle_left_ = 0;
     held_under_ = 0;
+    outside_ = 0;
     hold_demote_ = hold_promote_ = 0;
     held_demote_ms_ = held_promote_ms_ = 0.0;
     levels_ = 0;
@@ -125,6 +131,9 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     const double predicted = trimming ? trim_ + pending_ms : fast;
     const double band = trimming ? trim_band_ms() : band_ms();
     step.predicted_ms = static_cast<float>(predicted);
+    // Dwell: how long the prediction has been outside the band on one side, counted every update.
+    const int side = std::fabs(predicted - target) <= band ? 0 : predicted > target ? 1 : -1;
+    outside_ = side == 0 ? 0 : outside_ * side > 0 ? std::clamp(outside_ + side, -(1 << 24), 1 << 24) : side;  // no overflow
     if (settle_left_ > 0) {
         --settle_left_;
         return step;
@@ -133,6 +142,10 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
         held_under_ = 0;
         return step;
     }
+    // A burst shorter than the dwell is not answered: its end would undo the step. (Not even a large
+    // one: a burst of another process is often larger than any reaction band; a real change waits the
+    // dwell once.)
+    if (std::abs(outside_) < dwell_updates()) return step;
     const bool over = predicted > target;
     const double wanted = part_.gain * std::fabs(predicted - target);  // ms to save (over) or to spend (under)
     // A coarse step the other way is still being taken in (its hold): an error it could explain (its

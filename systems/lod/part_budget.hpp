@@ -50,6 +50,8 @@ namespace aloha {
 ///    widened the band (that promotion costed at the level it would really reach: a cap or the last
 ///    level may swallow it); else the part holds. After any coarse step no coarse step the other way
 ///    is taken for coarse_hold_updates(). Then it waits settle_frames.
+/// With BudgetParams::dwell > 0 a step waits until the prediction has been outside the band on the
+/// same side for dwell_updates() updates in a row (counted through the settle frames), however large.
 /// With BudgetParams::trim_smoothing > 0 a slow average steers steps 3 and after whenever the fast
 /// one is within target * (1 +- react_tolerance) (the fast one beyond it, restarting the slow one
 /// from itself): swings faster than the slow window are left alone, the mean is still held.
@@ -77,6 +79,9 @@ public:
     [[nodiscard]] float trim_band_ms() const;
     /// Slow (trim) average of the measured time (ms); negative before the first update.
     [[nodiscard]] float trim_ms() const { return trim_; }
+    /// Updates in a row the prediction must stay outside the band on one side before a step (dwell):
+    /// ceil(dwell / smoothing), 0 when off.
+    [[nodiscard]] int dwell_updates() const;
     /// The learned per-level costs.
     [[nodiscard]] const LevelCostModel& costs() const { return model_; }
     /// Forgets the smoothed time, the settle countdown and the learned costs.
@@ -102,6 +107,7 @@ private:
     float trim_ = -1.0f;                              // slow average (trim_smoothing), same adjustments as ema_
     float noise_ = 0.0f;
     int settle_left_ = 0;
+    int outside_ = 0;                                 // updates in a row the prediction was outside the band: > 0 over, < 0 under
     int held_under_ = 0;                              // updates in a row held under the band with only coarse promotions
     int hold_demote_ = 0;                             // updates left of a coarse promotion's hold on demotions
     int hold_promote_ = 0;                            // updates left of a coarse demotion's hold on promotions

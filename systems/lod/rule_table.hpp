@@ -102,6 +102,11 @@ struct BudgetParams {
     /// one trims the rest, so cost swings faster than its window (gait cycles, thread partition) are
     /// averaged out instead of chased with level changes.
     float trim_smoothing = 0.0f;
+    /// Parts: time constants of the smoothed time (1 / smoothing updates each) the prediction must stay
+    /// outside the band on one side before a step is taken (0 = off: at once), however large the error.
+    /// A burst of load shorter than this (another process took the core for a few frames) is not chased
+    /// with level changes that its end would undo; a real change is answered that much later.
+    float dwell = 0.0f;
     BudgetPartParams animation;  ///< the motion system's time
     BudgetPartParams geometry;   ///< the muscle + spring_skin systems' time
 

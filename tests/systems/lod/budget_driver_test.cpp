@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -39,11 +40,14 @@ TEST(BudgetDriver, TheFilesBudgetRunsWithoutOverrides) {
     EXPECT_EQ(t.budget->animation.max_demotion, 3);  // the section's default
     EXPECT_FLOAT_EQ(t.budget->trim_smoothing, 0.0f);  // trimming off unless the file turns it on
     EXPECT_FLOAT_EQ(t.budget->animation.react_tolerance, 0.25f);
+    EXPECT_FLOAT_EQ(t.budget->dwell, 0.0f);  // no dwell unless the file asks for one
     json trimmed = with_parts(1.5, 6.0);
     trimmed["budget"]["trim_smoothing"] = 0.02;
+    trimmed["budget"]["dwell"] = 1.5;
     trimmed["budget"]["animation"]["react_tolerance"] = 0.3;
     const RuleTable tt = must_parse(trimmed);
     EXPECT_FLOAT_EQ(tt.budget->trim_smoothing, 0.02f);
+    EXPECT_FLOAT_EQ(tt.budget->dwell, 1.5f);
     EXPECT_FLOAT_EQ(tt.budget->animation.react_tolerance, 0.3f);
     EXPECT_FLOAT_EQ(tt.budget->geometry.react_tolerance, 0.25f);
     LodBudget b;
@@ -178,6 +182,16 @@ TEST(BudgetDriver, BadBudgetSectionsAreRefusedWithTheirPath) {
     json trim = with_parts(1.0, 2.0);
     trim["budget"]["trim_smoothing"] = -0.1;
     EXPECT_NE(errors_of(trim).find("/budget/trim_smoothing"), std::string::npos);
+    // The dwell (time constants, 0-10): the file, the key's JSON path (as for every budget key) and the range.
+    for (double bad : {-0.5, 11.0}) {
+        json dwell = with_parts(1.0, 2.0);
+        dwell["budget"]["dwell"] = bad;
+        const std::string e = errors_of(dwell);
+        std::printf("%s\n", e.c_str());
+        EXPECT_NE(e.find("budget.json:"), std::string::npos) << e;
+        EXPECT_NE(e.find("/budget/dwell"), std::string::npos) << e;
+        EXPECT_NE(e.find("out of range [0.0, 10.0]"), std::string::npos) << e;
+    }
     json flag = with_parts(1.0, 2.0);
     flag["budget"]["enabled"] = "yes";
     EXPECT_NE(errors_of(flag).find("expected true or false"), std::string::npos);

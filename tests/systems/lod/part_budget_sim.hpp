@@ -36,6 +36,7 @@ struct BudgetSim {
     bool tell_classes = true;                   // with `walking`: the part is told each character's cost class
     double geom_truth = 0, anim_truth = 0;      // noise-free cost of the last frame
     double geom_ms = -1, anim_ms = -1;          // what the controllers are told
+    double load = 1.0;                          // the machine's slowdown: every measured time is the truth times this
     std::vector<double> geom_level_ms, anim_level_ms;
     std::vector<int> anim_steps, geom_steps;    // direction of every step, in order
 
@@ -84,8 +85,32 @@ struct BudgetSim {
         geom_ms = geom_truth * (1.0 + kNoise * (2.0 * rnd.next() - 1.0));
         anim_ms = anim_per_level ? std::accumulate(anim_level_ms.begin(), anim_level_ms.end(), 0.0)
                                  : anim_truth * (1.0 + kNoise * (2.0 * rnd.next() - 1.0));
+        geom_ms *= load, anim_ms *= load;
+        for (double& l : geom_level_ms) l *= load;
+        for (double& l : anim_level_ms) l *= load;
     }
 };
+
+/// The last frame (of 300) at which the true animation time was more than 10% off its target after a
+/// crowd of 500 doubled (-1: never), the target at 0.6 of the first crowd's full cost, the animation
+/// part settled 300 frames before, with `trim_smoothing` and `dwell` in its settings.
+inline int frames_to_reconverge(float trim_smoothing, float dwell = 0.0f) {
+    BudgetSim sim;
+    sim.add(500);
+    sim.frame();
+    const double target = 0.6 * sim.anim_truth;
+    sim.common.trim_smoothing = trim_smoothing;
+    sim.common.dwell = dwell;
+    sim.set_targets(target, 0.0);
+    for (int f = 0; f < 300; ++f) sim.frame();
+    sim.add(500);
+    int last_out = -1;
+    for (int f = 0; f < 300; ++f) {
+        sim.frame();
+        if (std::fabs(sim.anim_truth - target) > 0.1 * target) last_out = f;
+    }
+    return last_out;
+}
 
 /// How often consecutive steps changed direction.
 inline int direction_changes(const std::vector<int>& steps) {

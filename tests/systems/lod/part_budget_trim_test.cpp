@@ -77,23 +77,7 @@ TEST(PartBudgetTrim, SwingsFasterThanTheTrimWindowAreNotChased) {
 TEST(PartBudgetTrim, ALargeChangeIsStillAnsweredAtOnce) {
     // With trimming on, the crowd doubling (an error far beyond the reaction band) is answered from the
     // fast average: back within 10% about as soon as with the fast average alone.
-    auto frames_to_reconverge = [](float trim_smoothing) {
-        BudgetSim sim;
-        sim.add(500);
-        sim.frame();
-        const double target = 0.6 * sim.anim_truth;
-        sim.common.trim_smoothing = trim_smoothing;
-        sim.set_targets(target, 0.0);
-        for (int f = 0; f < 300; ++f) sim.frame();
-        sim.add(500);
-        int last_out = -1;
-        for (int f = 0; f < 300; ++f) {
-            sim.frame();
-            if (std::fabs(sim.anim_truth - target) > 0.1 * target) last_out = f;
-        }
-        return last_out;
-    };
-    const int fast = frames_to_reconverge(0.0f), trimmed = frames_to_reconverge(0.02f);
+    const int fast = lod_test::frames_to_reconverge(0.0f), trimmed = lod_test::frames_to_reconverge(0.02f);
     std::printf("back within 10%% after %d frames (fast only) and %d (trimmed)\n", fast + 1, trimmed + 1);
     ASSERT_LT(fast, 60);
     // Trimmed: the fast steps bring it inside the reaction band; what is left inside it the trim closes,
