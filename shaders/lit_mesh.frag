@@ -6,8 +6,9 @@
 // N is the flat face normal from screen-space derivatives of the world position. With offsets.w & 4 the
 // world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes).
 // Built again with DITHER (the dithered pipelines, gpu::LitPipelines): a screen-door fade keeps only the
-// pixels whose 4x4 Bayer value is below offsets.w >> 8 (0..16, gpu::lit_dither_bits), the complement of an
-// impostor faded at -m (shaders/impostor.frag) for the same m; the pipelines without it never discard.
+// pixels whose 4x4 Bayer value is below (offsets.w >> 8) & 31 (0..16, gpu::lit_dither_bits), the complement of an
+// impostor faded at -m (shaders/impostor.frag) for the same m, or with bit 13 the complement of those (the left
+// mesh of a mesh <-> mesh cross-fade); the pipelines without it never discard.
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -36,7 +37,8 @@ const uint kBayer[16] = uint[](0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9
 void main() {
 #ifdef DITHER
     ivec2 q = ivec2(gl_FragCoord.xy) & 3;
-    if (kBayer[q.y * 4 + q.x] >= ((pc.offsets.w >> 8) & 31u)) discard;
+    // Kept: Bayer value below the count in bits 8..12; bit 13 keeps the complement (the other mesh of a cross-fade).
+    if ((kBayer[q.y * 4 + q.x] < ((pc.offsets.w >> 8) & 31u)) == ((pc.offsets.w & 0x2000u) != 0u)) discard;
 #endif
     const vec3 world = v_world_v.xyz;
     vec3 n = (pc.offsets.w & 1u) != 0u ? normalize(cross(dFdx(world), dFdy(world))) : normalize(v_normal_u.xyz);

@@ -3,7 +3,8 @@
 // interpolated, times the base colour texture in textured mode (offsets.w & 2), clamped to [0, 1] as
 // shaders/lit_mesh.frag does. Two interpolants instead of three and no lighting per pixel: for characters
 // small on screen, where lavapipe's cost per triangle dominates (docs/PERFORMANCE.md). Built again with
-// DITHER: the screen-door fade of shaders/lit_mesh.frag (pixels whose 4x4 Bayer value is below offsets.w >> 8).
+// DITHER: the screen-door fade of shaders/lit_mesh.frag (pixels whose 4x4 Bayer value is below offsets.w >> 8,
+// or with bit 13 the others).
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -26,7 +27,8 @@ const uint kBayer[16] = uint[](0u, 8u, 2u, 10u, 12u, 4u, 14u, 6u, 3u, 11u, 1u, 9
 void main() {
 #ifdef DITHER
     ivec2 q = ivec2(gl_FragCoord.xy) & 3;
-    if (kBayer[q.y * 4 + q.x] >= ((pc.offsets.w >> 8) & 31u)) discard;
+    // Kept: Bayer value below the count in bits 8..12; bit 13 keeps the complement (the other mesh of a cross-fade).
+    if ((kBayer[q.y * 4 + q.x] < ((pc.offsets.w >> 8) & 31u)) == ((pc.offsets.w & 0x2000u) != 0u)) discard;
 #endif
     vec4 lit = v_lit;
     if ((pc.offsets.w & 2u) != 0u) lit *= texture(base_colour_texture, v_uv);

@@ -124,9 +124,10 @@ glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light, const LitLi
 }
 
 uint32_t lit_dither_bits(float share) {
+    const float s = share < 0.0f ? -share : share;
     uint32_t kept = 0;  // Bayer values b (0..15) whose threshold (b + 0.5) / 16 is below the share
-    for (uint32_t b = 0; b < 16; ++b) kept += (static_cast<float>(b) + 0.5f) / 16.0f < share ? 1u : 0u;
-    return kept << 8;
+    for (uint32_t b = 0; b < 16; ++b) kept += (static_cast<float>(b) + 0.5f) / 16.0f < s ? 1u : 0u;
+    return kept << 8 | (share < 0.0f ? kLitDitherComplement : 0u);
 }
 
 glm::mat4 vulkan_clip_from_gl() {

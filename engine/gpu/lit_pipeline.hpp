@@ -24,11 +24,15 @@ enum LitMode : uint32_t {
     kLitNormals = 4,       ///< per-pixel pipelines write 0.5 + 0.5 * the world normal instead of the lit colour
 };
 
-/// Bits 8..12 of LitPush::offsets.w for the dithered pipelines (LitPipelines::dithered): a mesh faded to
+/// Bits 8..13 of LitPush::offsets.w for the dithered pipelines (LitPipelines::dithered): a mesh faded to
 /// `share` in [0, 1] of its pixels keeps those whose 4x4 Bayer value b has (b + 0.5) / 16 < share, exactly
 /// the pixels an impostor faded at -share does not keep (shaders/impostor.frag), so the two cover each pixel
-/// once. The same float comparison as that shader, so the split is exact for every share.
+/// once. The same float comparison as that shader, so the split is exact for every share. A negative share
+/// keeps the complement of -share's pixels (kLitDitherComplement set): the other mesh of a mesh <-> mesh
+/// cross-fade, as the impostor's negative fade.
 [[nodiscard]] uint32_t lit_dither_bits(float share);
+/// Bit of LitPush::offsets.w that turns the dithered pipelines' kept pixels into their complement.
+inline constexpr uint32_t kLitDitherComplement = 1u << 13;
 
 /// Push constants shared by both pipelines (128 bytes, std430 layout of shaders/lit_mesh.vert).
 struct LitPush {

@@ -76,11 +76,11 @@ void World::mark_pose_use(SystemContext& ctx, std::span<const CharacterRef> refs
             }
         });
     }
-    // A character fading into the impostor level is still drawn at the level it left, posed every frame
-    // (GeometryController::update_fades): the few in a cross-fade, not a pass over the impostors.
+    // A character fading into the impostor level or between mesh levels is still drawn at the level it left,
+    // posed every frame (GeometryController::update_fades): the few in a cross-fade, not a pass over the impostors.
     for (const auto& rt : types_)
         for (const LevelFade& f : rt->geometry->fades())
-            if (f.into_impostor()) pose_use_[rt->element_of_character[f.character]] = static_cast<uint8_t>(PoseUse::EveryFrame);
+            if (f.keeps_left()) pose_use_[rt->element_of_character[f.character]] = static_cast<uint8_t>(PoseUse::EveryFrame);
 }
 
 void World::register_systems() {

@@ -39,7 +39,7 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
     // the rest drawn as its impostor (1: not fading, or no impostor to fade with).
     auto fade_in = [&](const DrawType& draw, const GeometryController& gc, uint16_t type, uint32_t e, uint32_t id) {
         const LevelFade* fade = settings.overlay ? nullptr : gc.fade(id);
-        if (!fade || fade->into_impostor() || !has_impostor(type)) return 1.0f;
+        if (!fade || fade->keeps_left() || !has_impostor(type)) return 1.0f;
         const float share = fade->drawn_share();
         out.impostors.push_back(impostor_instance(draw, type, e, f, share));
         ++out.drawn_twice;
@@ -82,9 +82,22 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
             }
             auto topology = this->topology(*renderer, r.type, draw, surface);
             if (!topology.ok()) return topology.error();
-            out.meshes.push_back({topology.value(), surface.positions, surface.normals, world,
-                                  character_colour(settings.colour, states[e], anims[e], false, textured(r.type)),
-                                  fade_in(draw, gc, r.type, e, id)});
+            const glm::vec4 colour = character_colour(settings.colour, states[e], anims[e], false, textured(r.type));
+            // Between two mesh levels: the level left, kept posed, shows the pixels the entered one does not.
+            const LevelFade* fade = gc.fade(id);
+            float share = 1.0f;
+            if (fade && fade->between_meshes) {
+                if (const SurfaceView left = gc.fade_surface(id); !left.positions.empty()) {
+                    auto left_topology = this->topology(*renderer, r.type, draw, left);
+                    if (!left_topology.ok()) return left_topology.error();
+                    share = fade->drawn_share();
+                    out.meshes.push_back({left_topology.value(), left.positions, left.normals, world, colour, -share});
+                    ++out.drawn_twice;
+                }
+            } else {
+                share = fade_in(draw, gc, r.type, e, id);
+            }
+            out.meshes.push_back({topology.value(), surface.positions, surface.normals, world, colour, share});
         }
     }
     // The fading proxies last, so the others stay one draw (CrowdRenderer: one per gap between fade runs).

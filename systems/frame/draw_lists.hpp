@@ -34,7 +34,7 @@ struct RenderLists {
     std::vector<LineSegment> lines;
     std::vector<ImpostorInstance> impostors;
     std::vector<ProxyFade> proxy_fades;  ///< runs of `proxies` drawn dithered (fading characters' boxes, at the end)
-    uint32_t drawn_twice = 0;             ///< characters drawn twice (impostor + proxy or mesh) in a cross-fade
+    uint32_t drawn_twice = 0;             ///< characters drawn twice (impostor + proxy or mesh, or two meshes) in a cross-fade
 };
 
 /// What the draw lists need of one character type.
@@ -75,7 +75,9 @@ public:
     /// a cross-fade (GeometryController::fade, LevelFade) with an impostor atlas for its type is drawn
     /// both as its impostor and at its drawn level (the entered one, or the one left: fade_surface /
     /// fade_proxy_boxes), with complementary dithers (DeformableMesh::dither, ProxyFade, the impostor's
-    /// forward_phase.w = -share); without overlays only.
+    /// forward_phase.w = -share); one between two mesh levels (LevelFade::between_meshes) is drawn at both,
+    /// the left level's kept surface with the complement of the entered one's dither (dither = -share);
+    /// without overlays only.
     /// Errors: the renderer refusing a topology, texture or material (the lists are then partial).
     Status gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
                   std::span<const Transform> transforms, std::span<const LodState> states,

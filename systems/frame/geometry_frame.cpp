@@ -38,7 +38,7 @@ void apply_level_switches(std::span<const GeometryType> types, std::span<const C
         GeometryController& gc = *types[refs[e].type].controller;
         const uint8_t old = gc.level_of(refs[e].id);
         if (old == states[e].geom_level) continue;  // animation level only
-        // A geomorph takes the entered level's time; a cross-fade (impostor <-> drawn level) shows both levels
+        // A geomorph takes the entered level's time; a cross-fade (impostor <-> drawn level, mesh <-> mesh) shows both levels
         // and hides the same difference whichever way the switch goes, so it takes the longer of the two
         // levels' times: a rigid proxy (geomorph_s 0: no surface to morph) fades with the impostor's.
         const float left_s = old == GeometryController::kNoLevel ? 0.0f : gc.level(old).geomorph_s;
@@ -108,7 +108,8 @@ void GeometryUpdateJob::RunSkin() const {
             t.controller->update_skin(r.level, ids.subspan(b, e - b), t.poses, dt, placed);
         });
     }
-    // Characters fading into the impostor level: the level they left, still drawn (a few per switch frame).
+    // Characters fading into the impostor level or another mesh level: the level they left, still drawn (a few
+    // per switch frame).
     for (const GeometryType& t : types)
         if (t.controller) t.controller->update_fades(t.poses, dt);
 }

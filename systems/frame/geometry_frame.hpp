@@ -32,9 +32,9 @@ using GeometryChunkRunner = std::function<void(size_t count, size_t grain, const
 /// controller's cross-fades advance a frame (GeometryController::advance_fades; call this once per frame);
 /// on the first frame every element enters its level (no morph); later, the elements listed in `changed`
 /// (the resolver's changed_indices, elements) whose geometric level moved begin it, geomorphing from the
-/// previous surface over transition_frames(geom.geomorph_s, dt) frames, or cross-fading into or out of an
-/// impostor level (LevelFade) over transition_frames of the longer of the left and entered levels'
-/// geomorph_s. types[refs[e].type] must exist.
+/// previous surface over transition_frames(geom.geomorph_s, dt) frames, and cross-fading into or out of an
+/// impostor level, or between mesh levels showing different surfaces (LevelFade), over transition_frames of
+/// the longer of the left and entered levels' geomorph_s. types[refs[e].type] must exist.
 void apply_level_switches(std::span<const GeometryType> types, std::span<const CharacterRef> refs,
                           std::span<const LodState> states, std::span<const GeomLod> geom,
                           std::span<const uint32_t> changed, bool first_frame, float dt);
@@ -61,8 +61,8 @@ struct GeometryUpdateJob {
     /// Skin stage: per range of a drawn level, the level's skin. Proxies and linear-blend skins depend
     /// on the pose alone, so only characters posed this frame, entering the level or morphing are
     /// updated; richer levels run every frame (the fat springs move). Then, serially, the surfaces of the
-    /// levels being cross-faded out of into an impostor level (GeometryController::update_fades; their
-    /// poses must be read every frame: PoseUse::EveryFrame). Requires Validate().
+    /// levels being cross-faded out of into an impostor or another mesh level (GeometryController::update_fades;
+    /// their poses must be read every frame: PoseUse::EveryFrame). Requires Validate().
     void RunSkin() const;
 };
 

@@ -110,7 +110,7 @@ bool CrowdRenderer::Validate(const FrameInput& frame, std::vector<std::string>* 
         if (m.normals.size() != m.positions.size())
             fail(where() + std::to_string(m.normals.size()) + " normals for " + std::to_string(m.positions.size()) +
                  " positions");
-        if (!(m.dither >= 0.0f && m.dither <= 1.0f)) fail(where() + "dither " + std::to_string(m.dither) + " is not in [0, 1]");
+        if (!(m.dither >= -1.0f && m.dither <= 1.0f)) fail(where() + "dither " + std::to_string(m.dither) + " is not in [-1, 1]");
     }
     uint64_t proxies_seen = 0;  // end of the last fade run
     for (size_t i = 0; i < frame.proxy_fades.size(); ++i) {

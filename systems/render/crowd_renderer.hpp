@@ -41,7 +41,8 @@ struct DeformableMesh {
     glm::vec4 colour{1.0f};                  ///< albedo (e.g. a debug palette colour)
     float dither = 1.0f;                     ///< share of its pixels drawn: 1 all (the usual pipelines); in [0, 1) a
                                              ///< screen-door fade (gpu::lit_dither_bits), the complement of an
-                                             ///< impostor with forward_phase.w = -dither (a cross-fade between them)
+                                             ///< impostor with forward_phase.w = -dither (a cross-fade between them);
+                                             ///< in [-1, 0) the complement of a mesh dithered at -dither (mesh <-> mesh)
 };
 
 /// One rigid proxy: the unit box [-0.5, 0.5]^3 transformed by `model` (see bone_box_matrix).

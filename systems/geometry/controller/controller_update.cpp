@@ -216,7 +216,7 @@ void GeometryController::update_fades(const PoseSource& poses, float dt) {
     std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region: filled for the first layered level
     bool tuned = false;
     for (const LevelFade& f : fades_) {
-        if (!f.into_impostor()) continue;  // out of the impostor: the entered level's own stages run it
+        if (!f.keeps_left()) continue;  // out of the impostor: the entered level's own stages run it
         Level& L = *levels_[f.from_level];
         const std::span<const glm::mat4> pose = poses.joints(f.character, J);
         L.work_characters.fetch_add(1, std::memory_order_relaxed);

@@ -276,12 +276,13 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
             to.store.frames_left(s)[0] = geomorph_frames;
             to.store.pending[s] = 1;
         }
-        // Into or out of the impostor level: a cross-fade (LevelFade); into it, the drawn level's slot stays
-        // while fading if it has been shown.
-        const bool into_impostor = to.lod.method == GeomMethod::Impostor;
-        if (fade_frames >= 2 && crossfades(old, level) && (!into_impostor || from.store.valid[os])) {
-            begin_fade(character, old, into_impostor ? os : LevelFade::kNoSlot, fade_frames);
-            if (!into_impostor) from.store.release(os);
+        // Into or out of the impostor level, or between mesh levels showing different surfaces: a cross-fade
+        // (LevelFade); into the impostor or a mesh level, the left level's slot stays while fading if it has been shown.
+        const bool between_meshes = mesh_crossfades(old, level);
+        const bool keep = to.lod.method == GeomMethod::Impostor || between_meshes;
+        if (fade_frames >= 2 && crossfades(old, level) && (!keep || from.store.valid[os])) {
+            begin_fade(character, old, keep ? os : LevelFade::kNoSlot, fade_frames, between_meshes);
+            if (!keep) from.store.release(os);
         } else {
             from.store.release(os);
         }

@@ -78,25 +78,31 @@ struct SurfaceView {
     std::span<const glm::vec3> normals;   ///< unit normals, same size
 };
 
-/// A cross-fade between an `impostor` level and a drawn level (rigid proxy or mesh), begun by
-/// GeometryController::begin_level for a switch of N >= 2 fade frames either way (apply_level_switches: the
-/// longer of the two levels' geomorph_s, so impostor <-> rigid proxy fades too): the switch frame
-/// and the N - 2 after it show the character at both levels with complementary screen-door dithers (frame
-/// k = 1 .. N - 1 of the switch gives the entered level k / N of the pixels, as a geomorph's frame k is k / N
-/// of the way), frame N the entered level alone. Leaving a drawn level for the impostor keeps that level's
-/// slot meanwhile (update_fades keeps it posed); entering one from the impostor needs nothing kept.
+/// A cross-fade between two levels, begun by GeometryController::begin_level for a switch of N >= 2 fade frames
+/// either way (apply_level_switches: the longer of the two levels' geomorph_s, so impostor <-> rigid proxy fades
+/// too): between an `impostor` level and a drawn level (rigid proxy or mesh), or between two mesh levels whose
+/// displayed surfaces differ (topology, or vertex- against pixel-lighting: skinned <-> layered / subdivided, two
+/// layered resolutions). The switch frame and the N - 2 after it show the character at both levels with
+/// complementary screen-door dithers (frame k = 1 .. N - 1 of the switch gives the entered level k / N of the
+/// pixels, as a geomorph's frame k is k / N of the way), frame N the entered level alone. Leaving a drawn level
+/// for the impostor, or a mesh level for another, keeps the left level's slot meanwhile (update_fades keeps it
+/// posed); entering a drawn level from the impostor needs nothing kept.
 struct LevelFade {
     static constexpr uint32_t kNoSlot = 0xFFFFFFFFu;  ///< kept_slot of a fade out of the impostor level
     uint32_t character = 0;       ///< the character (id in its type)
     uint8_t from_level = 0;       ///< the level it left
+    bool between_meshes = false;  ///< both levels are mesh levels (the left one kept; no impostor drawn)
     uint16_t frames_total = 0;    ///< N, the switch's fade frames (>= 2)
     uint16_t frames_left = 0;     ///< frames after this one that still show both (N - k on frame k), >= 1
-    uint32_t kept_slot = kNoSlot; ///< the left drawn level's slot, kept while fading into the impostor
+    uint32_t kept_slot = kNoSlot; ///< the left level's slot, kept while fading into the impostor or another mesh level
 
     /// True when the character is entering the impostor level (the drawn level is the one left).
-    [[nodiscard]] bool into_impostor() const { return kept_slot != kNoSlot; }
+    [[nodiscard]] bool into_impostor() const { return kept_slot != kNoSlot && !between_meshes; }
+    /// True when the left level's slot is kept (and posed by update_fades) during the fade.
+    [[nodiscard]] bool keeps_left() const { return kept_slot != kNoSlot; }
     /// Share of the character's pixels the drawn (proxy or mesh) side shows this frame, in (0, 1); the
-    /// impostor shows the rest (gpu::lit_dither_bits, ImpostorInstance::forward_phase.w = -share).
+    /// impostor shows the rest (gpu::lit_dither_bits, ImpostorInstance::forward_phase.w = -share). Between
+    /// meshes, the entered level's share; the left level shows the rest (DeformableMesh::dither = -share).
     [[nodiscard]] float drawn_share() const {
         const uint16_t entered = static_cast<uint16_t>(frames_total - frames_left);  // k: frames of the new level's share
         return static_cast<float>(into_impostor() ? frames_left : entered) / static_cast<float>(frames_total);
@@ -131,7 +137,8 @@ public:
     /// `character` enters `level`: takes a slot there, starts a geomorph of `geomorph_frames` frames
     /// from its old surface when both levels are mesh levels and the old surface has been shown,
     /// and releases the old slot. A switch into or out of an impostor level from or to a drawn level
-    /// cross-fades instead (LevelFade) over `fade_frames` frames when that is 2 or more. `previous_level`
+    /// cross-fades instead (LevelFade) over `fade_frames` frames when that is 2 or more; so does a switch
+    /// between mesh levels whose displayed surfaces differ, the old one shown (geomorph kept as well). `previous_level`
     /// is the caller's view of the old level (-1 on spawn); the controller's own record wins when they
     /// differ. Entering the current level again does nothing. Serial only. Requires level < level_count().
     void begin_level(uint32_t character, uint8_t level, int8_t previous_level, uint16_t geomorph_frames, uint16_t fade_frames);
@@ -149,12 +156,12 @@ public:
     }
     /// Every running cross-fade (order unspecified but deterministic).
     [[nodiscard]] std::span<const LevelFade> fades() const { return fades_; }
-    /// The kept slots of fades into the impostor level: the left level's surface (or proxy boxes) for each
-    /// character's pose in `poses` this frame, as update_muscles + update_skin would (fat springs not carried
-    /// with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) last step.
+    /// The kept slots of fades into the impostor level or between meshes: the left level's surface (or proxy
+    /// boxes) for each character's pose in `poses` this frame, as update_muscles + update_skin would (fat springs
+    /// not carried with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) last step.
     void update_fades(const PoseSource& poses, float dt);
-    /// The surface `character` shows at the level it is fading out of (a LevelFade into the impostor level
-    /// from a mesh level), as surface() would there; empty otherwise.
+    /// The surface `character` shows at the level it is fading out of (a LevelFade from a mesh level into the
+    /// impostor level or another mesh level), as surface() would there; empty otherwise.
     [[nodiscard]] SurfaceView fade_surface(uint32_t character) const;
     /// The proxy boxes of a character fading from a RigidProxy level into the impostor level; empty otherwise.
     [[nodiscard]] std::span<const glm::mat4> fade_proxy_boxes(uint32_t character) const;
@@ -271,7 +278,8 @@ private:
     void ensure_capacity(uint32_t character);
     [[nodiscard]] SurfaceView slot_surface(uint8_t level, uint32_t slot) const;
     [[nodiscard]] bool crossfades(uint8_t from, uint8_t to) const;
-    void begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames);
+    [[nodiscard]] bool mesh_crossfades(uint8_t from, uint8_t to) const;
+    void begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames, bool between_meshes);
     void end_fade(uint32_t character);
     void end_fades();
 

@@ -1,5 +1,5 @@
-// GeometryController's cross-fades between the impostor level and a drawn level (LevelFade): their
-// bookkeeping across frames and the surfaces of the levels being left. The per-frame update of the kept
+// GeometryController's cross-fades between the impostor level and a drawn level, and between two mesh levels
+// whose displayed surfaces differ (LevelFade): their bookkeeping across frames and the surfaces of the levels being left. The per-frame update of the kept
 // slots is with the other stages (controller_update.cpp).
 #include "systems/geometry/controller/controller_level.hpp"
 
@@ -17,14 +17,25 @@ bool drawn_method(GeomMethod m) {
 
 bool GeometryController::crossfades(uint8_t from, uint8_t to) const {
     const GeomMethod a = levels_[from]->lod.method, b = levels_[to]->lod.method;
-    return (a == GeomMethod::Impostor && drawn_method(b)) || (drawn_method(a) && b == GeomMethod::Impostor);
+    return (a == GeomMethod::Impostor && drawn_method(b)) || (drawn_method(a) && b == GeomMethod::Impostor) || mesh_crossfades(from, to);
 }
 
-void GeometryController::begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames) {
+bool GeometryController::mesh_crossfades(uint8_t from, uint8_t to) const {
+    // A geomorph slides the positions from the old surface, but a different displayed surface brings other
+    // triangles (texture, silhouette) and a skinned level is lit per vertex, the others per pixel: both
+    // change at once on the switch frame, so these switches cross-fade too (the geomorph still runs).
+    const Level& a = *levels_[from];
+    const Level& b = *levels_[to];
+    const bool vertex_lit_a = a.lod.method == GeomMethod::SkinnedMesh, vertex_lit_b = b.lod.method == GeomMethod::SkinnedMesh;
+    return a.mesh_level && b.mesh_level && (!(a.display_key == b.display_key) || vertex_lit_a != vertex_lit_b);
+}
+
+void GeometryController::begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames, bool between_meshes) {
     assert(frames >= 2 && fade_index_[character] == LevelFade::kNoSlot);
     LevelFade f;
     f.character = character;
     f.from_level = from;
+    f.between_meshes = between_meshes;
     f.frames_total = frames;
     f.frames_left = static_cast<uint16_t>(frames - 1);  // the switch frame is frame 1 of N
     f.kept_slot = old_slot;
@@ -62,7 +73,7 @@ void GeometryController::advance_fades() {
 
 SurfaceView GeometryController::fade_surface(uint32_t character) const {
     const LevelFade* f = fade(character);
-    return f && f->into_impostor() ? slot_surface(f->from_level, f->kept_slot) : SurfaceView{};
+    return f && f->keeps_left() ? slot_surface(f->from_level, f->kept_slot) : SurfaceView{};
 }
 
 std::span<const glm::mat4> GeometryController::fade_proxy_boxes(uint32_t character) const {

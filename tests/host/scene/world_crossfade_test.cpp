@@ -1,6 +1,7 @@
-// A character switching between the impostor level and a drawn level in a World with a renderer: the
-// switch is cross-faded over the longer of the two levels' geomorph frames (LevelFade), the draw lists holding the
-// character twice with complementary shares, and the level being left stays posed while it fades.
+// A character switching between the impostor level and a drawn level, or between the skinned level and a
+// layered one, in a World with a renderer: the switch is cross-faded over the longer of the two levels' geomorph
+// frames (LevelFade), the draw lists holding the character twice with complementary shares, and the level being
+// left stays posed while it fades.
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/offscreen_target.hpp"
 #include "host/scene/character_runtime.hpp"
@@ -20,7 +21,7 @@ namespace {
 const std::string kData = std::string(ALOHA_SOURCE_DIR) + "/data/";
 
 // Geometric levels of data/rules/default.json.
-constexpr uint8_t kLayeredLow = 2, kSkinned = 3, kProxy = 4, kImpostor = 5;
+constexpr uint8_t kLayeredHigh = 1, kLayeredLow = 2, kSkinned = 3, kProxy = 4, kImpostor = 5;
 
 struct Fixture {
     std::unique_ptr<gpu::Context> ctx;
@@ -219,6 +220,73 @@ TEST(WorldCrossFade, SwitchesIntoAndOutOfTheImpostorFadeOverTheGeomorphFrames) {
     w.step();
     EXPECT_EQ(drawn(w).drawn_twice, 0u);
     EXPECT_EQ(drawn(w).proxies, 0u);
+    EXPECT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
+    f.world.reset();
+    f.renderer.reset();
+    EXPECT_EQ(f.ctx->validation_message_count(), 0u);
+}
+
+// skinned -> layered_low (crowd_dense's popping switch under near_software), layered_low -> skinned and
+// skinned -> layered_high: both meshes drawn on frames 1 .. N - 1, the entered one at k / N and the left one at
+// -k / N (the complement), the left mesh the skinned level's skin of each frame's pose; at frame N the entered
+// mesh alone and the left level's slot dropped. N: the longer of the two levels' geomorph_s.
+TEST(WorldCrossFade, SkinnedAndLayeredSwitchesFadeBetweenTheTwoMeshesAndThenDropTheOldSurface) {
+    Fixture f;
+    if (!make(f)) return;
+    World& w = *f.world;
+    const GeometryController& gc = *w.runtime(0).geometry;
+    struct Case {
+        uint8_t from, to;
+    };
+    for (const Case sw : {Case{kSkinned, kLayeredLow}, Case{kLayeredLow, kSkinned}, Case{kSkinned, kLayeredHigh}}) {
+        SCOPED_TRACE("level " + std::to_string(sw.from) + " -> " + std::to_string(sw.to));
+        const uint16_t n = transition_frames(std::max(gc.level(sw.from).geomorph_s, gc.level(sw.to).geomorph_s), 0.0166667f);
+        ASSERT_EQ(n, sw.to == kLayeredHigh ? 10u : 8u);  // layered_high 0.167 s, layered_low 0.133 s, skinned 0.1 s
+        settle_at(w, sw.from);
+        ASSERT_EQ(gc.characters_at(sw.from), 1u);
+        ASSERT_TRUE(w.pin_geom_level(0, sw.to).ok());
+        std::vector<glm::vec3> reference;
+        for (uint16_t k = 1; k <= n; ++k) {
+            SCOPED_TRACE("frame " + std::to_string(k));
+            w.step();
+            ASSERT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
+            const RenderLists& l = w.render_lists();
+            EXPECT_TRUE(l.impostors.empty());
+            if (k == n) {  // the entered mesh alone; the left level's slot is gone
+                EXPECT_EQ(l.drawn_twice, 0u);
+                ASSERT_EQ(l.meshes.size(), 1u);
+                EXPECT_EQ(l.meshes[0].dither, 1.0f);
+                EXPECT_EQ(l.meshes[0].positions.size(), gc.vertices_per_character(sw.to));
+                EXPECT_EQ(gc.fade(0), nullptr);
+                EXPECT_EQ(gc.characters_at(sw.from), 0u);
+                EXPECT_TRUE(gc.fade_surface(0).positions.empty());
+                continue;
+            }
+            const float share = float(k) / float(n);
+            EXPECT_EQ(l.drawn_twice, 1u);
+            ASSERT_EQ(l.meshes.size(), 2u);
+            const DeformableMesh& entered = l.meshes[0].dither > 0.0f ? l.meshes[0] : l.meshes[1];
+            const DeformableMesh& left = l.meshes[0].dither > 0.0f ? l.meshes[1] : l.meshes[0];
+            EXPECT_EQ(entered.dither, share);
+            EXPECT_EQ(left.dither, -share);
+            EXPECT_NE(entered.topology, left.topology);
+            EXPECT_EQ(entered.positions.size(), gc.vertices_per_character(sw.to));
+            EXPECT_EQ(left.positions.size(), gc.vertices_per_character(sw.from));
+            EXPECT_EQ(gc.characters_at(sw.from), 1u);  // the kept slot
+            const SurfaceView kept = gc.fade_surface(0);
+            ASSERT_EQ(kept.level, sw.from);
+            EXPECT_EQ(kept.positions.data(), left.positions.data());
+            if (sw.from == kSkinned) {
+                // The left mesh is the skinned level's linear-blend skin of this frame's pose (the pose is evaluated
+                // every frame while fading), within float rounding.
+                gc.reference_surface(w.draw_types()[0].poses, 0, kSkinned, reference);
+                ASSERT_EQ(reference.size(), kept.positions.size());
+                float worst = 0.0f;
+                for (size_t i = 0; i < reference.size(); ++i) worst = std::max(worst, glm::length(reference[i] - kept.positions[i]));
+                EXPECT_LT(worst, 1e-5f);
+            }
+        }
+    }
     EXPECT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
     f.world.reset();
     f.renderer.reset();

@@ -116,13 +116,19 @@ TEST(GeometryFrame, AFadeTakesTheLongerLevelsTimeAndAGeomorphTheEnteredLevels) {
     ASSERT_NE(s.ctl.fade(0), nullptr);
     EXPECT_EQ(s.ctl.fade(0)->frames_total, 6u);
     for (int i = 0; i < 6; ++i) s.frame(kSkinned);
-    // skinned (0.1 s) -> layered (0.2 s) and back: geomorphs of the entered level's time, no fade.
+    // skinned (0.1 s) -> layered (0.2 s) and back: geomorphs of the entered level's time, and (a skinned level is
+    // lit per vertex, a layered one per pixel) mesh cross-fades of the longer one's, 12 frames both ways.
     s.frame(kLayered);
-    EXPECT_EQ(s.ctl.fade(0), nullptr);
+    ASSERT_NE(s.ctl.fade(0), nullptr);
+    EXPECT_TRUE(s.ctl.fade(0)->between_meshes);
+    EXPECT_EQ(s.ctl.fade(0)->frames_total, 12u);
     EXPECT_EQ(s.ctl.geomorph_frames_left(0), transition_frames(0.2f, kDt) - 1);  // frame 1 of 12 shown
     for (int i = 0; i < 12; ++i) s.frame(kLayered);
-    s.frame(kSkinned);
     EXPECT_EQ(s.ctl.fade(0), nullptr);
+    s.frame(kSkinned);
+    ASSERT_NE(s.ctl.fade(0), nullptr);
+    EXPECT_TRUE(s.ctl.fade(0)->between_meshes);
+    EXPECT_EQ(s.ctl.fade(0)->frames_total, 12u);  // the longer level's time, as every fade
     EXPECT_EQ(s.ctl.geomorph_frames_left(0), transition_frames(0.1f, kDt) - 1);  // 6, not the layered level's 12
 }
 

@@ -1,6 +1,7 @@
 // Cross-fades between an impostor and the same character drawn as a mesh or as proxy boxes
-// (DeformableMesh::dither, ProxyFade, ImpostorInstance::forward_phase.w = impostor_fade(share)): with both
-// drawn, every pixel comes from exactly one of them, chosen by the 4x4 Bayer pattern both shaders share.
+// (DeformableMesh::dither, ProxyFade, ImpostorInstance::forward_phase.w = impostor_fade(share)), and between
+// two meshes (one at dither share, the other at -share): with both drawn, every pixel comes from exactly one of
+// them, chosen by the 4x4 Bayer pattern the shaders share.
 #include "render_scene.hpp"
 
 #include "engine/gpu/lit_pipeline.hpp"
@@ -170,6 +171,63 @@ TEST_F(CrossFadeRender, EveryPixelComesFromTheMeshOrTheImpostorByTheSharedPatter
             if (share == 0.5f) {
                 EXPECT_NEAR(double(from_mesh) / double(overlap), 0.5, 8.0 * double(edge_blocks) / double(overlap));
             }
+        }
+    }
+}
+
+// Two meshes of one character cross-faded (a mesh <-> mesh level switch): the entered one at `share`, the left
+// one at -share (the complement). The left mesh is offset half a unit left and a little nearer the camera, so
+// the silhouettes differ and a pixel drawn by both would show the left mesh whatever the pattern says.
+TEST_F(CrossFadeRender, TwoMeshesAtComplementaryDithersCoverEachPixelOnce) {
+    if (!ctx_) GTEST_SKIP();
+    std::vector<glm::vec3> left_quad = quad_;
+    for (glm::vec3& p : left_quad) p += glm::vec3(-0.5f, 0.0f, 0.01f);
+    const glm::vec4 red(1.0f, 0.3f, 0.3f, 1.0f), blue(0.3f, 0.3f, 1.0f, 1.0f);
+    // entered: topologies_[e] at `share` (0: left out); left: topologies_[l] at `left_dither` (0: left out).
+    auto draw_two = [&](size_t e, size_t l, float share, float left_dither) {
+        std::vector<DeformableMesh> meshes;
+        if (share != 0.0f) meshes.push_back({topologies_[e], quad_, normals_, glm::mat4(1.0f), red, share});
+        if (left_dither != 0.0f) meshes.push_back({topologies_[l], left_quad, normals_, glm::mat4(1.0f), blue, left_dither});
+        FrameInput frame = frame_;
+        frame.meshes = meshes;
+        Result<gpu::Rgba8Image> out = test::draw_square(*renderer_, *ctx_, frame, kSize);
+        EXPECT_TRUE(out.ok()) << out.error().to_string();
+        return Pixels{out.ok() ? std::move(out).value() : gpu::Rgba8Image{}};
+    };
+    // Both ways between per-pixel and per-vertex lighting (a layered level and the skinned one).
+    for (const auto& [e, l] : {std::pair<size_t, size_t>{0, 1}, std::pair<size_t, size_t>{1, 0}}) {
+        SCOPED_TRACE("entered lit per " + std::string(e == 0 ? "pixel" : "vertex"));
+        const Pixels entered = draw_two(e, l, 1.0f, 0.0f), left = draw_two(e, l, 0.0f, 1.0f);
+        ASSERT_EQ(entered.image.width, kSize);
+        // The end points: the left mesh at -1 keeps no pixel, so share 1 is the entered frame bit for bit.
+        EXPECT_EQ(draw_two(e, l, 1.0f, -1.0f).image.pixels, entered.image.pixels);
+        for (const float share : {0.5f, 1.0f / 6.0f, 5.0f / 6.0f, 0.125f, 0.875f, 0.3f}) {
+            SCOPED_TRACE("share " + std::to_string(share));
+            const Pixels both = draw_two(e, l, share, -share);
+            uint32_t kept = 0;
+            for (uint32_t b = 0; b < 16; ++b) kept += (float(b) + 0.5f) / 16.0f < share ? 1u : 0u;
+            EXPECT_EQ(gpu::lit_dither_bits(-share), kept << 8 | gpu::kLitDitherComplement);
+            size_t wrong = 0, overlap = 0, from_entered = 0, holes = 0;
+            for (uint32_t y = 0; y < kSize; ++y)
+                for (uint32_t x = 0; x < kSize; ++x) {
+                    const bool entered_side = kBayer[(y & 3) * 4 + (x & 3)] < kept;
+                    // Exactly the pattern's choice of the two pure frames' pixel (background where that mesh is absent).
+                    if (!same(both.at(x, y), entered_side ? entered.at(x, y) : left.at(x, y))) ++wrong;
+                    const bool a = entered.covered(x, y), b = left.covered(x, y);
+                    if (a && b) {
+                        ++overlap;
+                        from_entered += entered_side;
+                        holes += !both.covered(x, y);  // both silhouettes cover it: never empty
+                    }
+                }
+            EXPECT_EQ(wrong, 0u);
+            EXPECT_EQ(holes, 0u);
+            ASSERT_GT(overlap, 500u);
+            // In the overlap each 4x4 block gives the entered mesh `kept` of its 16 pixels; the overlap is a
+            // rectangle whose blocks the edge crosses give at most max(kept, 16 - kept) per block off c * kept / 16,
+            // and it spans at most 2 * (24 + 24) such blocks in a 96-pixel square (24 blocks a side).
+            const double expected = double(overlap) * kept / 16.0;
+            EXPECT_LE(std::abs(double(from_entered) - expected), double(std::max(kept, 16u - kept)) * 96.0);
         }
     }
 }

@@ -1,5 +1,6 @@
-// Cross-fades between the impostor level and a drawn level (LevelFade): their frames and shares, the slot
-// of the level left kept and posed while fading into the impostor, and every way a fade ends.
+// Cross-fades between the impostor level and a drawn level, and between mesh levels showing different
+// surfaces (LevelFade): their frames and shares, the slot of the level left kept and posed while fading into
+// the impostor or the other mesh level, and every way a fade ends.
 #include "tests/systems/geometry/controller/test_humanoid.hpp"
 
 #include <gtest/gtest.h>
@@ -11,7 +12,7 @@ namespace {
 
 using test::humanoid;
 
-constexpr uint8_t kLayered = 2, kSkinned = 3, kProxy = 4, kHidden = 5, kImpostor = 6;
+constexpr uint8_t kSubdivided = 0, kLayeredHigh = 1, kLayered = 2, kSkinned = 3, kProxy = 4, kHidden = 5, kImpostor = 6;
 
 // test_levels() (0 Subdivided .. 5 Hidden) and an impostor level last.
 std::vector<GeomLod> levels_with_impostor() {
@@ -115,6 +116,73 @@ TEST(LevelFades, ProxyBoxesAndLayeredSkinsFadeOutPosed) {
     EXPECT_EQ(ctl.characters_at(kLayered), 1u);
 }
 
+// skinned <-> layered (the default rules' skinned -> layered_low of crowd_dense) and layered -> subdivided: the
+// left mesh stays posed and shown beside the entered one, the entered level's share k / N, its geomorph kept,
+// and at frame N the left level's slot is dropped.
+TEST(LevelFades, BetweenMeshLevelsTheLeftSurfaceStaysPosedAndIsDroppedAtTheEnd) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, levels_with_impostor(), 2);
+    struct Case {
+        uint8_t from, to;
+    };
+    size_t key = 400;
+    for (const Case sw : {Case{kSkinned, kLayeredHigh}, Case{kLayeredHigh, kSkinned}, Case{kLayered, kSubdivided}}) {
+        SCOPED_TRACE("level " + std::to_string(sw.from) + " -> " + std::to_string(sw.to));
+        // Character 1 stays at the left level as the witness of what the fading character's left mesh must show.
+        for (const uint32_t c : {0u, 1u}) ctl.begin_level(c, sw.from, -1, 0);
+        const uint32_t both[2] = {0, 1}, fading[1] = {0}, witness[1] = {1};
+        auto pose = test::clip_pose(g.skeleton(), humanoid().clip, key++);
+        ctl.update(sw.from, both, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+        constexpr uint16_t N = 8, M = 5;  // fade frames (the longer level's) and the entered level's geomorph frames
+        ctl.begin_level(0, sw.to, sw.from, M, N);
+        ASSERT_NE(ctl.fade(0), nullptr);
+        EXPECT_TRUE(ctl.fade(0)->between_meshes);
+        EXPECT_TRUE(ctl.fade(0)->keeps_left());
+        EXPECT_FALSE(ctl.fade(0)->into_impostor());
+        EXPECT_EQ(ctl.characters_at(sw.from), 2u);  // the witness and the kept slot
+        for (uint16_t k = 1; k < N; ++k) {
+            SCOPED_TRACE("frame " + std::to_string(k));
+            if (k > 1) ctl.advance_fades();
+            ASSERT_NE(ctl.fade(0), nullptr);
+            EXPECT_EQ(ctl.fade(0)->drawn_share(), float(k) / float(N));  // the entered level's; the left shows the rest
+            pose = test::clip_pose(g.skeleton(), humanoid().clip, key++);
+            ctl.update(sw.to, fading, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+            ctl.update(sw.from, witness, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+            ctl.update_fades(PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+            EXPECT_EQ(ctl.geomorph_frames_left(0), k < M ? M - k : 0);  // the geomorph runs beside the fade
+            const SurfaceView kept = ctl.fade_surface(0), entered = ctl.surface(0);
+            EXPECT_EQ(kept.level, sw.from);
+            EXPECT_EQ(kept.topology_key, ctl.topology_key(sw.from));
+            EXPECT_EQ(entered.level, sw.to);
+            EXPECT_EQ(entered.positions.size(), ctl.vertices_per_character(sw.to));
+            EXPECT_EQ(kept.positions.size(), ctl.vertices_per_character(sw.from));
+            // The witness's surface bit for bit: the same skin (linear blend, or muscles, fat springs from the same
+            // state and skin, no placement for either) of the same poses: the mesh fading out walks on.
+            EXPECT_EQ(copy(kept.positions), copy(ctl.surface(1).positions));
+            EXPECT_EQ(copy(kept.normals), copy(ctl.surface(1).normals));
+        }
+        ctl.advance_fades();  // frame N: the entered level alone, the kept slot released
+        EXPECT_EQ(ctl.fade(0), nullptr);
+        EXPECT_EQ(ctl.characters_at(sw.from), 1u);
+        EXPECT_TRUE(ctl.fade_surface(0).positions.empty());
+        ctl.end_character(0);
+        ctl.end_character(1);
+    }
+    // Two mesh levels showing the same surface alike (a level and its copy): a geomorph alone, no fade.
+    std::vector<GeomLod> levels = levels_with_impostor();
+    levels.push_back(levels[kLayered]);
+    levels.back().level = static_cast<uint8_t>(levels.size() - 1);
+    GeometryController same(g, levels, 1);
+    same.begin_level(0, kLayered, -1, 0);
+    const uint32_t one[1] = {0};
+    const auto pose = test::clip_pose(g.skeleton(), humanoid().clip, 60);
+    same.update(kLayered, one, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    same.begin_level(0, static_cast<uint8_t>(levels.size() - 1), kLayered, 6);
+    EXPECT_EQ(same.fade(0), nullptr);
+    EXPECT_EQ(same.geomorph_frames_left(0), 6u);
+}
+
 TEST(LevelFades, OnlyImpostorSwitchesOfTwoFramesOrMoreFadeAndEveryEndReleasesTheKeptSlot) {
     ASSERT_NE(humanoid().geometry, nullptr);
     const CharacterGeometry& g = *humanoid().geometry;
@@ -131,9 +199,11 @@ TEST(LevelFades, OnlyImpostorSwitchesOfTwoFramesOrMoreFadeAndEveryEndReleasesThe
     ctl.begin_level(0, kSkinned, kImpostor, 1);
     EXPECT_EQ(ctl.fade(0), nullptr);
     show(kSkinned);
-    // Between drawn levels a geomorph, not a fade; to or from hidden nothing.
+    // Between mesh levels showing different surfaces a fade too (skinned 8x6 -> layered 8x6: the same vertices,
+    // lit per vertex against per pixel); to or from hidden nothing.
     ctl.begin_level(0, kLayered, kSkinned, 6);
-    EXPECT_EQ(ctl.fade(0), nullptr);
+    ASSERT_NE(ctl.fade(0), nullptr);
+    EXPECT_TRUE(ctl.fade(0)->between_meshes);
     show(kLayered);
     ctl.begin_level(0, kHidden, kLayered, 6);
     EXPECT_EQ(ctl.fade(0), nullptr);
