@@ -92,11 +92,11 @@ nlohmann::json switch_cause_report(std::span<const LodSample> samples, double dt
     const size_t window = dt > 0 ? std::max<size_t>(1, size_t(std::lround(1.0 / dt))) : 1;
     nlohmann::json out = nlohmann::json::object();
     const char* kinds[2] = {"geometric", "animation"};
+    SwitchCauseCounts sum;
+    for (const LodSample& s : samples) sum.add(s.causes);
     for (size_t k = 0; k < 2; ++k) {
-        SwitchCauseCounts sum;
         double net = 0, swapped = 0, down = 0, up = 0;
         for (size_t i = 0; i < samples.size(); ++i) {
-            sum.add(samples[i].causes);
             down += samples[i].causes.budget_down[k], up += samples[i].causes.budget_up[k];
             if ((i + 1) % window == 0 || i + 1 == samples.size()) {
                 net += std::fabs(down - up), swapped += 2.0 * std::min(down, up);

@@ -171,8 +171,7 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
     // Double-sided materials (glTF doubleSided) need their back faces: no culling for the topology.
     bool double_sided = false;
     for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;
-    // The skinned level is for characters small on screen: lit per vertex (docs/PERFORMANCE.md).
-    const bool vertex_lighting = draw.geometry->level(surface.level).method == GeomMethod::SkinnedMesh;
+    const bool vertex_lighting = drawn_lit_per_vertex(draw.geometry->level(surface.level).method);
     auto id = renderer.register_topology(draw.geometry->level_indices(surface.level), static_cast<uint32_t>(surface.positions.size()),
                                          /*cull_back_faces=*/!double_sided, surface_materials,
                                          surface.level < pass_names_.size() ? std::string_view(pass_names_[surface.level]) : "meshes",

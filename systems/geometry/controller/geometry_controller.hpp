@@ -78,6 +78,10 @@ struct SurfaceView {
     std::span<const glm::vec3> normals;   ///< unit normals, same size
 };
 
+/// Whether a level of method `m` is drawn lit per vertex: the skinned level, for characters small on screen
+/// (docs/PERFORMANCE.md); the others are lit per pixel. The renderer's topology and the mesh cross-fades use it.
+[[nodiscard]] inline bool drawn_lit_per_vertex(GeomMethod m) { return m == GeomMethod::SkinnedMesh; }
+
 /// A cross-fade between two levels, begun by GeometryController::begin_level for a switch of N >= 2 fade frames
 /// either way (apply_level_switches: the longer of the two levels' geomorph_s, so impostor <-> rigid proxy fades
 /// too): between an `impostor` level and a drawn level (rigid proxy or mesh), or between two mesh levels whose

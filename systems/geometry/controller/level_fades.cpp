@@ -26,8 +26,8 @@ bool GeometryController::mesh_crossfades(uint8_t from, uint8_t to) const {
     // change at once on the switch frame, so these switches cross-fade too (the geomorph still runs).
     const Level& a = *levels_[from];
     const Level& b = *levels_[to];
-    const bool vertex_lit_a = a.lod.method == GeomMethod::SkinnedMesh, vertex_lit_b = b.lod.method == GeomMethod::SkinnedMesh;
-    return a.mesh_level && b.mesh_level && (!(a.display_key == b.display_key) || vertex_lit_a != vertex_lit_b);
+    return a.mesh_level && b.mesh_level &&
+           (!(a.display_key == b.display_key) || drawn_lit_per_vertex(a.lod.method) != drawn_lit_per_vertex(b.lod.method));
 }
 
 void GeometryController::begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames, bool between_meshes) {
