@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (clang, ASan + UBSan) and runs each for N seconds, one at a time.
+# Builds the libFuzzer targets (clang, ASan + UBSan) and runs each for N seconds, JOBS (default 2) at a time.
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET=60] [TARGET...]
 #   Targets: fuzz_scene fuzz_rules fuzz_bvh fuzz_gltf fuzz_joint_limits (default: all).
 #   BUILD_DIR (default build-fuzz) sets the build folder; WORK_DIR (default $BUILD_DIR/fuzz-work)
@@ -33,11 +33,11 @@ dict_of() {
   esac
 }
 
-status=0
-printf '%-18s %10s %8s %8s %8s %s\n' target execs exec/s cov ft result
-for t in "${TARGETS[@]}"; do
+# One target = one process on one core: JOBS (default 2) targets fuzz at a time, results printed in order.
+run_target() {
+  local t=$1 exe corpus crashes log args dict result execs speed last crashed cov ft
   exe=$(find "$BUILD_DIR" -maxdepth 3 -type f -name "$t" -perm -u+x | head -n1)
-  [ -n "$exe" ] || { echo "$t: executable not found under $BUILD_DIR" >&2; status=1; continue; }
+  [ -n "$exe" ] || { echo "$t: executable not found under $BUILD_DIR" >&2; return 1; }
   corpus="$WORK_DIR/$t/corpus"; crashes="$WORK_DIR/$t/crashes"; log="$WORK_DIR/$t/fuzz.log"
   mkdir -p "$corpus" "$crashes"
   args=(-max_total_time="$SECONDS_PER_TARGET" -rss_limit_mb=2048 -timeout=10 -print_final_stats=1
@@ -47,15 +47,30 @@ for t in "${TARGETS[@]}"; do
   [ -n "$dict" ] && [ -f "$ROOT/tests/fuzz/$dict" ] && args=(-dict="$ROOT/tests/fuzz/$dict" "${args[@]}")
   result=ok
   ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} "$exe" "${args[@]}" >"$log" 2>&1 || result="FAILED (see $log and $crashes)"
-  [ "$result" = ok ] || status=1
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
   speed=$(grep -o 'stat::average_exec_per_sec: *[0-9]*' "$log" | grep -o '[0-9]*$' || true)
   last=$(grep -E '^#[0-9]+' "$log" | grep 'cov:' | tail -n1 || true)
   [ -n "$execs" ] || execs=$(echo "$last" | grep -oE '^#[0-9]+' | tr -d '#' || true)
   crashed=$(find "$crashes" -type f | wc -l)
-  [ "$crashed" -eq 0 ] || { result="$crashed crash/timeout/oom file(s) in $crashes"; status=1; }
+  [ "$crashed" -eq 0 ] || result="$crashed crash/timeout/oom file(s) in $crashes"
   cov=$(echo "$last" | grep -o 'cov: [0-9]*' | grep -o '[0-9]*' || true)
   ft=$(echo "$last" | grep -o 'ft: [0-9]*' | grep -o '[0-9]*' || true)
-  printf '%-18s %10s %8s %8s %8s %s\n' "$t" "${execs:-?}" "${speed:-?}" "${cov:-?}" "${ft:-?}" "$result"
+  printf '%-18s %10s %8s %8s %8s %s\n' "$t" "${execs:-?}" "${speed:-?}" "${cov:-?}" "${ft:-?}" "$result" \
+    >"$WORK_DIR/$t/result"
+  [ "$result" = ok ]
+}
+
+status=0
+for t in "${TARGETS[@]}"; do
+  mkdir -p "$WORK_DIR/$t"
+  rm -f "$WORK_DIR/$t/result"
+  while [ "$(jobs -rp | wc -l)" -ge "${JOBS:-2}" ]; do wait -n || true; done
+  run_target "$t" &
+done
+wait
+printf '%-18s %10s %8s %8s %8s %s\n' target execs exec/s cov ft result
+for t in "${TARGETS[@]}"; do
+  if [ -f "$WORK_DIR/$t/result" ]; then cat "$WORK_DIR/$t/result"; else echo "$t: no result"; status=1; continue; fi
+  [ "$(awk '{print $NF}' "$WORK_DIR/$t/result")" = ok ] || status=1
 done
 exit $status
