@@ -1,7 +1,7 @@
 #include "host/scene/world_diagnostics.hpp"
 #include "host/tool/fidelity.hpp"
 
-#include "host/tool/pop_statistics.hpp"
+#include "host/tool/fidelity_popping.hpp"
 #include "host/tool/session.hpp"
 #include "host/tool/stats.hpp"
 
@@ -51,6 +51,44 @@ void change_map(const gpu::Rgba8Image& a, const gpu::Rgba8Image& b, std::vector<
     }
 }
 
+// The kinds of switch (from, to) among `rects`, sorted: the order of a frame's by_pair.
+std::vector<std::pair<uint8_t, uint8_t>> switch_kinds(std::span<const SwitchRect> rects) {
+    std::vector<std::pair<uint8_t, uint8_t>> kinds;
+    for (const SwitchRect& r : rects)
+        if (std::find(kinds.begin(), kinds.end(), std::pair{r.from, r.to}) == kinds.end()) kinds.emplace_back(r.from, r.to);
+    std::sort(kinds.begin(), kinds.end());
+    return kinds;
+}
+
+// The rectangles of `rects` whose switch is from -> to: their pixels (each counted once, `stamp` marking
+// them with a fresh id) summed in `maps` (the result has one sum per map) and their bounding rectangle.
+// `stamp` is scratch with one entry per pixel.
+struct RectSums {
+    std::vector<double> sums;
+    uint32_t characters = 0;
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+RectSums sum_in_rects(std::span<const SwitchRect> rects, uint8_t from, uint8_t to, uint32_t width,
+                      std::span<const std::vector<uint16_t>* const> maps, std::vector<uint32_t>& stamp, uint32_t& stamp_id) {
+    RectSums out;
+    out.sums.assign(maps.size(), 0.0);
+    const uint32_t id = ++stamp_id;
+    for (const SwitchRect& r : rects) {
+        if (r.from != from || r.to != to) continue;
+        if (out.characters++ == 0) out.x0 = r.x0, out.y0 = r.y0, out.x1 = r.x1, out.y1 = r.y1;
+        out.x0 = std::min(out.x0, r.x0), out.y0 = std::min(out.y0, r.y0), out.x1 = std::max(out.x1, r.x1), out.y1 = std::max(out.y1, r.y1);
+        for (int y = r.y0; y < r.y1; ++y)
+            for (int x = r.x0; x < r.x1; ++x) {
+                const size_t p = size_t(y) * width + size_t(x);
+                if (p >= stamp.size() || stamp[p] == id) continue;
+                stamp[p] = id;
+                for (size_t m = 0; m < maps.size(); ++m)
+                    if (p < maps[m]->size()) out.sums[m] += (*maps[m])[p];
+            }
+    }
+    return out;
+}
+
 // The switch frame's change attributed to each kind of switch (SwitchPairChange): the union of the
 // rectangles of that kind's characters, read in this frame's and the previous frame's change maps.
 // `stamp` is scratch (one entry per pixel) marking the pixels already counted for a kind.
@@ -62,33 +100,17 @@ std::vector<SwitchPairChange> pair_changes(std::span<const SwitchRect> rects, ui
     if (now.empty() || width == 0) return out;
     stamp.resize(now.size(), 0);
     const double scale = 1.0 / (255.0 * 3.0 * double(now.size()));
-    std::vector<std::pair<uint8_t, uint8_t>> kinds;
-    for (const SwitchRect& r : rects)
-        if (std::find(kinds.begin(), kinds.end(), std::pair{r.from, r.to}) == kinds.end()) kinds.emplace_back(r.from, r.to);
-    std::sort(kinds.begin(), kinds.end());
-    for (const auto& [from, to] : kinds) {
+    std::vector<const std::vector<uint16_t>*> maps{&now};
+    for (const auto& h : history) maps.push_back(&h);
+    for (const auto& [from, to] : switch_kinds(rects)) {
+        const RectSums sums = sum_in_rects(rects, from, to, width, maps, stamp, stamp_id);
         SwitchPairChange pc;
         pc.from = from;
         pc.to = to;
-        const uint32_t id = ++stamp_id;
-        double sum = 0.0;
-        std::vector<double> sum_history(history.size(), 0.0);
-        for (const SwitchRect& r : rects) {
-            if (r.from != from || r.to != to) continue;
-            if (pc.characters++ == 0) pc.x0 = r.x0, pc.y0 = r.y0, pc.x1 = r.x1, pc.y1 = r.y1;
-            pc.x0 = std::min(pc.x0, r.x0), pc.y0 = std::min(pc.y0, r.y0), pc.x1 = std::max(pc.x1, r.x1), pc.y1 = std::max(pc.y1, r.y1);
-            for (int y = r.y0; y < r.y1; ++y)
-                for (int x = r.x0; x < r.x1; ++x) {
-                    const size_t p = size_t(y) * width + size_t(x);
-                    if (p >= now.size() || stamp[p] == id) continue;
-                    stamp[p] = id;
-                    sum += now[p];
-                    for (size_t h = 0; h < history.size(); ++h)
-                        if (p < history[h].size()) sum_history[h] += history[h][p];
-                }
-        }
-        pc.change = sum * scale;
-        for (const double h : sum_history) pc.history.push_back(h * scale);
+        pc.characters = sums.characters;
+        pc.x0 = sums.x0, pc.y0 = sums.y0, pc.x1 = sums.x1, pc.y1 = sums.y1;
+        pc.change = sums.sums[0] * scale;
+        for (size_t h = 1; h < sums.sums.size(); ++h) pc.history.push_back(sums.sums[h] * scale);
         pc.change_before = pc.history.empty() ? 0.0 : pc.history.front();
         out.push_back(pc);
     }
@@ -135,6 +157,7 @@ public:
         out.switches = frame_.switches;
         change_map(lod.value(), previous_, change_now_);
         if (out.switches > 0) out.by_pair = pair_changes(frame_.switch_rects, lod.value().width, change_now_, history_, stamp_, stamp_id_);
+        follow_earlier_switches(lod.value().width, out);
         if (!change_now_.empty()) {  // the first frame has no change map: no history yet
             if (history_.size() == kPopHistoryFrames) history_.pop_back();
             history_.push_front(std::move(change_now_));
@@ -145,6 +168,38 @@ public:
     }
 
 private:
+    // An earlier frame's kind of switch whose pixels' change is still followed (for the centred test).
+    struct Followed {
+        uint32_t frame = 0;  ///< the measured frame of the switch
+        uint32_t pair = 0;   ///< its index in that frame's by_pair
+        std::vector<SwitchRect> rects;
+        size_t frames_seen = 0;
+    };
+
+    // Adds this frame's change inside each followed switch's rectangles to `out`.later_changes, drops those
+    // followed for kPopHistoryFrames frames, then follows this frame's own switches (out.by_pair's order).
+    void follow_earlier_switches(uint32_t width, FidelityFrame& out) {
+        if (!change_now_.empty()) {
+            stamp_.resize(change_now_.size(), 0);
+            const double scale = 1.0 / (255.0 * 3.0 * double(change_now_.size()));
+            const std::vector<uint16_t>* now[1] = {&change_now_};
+            for (Followed& f : followed_) {
+                const auto kind = std::pair{f.rects.front().from, f.rects.front().to};
+                const RectSums sums = sum_in_rects(f.rects, kind.first, kind.second, width, now, stamp_, stamp_id_);
+                out.later_changes.push_back({frame_index_ - f.frame, f.pair, sums.sums[0] * scale});
+                ++f.frames_seen;
+            }
+            std::erase_if(followed_, [](const Followed& f) { return f.frames_seen >= kPopHistoryFrames; });
+        }
+        for (uint32_t i = 0; i < out.by_pair.size(); ++i) {
+            Followed f{frame_index_, i, {}, 0};
+            for (const SwitchRect& r : frame_.switch_rects)
+                if (r.from == out.by_pair[i].from && r.to == out.by_pair[i].to) f.rects.push_back(r);
+            followed_.push_back(std::move(f));
+        }
+        ++frame_index_;
+    }
+
     Session& s_;
     gpu::OffscreenTarget reference_target_;
     ReferenceFrame frame_;
@@ -153,6 +208,8 @@ private:
     std::deque<std::vector<uint16_t>> history_;          ///< the maps of up to kPopHistoryFrames frames before, newest first
     std::vector<uint32_t> stamp_;                       ///< pair_changes' scratch
     uint32_t stamp_id_ = 0;
+    std::vector<Followed> followed_;                     ///< switches of the last kPopHistoryFrames frames
+    uint32_t frame_index_ = 0;                           ///< measured frames so far
 };
 
 }  // namespace
@@ -164,102 +221,8 @@ Result<std::unique_ptr<FidelityProbe>> FidelityProbe::create(Session& session) {
     return std::unique_ptr<FidelityProbe>(std::move(probe));
 }
 
-namespace {
-
-// The switch frames' change by kind of switch: per kind, the frames and characters, the change inside
-// its rectangles and the excess over the frame before (summed and largest); and the worst switch frame's
-// own breakdown. Levels are named by `names` where it has them.
-nlohmann::json popping_by_kind(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names) {
-    auto name = [&](uint8_t l) { return l < names.size() ? names[l] : std::to_string(l); };
-    auto kind_json = [&](const SwitchPairChange& p) {
-        return nlohmann::json{{"from", name(p.from)}, {"to", name(p.to)}, {"characters", p.characters}, {"change", p.change},
-                              {"change_before", p.change_before}, {"excess", p.change - p.change_before},
-                              {"rect_px", {p.x0, p.y0, p.x1, p.y1}}};
-    };
-    struct Sum {
-        uint32_t frames = 0, characters = 0;
-        double change = 0, excess = 0, max_excess = -1e300;
-    };
-    std::vector<std::pair<std::pair<uint8_t, uint8_t>, Sum>> sums;
-    size_t worst = frames.size();
-    for (size_t k = 1; k < frames.size(); ++k) {
-        const FidelityFrame& f = frames[k];
-        if (f.switches == 0) continue;
-        if (worst == frames.size() || f.changed_fraction > frames[worst].changed_fraction) worst = k;
-        for (const SwitchPairChange& p : f.by_pair) {
-            auto it = std::find_if(sums.begin(), sums.end(), [&](const auto& s) { return s.first == std::pair{p.from, p.to}; });
-            if (it == sums.end()) it = sums.insert(sums.end(), {{p.from, p.to}, Sum{}});
-            Sum& s = it->second;
-            ++s.frames;
-            s.characters += p.characters;
-            s.change += p.change;
-            s.excess += p.change - p.change_before;
-            s.max_excess = std::max(s.max_excess, p.change - p.change_before);
-        }
-    }
-    std::sort(sums.begin(), sums.end(), [](const auto& a, const auto& b) { return a.second.excess > b.second.excess; });
-    nlohmann::json kinds = nlohmann::json::array();
-    for (const auto& [key, s] : sums)
-        kinds.push_back({{"from", name(key.first)}, {"to", name(key.second)}, {"frames", s.frames}, {"characters", s.characters},
-                         {"change_sum", s.change}, {"excess_sum", s.excess}, {"excess_max", s.max_excess}});
-    nlohmann::json j;
-    j["kinds"] = kinds;
-    if (worst < frames.size()) {
-        nlohmann::json parts = nlohmann::json::array();
-        for (const SwitchPairChange& p : frames[worst].by_pair) parts.push_back(kind_json(p));
-        j["worst_switch_frame"] = {{"frame", worst}, {"change", frames[worst].changed_fraction}, {"kinds", parts}};
-    }
-    j["note"] = "Each kind's change is the image change inside the union of its switching characters' screen rectangles "
-                "(bounds boxes), in changed_fraction units; excess = that minus the same pixels' change one frame earlier "
-                "(their ordinary motion): an estimate of what the switch added. Rectangles of different kinds may overlap.";
-    return j;
-}
-
-// The local pop test (pop_statistics.hpp) over every kind of switch on every switch frame: one event each,
-// its rectangles' change against theirs on up to kPopHistoryFrames frames before.
-// The events above their history are listed (frame, kind, change, the history's largest), at most 20.
-nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names) {
-    constexpr size_t kMinHistory = 4, kListed = 20;
-    auto name = [&](uint8_t l) { return l < names.size() ? names[l] : std::to_string(l); };
-    std::vector<LocalPopEvent> raw, shares;
-    nlohmann::json above = nlohmann::json::array();
-    for (size_t k = 0; k < frames.size(); ++k)
-        for (const SwitchPairChange& p : frames[k].by_pair) {
-            raw.push_back({p.change, p.history});
-            std::vector<double> whole;  // the history frames' whole change: frames k - 1, k - 2, ...
-            for (size_t h = 0; h < p.history.size() && h < k; ++h) whole.push_back(frames[k - 1 - h].changed_fraction);
-            shares.push_back(share_of_frame(raw.back(), frames[k].changed_fraction, whole));
-            const LocalPopEvent& e = shares.back();
-            const double largest = e.history.empty() ? 0.0 : *std::max_element(e.history.begin(), e.history.end());
-            if (e.history.size() >= kMinHistory && e.change > largest && above.size() < kListed)
-                above.push_back({{"frame", k}, {"from", name(p.from)}, {"to", name(p.to)}, {"characters", p.characters},
-                                 {"share", e.change}, {"history_max_share", largest}, {"change", p.change},
-                                 {"rect_px", {p.x0, p.y0, p.x1, p.y1}}});
-        }
-    const LocalPopSummary s = local_pop_summary(shares, kMinHistory), r = local_pop_summary(raw, kMinHistory);
-    return {{"history_frames", kPopHistoryFrames},
-            {"min_history_frames", kMinHistory},
-            {"events", s.events},
-            {"invisible", s.invisible},
-            {"short_history", s.short_history},
-            {"above_history", s.above},
-            {"expected_above_without_pops", s.expected_above},
-            {"p_value", s.p_value},
-            {"worst_ratio_to_history_max", s.worst_ratio},
-            {"no_more_pops_than_chance", s.no_more_than_chance},
-            {"above_history_events", above},
-            {"raw", {{"events", r.events}, {"above_history", r.above}, {"expected_above_without_pops", r.expected_above},
-                     {"p_value", r.p_value}, {"worst_ratio_to_history_max", r.worst_ratio}}},
-            {"note", "One event per kind of switch per switch frame: the share of the frame's image change inside its "
-                     "characters' rectangles, against the same pixels' share on each of the frames before (a trend of the "
-                     "whole picture cancels; `raw` is the test on the changes themselves). Without pops the switch frame is "
-                     "the largest of h + 1 with probability 1 / (h + 1); p_value is the chance of at least above_history "
-                     "such events (Poisson-binomial). Events without change now or before (hidden, off-screen) are not tested."}};
-}
-
-}  // namespace
-
-nlohmann::json fidelity_report(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& level_names) {
+nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const std::vector<std::string>& level_names) {
+    const std::vector<FidelityFrame> frames = with_changes_after(measured);
     nlohmann::json j;
     std::vector<double> mean, max, psnr_values, ordinary, at_switch;
     size_t levels = 0;
@@ -309,16 +272,19 @@ std::string fidelity_summary(const nlohmann::json& report) {
     if (!report.contains("popping")) return {};
     const nlohmann::json& p = report["popping"];
     const nlohmann::json& l = p["local"];
-    char line[512];
+    const nlohmann::json& c = l["centred"];
+    char line[768];
     std::snprintf(line, sizeof line,
                   "fidelity: PSNR %.2f dB (min %.2f), mean deviation %.2f px; switch frames' largest change %.6f against the "
                   "ordinary p95 %.6f (%s); local: %zu of %zu switches' shares of the change above their pixels' last ones, %.1f expected "
-                  "without pops, p = %.3f (%s)\n",
+                  "without pops, p = %.3f (%s); centred (frames before and after): %zu of %zu above, %.1f expected, p = %.3f (%s)\n",
                   report["psnr_db"]["mean"].get<double>(), report["psnr_db"]["min"].get<double>(),
                   report["mean_deviation_px"]["mean"].get<double>(), p["switch_change_max"].get<double>(),
                   p["ordinary_change_p95"].get<double>(), p["switch_no_worse_than_ordinary_p95"].get<bool>() ? "ok" : "OVER",
                   l["above_history"].get<size_t>(), l["events"].get<size_t>(), l["expected_above_without_pops"].get<double>(),
-                  l["p_value"].get<double>(), l["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS");
+                  l["p_value"].get<double>(), l["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS",
+                  c["above_history"].get<size_t>(), c["events"].get<size_t>(), c["expected_above_without_pops"].get<double>(),
+                  c["p_value"].get<double>(), c["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS");
     return line;
 }
 

@@ -26,6 +26,8 @@ struct SwitchPairChange {
     double change = 0;           ///< change inside their rectangles, this frame
     double change_before = 0;    ///< the same pixels' change on the frame before (0 on the first compared frame)
     std::vector<double> history; ///< the same pixels' change on up to kPopHistoryFrames frames before, most recent first
+    std::vector<double> after;   ///< the same pixels' change on up to kPopHistoryFrames frames after, nearest first
+                                 ///< (filled by fidelity_report from the later frames' later_changes)
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< the rectangle around those characters' rectangles (pixels)
 };
 
@@ -42,6 +44,14 @@ struct FidelityFrame {
     double changed_fraction = 0;       ///< mean absolute RGB change from the previous LOD frame (0..1)
     uint32_t switches = 0;             ///< visible characters that changed geometric level this frame
     std::vector<SwitchPairChange> by_pair;  ///< switch frames: the change attributed to each kind of switch
+    /// This frame's change inside the rectangles of an earlier frame's switch: by_pair[pair] of the frame
+    /// frames_back frames before (1..kPopHistoryFrames).
+    struct LaterChange {
+        uint32_t frames_back = 0;
+        uint32_t pair = 0;
+        double change = 0;
+    };
+    std::vector<LaterChange> later_changes;  ///< one per earlier switch kind still within kPopHistoryFrames
 };
 
 /// Renders each frame a second time at full detail and compares. Lives inside a profile session.

@@ -1,0 +1,28 @@
+// The popping part of the fidelity report: the switch frames' change by kind of switch, and the local
+// pop tests (pop_statistics.hpp) over the switches' own pixels.
+#pragma once
+
+#include "host/tool/fidelity.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace aloha::tool {
+
+/// `measured` with each switch's change in the frames after it (SwitchPairChange::after, nearest first)
+/// gathered from those frames' later_changes; entries pointing before the first frame are ignored.
+[[nodiscard]] std::vector<FidelityFrame> with_changes_after(const std::vector<FidelityFrame>& measured);
+
+/// The switch frames' change by kind of switch: per kind, the frames and characters, the change inside
+/// its rectangles and the excess over the frame before (summed and largest); and the worst switch frame's
+/// own breakdown. Levels are named by `names` where it has them.
+[[nodiscard]] nlohmann::json popping_by_kind(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names);
+
+/// The local pop tests over every kind of switch on every switch frame, one event each: against the
+/// frames before (the object's own figures) and, under "centred", against the frames before and after.
+/// Requires each SwitchPairChange's `after` filled (fidelity_report does it).
+[[nodiscard]] nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names);
+
+}  // namespace aloha::tool

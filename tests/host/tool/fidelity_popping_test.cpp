@@ -1,0 +1,73 @@
+// The fidelity report's local pop tests (host/tool/fidelity_popping.hpp): a switch's pixels' change
+// against the frames before it, and against the frames before and after it (centred).
+#include "host/tool/fidelity_popping.hpp"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+namespace aloha::tool {
+namespace {
+
+// 21 frames whose whole change is 0.01 each, one switch (level 1 -> 2) on frame 10 whose rectangles'
+// change on frame k is rect(k): the switch frame's history (frames 9..2) in by_pair, and frames 11..18
+// carrying their change in its rectangles as later_changes, the way the probe records them.
+std::vector<FidelityFrame> one_switch(const std::function<double(int)>& rect) {
+    std::vector<FidelityFrame> frames(21);
+    for (auto& f : frames) f.changed_fraction = 0.01;
+    SwitchPairChange p;
+    p.from = 1;
+    p.to = 2;
+    p.characters = 1;
+    p.change = rect(10);
+    for (int h = 9; h >= 2; --h) p.history.push_back(rect(h));
+    p.change_before = p.history.front();
+    frames[10].switches = 1;
+    frames[10].by_pair.push_back(p);
+    for (int k = 11; k <= 18; ++k) frames[size_t(k)].later_changes.push_back({uint32_t(k - 10), 0, rect(k)});
+    return frames;
+}
+
+nlohmann::json local(const std::vector<FidelityFrame>& frames) { return local_popping(with_changes_after(frames), {}); }
+
+TEST(FidelityPopping, LaterChangesFillTheSwitchsFramesAfterNearestFirst) {
+    const auto frames = with_changes_after(one_switch([](int k) { return 0.001 * k; }));
+    const std::vector<double> after = frames[10].by_pair[0].after;
+    ASSERT_EQ(after.size(), 8u);
+    for (size_t h = 0; h < after.size(); ++h) EXPECT_DOUBLE_EQ(after[h], 0.001 * double(11 + h));
+}
+
+// Change rising steadily in the rectangles (a nearer character moving across them): above every frame
+// before, so the one-sided test counts it, but below the frames after: the centred test does not.
+TEST(FidelityPopping, ARisingChangeIsAbovePastFramesButNotAPopWhenCentred) {
+    const nlohmann::json j = local(one_switch([](int k) { return 0.001 * k; }));
+    EXPECT_EQ(j["events"], 1);
+    EXPECT_EQ(j["above_history"], 1);
+    EXPECT_NEAR(j["expected_above_without_pops"].get<double>(), 1.0 / 9.0, 1e-12);  // largest of 9 by chance
+    EXPECT_EQ(j["centred"]["events"], 1);
+    EXPECT_EQ(j["centred"]["above_history"], 0);
+    EXPECT_NEAR(j["centred"]["expected_above_without_pops"].get<double>(), 1.0 / 17.0, 1e-12);  // largest of 17
+}
+
+// A transient: the switch frame's change three times its pixels' usual one: a pop for both tests, and
+// alone it is already improbable for the centred one (p = 1/17).
+TEST(FidelityPopping, ASpikeIsAPopForBothTests) {
+    const nlohmann::json j = local(one_switch([](int k) { return k == 10 ? 0.003 : 0.001; }));
+    EXPECT_EQ(j["above_history"], 1);
+    EXPECT_EQ(j["centred"]["above_history"], 1);
+    EXPECT_NEAR(j["centred"]["p_value"].get<double>(), 1.0 / 17.0, 1e-12);
+    EXPECT_NEAR(j["centred"]["worst_ratio_to_history_max"].get<double>(), 3.0, 1e-9);
+}
+
+// A switch with fewer than 4 frames after it (the end of the run) is left out of the centred test only.
+TEST(FidelityPopping, TooFewFramesAfterLeaveTheSwitchOutOfTheCentredTest) {
+    auto frames = one_switch([](int k) { return k == 10 ? 0.003 : 0.001; });
+    frames.resize(13);  // frames 11 and 12 after the switch
+    const nlohmann::json j = local(frames);
+    EXPECT_EQ(j["events"], 1);
+    EXPECT_EQ(j["centred"]["events"], 0);
+    EXPECT_EQ(j["centred"]["short_history"], 1);
+}
+
+}  // namespace
+}  // namespace aloha::tool
