@@ -1,5 +1,5 @@
 #version 450
-// Impostor vertex shader: one camera-facing quad (a 4-vertex triangle strip, no index buffer) per instance of set 0
+// Impostor vertex shader: one camera-facing quad (6 vertices, no index buffer) per instance of set 0
 // binding 2 read as Impostor records (64 bytes, systems/render/crowd_renderer.hpp ImpostorInstance).
 // The quad turns about the vertical axis to face the camera and spans the type's atlas cell in model
 // units (push base_colour: x width, y bottom, z height), scaled by the instance's scale. The cell is the
@@ -34,9 +34,7 @@ layout(location = 2) flat out vec4 v_light_fade; // xyz: direction to the key li
                                                  // y up, z towards the camera: the atlas normals' frame), w: fade
 layout(location = 3) flat out vec3 v_level;     // xy: the atlas's size in texels at mip z (the quad's level)
 
-// A strip runs the shader once a corner (each vertex of a non-indexed 6-vertex list is its own invocation, so two
-// corners ran twice); its two triangles split the planar quad along the other diagonal, the same pixels.
-const vec2 kCorners[4] = vec2[](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(1, 1));
+const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
 
 void main() {
     Impostor im = impostors[pc.offsets.z + uint(gl_InstanceIndex)];

@@ -198,7 +198,7 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         {&lp.vertex_lit_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
         {&lp.vertex_lit_culled_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
         {&lp.lines_, {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE}},
-        {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
         // Dithered (fading characters): lit as above plus the screen-door discard; with constant fragments the
         // per-pixel shaders (profiling only: the fading few keep their look, not the constant cost).
         {&lp.dithered_[0], {k_lit_mesh_vert_spv, k_lit_mesh_dither_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},

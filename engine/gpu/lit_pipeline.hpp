@@ -109,7 +109,7 @@ public:
     /// the fragment shaders built with DITHER keep only the pixels lit_dither_bits() in offsets.w names. Only
     /// fading characters are drawn with it (the others' pipelines have no discard, so early depth stays on).
     [[nodiscard]] VkPipeline dithered(bool vertex_lit, bool culled) const { return dithered_[(vertex_lit ? 2 : 0) + (culled ? 1 : 0)]; }
-    /// Impostor pipeline (shaders/impostor.*): non-indexed triangle strip, 4 vertices per instance (one camera-facing quad),
+    /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
     [[nodiscard]] VkPipeline impostor() const { return impostor_; }
     /// Line-list pipeline: unlit vertex colour, depth test LESS_OR_EQUAL.

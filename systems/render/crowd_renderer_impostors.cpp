@@ -92,7 +92,7 @@ uint32_t CrowdRenderer::record_impostors(const FrameInput& frame, VkCommandBuffe
         push.offsets = glm::uvec4(a.layout.directions, a.layout.rows, base + first, 0u);
         push.base_colour = glm::vec4(a.layout.width, a.layout.bottom, a.layout.height, viewport_height);
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-        vkCmdDraw(cmd, 4, end - first, 0, 0);  // a 4-vertex strip per instance
+        vkCmdDraw(cmd, 6, end - first, 0, 0);
         ++draws;
         first = end;
     }
