@@ -109,13 +109,18 @@ TEST_F(WorldBakeCache, WarmDamagedAndUncachedWorldsAreBitIdenticalToTheColdOne) 
     EXPECT_EQ(entries(cache), written);  // every entry read, none rebuilt or added
     expect_same_skins(*cold, *warm);
 
-    // Truncate every entry: each is rejected (a message naming it) and rebuilt.
-    for (const auto& [name, inode] : written) fs::resize_file(cache / name, fs::file_size(cache / name) / 2);
-    auto rebuilt = make_world(scene, options(cache));
+    // Truncate every entry: each is rejected (a message naming it) and rebuilt, the types baked two at a
+    // time (the cold world baked them one by one).
+    // (Two types with the same inputs, as the base type and its middle variant here, share entries.)
+    std::map<std::string, uintmax_t> sizes;
+    for (const auto& [name, inode] : written) {
+        sizes[name] = fs::file_size(cache / name);
+        fs::resize_file(cache / name, sizes[name] / 2);
+    }
+    auto rebuilt = make_world(scene, warm_options);
     ASSERT_TRUE(rebuilt);
-    const auto after = entries(cache);
-    ASSERT_EQ(after.size(), written.size());
-    for (const auto& [name, inode] : written) EXPECT_NE(after.at(name), inode) << name << " was not rewritten";
+    ASSERT_EQ(entries(cache).size(), written.size());
+    for (const auto& [name, size] : sizes) EXPECT_EQ(fs::file_size(cache / name), size) << name << " was not rewritten whole";
     expect_same_skins(*cold, *rebuilt);
 
     // A directory below a regular file cannot be made: no cache (one message), the same world.
