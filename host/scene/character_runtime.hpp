@@ -15,8 +15,11 @@
 #include "systems/motion/controller.hpp"
 #include "systems/motion/dynamic/dynamic_hook.hpp"
 #include "systems/motion/ik/ik_hooks.hpp"
+#include "engine/core/blob_store.hpp"
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace aloha {
@@ -35,7 +38,9 @@ public:
     CharacterRuntime(CharacterType type, uint32_t count);
     /// Builds the type's geometry and its geometric controller for `levels` (refined surfaces kept
     /// per character when `keep_refined_surfaces`). Errors name the type.
-    Status init_geometry(uint16_t type_index, std::span<const GeomLod> levels, bool keep_refined_surfaces);
+    /// `bake_cache`: where the generated skin's load-time bakes are reused from (none: built).
+    Status init_geometry(uint16_t type_index, std::span<const GeomLod> levels, bool keep_refined_surfaces,
+                         std::shared_ptr<const BlobStore> bake_cache = nullptr);
     /// `levels` as this type can draw them: a type without muscles (a non-humanoid) draws every
     /// skinned-mesh, layered and subdivided level with its own skinned mesh, or as rigid proxies
     /// when it has none (its impostor levels too: there is no surface to bake).
@@ -78,12 +83,26 @@ public:
     [[nodiscard]] int joints() const { return type.skeleton.joint_count(); }
 };
 
+/// How make_character_runtimes builds the types.
+struct TypeLoadOptions {
+    unsigned threads = 1;                          ///< types built at once (0 = all cores); the result does not depend on it
+    std::shared_ptr<const BlobStore> bake_cache;   ///< where generated skins' bakes are reused from (none: built)
+};
+
 /// One runtime per type of `scene`, sized for its characters in `chars` (expand_characters), with the
 /// scene's paths and geometric controllers for `levels` (refined surfaces kept when
-/// `keep_refined_surfaces`). Errors name the type's file and the problem.
+/// `keep_refined_surfaces`). The types are independent and built `load.threads` at a time. Errors name
+/// the type's file and the problem (the first type's in scene order when several fail).
 Result<std::vector<std::unique_ptr<CharacterRuntime>>> make_character_runtimes(const SceneDesc& scene,
                                                                                std::span<const CharacterDesc> chars,
                                                                                std::span<const GeomLod> levels,
-                                                                               bool keep_refined_surfaces);
+                                                                               bool keep_refined_surfaces,
+                                                                               const TypeLoadOptions& load = {});
+
+/// The bake cache a host asked for: none when `enabled` is false; else the store over `dir` (default:
+/// default_cache_directory()) for this build's code (skin_bake_code_version). When the code has no
+/// build-id, no directory is known, or the directory cannot be made or written: none, after one
+/// message on standard error saying why.
+[[nodiscard]] std::shared_ptr<const BlobStore> open_bake_cache(bool enabled, const std::optional<std::string>& dir);
 
 }  // namespace aloha

@@ -52,7 +52,8 @@ std::vector<GeomLod> CharacterRuntime::usable_levels(std::span<const GeomLod> le
     return out;
 }
 
-Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const GeomLod> all_levels, bool keep_refined_surfaces) {
+Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const GeomLod> all_levels, bool keep_refined_surfaces,
+                                      std::shared_ptr<const BlobStore> bake_cache) {
     const std::vector<GeomLod> levels = usable_levels(all_levels);
     CharacterGeometryDesc desc;
     desc.type = type_index;
@@ -60,6 +61,7 @@ Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const Geom
     desc.skeleton = type.skeleton;
     desc.muscles = type.muscles;
     desc.mesh = type.mesh;
+    desc.bake_cache = std::move(bake_cache);
     if (type.mesh)  // muscles were fitted in bind space: let them rest there
         for (const glm::mat4& ibm : type.mesh->inverse_bind) desc.rest_model.push_back(glm::inverse(ibm));
     auto built = CharacterGeometry::create(std::move(desc));
@@ -136,24 +138,6 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
         motion->set_overlay(id, req, c.overlay_weight);
     }
     return {};
-}
-
-Result<std::vector<std::unique_ptr<CharacterRuntime>>> make_character_runtimes(const SceneDesc& scene,
-                                                                               std::span<const CharacterDesc> chars,
-                                                                               std::span<const GeomLod> levels,
-                                                                               bool keep_refined_surfaces) {
-    std::vector<uint32_t> per_type(scene.types.size(), 0);
-    for (const auto& c : chars) per_type[static_cast<size_t>(c.type)]++;
-    std::vector<std::unique_ptr<CharacterRuntime>> out;
-    for (size_t t = 0; t < scene.types.size(); ++t) {
-        auto type = load_character_type(scene.types[t]);
-        if (!type.ok()) return type.error();
-        out.push_back(std::make_unique<CharacterRuntime>(std::move(type.value()), per_type[t]));
-        out.back()->add_paths(scene);
-        if (Status s = out.back()->init_geometry(static_cast<uint16_t>(t), levels, keep_refined_surfaces); !s.ok()) return s.error();
-        out.back()->measure_bounds(levels);
-    }
-    return out;
 }
 
 PoseSource CharacterRuntime::poses() const {
@@ -250,7 +234,10 @@ Status World::apply_rule_settings() {
 
 Status World::spawn_characters() {
     const std::vector<CharacterDesc> chars = expand_characters(scene_, options_.seed_override);
-    auto types = make_character_runtimes(scene_, chars, geom_levels(rules_.table()), options_.keep_refined_surfaces);
+    TypeLoadOptions load;
+    load.threads = options_.threads;
+    load.bake_cache = open_bake_cache(options_.bake_cache, options_.bake_cache_dir);
+    auto types = make_character_runtimes(scene_, chars, geom_levels(rules_.table()), options_.keep_refined_surfaces, load);
     if (!types.ok()) return types.error();
     types_ = std::move(types.value());
     (void)character_group(registry_);  // create the owning group before the components arrive

@@ -75,6 +75,10 @@ struct WorldOptions {
                                            ///< draws it while the next step()'s CPU systems run (the renderer
                                            ///< waits for a frame slot when it comes round again); read back the
                                            ///< target on the renderer's queue or after finish_rendering()
+    bool bake_cache = true;                ///< reuse the character types' load-time bakes (generated skins) from
+                                           ///< the on-disk bake cache and save new ones there (false: always build)
+    std::optional<std::string> bake_cache_dir;  ///< the bake cache's directory; default: $ALOHA_CACHE_DIR, else
+                                                ///< $XDG_CACHE_HOME/aloha, else $HOME/.cache/aloha
     bool pose_every_character = false;     ///< true: every character's pose is current every frame, seen or
                                            ///< not (tools that read every pose: motion metrics, export);
                                            ///< false: poses nobody reads are left out (PoseUse)

@@ -20,7 +20,7 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 // What the subcommands write into: CliOptions plus the text of options converted after the parse.
 struct Bindings {
     CliOptions o;
-    std::string lod = "on", budget, occlusion = "on", gpu_overlap = "off", counts, characters, frames, frame_range, selection;
+    std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "off", counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
@@ -31,6 +31,11 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
     c.add_option("--threads", b.threads, "worker threads (0 = all cores)")->check(whole_number(0, 256));
     c.add_option("--seed", b.seed, "override every crowd's seed")->check(whole_number_u64());
     c.add_option("--lod", b.lod, "LOD on (rules) or off (every character at the top level)")->check(on_off());
+    c.add_option("--cache", b.cache,
+                 "reuse the character types' load-time bakes from the bake cache and save new ones (default on)")->check(on_off());
+    c.add_option("--cache-dir", b.o.cache_dir,
+                 "the bake cache's directory (default: $ALOHA_CACHE_DIR, else $XDG_CACHE_HOME/aloha, else ~/.cache/aloha)")
+        ->check(non_empty());
     c.add_option("--budget-ms", b.budget_ms,
                  "CPU frame budget: lower detail where least noticed to fit X ms (the rule file's animation/geometry "
                  "split kept, scaled to X; without a split one total)")->check(milliseconds());
@@ -170,6 +175,7 @@ void convert(Bindings& b) {
     auto u32 = [](const std::string& s) { return static_cast<uint32_t>(std::stoul(s)); };
     auto ms = [](const std::string& s, std::optional<double>& out) { if (!s.empty()) out = std::stod(s); };
     o.lod = b.lod == "on";
+    o.cache = b.cache == "on";
     o.occlusion = b.occlusion == "on";
     o.gpu_overlap = b.gpu_overlap == "on";
     if (!b.budget.empty()) o.budget = b.budget == "on";
@@ -265,6 +271,7 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
     convert(b);
     const CliOptions& o = b.o;
     if (o.scene.empty()) return cli_error("'aloha " + o.command + "' needs a scene file");
+    if (!o.cache && !o.cache_dir.empty()) return cli_error("--cache-dir names the bake cache's directory: it goes with --cache on, not off");
     if (o.command == "scale" && o.counts.empty()) return cli_error("'aloha scale' needs --counts A,B,...");
     if (o.command == "export") {
         if (Status st = check_export(o); !st.ok()) return st.error();

@@ -65,6 +65,8 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     WorldOptions wo;
     wo.threads = options.threads;
     wo.lod = options.lod;
+    wo.bake_cache = options.cache;
+    if (!options.cache_dir.empty()) wo.bake_cache_dir = options.cache_dir;
     wo.budget_ms = options.budget_ms;
     wo.seed_override = options.seed.value_or(0);
     wo.characters = options.characters;

@@ -2,6 +2,7 @@
 #include "systems/geometry/controller/character_geometry.hpp"
 
 #include "systems/geometry/body_skin/skin_remesh.hpp"
+#include "systems/geometry/controller/skin_bake.hpp"
 #include "systems/geometry/muscle/muscle_shape_job.hpp"
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
 #include "systems/geometry/muscle/superellipsoid.hpp"
@@ -102,98 +103,6 @@ std::vector<glm::vec3> skin_mesh_positions(const CharacterMesh& mesh, std::span<
     return out;
 }
 
-namespace {
-
-// Joints whose matrices skin muscle m of the generated mesh: the chain from the origin joint down
-// to the insertion joint (origin first), at most 4, with each pivot's rest position. A pivot that
-// coincides with the next one is dropped (the next joint's matrix carries its rotation, and the
-// optimal cumulative weight of two coincident pivots is the same). Origin not an ancestor of the
-// insertion: just the two joints, the insertion joint's position as the pivot.
-struct MuscleChain {
-    int count = 0;
-    uint16_t joints[4] = {0, 0, 0, 0};
-    glm::vec3 pivots[4];  // pivots[k] = rest position of joints[k] (k >= 1)
-};
-
-MuscleChain muscle_chain(std::span<const int16_t> parents, std::span<const glm::mat4> rest_model, int origin, int insertion) {
-    MuscleChain chain;
-    std::vector<int> path;  // insertion up to (excluding) origin
-    int j = insertion;
-    while (j >= 0 && j != origin) {
-        path.push_back(j);
-        j = parents[static_cast<size_t>(j)];
-    }
-    if (j != origin) path.assign(1, insertion);
-    std::vector<int> kept;
-    for (size_t k = path.size(); k-- > 0;) {  // origin side first
-        const glm::vec3 p(rest_model[static_cast<size_t>(path[k])][3]);
-        if (k > 0 && glm::length(p - glm::vec3(rest_model[static_cast<size_t>(path[k - 1])][3])) < 1e-4f) continue;
-        kept.push_back(path[k]);
-    }
-    if (kept.size() > 3) kept.erase(kept.begin(), kept.end() - 3);  // keep the pivots nearest the insertion
-    chain.joints[0] = static_cast<uint16_t>(origin);
-    chain.count = 1;
-    for (const int k : kept) {
-        chain.joints[chain.count] = static_cast<uint16_t>(k);
-        chain.pivots[chain.count] = glm::vec3(rest_model[static_cast<size_t>(k)][3]);
-        ++chain.count;
-    }
-    return chain;
-}
-
-}  // namespace
-
-GeneratedBindMesh build_generated_mesh(const MuscleSet& muscles, std::span<const int16_t> parents,
-                                       std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables) {
-    const size_t M = static_cast<size_t>(muscles.size());
-    const uint32_t T = tables.theta_steps(), P = tables.phi_steps(), V = grid_vertex_count(T, P);
-    std::vector<glm::vec3> centres(M), radii(M), mpos(M * V), mnrm(M * V);
-    std::vector<glm::quat> rotations(M);
-    const MuscleShapeJob shape{&muscles, rest_model, centres, rotations, radii};
-    assert(shape.Validate());
-    shape.Run();
-    const MuscleTessellateJob tess{&tables, centres, rotations, radii, mpos, mnrm};
-    assert(tess.Validate());
-    tess.Run();
-
-    GeneratedBindMesh out;
-    out.theta_steps = T;
-    out.phi_steps = P;
-    out.positions.resize(M * V);
-    out.normals.resize(M * V);
-    out.joints.resize(M * V);
-    out.weights.resize(M * V);
-    for (size_t m = 0; m < M; ++m) {
-        const float h = muscles.fat_thickness[m];
-        const glm::vec3 axis = glm::mat3_cast(rotations[m])[0];
-        const glm::vec3 o = centres[m] - radii[m].x * axis, ins = centres[m] + radii[m].x * axis;  // tendons at rest
-        const MuscleChain chain = muscle_chain(parents, rest_model, muscles.origin_joint[m], muscles.insertion_joint[m]);
-        for (size_t i = m * V; i < (m + 1) * V; ++i) {
-            out.positions[i] = mpos[i] + h * mnrm[i];
-            // Position along the muscle axis: u = 0 at the origin tendon, 1 at the insertion.
-            const float u = std::clamp(0.5f * (glm::dot(mpos[i] - centres[m], axis) / radii[m].x + 1.0f), 0.0f, 1.0f);
-            // Cumulative weight past pivot k: a small rotation d at the pivot moves the straight muscle's
-            // point at u by u * d x (ins - pivot) but an LBS vertex with weight W past the pivot by
-            // W * d x (point - pivot); W = u a_i / (u a_i + (1 - u) a_o) balances the two tendon
-            // lever arms a_o = |o - pivot|, a_i = |ins - pivot| (exact at both tendons, smooth in u).
-            float W[5] = {1.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-            for (int k = 1; k < chain.count; ++k) {
-                const float ai = u * glm::length(ins - chain.pivots[k]), ao = (1.0f - u) * glm::length(o - chain.pivots[k]);
-                W[k] = ai + ao > 1e-9f ? ai / (ai + ao) : u;
-                W[k] = std::min(W[k], W[k - 1]);  // weights stay non-negative along the chain
-            }
-            glm::vec4 w(0.0f);
-            for (int k = 0; k < chain.count; ++k) w[k] = W[k] - W[k + 1];
-            out.joints[i] = glm::u16vec4(chain.joints[0], chain.joints[1], chain.joints[2], chain.joints[3]);
-            out.weights[i] = w;
-        }
-    }
-    const SkinJob normals{T, P, out.positions, mnrm, out.normals};
-    assert(normals.Validate());
-    normals.Run();
-    return out;
-}
-
 Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGeometryDesc desc) {
     const uint32_t J = static_cast<uint32_t>(desc.skeleton.joint_count());
     std::vector<std::string> problems;
@@ -230,6 +139,10 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     g->table_cache_ = std::make_unique<SuperEllipsoidTableCache>(g->muscles_);
     g->mesh_ = std::move(desc.mesh);
     if (g->mesh_) g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
+    if (desc.bake_cache && !g->mesh_ && g->muscles_.size() > 0) {
+        g->bake_cache_ = std::move(desc.bake_cache);
+        g->bake_inputs_ = skin_bake_inputs(g->muscles_, g->skeleton_.parents(), g->rest_model_, g->proxy_radii_);
+    }
     return g;
 }
 
@@ -246,8 +159,33 @@ const GeneratedBindMesh& CharacterGeometry::generated_mesh(uint32_t theta_steps,
     return *slot;
 }
 
+std::unique_ptr<SkinLayer> CharacterGeometry::cached_skin_layer(uint32_t theta_steps, uint32_t phi_steps) const {
+    if (!bake_cache_) return nullptr;
+    const std::optional<std::vector<uint8_t>> bytes = bake_cache_->get(skin_layer_key(bake_inputs_, theta_steps, phi_steps));
+    if (!bytes) return nullptr;
+    std::optional<SkinLayer> layer = read_skin_layer(*bytes, muscle_count());
+    if (!layer || layer->theta_steps != theta_steps || layer->phi_steps != phi_steps) return nullptr;
+    return std::make_unique<SkinLayer>(std::move(*layer));
+}
+
+void CharacterGeometry::save_skin_layer(const SkinLayer& layer) const {
+    if (bake_cache_) bake_cache_->put(skin_layer_key(bake_inputs_, layer.theta_steps, layer.phi_steps), write_skin_layer(layer));
+}
+
 const SkinLayer& CharacterGeometry::skin_layer(uint32_t theta_steps, uint32_t phi_steps) const {
     assert(muscles_.size() > 0);
+    if (bake_cache_) {  // a cached layer needs neither the tables nor the grid mesh
+        {
+            std::lock_guard lock(mutex_);
+            if (const auto it = skin_layers_.find({theta_steps, phi_steps}); it != skin_layers_.end() && it->second) return *it->second;
+        }
+        if (std::unique_ptr<SkinLayer> cached = cached_skin_layer(theta_steps, phi_steps)) {
+            std::lock_guard lock(mutex_);
+            auto& slot = skin_layers_[{theta_steps, phi_steps}];
+            if (!slot) slot = std::move(cached);
+            return *slot;
+        }
+    }
     const SuperEllipsoidTables& tab = tables(theta_steps, phi_steps);
     const GeneratedBindMesh* grid = mesh_ ? nullptr : &generated_mesh(theta_steps, phi_steps);
     std::lock_guard lock(mutex_);
@@ -259,6 +197,7 @@ const SkinLayer& CharacterGeometry::skin_layer(uint32_t theta_steps, uint32_t ph
         if (!body_surface_)
             body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_));
         slot = std::make_unique<SkinLayer>(build_generated_skin(*body_surface_, muscles_, skeleton_.parents(), rest_model_, tab, *grid));
+        save_skin_layer(*slot);
     }
     return *slot;
 }
@@ -276,6 +215,12 @@ void CharacterGeometry::prepare_skin_layers(std::span<const std::pair<uint32_t, 
             std::lock_guard lock(mutex_);
             if (skin_layers_.contains(tp)) continue;
         }
+        if (std::unique_ptr<SkinLayer> cached = cached_skin_layer(tp.first, tp.second)) {
+            std::lock_guard lock(mutex_);
+            auto& slot = skin_layers_[tp];
+            if (!slot) slot = std::move(cached);
+            continue;
+        }
         missing.push_back(tp);
         tabs.push_back(&tables(tp.first, tp.second));
         grids.push_back(&generated_mesh(tp.first, tp.second));
@@ -287,9 +232,11 @@ void CharacterGeometry::prepare_skin_layers(std::span<const std::pair<uint32_t, 
     std::vector<TriangleSurface> skins = simplify_and_relax_all(body_surface_->dense, body_surface_->field, targets);
     for (size_t i = 0; i < missing.size(); ++i) {
         auto& slot = skin_layers_[missing[i]];
-        if (!slot)
+        if (!slot) {
             slot = std::make_unique<SkinLayer>(
                 bind_generated_skin(std::move(skins[i]), muscles_, skeleton_.parents(), rest_model_, *tabs[i], *grids[i]));
+            save_skin_layer(*slot);
+        }
     }
 }
 
@@ -340,11 +287,26 @@ const SurfaceMap& CharacterGeometry::surface_map(SkinSurfaceKey from, SkinSurfac
         if (const auto it = surface_maps_.find(key); it != surface_maps_.end()) return *it->second;
     }
     // Built outside the lock (the rest surfaces take it themselves); a racing builder's copy is dropped.
-    std::vector<glm::vec3> source, target;
-    std::vector<uint32_t> source_indices, target_indices;
-    rest_surface(from, source, source_indices);
-    rest_surface(to, target, target_indices);
-    auto map = std::make_unique<SurfaceMap>(map_surface(source, source_indices, target));
+    // Maps between unrefined generated skins go through the bake cache (refined ones would make the
+    // cache depend on OpenSubdiv's code too).
+    std::unique_ptr<SurfaceMap> map;
+    const bool cached = bake_cache_ && from.subdivision == 0 && to.subdivision == 0;
+    const std::vector<uint8_t> bake_key =
+        cached ? surface_map_key(bake_inputs_, from.theta_steps, from.phi_steps, to.theta_steps, to.phi_steps) : std::vector<uint8_t>{};
+    if (cached) {
+        const size_t sources = skin_layer(from.theta_steps, from.phi_steps).rest_positions.size();
+        const size_t targets = skin_layer(to.theta_steps, to.phi_steps).rest_positions.size();
+        if (const auto bytes = bake_cache_->get(bake_key))
+            if (std::optional<SurfaceMap> read = read_surface_map(*bytes, sources, targets)) map = std::make_unique<SurfaceMap>(std::move(*read));
+    }
+    if (!map) {
+        std::vector<glm::vec3> source, target;
+        std::vector<uint32_t> source_indices, target_indices;
+        rest_surface(from, source, source_indices);
+        rest_surface(to, target, target_indices);
+        map = std::make_unique<SurfaceMap>(map_surface(source, source_indices, target));
+        if (cached) bake_cache_->put(bake_key, write_surface_map(*map));
+    }
     std::lock_guard lock(mutex_);
     auto& slot = surface_maps_[key];
     if (!slot) slot = std::move(map);

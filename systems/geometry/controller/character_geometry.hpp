@@ -6,6 +6,7 @@
 #pragma once
 
 #include "engine/anim/skeleton.hpp"
+#include "engine/core/blob_store.hpp"
 #include "engine/core/result.hpp"
 #include "systems/geometry/muscle/muscle_set.hpp"
 #include "systems/geometry/muscle/superellipsoid_tables.hpp"
@@ -67,6 +68,9 @@ struct CharacterGeometryDesc {
                                              ///< and (with a mesh) skinned-mesh levels may be used
     std::vector<glm::mat4> rest_model;       ///< rest-pose model matrix per joint (muscles rest here)
     std::optional<CharacterMesh> mesh;       ///< real skinned mesh, or none (generated body skin)
+    /// Where the generated skin's load-time bakes (skin layers, maps between unrefined skins) are
+    /// reused from and saved to (skin_bake.hpp); none: always built. Unused with a mesh.
+    std::shared_ptr<const BlobStore> bake_cache;
 };
 
 /// One displayed surface of a type: its skin layer at (T, P) (the real mesh when the type has one: T
@@ -153,6 +157,10 @@ public:
 
 private:
     CharacterGeometry() = default;
+    // The skin layer at (T, P) from the bake cache, or null (no cache, no entry, a rejected entry).
+    std::unique_ptr<SkinLayer> cached_skin_layer(uint32_t theta_steps, uint32_t phi_steps) const;
+    // Saves a skin layer just built to the bake cache (when there is one).
+    void save_skin_layer(const SkinLayer& layer) const;
     uint16_t type_ = 0;
     std::string name_;
     Skeleton skeleton_;
@@ -161,6 +169,8 @@ private:
     std::vector<float> proxy_radii_;
     std::optional<CharacterMesh> mesh_;
     std::vector<glm::vec3> mesh_rest_positions_;
+    std::shared_ptr<const BlobStore> bake_cache_;  // null: no cache (or a type with a mesh)
+    std::vector<uint8_t> bake_inputs_;             // skin_bake_inputs of the type (with a cache)
 
     mutable std::mutex mutex_;
     mutable std::unique_ptr<SuperEllipsoidTableCache> table_cache_;

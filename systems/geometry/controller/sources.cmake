@@ -4,6 +4,8 @@ list(APPEND ALOHA_GEOMETRY_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/body_texture.cpp
   ${CMAKE_CURRENT_LIST_DIR}/character_geometry.cpp
   ${CMAKE_CURRENT_LIST_DIR}/skin_layer.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/skin_bake.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/generated_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_character_mesh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/slot_store.cpp
   ${CMAKE_CURRENT_LIST_DIR}/geometry_controller.cpp

@@ -10,6 +10,7 @@
 #include "systems/render/image_compare.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -102,7 +103,8 @@ SceneDesc small_crowd() {
 }
 
 TEST(Golden, CloseupAtEachGeometricLevel) {
-    const fs::path dir = fs::temp_directory_path() / "aloha_golden_levels";
+    // One directory per process: two suites running at once (worktrees, ctest -j) must not remove each other's.
+    const fs::path dir = fs::temp_directory_path() / ("aloha_golden_levels_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     for (const char* level : {"proxy", "skinned", "layered_low", "layered_high", "subdivided"}) {
         SceneDesc s = closeup();

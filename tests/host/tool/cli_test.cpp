@@ -38,6 +38,18 @@ TEST(Cli, ParsesBudgetTierAndOcclusionOptions) {
     EXPECT_FALSE(o.budget_ms.has_value());
     EXPECT_EQ(o.tier, "medium");
     EXPECT_FALSE(o.occlusion);
+    EXPECT_TRUE(o.cache);  // the bake cache is on by default, at the default directory
+    EXPECT_TRUE(o.cache_dir.empty());
+}
+
+TEST(Cli, ParsesBakeCacheOptions) {
+    auto on = parse({"render", "s.json", "--cache-dir", "/tmp/bakes"});
+    ASSERT_TRUE(on.ok()) << on.error().to_string();
+    EXPECT_TRUE(on.value().cache);
+    EXPECT_EQ(on.value().cache_dir, "/tmp/bakes");
+    auto off = parse({"profile", "s.json", "--cache", "off"});
+    ASSERT_TRUE(off.ok()) << off.error().to_string();
+    EXPECT_FALSE(off.value().cache);
     auto d = parse({"profile", "scene.json"});
     ASSERT_TRUE(d.ok());
     EXPECT_FALSE(d.value().budget.has_value());  // the rule file decides
@@ -60,6 +72,8 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"profile", "s.json", "--budget-geometry-ms", "0"}, "'--budget-geometry-ms' expects"},
         {{"profile", "s.json", "--budget", "maybe"}, "'--budget' expects on or off"},
         {{"profile", "s.json", "--occlusion", "1"}, "'--occlusion' expects on or off"},
+        {{"profile", "s.json", "--cache", "no"}, "'--cache' expects on or off"},
+        {{"profile", "s.json", "--cache", "off", "--cache-dir", "d"}, "goes with --cache on"},
         {{"profile", "s.json", "--tier"}, "'--tier' needs a value"},
         {{"profile", "s.json", "--threads", "1000"}, "[0, 256]"},
         {{"profile", "s.json", "--frame", "3"}, "not known to 'aloha profile'"},

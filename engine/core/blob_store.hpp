@@ -1,0 +1,80 @@
+// A small content-addressed store of derived data on disk (the idea of Unreal's derived-data cache):
+// the value for a key is bytes some deterministic code computed from the key's inputs, saved so the
+// next process finds them instead of computing them again.
+//
+// An entry's name is a 128-bit digest of (code version, key); the file holds a header (magic, format
+// version, key and payload lengths, a checksum over key and payload), the key itself (compared on
+// read, so a digest collision is a miss, never wrong data) and the payload. Writes go to a temporary
+// file in the same directory, then rename over the entry: a reader (another process, ctest -j2) sees
+// the old entry, the new one or none, never part of one. A truncated, corrupt or foreign entry is a
+// miss with one message naming the file; the caller rebuilds and put() replaces it. A directory that
+// cannot be made or written means no store (open() says why once); the store never replaces a file
+// that is not one of its entries.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+/// Where the store's messages go (one line each, no newline); empty: standard error.
+using BlobStoreLog = std::function<void(const std::string&)>;
+
+/// What the store did since it was opened (for reports and tests).
+struct BlobStoreCounts {
+    uint64_t hits = 0;      ///< get() found a valid entry
+    uint64_t misses = 0;    ///< get() found no entry
+    uint64_t rejected = 0;  ///< get() found an entry it could not use (truncated, corrupt, other version or key)
+    uint64_t writes = 0;    ///< put() saved an entry
+};
+
+/// The content-addressed store over one directory. Thread-safe: get() and put() may run concurrently
+/// from several threads and processes.
+class BlobStore {
+public:
+    /// The header's first bytes.
+    static constexpr char kMagic[8] = {'A', 'L', 'O', 'H', 'A', 'B', 'A', 'K'};
+    /// The entry layout this code reads and writes.
+    static constexpr uint32_t kFormatVersion = 1;
+
+    /// Opens the store over `dir` (created, with its parents, when missing), for entries made by code
+    /// `code_version` (bytes that change whenever that code changes). Returns nullptr, after one message
+    /// naming the directory and the reason, when the directory cannot be made or written.
+    static std::shared_ptr<BlobStore> open(const std::filesystem::path& dir, std::vector<uint8_t> code_version,
+                                           BlobStoreLog log = {});
+
+    /// The payload saved for `key`, or nothing (no entry, or one rejected with a message).
+    [[nodiscard]] std::optional<std::vector<uint8_t>> get(std::span<const uint8_t> key) const;
+    /// Saves `payload` for `key` (atomically replacing an entry of the store). A failed write gives one
+    /// message for the store's life and is otherwise ignored (the store is a cache).
+    void put(std::span<const uint8_t> key, std::span<const uint8_t> payload) const;
+
+    /// The file an entry for `key` lives in.
+    [[nodiscard]] std::filesystem::path entry_path(std::span<const uint8_t> key) const;
+    /// The store's directory.
+    [[nodiscard]] const std::filesystem::path& directory() const { return dir_; }
+    /// Counts of hits, misses, rejections and writes so far.
+    [[nodiscard]] BlobStoreCounts counts() const;
+
+private:
+    BlobStore() = default;
+    void say(const std::string& message) const;
+    std::filesystem::path dir_;
+    std::vector<uint8_t> code_version_;
+    BlobStoreLog log_;
+    mutable std::atomic<uint64_t> hits_{0}, misses_{0}, rejected_{0}, writes_{0};
+    mutable std::atomic<bool> write_failed_{false};
+};
+
+/// The default store directory: $ALOHA_CACHE_DIR when set and not empty, else $XDG_CACHE_HOME/aloha
+/// (an absolute XDG_CACHE_HOME), else $HOME/.cache/aloha; nothing when none of these is set.
+[[nodiscard]] std::optional<std::filesystem::path> default_cache_directory();
+
+}  // namespace aloha

@@ -1,0 +1,61 @@
+// The load-time bakes of a generated body kept in the bake cache (engine/core/blob_store.hpp): the
+// skin layer at each tessellation (the body surface simplified, relaxed and bound to the muscles, the
+// costly part of creating a character type) and the correspondences between unrefined skins.
+//
+// An entry's key is its kind and parameters plus everything the bake reads of the type (bake_inputs:
+// the muscle set, the skeleton's parents, the rest-pose matrices, the proxy radii); the store adds the
+// code version (skin_bake_code_version). The payload is the structure's vectors in plain little-endian
+// binary (byte_io.hpp), read back bit for bit.
+#pragma once
+
+#include "engine/anim/skeleton.hpp"
+#include "engine/core/blob_store.hpp"
+#include "engine/core/byte_io.hpp"
+#include "engine/core/result.hpp"
+#include "systems/geometry/body_skin/surface_map.hpp"
+#include "systems/geometry/controller/skin_layer.hpp"
+#include "systems/geometry/muscle/muscle_set.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace aloha {
+
+/// The code version of the bakes: the GNU build-ids of the objects whose code computes them — the one
+/// holding this module (the bake code and everything statically linked with it), libmeshoptimizer
+/// (vertex-cache order) and libm (exp, pow, trigonometry: not correctly rounded, so a C library update
+/// may change bits). A build-id is a hash of the linked object, so any change to the code, the compiler
+/// or its flags gives a new version and an old entry is never read again (it is conservative: an edit
+/// elsewhere in the same executable also gives a new version). Computed once per process. Errors: an
+/// object without a build-id (the cache is then off).
+[[nodiscard]] Result<std::vector<uint8_t>> skin_bake_code_version();
+
+/// The key bytes of everything a generated body's bakes read of its type.
+[[nodiscard]] std::vector<uint8_t> skin_bake_inputs(const MuscleSet& muscles, std::span<const int16_t> parents,
+                                                    std::span<const glm::mat4> rest_model, std::span<const float> proxy_radii);
+
+/// The key of the skin layer at (T, P) of the type whose bake_inputs are `inputs`.
+[[nodiscard]] std::vector<uint8_t> skin_layer_key(std::span<const uint8_t> inputs, uint32_t theta_steps, uint32_t phi_steps);
+
+/// The key of the surface map from the unrefined skin at (T0, P0) to the one at (T1, P1).
+[[nodiscard]] std::vector<uint8_t> surface_map_key(std::span<const uint8_t> inputs, uint32_t from_theta, uint32_t from_phi,
+                                                   uint32_t to_theta, uint32_t to_phi);
+
+/// A skin layer's payload bytes.
+[[nodiscard]] std::vector<uint8_t> write_skin_layer(const SkinLayer& layer);
+/// Reads a skin layer's payload; nothing when the bytes are not one complete, consistent layer
+/// (sizes per vertex agree, indices and influences in range for `muscle_count` muscles).
+[[nodiscard]] std::optional<SkinLayer> read_skin_layer(std::span<const uint8_t> bytes, uint32_t muscle_count);
+
+/// A surface map's payload bytes.
+[[nodiscard]] std::vector<uint8_t> write_surface_map(const SurfaceMap& map);
+/// Reads a surface map's payload; nothing when the bytes are not one complete map over
+/// `source_vertices` source vertices with `target_vertices` targets.
+[[nodiscard]] std::optional<SurfaceMap> read_surface_map(std::span<const uint8_t> bytes, size_t source_vertices,
+                                                         size_t target_vertices);
+
+}  // namespace aloha
