@@ -61,6 +61,8 @@ nlohmann::json part_json(const std::vector<double>& v, size_t from, double dt, c
     j["active"] = true;
     j["target_ms"] = p.target_ms;
     j["band_ms_at_end"] = p.band_ms;
+    j["trigger_band_ms_at_end"] = p.trigger_band_ms;
+    j["noise_sigma_ms_at_end"] = p.noise_sigma_ms;
     // One list per cost class, each indexed by level (animation: walkers apart from the rest).
     auto by_class = [&](const std::vector<double>& slots, size_t c) {
         std::vector<double> out;
@@ -147,7 +149,11 @@ void add_lod_report(const World& world, const std::vector<LodSample>& samples, d
     const char* mode = b.mode == BudgetStatus::Mode::Parts ? "parts" : b.mode == BudgetStatus::Mode::Total ? "total" : "off";
     nlohmann::json budget = {{"mode", mode}};
     if (b.mode == BudgetStatus::Mode::Total) budget["target_ms"] = b.params.target_ms;
-    if (b.mode == BudgetStatus::Mode::Parts) budget["trim_smoothing"] = b.params.trim_smoothing, budget["dwell"] = b.params.dwell;
+    if (b.mode == BudgetStatus::Mode::Parts) {
+        budget["trim_smoothing"] = b.params.trim_smoothing;
+        budget["dwell"] = b.params.dwell;
+        budget["confidence"] = b.params.confidence;
+    }
     budget["animation"] = part_json(anim, anim_from, dt, b.animation);
     budget["geometry"] = part_json(geom, geom_from, dt, b.geometry);
     budget["settled_from_frame"] = from < samples.size() ? nlohmann::json(from) : nlohmann::json(nullptr);

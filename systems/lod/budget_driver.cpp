@@ -72,6 +72,8 @@ BudgetStatus LodBudget::status() const {
         p.target_ms = b.params().target_ms;
         p.smoothed_ms = b.smoothed_ms();
         p.band_ms = b.band_ms();
+        p.trigger_band_ms = b.trigger_band_ms();
+        p.noise_sigma_ms = static_cast<float>(b.sigma_ms());
         p.level_cost_ms = b.costs().costs();
         p.level_marginal_ms = b.costs().marginals();
         p.classes = b.costs().classes();

@@ -35,6 +35,8 @@ struct BudgetStatus {
         float target_ms = 0.0f;           ///< what it steers to
         float smoothed_ms = -1.0f;        ///< its smoothed measured time
         float band_ms = 0.0f;             ///< no step while the smoothed time is within target +- this
+        float trigger_band_ms = 0.0f;     ///< no step while the time it steers on is within target +- this
+        float noise_sigma_ms = 0.0f;      ///< long-run standard deviation of one frame's measured time
         std::vector<double> level_cost_ms;///< learned ms per character per level (average)
         std::vector<double> level_marginal_ms;  ///< learned ms of one character more per level (slope)
         size_t classes = 1;               ///< cost classes per level: entries are level * classes + class

@@ -22,6 +22,27 @@ float PartBudget::trim_band_ms() const {
     return std::max(part_.tolerance * part_.target_ms, 2.0f * smoothed_noise);
 }
 
+namespace {
+// Weight of the noise variance's average over batch differences: an average of weight w of squared
+// normal deviates has relative deviation sqrt(2 w / (2 - w)), its square root half that; 0.04 gives
+// sigma_ms() to 10%, so k = 3 standard errors are 2.7-3.3 of the real ones.
+constexpr double kNoiseWeight = 0.04;
+}  // namespace
+
+double PartBudget::sigma_ms() const {
+    // Before the batch estimate has its own time constant of differences it may be a few lucky squares:
+    // the spread of single frames (mean absolute deviation 0.8 s for Gaussian noise) bounds it from below.
+    const int enough = static_cast<int>(std::ceil(1.0 / kNoiseWeight));
+    const double white = 1.25 * noise_;
+    return stats_.samples() >= enough ? stats_.sigma() : std::max(stats_.sigma(), white);
+}
+
+float PartBudget::trigger_band_ms() const {
+    if (!(common_.confidence > 0.0f)) return band_ms();
+    const double factor = slow_.empty() ? 1.0 : slow_.factor;
+    return static_cast<float>(part_.tolerance * part_.target_ms + common_.confidence * sigma_ms() * std::sqrt(factor));
+}
+
 int PartBudget::dwell_updates() const {
     if (!(common_.dwell > 0.0f) || !(common_.smoothing > 0.0f)) return 0;
     return static_cast<int>(std::ceil(common_.dwell / common_.smoothing - 1e-4f));
@@ -48,6 +69,9 @@ void PartBudget::set_params(const BudgetPartParams& part, const BudgetParams& co
 void PartBudget::reset() {
     ema_ = trim_ = -1.0f;
     noise_ = 0.0f;
+    ema_factor_ = 0.0;
+    slow_ = TrackedMean();
+    stats_.reset();
     settle_left_ = 0;
     held_under_ = 0;
     outside_ = 0;
@@ -89,18 +113,34 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     }
     if (std::isfinite(measured_ms) && measured_ms >= 0.0f) {
         model_.observe(counts_, level_ms, measured_ms, common_.cost_smoothing);
+        const float a = common_.smoothing;
+        double y = measured_ms;  // this frame as the averages take it
         if (ema_ < 0.0f) {
             ema_ = trim_ = measured_ms;
+            ema_factor_ = 1.0;
         } else {
             ema_ = std::max(0.0f, ema_ + static_cast<float>(switched_ms));
             trim_ = std::max(0.0f, trim_ + static_cast<float>(switched_ms));
+            slow_.mean += switched_ms;
+            stats_.shift(switched_ms);
             // A lone spike (another process took the core) moves the average by at most 3 noise widths:
             // a sustained change still gets through in a few frames, a one-frame outlier cannot trigger a step.
             const float limit = 3.0f * std::max(noise_, part_.tolerance * part_.target_ms);
             const float dev = std::clamp(measured_ms - ema_, -limit, limit);
-            noise_ += common_.smoothing * (std::fabs(dev) - noise_);
-            ema_ += common_.smoothing * dev;
+            y = static_cast<double>(ema_) + dev;
+            noise_ += a * (std::fabs(dev) - noise_);
+            ema_ += a * dev;
+            ema_factor_ = (1.0 - a) * (1.0 - a) * ema_factor_ + double(a) * a;
             trim_ += common_.trim_smoothing * std::clamp(measured_ms - trim_, -limit, limit);
+        }
+        // The slow mean gathers every frame while the time stays put; when the smoothed time leaves it by
+        // more than k standard errors of their difference (taken as independent: an upper bound) the time
+        // has moved, and it restarts from the smoothed time.
+        if (common_.confidence > 0.0f) {
+            stats_.observe(y, static_cast<int>(std::ceil(1.0f / a - 1e-4f)), kNoiseWeight);
+            const double apart = common_.confidence * sigma_ms() * std::sqrt(ema_factor_ + slow_.factor);
+            if (slow_.empty() || std::fabs(double(ema_) - slow_.mean) > apart) slow_ = {ema_, ema_factor_}, stats_.break_batches();
+            else slow_.add_to_mean(y);
         }
     }
     step.smoothed_ms = ema_;
@@ -128,17 +168,26 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     // Beyond the reaction band the slow average's history is obsolete (the time moved for real): it
     // restarts from the fast one, so it does not drag the trimming back towards the old level.
     if (!trimming) trim_ = ema_;
-    const double predicted = trimming ? trim_ + pending_ms : fast;
+    // Confidence: the slow mean steers, and a step needs it outside the tolerance band by k of its
+    // standard errors (trigger_band_ms()); steps are composed against band_ms() as without.
+    // Beyond the reaction band (react_tolerance, as for trimming: a crowd that doubled, a machine
+    // under heavy load whose noise would hold the confidence test off) the smoothed time is answered at
+    // once with the band test, and the slow mean restarts from it.
+    const bool confident = common_.confidence > 0.0f && !trimming && !slow_.empty();
+    const bool react = confident && std::fabs(fast - target) > std::max<double>(part_.react_tolerance * target, band_ms());
+    if (react) slow_ = {ema_, ema_factor_}, stats_.break_batches();
+    const double predicted = trimming ? trim_ + pending_ms : confident && !react ? slow_.mean + pending_ms : fast;
     const double band = trimming ? trim_band_ms() : band_ms();
+    const double trigger = confident && !react ? double(trigger_band_ms()) : band;
     step.predicted_ms = static_cast<float>(predicted);
     // Dwell: how long the prediction has been outside the band on one side, counted every update.
-    const int side = std::fabs(predicted - target) <= band ? 0 : predicted > target ? 1 : -1;
+    const int side = std::fabs(predicted - target) <= trigger ? 0 : predicted > target ? 1 : -1;
     outside_ = side == 0 ? 0 : outside_ * side > 0 ? std::clamp(outside_ + side, -(1 << 24), 1 << 24) : side;  // no overflow
     if (settle_left_ > 0) {
         --settle_left_;
         return step;
     }
-    if (std::fabs(predicted - target) <= band) {
+    if (std::fabs(predicted - target) <= trigger) {
         held_under_ = 0;
         return step;
     }
@@ -305,8 +354,11 @@ BudgetStep PartBudget::update(float measured_ms, std::span<const double> level_m
     for (uint32_t i : demoted_) ++(geometric ? states[i].budget_demotion : states[i].anim_demotion);
     const auto changed = static_cast<uint32_t>(chosen_.size() + demoted_.size());
     if (changed == 0) return step;
-    // The effect shows as switches (anticipated at the next update) or as pending switches.
+    // The effect shows as switches (anticipated at the next update) or as pending switches. The slow
+    // mean restarts from the smoothed time: its older frames carry the step's predicted effect, and
+    // what the prediction missed would stay in them.
     settle_left_ = common_.settle_frames;
+    if (confident) slow_ = {ema_, ema_factor_}, stats_.break_batches();
     step.direction = over ? -1 : 1;
     step.changed = changed;
     return step;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "components/lod.hpp"
+#include "systems/lod/budget_noise.hpp"
 #include "systems/lod/frame_budget.hpp"
 #include "systems/lod/level_cost.hpp"
 #include "systems/lod/rule_table.hpp"
@@ -50,6 +51,17 @@ namespace aloha {
 ///    widened the band (that promotion costed at the level it would really reach: a cap or the last
 ///    level may swallow it); else the part holds. After any coarse step no coarse step the other way
 ///    is taken for coarse_hold_updates(). Then it waits settle_frames.
+/// With BudgetParams::confidence k > 0 (the default) the part steers on the mean of its measured time
+/// since the time last changed (the slow mean: restarted from the smoothed time at each step and
+/// whenever the smoothed time leaves it by more than k standard errors of their difference; between,
+/// the plain mean of every frame, moved by the predicted effect of each switch like the smoothed time)
+/// and steps only when that mean (+ pending) is outside target +- target * tolerance by more than k of
+/// its standard errors, sigma_ms() * sqrt(its variance factor): stationary noise then makes a false step
+/// with probability under that of a normal beyond k, less and less often as the mean gathers frames.
+/// Steps are composed (3. above) against band_ms() as without. While the smoothed time (+ pending) is
+/// beyond target * (1 +- react_tolerance) it is answered at once with the band test (a crowd that
+/// doubled; noise so wide that k standard errors would hold the part far off), the slow mean
+/// restarting from it. Otherwise (k = 0) the band test above.
 /// With BudgetParams::dwell > 0 a step waits until the prediction has been outside the band on the
 /// same side for dwell_updates() updates in a row (counted through the settle frames), however large.
 /// With BudgetParams::trim_smoothing > 0 a slow average steers steps 3 and after whenever the fast
@@ -77,6 +89,16 @@ public:
     /// Half-width of the trimming band (trim_smoothing > 0): target * tolerance, or twice the noise
     /// left in the slow average when that is larger.
     [[nodiscard]] float trim_band_ms() const;
+    /// Long-run standard deviation of one frame's measured time (ms): from batch means (BudgetNoise,
+    /// batches of ceil(1 / smoothing) frames, averaged with weight 0.04: to 10%) once 25 batch
+    /// differences are in, before that the larger of it and the spread of single frames (1.25 * noise_ms());
+    /// with confidence 0 (no batches kept) the latter.
+    [[nodiscard]] double sigma_ms() const;
+    /// The slow mean (confidence > 0): the mean of the measured time since it last changed (ms).
+    [[nodiscard]] const TrackedMean& slow_mean() const { return slow_; }
+    /// Half-width around the target inside which no step is taken now: with confidence k > 0,
+    /// target * tolerance + k * sigma_ms() * sqrt(the slow mean's variance factor); else band_ms().
+    [[nodiscard]] float trigger_band_ms() const;
     /// Slow (trim) average of the measured time (ms); negative before the first update.
     [[nodiscard]] float trim_ms() const { return trim_; }
     /// Updates in a row the prediction must stay outside the band on one side before a step (dwell):
@@ -106,6 +128,9 @@ private:
     float ema_ = -1.0f;
     float trim_ = -1.0f;                              // slow average (trim_smoothing), same adjustments as ema_
     float noise_ = 0.0f;
+    double ema_factor_ = 0.0;                         // variance of ema_ / one frame's (white noise)
+    TrackedMean slow_;                                // confidence > 0: the mean since the time last changed
+    BudgetNoise stats_;                               // long-run noise of the measured time
     int settle_left_ = 0;
     int outside_ = 0;                                 // updates in a row the prediction was outside the band: > 0 over, < 0 under
     int held_under_ = 0;                              // updates in a row held under the band with only coarse promotions

@@ -83,6 +83,7 @@ void parse_budget(const json& value, RuleFile& in, RuleTable& table) {
     b.read("cost_smoothing", bp.cost_smoothing, 0.001, 1.0);
     b.read("trim_smoothing", bp.trim_smoothing, 0.0, 1.0);
     b.read("dwell", bp.dwell, 0.0, 10.0);
+    b.read("confidence", bp.confidence, 0.0, 10.0);
     bp.animation.max_demotion = bp.geometry.max_demotion = bp.max_demotion;
     parse_budget_part(b, "animation", in, &bp.animation);
     parse_budget_part(b, "geometry", in, &bp.geometry);

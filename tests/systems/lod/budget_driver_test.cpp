@@ -41,6 +41,7 @@ TEST(BudgetDriver, TheFilesBudgetRunsWithoutOverrides) {
     EXPECT_FLOAT_EQ(t.budget->trim_smoothing, 0.0f);  // trimming off unless the file turns it on
     EXPECT_FLOAT_EQ(t.budget->animation.react_tolerance, 0.25f);
     EXPECT_FLOAT_EQ(t.budget->dwell, 0.0f);  // no dwell unless the file asks for one
+    EXPECT_FLOAT_EQ(t.budget->confidence, 3.0f);  // the confidence test unless the file turns it off
     json trimmed = with_parts(1.5, 6.0);
     trimmed["budget"]["trim_smoothing"] = 0.02;
     trimmed["budget"]["dwell"] = 1.5;
@@ -182,15 +183,18 @@ TEST(BudgetDriver, BadBudgetSectionsAreRefusedWithTheirPath) {
     json trim = with_parts(1.0, 2.0);
     trim["budget"]["trim_smoothing"] = -0.1;
     EXPECT_NE(errors_of(trim).find("/budget/trim_smoothing"), std::string::npos);
-    // The dwell (time constants, 0-10): the file, the key's JSON path (as for every budget key) and the range.
-    for (double bad : {-0.5, 11.0}) {
-        json dwell = with_parts(1.0, 2.0);
-        dwell["budget"]["dwell"] = bad;
-        const std::string e = errors_of(dwell);
-        std::printf("%s\n", e.c_str());
-        EXPECT_NE(e.find("budget.json:"), std::string::npos) << e;
-        EXPECT_NE(e.find("/budget/dwell"), std::string::npos) << e;
-        EXPECT_NE(e.find("out of range [0.0, 10.0]"), std::string::npos) << e;
+    // The dwell (time constants) and the confidence (standard errors), each 0-10: the file, the key's
+    // JSON path (as for every budget key) and the range.
+    for (const char* key : {"dwell", "confidence"}) {
+        for (double bad : {-0.5, 11.0}) {
+            json budget = with_parts(1.0, 2.0);
+            budget["budget"][key] = bad;
+            const std::string e = errors_of(budget);
+            std::printf("%s\n", e.c_str());
+            EXPECT_NE(e.find("budget.json:"), std::string::npos) << e;
+            EXPECT_NE(e.find(std::string("/budget/") + key), std::string::npos) << e;
+            EXPECT_NE(e.find("out of range [0.0, 10.0]"), std::string::npos) << e;
+        }
     }
     json flag = with_parts(1.0, 2.0);
     flag["budget"]["enabled"] = "yes";

@@ -46,6 +46,7 @@ struct ChurnSetup {
     float walk = 0.02f;   // importance random-walk step per frame (0: a fixed order)
     bool loaded = false;  // drift and bursts on the measured times
     float dwell = 0.0f;   // BudgetParams::dwell
+    float confidence = 0.0f;  // BudgetParams::confidence: these tests show the band test (0) and its dwell
 };
 
 // Both parts at 0.7 of the crowd's full cost; settles 300 frames, then counts over `frames` more.
@@ -58,6 +59,7 @@ ChurnRun run_churn(const ChurnSetup& setup, int frames = 1200, int settle = 300)
     r.anim_target = 0.7 * sim.anim_truth;
     r.geom_target = 0.7 * sim.geom_truth;
     sim.common.dwell = setup.dwell;
+    sim.common.confidence = setup.confidence;
     sim.set_targets(r.anim_target, r.geom_target);
     std::vector<SwitchRecord> records(sim.crowd.states.size());
     std::vector<uint32_t> changed;

@@ -37,6 +37,7 @@ struct BudgetSim {
     double geom_truth = 0, anim_truth = 0;      // noise-free cost of the last frame
     double geom_ms = -1, anim_ms = -1;          // what the controllers are told
     double load = 1.0;                          // the machine's slowdown: every measured time is the truth times this
+    double noise = kNoise;                      // measurement noise: uniform in +-noise of the truth
     std::vector<double> geom_level_ms, anim_level_ms;
     std::vector<int> anim_steps, geom_steps;    // direction of every step, in order
 
@@ -80,11 +81,11 @@ struct BudgetSim {
             anim_level_ms[tell ? anim_cost_slot(s.anim_level, walks) : s.anim_level] +=
                 walks ? anim_cost[s.anim_level] : anim_still_cost[s.anim_level];
         }
-        for (double& l : geom_level_ms) geom_truth += l, l *= 1.0 + kNoise * (2.0 * rnd.next() - 1.0);
-        for (double& l : anim_level_ms) anim_truth += l, l *= anim_per_level ? 1.0 + kNoise * (2.0 * rnd.next() - 1.0) : 1.0;
-        geom_ms = geom_truth * (1.0 + kNoise * (2.0 * rnd.next() - 1.0));
+        for (double& l : geom_level_ms) geom_truth += l, l *= 1.0 + noise * (2.0 * rnd.next() - 1.0);
+        for (double& l : anim_level_ms) anim_truth += l, l *= anim_per_level ? 1.0 + noise * (2.0 * rnd.next() - 1.0) : 1.0;
+        geom_ms = geom_truth * (1.0 + noise * (2.0 * rnd.next() - 1.0));
         anim_ms = anim_per_level ? std::accumulate(anim_level_ms.begin(), anim_level_ms.end(), 0.0)
-                                 : anim_truth * (1.0 + kNoise * (2.0 * rnd.next() - 1.0));
+                                 : anim_truth * (1.0 + noise * (2.0 * rnd.next() - 1.0));
         geom_ms *= load, anim_ms *= load;
         for (double& l : geom_level_ms) l *= load;
         for (double& l : anim_level_ms) l *= load;
@@ -93,9 +94,10 @@ struct BudgetSim {
 
 /// The last frame (of 300) at which the true animation time was more than 10% off its target after a
 /// crowd of 500 doubled (-1: never), the target at 0.6 of the first crowd's full cost, the animation
-/// part settled 300 frames before, with `trim_smoothing` and `dwell` in its settings.
-inline int frames_to_reconverge(float trim_smoothing, float dwell = 0.0f) {
+/// part settled 300 frames before, with `trim_smoothing`, `dwell` and `confidence` in its settings.
+inline int frames_to_reconverge(float trim_smoothing, float dwell = 0.0f, float confidence = 0.0f) {
     BudgetSim sim;
+    sim.common.confidence = confidence;
     sim.add(500);
     sim.frame();
     const double target = 0.6 * sim.anim_truth;

@@ -41,6 +41,7 @@ TrimRun run_swinging(float trim_smoothing, int settle, int frames) {
     TrimRun r;
     r.target_ms = sim.anim_truth - 0.4;
     sim.common.trim_smoothing = trim_smoothing;
+    sim.common.confidence = 0.0f;  // the band test on the fast or the trim average, as this test describes
     sim.set_targets(r.target_ms, 0.0);
     std::vector<uint8_t> last(sim.crowd.states.size());
     for (int f = 0; f < settle + frames; ++f) {
