@@ -108,12 +108,12 @@ struct BudgetParams {
     /// with level changes that its end would undo; a real change is answered that much later.
     float dwell = 0.0f;
     /// Parts: standard errors (k) by which a part's averaged time must be outside its tolerance band
-    /// before a step (0 = off: the old band test on the smoothed time). On, the part steers on the mean
+    /// before a step (0, the default = off: the band test on the smoothed time). On, the part steers on the mean
     /// of its measured time since the time last changed (a step, or the smoothed time leaving that mean
     /// by k standard errors of their difference), whose standard error comes from the measured noise
     /// (BudgetNoise): noise alone steps with probability under that of a normal beyond k (3: 0.13%
     /// a look), and a mean held inside the band makes no more steps as its error shrinks.
-    float confidence = 3.0f;
+    float confidence = 0.0f;
     BudgetPartParams animation;  ///< the motion system's time
     BudgetPartParams geometry;   ///< the muscle + spring_skin systems' time
 

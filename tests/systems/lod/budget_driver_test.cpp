@@ -41,7 +41,7 @@ TEST(BudgetDriver, TheFilesBudgetRunsWithoutOverrides) {
     EXPECT_FLOAT_EQ(t.budget->trim_smoothing, 0.0f);  // trimming off unless the file turns it on
     EXPECT_FLOAT_EQ(t.budget->animation.react_tolerance, 0.25f);
     EXPECT_FLOAT_EQ(t.budget->dwell, 0.0f);  // no dwell unless the file asks for one
-    EXPECT_FLOAT_EQ(t.budget->confidence, 3.0f);  // the confidence test unless the file turns it off
+    EXPECT_FLOAT_EQ(t.budget->confidence, 0.0f);  // the band test unless the file asks for the confidence test
     json trimmed = with_parts(1.5, 6.0);
     trimmed["budget"]["trim_smoothing"] = 0.02;
     trimmed["budget"]["dwell"] = 1.5;

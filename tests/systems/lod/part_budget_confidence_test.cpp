@@ -104,6 +104,7 @@ TEST(PartBudgetConfidence, ALoadStepIsAnsweredWithinTheDerivedBound) {
         sim.add(500);
         sim.frame();
         const double target = 0.6 * sim.anim_truth;
+        sim.common.confidence = 3.0f;  // the confidence test (the default, 0, is the band test)
         sim.set_targets(target, 0.0);
         for (int f = 0; f < 600; ++f) sim.frame();
         sim.load = load;
