@@ -4,6 +4,9 @@
 
 #include "systems/geometry/controller/skin_bake.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -37,16 +40,11 @@ Result<std::vector<std::unique_ptr<CharacterRuntime>>> make_character_runtimes(c
         rt->measure_bounds(levels);
         out[t] = std::move(rt);
     };
+    // oneTBB as the scheduler uses it: an arena of `threads` (0 = every core), one type per task.
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const size_t workers = std::min<size_t>(types, load.threads == 0 ? cores : load.threads);
-    std::atomic<size_t> next{0};
-    const auto work = [&] {
-        for (size_t t = next.fetch_add(1); t < types; t = next.fetch_add(1)) build(t);
-    };
-    std::vector<std::thread> pool;
-    for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
-    work();
-    for (std::thread& th : pool) th.join();
+    const size_t workers = std::max<size_t>(1, std::min<size_t>(types, load.threads == 0 ? cores : load.threads));
+    tbb::task_arena arena(static_cast<int>(workers));
+    arena.execute([&] { tbb::parallel_for(size_t{0}, types, size_t{1}, build); });
     for (size_t t = 0; t < types; ++t)
         if (errors[t]) return *errors[t];
     return out;
