@@ -38,6 +38,9 @@ struct BudgetSim {
     double geom_ms = -1, anim_ms = -1;          // what the controllers are told
     double load = 1.0;                          // the machine's slowdown: every measured time is the truth times this
     double noise = kNoise;                      // measurement noise: uniform in +-noise of the truth
+    int spike_every = 0;                        // every n-th frame's measured totals are spike_factor x (0: none)
+    double spike_factor = 1.0;
+    int spike_clock = 0;
     std::vector<double> geom_level_ms, anim_level_ms;
     std::vector<int> anim_steps, geom_steps;    // direction of every step, in order
 
@@ -87,6 +90,7 @@ struct BudgetSim {
         anim_ms = anim_per_level ? std::accumulate(anim_level_ms.begin(), anim_level_ms.end(), 0.0)
                                  : anim_truth * (1.0 + noise * (2.0 * rnd.next() - 1.0));
         geom_ms *= load, anim_ms *= load;
+        if (spike_every > 0 && ++spike_clock % spike_every == 0) geom_ms *= spike_factor, anim_ms *= spike_factor;
         for (double& l : geom_level_ms) l *= load;
         for (double& l : anim_level_ms) l *= load;
     }
