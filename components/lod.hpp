@@ -14,7 +14,8 @@ struct LodAttributes {
     float speed = 0.0f;               ///< m/s
     float importance = 0.0f;          ///< copied from Importance
     uint8_t visible = 0;              ///< 1 when the bounds intersect the view frustum
-    float occluded = 0.0f;            ///< 0..1: fraction of the on-screen bounds behind nearer characters
+    float occluded = 0.0f;            ///< 1: certainly hidden by nearer characters; below 1 (at most 0.99): the
+                                      ///< estimated share of the body behind them (systems/lod/occlusion.hpp)
 };
 
 /// Bits of GeomLod::layers: which of the four layers are simulated/drawn.

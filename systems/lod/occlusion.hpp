@@ -1,8 +1,9 @@
 // The lod_occlusion system: a cheap estimate of how much of each character is hidden behind the
-// crowd in front of it. Nearer characters are rasterised into a coarse screen-space depth grid as
-// conservative inner shapes (torso, neck and head cores that every level's body covers); each visible
-// character's bounds are then tested against the grid, giving LodAttributes::occluded, the covered
-// fraction of the cells its bounds touch (1 = certainly hidden).
+// crowd in front of it. Nearer characters are rasterised into a coarse screen-space depth grid twice:
+// as conservative inner shapes (torso, neck and head cores that every level's body covers), against
+// which each visible character's bounds are tested (LodAttributes::occluded = 1: certainly hidden),
+// and as body-sized shapes (legs, torso, head), against which the character's own body shapes are
+// tested (occluded below 1: the estimated share of its body behind nearer bodies).
 #pragma once
 
 #include "components/lod.hpp"
@@ -30,6 +31,16 @@ struct OcclusionParams {
     float head_y0 = 0.885f;          ///< head core bottom (chin)
     float head_y1 = 0.97f;           ///< head core top
     float head_radius = 0.036f;      ///< head core radius, fraction of height
+    /// Body-sized shapes of the estimate (not conservative: about the body's own widths, legs together),
+    /// fractions of the height: y0, y1 from the feet, radius. Nearer characters' shapes, at their axis
+    /// depth, cover the cells whose centres they hold; a character's own shapes give the cells counted.
+    struct BodyShape {
+        float y0, y1, radius;
+    };
+    BodyShape body_legs{0.0f, 0.48f, 0.075f};   ///< hips down, both legs (26 cm wide at 1.75 m)
+    BodyShape body_torso{0.48f, 0.82f, 0.11f};  ///< hips to shoulders (38.5 cm wide)
+    BodyShape body_head{0.82f, 1.0f, 0.055f};   ///< chin and head (19 cm wide)
+    float body_cell_px = 4.0f;            ///< the estimate's grid cell size in pixels (>= 1)
     float enter_margin_px = 8.0f;    ///< a drawn character's bounds are grown by this much on screen before
                                      ///< testing, so becoming hidden needs a margin that staying hidden does
                                      ///< not (spatial hysteresis: no flicker from a pixel of sway)
@@ -48,21 +59,31 @@ struct OcclusionGrid {
     /// covered" for a rectangle from its blocks without reading its cells (the same answer as cell by cell).
     int block_width = 0, block_height = 0;
     std::vector<float> block_nearest, block_farthest;
-    /// Sizes the grid for `viewport_px` and `cell_px`; allocates only when it grows.
-    void resize(glm::vec2 viewport_px, float cell_px);
+    std::vector<float> body;         ///< the estimate's grid (body_width x body_height): nearest body-shape axis depth per cell (+inf: none)
+    std::vector<float> part_body;    ///< scratch of pass 1 in parts for `body`, as part_depth
+    std::vector<float> body_block_nearest;  ///< nearest `body` depth per block (the estimate's quick "none")
+    int body_width = 0, body_height = 0;              ///< the estimate's grid, cells
+    int body_block_width = 0, body_block_height = 0;  ///< its blocks (body_block_nearest)
+    /// Sizes the grids for `viewport_px`, `cell_px` and `body_cell_px`; allocates only when they grow.
+    void resize(glm::vec2 viewport_px, float cell_px, float body_cell_px);
 };
 
 /// Fills LodAttributes::occluded for a crowd (all characters at once: every one may hide another).
 ///
-/// Pass 1: for each core (in front of the near plane) of each visible character, the inner screen
+/// Pass 1: for each core (wholly beyond the near plane: one the near plane cuts is drawn with a hole) of each visible character, the inner screen
 /// rectangle of the core (the horizontal extent it covers at every height between its ends, at its
 /// farthest depth) is rasterised inwards (only whole cells) with the core's farthest view depth.
+/// Pass 1 also rasterises each visible character's body shapes (OcclusionParams::BodyShape) at their
+/// axis depth into the estimate's grid, every cell whose centre they hold at every height (the inner
+/// rectangle: an axis leaning on screen covers only the width it keeps from top to bottom).
 /// Pass 2: for each visible character the outer rectangle of its bounds box (radius, height) is
-/// rasterised outwards (grown by enter_margin_px unless the character is drawn Hidden now); occluded =
-/// cells whose grid depth is nearer than the bounds' nearest depth / cells touched (on screen),
-/// counted on every cell of rectangles up to 64 cells and on an even sample of about 64 of larger
-/// ones, except that 1 (fully covered) is only given after every cell was checked. A character's own cores never cover it (they are behind its nearest
-/// point). 0 for characters not visible or crossing the near plane.
+/// rasterised outwards (grown by enter_margin_px unless the character is drawn Hidden now); when every
+/// cell it touches (on screen) holds a core nearer than the bounds' nearest depth, occluded = 1 (every
+/// cell checked). Otherwise occluded = the estimate, at most 0.99: the share of the cells of the
+/// character's own body shapes (outer rectangles) whose body depth is nearer than its axis depth less
+/// its torso radius, counted on every cell or on an even sample of about 16 per shape. A character's own
+/// shapes never cover it (they are behind its nearest point). 0 for characters not visible or crossing
+/// the near plane.
 struct OcclusionJob {
     std::span<const Transform> transforms;    ///< n entries
     std::span<const Bounds> bounds;           ///< n entries, or empty (default Bounds)
@@ -91,6 +112,9 @@ struct OcclusionJob {
     /// Pass 2 alone for characters [begin, end) after Rasterise(); returns how many are fully occluded.
     /// Disjoint ranges may run concurrently (the grid is only read).
     size_t Test(size_t begin, size_t end) const;
+    /// The estimate alone for a character standing at `feet`, `h` tall (after MergeParts): the share of
+    /// the cells of its body shapes that nearer body shapes cover, in [0, 1].
+    float EstimateCovered(const glm::vec3& feet, float h) const;
 };
 
 }  // namespace aloha

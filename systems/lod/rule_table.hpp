@@ -146,8 +146,9 @@ struct alignas(32) ConditionBox {
     std::array<float, kBoxSlots> hi_wide;
 };
 
-/// True when value hysteresis widens bounds on `a`: not for the discrete visible and tier, nor for
-/// occluded (a character must not stay hidden while part of it shows).
+/// True when value hysteresis widens every finite bound on `a`: not for the discrete visible and tier,
+/// nor for occluded, whose bounds strictly between 0 and 1 (the estimate) are widened but a bound of 1
+/// (certainly hidden) is not (a character must not stay hidden while part of it shows).
 [[nodiscard]] bool gets_value_band(LodAttribute a);
 
 /// Sets box.lo_wide / hi_wide from lo / hi: finite bounds of attributes that get a band move out by

@@ -97,6 +97,27 @@ TEST(RuleEval, ActiveRuleIsWidenedByTheBand) {
     EXPECT_EQ(without[0].rule_id, 3);
 }
 
+TEST(RuleEval, OccludedEstimateGetsABandCertainlyHiddenDoesNot) {
+    json j = small_rules();  // band 0.1
+    j["rules"][1]["when"] = {{"occluded", {{"ge", 1}}}};    // certainly hidden
+    j["rules"][2]["when"] = {{"occluded", {{"ge", 0.7}}}};  // mostly hidden (estimate): stays down to 0.63
+    const RuleTable t = must_parse(j);
+    auto occluded = [](float o) {
+        LodAttributes a = at_distance(5.0f);
+        a.occluded = o;
+        return a;
+    };
+    std::vector<LodState> on_mostly(3), on_hidden(1);
+    for (LodState& s : on_mostly) s.rule_id = 2;
+    on_hidden[0].rule_id = 1;
+    const auto stay = eval(t, {occluded(0.65f), occluded(0.62f), occluded(1.0f)}, on_mostly);
+    EXPECT_EQ(stay[0].rule_id, 2);  // within the band
+    EXPECT_EQ(stay[1].rule_id, 3);  // below 0.63
+    EXPECT_EQ(stay[2].rule_id, 1);  // the earlier rule at its own bound
+    EXPECT_EQ(eval(t, {occluded(0.65f)})[0].rule_id, 3);               // entering needs 0.7
+    EXPECT_EQ(eval(t, {occluded(0.99f)}, on_hidden)[0].rule_id, 2);  // leaves hidden as soon as a part shows
+}
+
 TEST(RuleEval, ValidateChecksTableSizesAndTier) {
     const RuleTable t = must_parse(small_rules());
     std::vector<LodAttributes> a(2);
