@@ -216,7 +216,7 @@ void OcclusionJob::RasterisePart(size_t part, size_t parts) const {
     // The estimate's body shapes: at their axis depth, every cell whose centre their inner rectangle holds.
     auto rasterise_body = [&](const AxisProjection& ax, float h, const OcclusionParams::BodyShape& shape) {
         const ShapeRect r = project_shape(pr, ax, h, shape.y0, shape.y1, shape.radius);
-        if (!r.in_front) return;
+        if (!r.in_front || r.ix1 - r.ix0 < body_cell) return;  // narrower than a cell: a far character's
         const int cx0 = std::max(0, static_cast<int>(std::ceil(r.ix0 / body_cell - 0.5f)));
         const int cx1 = std::min(g.body_width, static_cast<int>(std::floor(r.ix1 / body_cell - 0.5f)) + 1);
         const int cy0 = std::max(0, static_cast<int>(std::ceil(r.y0 / body_cell - 0.5f)));
@@ -243,6 +243,7 @@ void OcclusionJob::RasterisePart(size_t part, size_t parts) const {
 }
 
 namespace {
+constexpr float kMinEstimateCells = 4.0f;  // the estimate's smallest character, in cells of its grid (16 px)
 float estimate_covered(const OcclusionJob& job, const Projector& pr, const glm::vec3& feet, float h);
 }  // namespace
 
@@ -258,6 +259,14 @@ float estimate_covered(const OcclusionJob& job, const Projector& pr, const glm::
     const float cell = params.body_cell_px;
     const OcclusionParams::BodyShape* shapes[3] = {&params.body_legs, &params.body_torso, &params.body_head};
     const AxisProjection ax = project_axis(pr, feet, h);
+    // Under kMinEstimateCells cells tall its shapes are a cell or two wide: the estimate would be the
+    // cells' rounding, not what covers it. 0 (as for a character nothing covers).
+    {
+        const glm::vec4 top = ax.feet_clip + ax.up_clip;
+        if (!(ax.feet_clip.w > pr.near_plane) || !(top.w > pr.near_plane)) return 0.0f;
+        const float tall_px = std::fabs(top.y / top.w - ax.feet_clip.y / ax.feet_clip.w) * pr.half_viewport.y;
+        if (tall_px < kMinEstimateCells * cell) return 0.0f;
+    }
     // Nearer than its own nearest shape by its torso's radius: its own shapes never count.
     float front = std::numeric_limits<float>::infinity();
     for (const OcclusionParams::BodyShape* b : shapes) front = std::min(front, ax.feet_z + ax.up_z * 0.5f * (b->y0 + b->y1));

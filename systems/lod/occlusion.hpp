@@ -83,7 +83,8 @@ struct OcclusionGrid {
 /// character's own body shapes (outer rectangles) whose body depth is nearer than its axis depth less
 /// its torso radius, counted on every cell or on an even sample of about 16 per shape. A character's own
 /// shapes never cover it (they are behind its nearest point). 0 for characters not visible or crossing
-/// the near plane.
+/// the near plane, and an estimate of 0 for characters under 4 cells of the estimate's grid tall (16 px
+/// by default: their shapes are a cell or two wide) and from shapes narrower than a cell.
 struct OcclusionJob {
     std::span<const Transform> transforms;    ///< n entries
     std::span<const Bounds> bounds;           ///< n entries, or empty (default Bounds)
