@@ -1,67 +1,24 @@
 // OcclusionJob: a character straight behind a wider one is hidden, one beside it is not, a partly
 // covered one gets a fraction (the estimate, from body shapes); nobody hides themselves; a rolled camera
-// estimates nothing. The estimate: a character behind a row of people is mostly covered, one in front
-// of them or beside them is not, one half behind their edge about half; it never says 1. On a dense
-// crowd with the default cores, every character marked fully occluded is checked independently: rays
+// estimates nothing (the estimate itself: occlusion_estimate_test.cpp). On a dense crowd with the default
+// cores, every character marked fully occluded is checked independently: rays
 // from the eye to points all over its bounds box must each hit a nearer character's core cylinder. Pass 2
 // in chunks (as the host runs it) gives what one run gives.
-#include "systems/lod/occlusion.hpp"
 
-#include <gtest/gtest.h>
+#include "tests/systems/lod/occlusion_test_util.hpp"
 
 #include <glm/gtc/constants.hpp>
-#include <glm/gtc/matrix_transform.hpp>
 
-#include <algorithm>
-#include <cmath>
 #include <iostream>
-#include <vector>
 
 namespace aloha {
 namespace {
 
-struct Scene {
-    std::vector<Transform> t;
-    std::vector<Bounds> b;
-    std::vector<LodAttributes> a;
-    std::vector<GeomLod> g;  // empty: every character counts as drawn
-    OcclusionGrid grid;
-    void add(glm::vec3 feet, float height = 1.8f, float radius = 0.4f) {
-        Transform x;
-        x.position = feet;
-        t.push_back(x);
-        b.push_back({height, radius});
-        LodAttributes v;
-        v.visible = 1;
-        a.push_back(v);
-    }
-    size_t run(const LodCamera& cam, const OcclusionParams& p = {}) {
-        OcclusionJob job{t, b, g, cam, p, &grid, a};
-        std::vector<std::string> errors;
-        EXPECT_TRUE(job.Validate(&errors)) << (errors.empty() ? "" : errors.front());
-        return job.Run();
-    }
-};
+using occlusion_test::level_camera;
+using occlusion_test::ray_hits_cylinder;
+using occlusion_test::Scene;
+using occlusion_test::solid_cores;
 
-LodCamera level_camera() {
-    return make_lod_camera({0, 1, 10}, {0, 1, 0}, glm::radians(60.0f), {1280, 720}, 0.1f, 500.0f);
-}
-
-// Cores as big as the bounds (a full-height cylinder of the bounds' radius): an occluder is a solid
-// cylinder, so which cases are hidden can be worked out by hand. The estimate's body shapes are the same
-// solid cylinder (legs and torso halves of it, no head).
-OcclusionParams solid_cores() {
-    OcclusionParams p;
-    p.torso_y0 = 0.0f;
-    p.torso_y1 = 1.0f;
-    p.torso_radius = 0.25f;  // fraction of the height: 1 m for the 4 m occluder below
-    p.neck_radius = 0.0f;
-    p.head_radius = 0.0f;
-    p.body_legs = {0.0f, 0.5f, 0.25f};
-    p.body_torso = {0.5f, 1.0f, 0.25f};
-    p.body_head = {0.99f, 1.0f, 0.0f};
-    return p;
-}
 
 TEST(Occlusion, BehindHiddenBesideVisiblePartlyBetween) {
     Scene s;
@@ -115,28 +72,6 @@ TEST(Occlusion, NotVisibleAndRolledCamerasGetNothing) {
     EXPECT_EQ(s.a[1].occluded, 0.0f);
 }
 
-// True when the segment from `eye` to `p` passes through the vertical cylinder (axis through `base`,
-// y in [y0, y1] above it, radius r) before reaching p.
-bool ray_hits_cylinder(glm::vec3 eye, glm::vec3 p, glm::vec3 base, float y0, float y1, float r) {
-    const glm::vec3 d = p - eye;  // parameter t in [0, 1) reaches p at 1
-    // Inside the infinite cylinder: |(eye + t d - base).xz| <= r, a quadratic in t.
-    const glm::vec2 o(eye.x - base.x, eye.z - base.z), dv(d.x, d.z);
-    const float qa = glm::dot(dv, dv), qb = 2.0f * glm::dot(o, dv), qc = glm::dot(o, o) - r * r;
-    const float disc = qb * qb - 4.0f * qa * qc;
-    if (qa <= 0.0f || disc < 0.0f) return false;
-    float t0 = (-qb - std::sqrt(disc)) / (2.0f * qa), t1 = (-qb + std::sqrt(disc)) / (2.0f * qa);
-    // Inside the slab base.y + [y0, y1].
-    const float lo = base.y + y0, hi = base.y + y1;
-    if (std::fabs(d.y) < 1e-9f) {
-        if (eye.y < lo || eye.y > hi) return false;
-    } else {
-        float s0 = (lo - eye.y) / d.y, s1 = (hi - eye.y) / d.y;
-        if (s0 > s1) std::swap(s0, s1);
-        t0 = std::max(t0, s0);
-        t1 = std::min(t1, s1);
-    }
-    return t0 <= t1 && t1 > 0.0f && t0 < 1.0f;
-}
 
 TEST(Occlusion, EveryFullyOccludedCharacterIsReallyHiddenByCores) {
     // A dense crowd, 30 wide and 60 deep, 0.7 m apart with +-0.15 m jitter, heights 1.55-1.95 m, seen
@@ -183,79 +118,6 @@ TEST(Occlusion, EveryFullyOccludedCharacterIsReallyHiddenByCores) {
     EXPECT_EQ(checked, full);
     // The front row is never hidden.
     for (size_t x = 0; x < 30; ++x) EXPECT_LT(s.a[x].occluded, 1.0f) << x;
-}
-
-// The estimate against the model it rasterises, ray cast: in a dense crowd seen from eye height, for each
-// character at least 100 px tall, the share of points over the camera-facing cross-sections of its own legs,
-// torso and head shapes (area-weighted) that a ray from the eye reaches only through a nearer character's body
-// shape (the same vertical cylinders). The grid differs from the rays in three ways, each bounded: the shapes'
-// screen rectangles are counted in whole 4 px cells (outwards for the character, by cell centre for the
-// occluders), an occluder is compared at its axis depth against the character's nearest shape less its torso
-// radius (a ray compares true depths), and shapes are sampled (16 cells each at most). For a character 100 px
-// tall the torso is 5.5 x 8.5 cells, so one column or row of cells counted differently on each side of a
-// partly covered shape moves its share by up to about 2 / 5.5 = 0.36: the per-character bound below (0.45)
-// allows that and the rays' own 5 x 5 sampling. Over a crowd the roundings fall both ways, so the mean
-// difference is small: its bound (0.12) is a regression guard, not derived (0.071 over 135 characters, 57
-// of them partly covered, when written; largest 0.37). Off-screen characters are left out: the job counts
-// only cells on screen, the rays see past its edges.
-TEST(Occlusion, EstimateMatchesRayCastShapes) {
-    Scene s;
-    uint32_t seed = 7;
-    auto rnd = [&] { return static_cast<float>((seed = seed * 1664525u + 1013904223u) >> 8) / 16777216.0f; };
-    for (int z = 0; z < 24; ++z)
-        for (int x = 0; x < 16; ++x)
-            s.add({0.8f * (x - 8) + 0.4f * (rnd() - 0.5f), 0.0f, -0.8f * z + 0.4f * (rnd() - 0.5f)}, 1.55f + 0.4f * rnd(), 0.2f);
-    const glm::vec3 eye(0, 1.7f, 4);
-    const LodCamera cam = make_lod_camera(eye, {0, 1.3f, -10}, glm::radians(60.0f), {1280, 720}, 0.1f, 500.0f);
-    const OcclusionParams p;
-    (void)s.run(cam, p);
-    const glm::mat4 vp = cam.projection * cam.view;
-    const OcclusionParams::BodyShape shapes[3] = {p.body_legs, p.body_torso, p.body_head};
-    double sum_diff = 0.0, max_diff = 0.0;
-    size_t checked = 0, partly = 0;
-    for (size_t i = 0; i < s.t.size(); ++i) {
-        const glm::vec3 f = s.t[i].position;
-        const float h = s.b[i].height;
-        const glm::vec4 c0 = vp * glm::vec4(f, 1.0f), c1 = vp * glm::vec4(f + glm::vec3(0, h, 0), 1.0f);
-        if (c0.w <= 0.5f || c1.w <= 0.5f || std::fabs(c1.y / c1.w - c0.y / c0.w) * 360.0f < 100.0f) continue;
-        // Wholly on screen (the job counts only the cells on screen; the rays see past its edges).
-        auto on_screen = [](const glm::vec4& c) { return std::fabs(c.x / c.w) < 0.9f && std::fabs(c.y / c.w) < 1.0f; };
-        if (!on_screen(c0) || !on_screen(c1)) continue;
-        if (s.a[i].occluded >= 1.0f || !s.a[i].visible) continue;
-        // The camera-facing cross-section: across the view direction in the ground plane.
-        const glm::vec3 to_eye = glm::normalize(glm::vec3(eye.x - f.x, 0.0f, eye.z - f.z));
-        const glm::vec3 across(to_eye.z, 0.0f, -to_eye.x);
-        double covered = 0.0, total = 0.0;
-        for (const auto& sh : shapes) {
-            const float area = (sh.y1 - sh.y0) * sh.radius;
-            for (int u = 0; u < 5; ++u)
-                for (int v = 0; v < 5; ++v) {
-                    const glm::vec3 q = f + across * (sh.radius * h * (-0.9f + 1.8f * u / 4.0f)) +
-                                        glm::vec3(0.0f, h * (sh.y0 + (sh.y1 - sh.y0) * (0.1f + 0.8f * v / 4.0f)), 0.0f);
-                    bool hit = false;
-                    for (size_t k = 0; k < s.t.size() && !hit; ++k) {
-                        if (k == i) continue;
-                        const float hk = s.b[k].height;
-                        for (const auto& o : shapes)
-                            hit = hit || ray_hits_cylinder(eye, q, s.t[k].position, o.y0 * hk, o.y1 * hk, o.radius * hk);
-                    }
-                    covered += hit ? area : 0.0;
-                    total += area;
-                }
-        }
-        const double ray = covered / total;
-        const double diff = std::fabs(ray - std::min(1.0, static_cast<double>(s.a[i].occluded) / 0.99));
-        EXPECT_LT(diff, 0.45) << "character " << i << ": estimate " << s.a[i].occluded << ", rays " << ray;
-        sum_diff += diff;
-        max_diff = std::max(max_diff, diff);
-        partly += ray > 0.05 && ray < 0.95 ? 1u : 0u;
-        ++checked;
-    }
-    ASSERT_GT(checked, 30u);  // enough characters at that size to speak of a mean
-    EXPECT_GT(partly, 5u);    // and some partly covered ones (else the comparison proves little)
-    EXPECT_LT(sum_diff / static_cast<double>(checked), 0.12);
-    std::cout << checked << " characters (" << partly << " partly covered): mean |estimate - rays| "
-              << sum_diff / static_cast<double>(checked) << ", largest " << max_diff << "\n";
 }
 
 // The host runs pass 2 in chunks, concurrently: Rasterise() then Test() over any split of the crowd gives
@@ -356,40 +218,6 @@ TEST(Occlusion, BlockSummaryGivesTheCellByCellAnswer) {
     EXPECT_GT(all, 0u);
     EXPECT_GT(partial, 0u);
     std::cout << "cells none / all / partly covered: " << none << " / " << all << " / " << partial << "\n";
-}
-
-// The estimate with the default body shapes, at eye height 1.7 m looking level along -z. A row of 1.8 m
-// people 5 m away, 0.4 m apart (their torso shapes, 0.396 m wide, touch; their heads and legs leave
-// gaps), for x in [-2.8, 2.8]. Seen from 10 m, a 1.8 m character's legs (0-0.86 m) lie in the angles the
-// row's torsos (0.86-1.48 m at 5 m) cover and its torso and head in those of the row's torsos and heads.
-TEST(Occlusion, EstimateBehindARowBesideItAndHalfAtItsEdge) {
-    Scene s;
-    for (int k = -7; k <= 7; ++k) s.add({0.4f * static_cast<float>(k), 0.0f, 5.0f});
-    const size_t row = s.t.size();
-    s.add({0.0f, 0.0f, 0.0f});  // straight behind the row, 10 m from the eye
-    s.add({0.2f, 0.0f, 7.0f});  // in front of the row: nothing nearer
-    s.add({9.0f, 0.0f, 0.0f});  // beside the row's end (0.9 against the row's 0.64 of x per depth)
-    // Half behind the row's end: its axis on the last torso's edge, (2.8 + 0.198) / 5 of x per depth.
-    s.add({(2.8f + 0.198f) * 2.0f, 0.0f, 0.0f});
-    const LodCamera cam = make_lod_camera({0, 1.7f, 10}, {0, 1.7f, 0}, glm::radians(60.0f), {1280, 720}, 0.1f, 500.0f);
-    (void)s.run(cam);
-    EXPECT_GE(s.a[row].occluded, 0.85f);
-    EXPECT_LT(s.a[row].occluded, 1.0f);  // the cores leave gaps: not certainly hidden, so an estimate
-    EXPECT_EQ(s.a[row + 1].occluded, 0.0f);
-    EXPECT_EQ(s.a[row + 2].occluded, 0.0f);
-    // About half of its legs' cells (~40% of its shapes' cells) and of the lower 63% of its torso's (~45%:
-    // the rest of it lies in the angles of the row's heads, which do not reach it), none of its head's
-    // (~15%). In whole 4 px cells (legs 4.2 cells wide, torso 6.2, counted outwards: 5-6 and 7-8 columns,
-    // of which only those wholly left of the edge, 2 and 3, are covered): 2/6 * 0.40 + 3/8 * 0.63 * 0.45
-    // = 0.24; 0.15-0.5 allows a column either way.
-    EXPECT_GT(s.a[row + 3].occluded, 0.15f);
-    EXPECT_LT(s.a[row + 3].occluded, 0.5f);
-    std::cout << "behind / half at the edge: " << s.a[row].occluded << " / " << s.a[row + 3].occluded << "\n";
-    // The same from EstimateCovered, and nobody's own shapes count: a character alone gets 0.
-    Scene alone;
-    alone.add({0.0f, 0.0f, 0.0f});
-    (void)alone.run(cam);
-    EXPECT_EQ(alone.a[0].occluded, 0.0f);
 }
 
 TEST(Occlusion, ValidateListsEveryProblem) {
