@@ -243,16 +243,11 @@ void OcclusionJob::RasterisePart(size_t part, size_t parts) const {
 }
 
 namespace {
+
 constexpr float kMinEstimateCells = 4.0f;  // the estimate's smallest character, in cells of its grid (16 px)
-float estimate_covered(const OcclusionJob& job, const Projector& pr, const glm::vec3& feet, float h);
-}  // namespace
 
-float OcclusionJob::EstimateCovered(const glm::vec3& feet, float h) const {
-    return estimate_covered(*this, make_projector(camera), feet, h);
-}
-
-namespace {
-
+// The estimate for a character standing at `feet`, `h` tall (after MergeParts): the share of the cells of
+// its body shapes that nearer body shapes cover, in [0, 1].
 float estimate_covered(const OcclusionJob& job, const Projector& pr, const glm::vec3& feet, float h) {
     const OcclusionGrid& g = *job.grid;
     const OcclusionParams& params = job.params;
@@ -263,7 +258,7 @@ float estimate_covered(const OcclusionJob& job, const Projector& pr, const glm::
     // cells' rounding, not what covers it. 0 (as for a character nothing covers).
     {
         const glm::vec4 top = ax.feet_clip + ax.up_clip;
-        if (!(ax.feet_clip.w > pr.near_plane) || !(top.w > pr.near_plane)) return 0.0f;
+        if (!(ax.feet_clip.w > 0.0f) || !(top.w > 0.0f)) return 0.0f;  // behind the eye (the shapes say more below)
         const float tall_px = std::fabs(top.y / top.w - ax.feet_clip.y / ax.feet_clip.w) * pr.half_viewport.y;
         if (tall_px < kMinEstimateCells * cell) return 0.0f;
     }
@@ -271,16 +266,15 @@ float estimate_covered(const OcclusionJob& job, const Projector& pr, const glm::
     float front = std::numeric_limits<float>::infinity();
     for (const OcclusionParams::BodyShape* b : shapes) front = std::min(front, ax.feet_z + ax.up_z * 0.5f * (b->y0 + b->y1));
     front -= params.body_torso.radius * h;
-    ShapeRect rects[3];
     int cx0 = g.body_width, cx1 = 0, cy0 = g.body_height, cy1 = 0;  // the cells of all three (outer rectangles)
     int box[3][4];
     for (int k = 0; k < 3; ++k) {
-        rects[k] = project_shape(pr, ax, h, shapes[k]->y0, shapes[k]->y1, shapes[k]->radius);
-        if (!rects[k].in_front) return 0.0f;
-        box[k][0] = std::max(0, static_cast<int>(std::floor(rects[k].x0 / cell)));
-        box[k][1] = std::min(g.body_width, static_cast<int>(std::ceil(rects[k].x1 / cell)));
-        box[k][2] = std::max(0, static_cast<int>(std::floor(rects[k].y0 / cell)));
-        box[k][3] = std::min(g.body_height, static_cast<int>(std::ceil(rects[k].y1 / cell)));
+        const ShapeRect r = project_shape(pr, ax, h, shapes[k]->y0, shapes[k]->y1, shapes[k]->radius);
+        if (!r.in_front) return 0.0f;
+        box[k][0] = std::max(0, static_cast<int>(std::floor(r.x0 / cell)));
+        box[k][1] = std::min(g.body_width, static_cast<int>(std::ceil(r.x1 / cell)));
+        box[k][2] = std::max(0, static_cast<int>(std::floor(r.y0 / cell)));
+        box[k][3] = std::min(g.body_height, static_cast<int>(std::ceil(r.y1 / cell)));
         cx0 = std::min(cx0, box[k][0]), cx1 = std::max(cx1, box[k][1]);
         cy0 = std::min(cy0, box[k][2]), cy1 = std::max(cy1, box[k][3]);
     }

@@ -113,9 +113,6 @@ struct OcclusionJob {
     /// Pass 2 alone for characters [begin, end) after Rasterise(); returns how many are fully occluded.
     /// Disjoint ranges may run concurrently (the grid is only read).
     size_t Test(size_t begin, size_t end) const;
-    /// The estimate alone for a character standing at `feet`, `h` tall (after MergeParts): the share of
-    /// the cells of its body shapes that nearer body shapes cover, in [0, 1].
-    float EstimateCovered(const glm::vec3& feet, float h) const;
 };
 
 }  // namespace aloha

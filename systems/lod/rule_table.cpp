@@ -45,24 +45,27 @@ int RuleTable::find_tier(std::string_view name) const {
     return -1;
 }
 
-bool gets_value_band(LodAttribute a) {
-    return a != LodAttribute::Visible && a != LodAttribute::Tier && a != LodAttribute::Occluded;
+bool gets_value_band(LodAttribute a, float bound) {
+    if (!std::isfinite(bound)) return false;
+    switch (a) {
+        case LodAttribute::Visible:
+        case LodAttribute::Tier: return false;
+        // `occluded` below 1 is an estimate that moves with the crowd: a band, as for the measured values.
+        // A bound of 1 (certainly hidden) gets none: a character leaves `hidden` as soon as a part shows.
+        case LodAttribute::Occluded: return bound > 0.0f && bound < 1.0f;
+        default: return true;
+    }
 }
 
 void widen_box(ConditionBox& box, float band) {
     box.lo_wide = box.lo;
     box.hi_wide = box.hi;
     for (int k = 0; k < kLodAttributeCount; ++k) {
-        // `occluded` below 1 is an estimate that moves with the crowd: a band, as for the measured values.
-        // A bound of 1 (certainly hidden) gets none: a character leaves `hidden` as soon as a part shows.
-        if (static_cast<LodAttribute>(k) == LodAttribute::Occluded) {
-            if (box.lo[k] > 0.0f && box.lo[k] < 1.0f) box.lo_wide[k] = box.lo[k] - band * box.lo[k];
-            if (box.hi[k] > 0.0f && box.hi[k] < 1.0f) box.hi_wide[k] = std::min(1.0f, box.hi[k] + band * box.hi[k]);
-            continue;
-        }
-        if (!gets_value_band(static_cast<LodAttribute>(k))) continue;
-        if (std::isfinite(box.lo[k])) box.lo_wide[k] = box.lo[k] - band * std::fabs(box.lo[k]);
-        if (std::isfinite(box.hi[k])) box.hi_wide[k] = box.hi[k] + band * std::fabs(box.hi[k]);
+        const auto a = static_cast<LodAttribute>(k);
+        if (gets_value_band(a, box.lo[k])) box.lo_wide[k] = box.lo[k] - band * std::fabs(box.lo[k]);
+        if (gets_value_band(a, box.hi[k])) box.hi_wide[k] = box.hi[k] + band * std::fabs(box.hi[k]);
+        // A widened upper bound on `occluded` stays at most 1 (exclusive "lt" never admits the certainly hidden).
+        if (a == LodAttribute::Occluded) box.hi_wide[k] = std::min(box.hi_wide[k], std::max(box.hi[k], 1.0f));
     }
 }
 

@@ -146,12 +146,12 @@ struct alignas(32) ConditionBox {
     std::array<float, kBoxSlots> hi_wide;
 };
 
-/// True when value hysteresis widens every finite bound on `a`: not for the discrete visible and tier,
-/// nor for occluded, whose bounds strictly between 0 and 1 (the estimate) are widened but a bound of 1
-/// (certainly hidden) is not (a character must not stay hidden while part of it shows).
-[[nodiscard]] bool gets_value_band(LodAttribute a);
+/// True when value hysteresis widens `bound` (a condition's bound on `a`): finite bounds of the measured
+/// attributes; not the discrete visible and tier; for occluded only bounds strictly between 0 and 1 (the
+/// estimate), not 1 (certainly hidden: a character must not stay hidden while part of it shows).
+[[nodiscard]] bool gets_value_band(LodAttribute a, float bound);
 
-/// Sets box.lo_wide / hi_wide from lo / hi: finite bounds of attributes that get a band move out by
+/// Sets box.lo_wide / hi_wide from lo / hi: the bounds that get a band (gets_value_band) move out by
 /// `band` times their magnitude (the rule a character is on holds until it is crossed by the band).
 void widen_box(ConditionBox& box, float band);
 

@@ -38,7 +38,7 @@ TEST(Occlusion, EstimateBehindARowBesideItAndHalfAtItsEdge) {
     EXPECT_GT(s.a[row + 3].occluded, 0.15f);
     EXPECT_LT(s.a[row + 3].occluded, 0.5f);
     std::cout << "behind / half at the edge: " << s.a[row].occluded << " / " << s.a[row + 3].occluded << "\n";
-    // The same from EstimateCovered, and nobody's own shapes count: a character alone gets 0.
+    // Nobody's own shapes count: a character alone gets 0.
     Scene alone;
     alone.add({0.0f, 0.0f, 0.0f});
     (void)alone.run(cam);
