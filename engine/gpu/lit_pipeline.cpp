@@ -4,6 +4,8 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/vk_error.hpp"
 
+#include "shaders/composite_frag.h"
+#include "shaders/composite_vert.h"
 #include "shaders/line_frag.h"
 #include "shaders/impostor_frag.h"
 #include "shaders/impostor_vert.h"
@@ -38,6 +40,7 @@ struct PipelineDesc {
     VkPrimitiveTopology topology;
     VkCompareOp depth_compare;
     VkCullModeFlags cull;
+    bool depth_write = true;
 };
 
 Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass,
@@ -78,7 +81,7 @@ Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRen
     VkPipelineDepthStencilStateCreateInfo ds{};
     ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
     ds.depthTestEnable = VK_TRUE;
-    ds.depthWriteEnable = VK_TRUE;
+    ds.depthWriteEnable = d.depth_write ? VK_TRUE : VK_FALSE;
     ds.depthCompareOp = d.depth_compare;
     VkPipelineColorBlendAttachmentState cb{};
     cb.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
@@ -199,6 +202,8 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         {&lp.vertex_lit_culled_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
         {&lp.lines_, {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE}},
         {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        {&lp.composite_, {k_composite_vert_spv, k_composite_frag_spv, kTriangles, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE,
+                          /*depth_write=*/false}},
         // Dithered (fading characters): lit as above plus the screen-door discard; with constant fragments the
         // per-pixel shaders (profiling only: the fading few keep their look, not the constant cost).
         {&lp.dithered_[0], {k_lit_mesh_vert_spv, k_lit_mesh_dither_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
@@ -226,7 +231,8 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       lines_(std::exchange(o.lines_, VK_NULL_HANDLE)),
       vertex_lit_(std::exchange(o.vertex_lit_, VK_NULL_HANDLE)),
       vertex_lit_culled_(std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE)),
-      impostor_(std::exchange(o.impostor_, VK_NULL_HANDLE)) {
+      impostor_(std::exchange(o.impostor_, VK_NULL_HANDLE)),
+      composite_(std::exchange(o.composite_, VK_NULL_HANDLE)) {
     for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
 }
 
@@ -245,6 +251,7 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         vertex_lit_ = std::exchange(o.vertex_lit_, VK_NULL_HANDLE);
         vertex_lit_culled_ = std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE);
         impostor_ = std::exchange(o.impostor_, VK_NULL_HANDLE);
+        composite_ = std::exchange(o.composite_, VK_NULL_HANDLE);
         for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
     }
     return *this;
@@ -258,6 +265,7 @@ void LitPipelines::destroy() {
     if (vertex_lit_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_, nullptr);
     if (vertex_lit_culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_culled_, nullptr);
     if (impostor_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, impostor_, nullptr);
+    if (composite_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, composite_, nullptr);
     for (VkPipeline& p : dithered_) {
         if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
         p = VK_NULL_HANDLE;
@@ -270,7 +278,7 @@ void LitPipelines::destroy() {
     if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
     if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
     device_ = VK_NULL_HANDLE;
-    mesh_ = culled_ = lines_ = vertex_lit_ = vertex_lit_culled_ = impostor_ = VK_NULL_HANDLE;
+    mesh_ = culled_ = lines_ = vertex_lit_ = vertex_lit_culled_ = impostor_ = composite_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;

@@ -112,6 +112,10 @@ public:
     /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
     [[nodiscard]] VkPipeline impostor() const { return impostor_; }
+    /// Composite pipeline (shaders/composite.*): 6 vertices, one quad over the NDC rectangle in base_colour at
+    /// depth 1, depth test LESS_OR_EQUAL without writes (so only where nothing was drawn), writing the layer in
+    /// set 1 binding 1 (filtered at gl_FragCoord * camera.xy) where its coverage is at least half.
+    [[nodiscard]] VkPipeline composite() const { return composite_; }
     /// Line-list pipeline: unlit vertex colour, depth test LESS_OR_EQUAL.
     [[nodiscard]] VkPipeline lines() const { return lines_; }
     /// Layout for vkCmdPushConstants (stages vertex + fragment, LitPush) and vkCmdBindDescriptorSets.
@@ -141,6 +145,7 @@ private:
     VkPipeline vertex_lit_ = VK_NULL_HANDLE;
     VkPipeline vertex_lit_culled_ = VK_NULL_HANDLE;
     VkPipeline impostor_ = VK_NULL_HANDLE;
+    VkPipeline composite_ = VK_NULL_HANDLE;
     VkPipeline dithered_[4] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};  ///< mesh, culled, vertex-lit, its culled
 };
 

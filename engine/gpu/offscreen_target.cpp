@@ -32,14 +32,14 @@ Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
     sub.colorAttachmentCount = 1;
     sub.pColorAttachments = &colour_ref;
     sub.pDepthStencilAttachment = &depth_ref;
-    // Earlier reads (readback copy, present) and attachment writes (an earlier pass on the queue)
-    // finish before this pass loads or writes; this pass's writes finish before later transfers
-    // (readback) read.
+    // Earlier reads (readback copy, present, a later pass sampling a layer) and attachment writes (an earlier
+    // pass on the queue) finish before this pass loads or writes; this pass's writes finish before later
+    // transfers (readback) or fragment shaders (a composited layer, gpu::LayerTarget) read.
     VkSubpassDependency deps[2]{};
     deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     deps[0].dstSubpass = 0;
     deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
-                           VK_PIPELINE_STAGE_TRANSFER_BIT;
+                           VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
     deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
                            VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
     deps[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
@@ -50,9 +50,9 @@ Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
     deps[1].srcSubpass = 0;
     deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
     deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT;
+    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
     deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
     VkRenderPassCreateInfo rpi{};
     rpi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
     rpi.attachmentCount = 2;
@@ -64,6 +64,36 @@ Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
     VkRenderPass rp = VK_NULL_HANDLE;
     ALOHA_VK_RETURN(vkCreateRenderPass(device, &rpi, nullptr, &rp));
     return rp;
+}
+
+Result<VkFramebuffer> create_framebuffer(VkDevice device, VkRenderPass render_pass, VkImageView colour, VkImageView depth,
+                                         uint32_t width, uint32_t height) {
+    const VkImageView views[2] = {colour, depth};
+    VkFramebufferCreateInfo fci{};
+    fci.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    fci.renderPass = render_pass;
+    fci.attachmentCount = 2;
+    fci.pAttachments = views;
+    fci.width = width;
+    fci.height = height;
+    fci.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    ALOHA_VK_RETURN(vkCreateFramebuffer(device, &fci, nullptr, &fb));
+    return fb;
+}
+
+void begin_render_pass(VkCommandBuffer cmd, const TargetView& target, const VkClearColorValue& clear) {
+    VkClearValue clears[2]{};
+    clears[0].color = clear;
+    clears[1].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo rbi{};
+    rbi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    rbi.renderPass = target.render_pass;
+    rbi.framebuffer = target.framebuffer;
+    rbi.renderArea = {{0, 0}, target.extent};
+    rbi.clearValueCount = 2;
+    rbi.pClearValues = clears;
+    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
 }
 
 Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t width, uint32_t height, bool srgb) {
@@ -83,16 +113,9 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
     Result<VkRenderPass> rp = create_render_pass(t.device_, fmt, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     if (!rp) return rp.error();
     t.render_pass_ = rp.value();
-    VkImageView views[2] = {t.colour_.view(), t.depth_.view()};
-    VkFramebufferCreateInfo fci{};
-    fci.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-    fci.renderPass = t.render_pass_;
-    fci.attachmentCount = 2;
-    fci.pAttachments = views;
-    fci.width = width;
-    fci.height = height;
-    fci.layers = 1;
-    ALOHA_VK_RETURN(vkCreateFramebuffer(t.device_, &fci, nullptr, &t.framebuffer_));
+    Result<VkFramebuffer> fb = create_framebuffer(t.device_, t.render_pass_, t.colour_.view(), t.depth_.view(), width, height);
+    if (!fb) return fb.error();
+    t.framebuffer_ = fb.value();
     Result<Buffer> rb = Buffer::create(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     if (!rb) return rb.error();
     t.readback_ = std::move(rb).value();

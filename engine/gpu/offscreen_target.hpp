@@ -33,6 +33,14 @@ struct TargetView {
 [[nodiscard]] Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
                                                       VkImageLayout final_layout, bool load_colour = false);
 
+/// Creates the framebuffer of `render_pass` (create_render_pass's) over `colour` and `depth` views of
+/// `width` x `height`. Caller destroys it.
+[[nodiscard]] Result<VkFramebuffer> create_framebuffer(VkDevice device, VkRenderPass render_pass, VkImageView colour,
+                                                       VkImageView depth, uint32_t width, uint32_t height);
+
+/// Records the start of `target`'s render pass over its whole extent, clearing colour to `clear` and depth to 1.
+void begin_render_pass(VkCommandBuffer cmd, const TargetView& target, const VkClearColorValue& clear);
+
 /// A CPU-RGBA8 picture: width * height * 4 bytes, rows top to bottom.
 struct Rgba8Image {
     uint32_t width = 0;          ///< pixels

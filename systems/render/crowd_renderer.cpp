@@ -69,7 +69,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
         if (!st) return st;
     }
     growth_events_ = 0;  // initial allocations are not growth
-    for (const char* fixed : {"proxies", "impostors", "lines", "resolve"}) pass_id(fixed);
+    for (const char* fixed : {"far layer", "proxies", "impostors", "lines", "composite", "resolve"}) pass_id(fixed);
     return init_materials();
 }
 
@@ -247,7 +247,11 @@ Status CrowdRenderer::render(const FrameInput& frame, const gpu::TargetView& tar
         pipes_.write_set(slot.set, slot.positions, slot.normals, slot.instances, slot.lines, slot.lighting);
         slot.set_dirty = false;
     }
-    last_upload_bytes_ = upload(frame, slot);
+    last_upload_bytes_ = upload(frame, slot, target.extent);
+    if (far_plan_.far_count > 0) {
+        st = ensure_far_layer(slot, target.extent);
+        if (!st) return st;
+    }
     last_upload_ms_ = ms_since(t0);
     st = record(frame, target, slot);
     if (!st) return st;

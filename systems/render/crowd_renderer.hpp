@@ -6,9 +6,12 @@
 #include "engine/assets/surface_material.hpp"
 #include "engine/core/result.hpp"
 #include "engine/gpu/buffer.hpp"
+#include "engine/gpu/layer_target.hpp"
 #include "engine/gpu/lit_pipeline.hpp"
 #include "engine/gpu/offscreen_target.hpp"
 #include "engine/gpu/texture.hpp"
+#include "systems/render/far_layer.hpp"
+#include "systems/render/impostor_types.hpp"
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
@@ -57,35 +60,6 @@ struct ProxyFade {
     uint32_t first = 0;   ///< first proxy of the run
     uint32_t count = 0;   ///< proxies in the run
     float share = 1.0f;   ///< in [0, 1]
-};
-
-/// One impostor (the `impostor` geometric level): a camera-facing quad showing the cell of its type's atlas
-/// (register_impostor_atlas) nearest the camera's direction and the walk phase. 64 bytes, copied as is.
-struct ImpostorInstance {
-    glm::vec4 position_scale{0.0f, 0.0f, 0.0f, 1.0f}; ///< xyz: character origin (world), w: its uniform scale
-    glm::vec4 forward_phase{0.0f, 1.0f, 0.0f, 1.0f};  ///< xy: world (x, z) of the character's local +Z (unit);
-                                                      ///< z: walk phase in [0, 1), < 0 the standing row;
-                                                      ///< w: fade: 1 shown, (0, 1) dithered in, < 0 the complement
-                                                      ///< of a mesh dithered at -w (shaders/impostor.frag)
-    glm::vec4 colour{1.0f};                           ///< tint, multiplies the atlas albedo
-    uint32_t atlas = 0;                               ///< id from CrowdRenderer::register_impostor_atlas
-    uint32_t reserved[3] = {0, 0, 0};                 ///< padding (std430 uvec4)
-};
-
-/// ImpostorInstance::forward_phase.w of an impostor cross-faded with its mesh (or proxies) drawn at
-/// `drawn_share` (DeformableMesh::dither, ProxyFade::share): -drawn_share, so the two cover each pixel once;
-/// 1 (the whole impostor) when drawn_share <= 0.
-[[nodiscard]] inline float impostor_fade(float drawn_share) { return drawn_share > 0.0f ? -drawn_share : 1.0f; }
-
-/// How an impostor atlas image is laid out (systems/render/impostor_atlas.hpp builds one). The image's top
-/// half holds colour cells (RGB premultiplied by coverage in alpha), the bottom half normal cells (0.5 + 0.5 N
-/// in the bake camera's frame, premultiplied the same way); each half is `directions` columns x `rows` rows.
-struct ImpostorAtlasLayout {
-    uint32_t directions = 16;  ///< columns: camera azimuths 2 pi c / directions in the character's frame (local +Z = 0)
-    uint32_t rows = 9;         ///< walk phases r / (rows - 1), then one standing row
-    float width = 1.0f;        ///< the quad (one cell) in model units: width, centred on the origin
-    float bottom = 0.0f;       ///< height of its lower edge above the origin
-    float height = 1.8f;       ///< its height
 };
 
 /// What shaders/impostor.vert reads of an atlas (set 1 binding 0, vec4 each): first (cell width, cell height in
@@ -155,11 +129,17 @@ struct RendererOptions {
     bool constant_fragments = false;                   ///< meshes and proxies drawn with a constant-colour fragment
                                                        ///< shader (unlit albedo): profiling the fragment cost only
                                                        ///< (validation then warns of unread vertex outputs)
+    float far_layer_below_px = kDefaultFarLayerBelowPx; ///< impostors under this many pixels tall (at scale 1) and
+                                                       ///< behind every mesh and proxy are drawn at half resolution
+                                                       ///< and composited behind the rest (systems/render/far_layer.hpp);
+                                                       ///< 0: every impostor at full resolution
 };
 
 /// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
-/// one per mesh pass label (register_topology's `pass`: all topologies with that label, drawn together),
-/// "proxies", "lines" and "resolve" (end of the render pass: tiles written out, layout transition).
+/// "far layer" (the far impostors at half resolution, before the frame's render pass), one per mesh pass label
+/// (register_topology's `pass`: all topologies with that label, drawn together), "proxies", "impostors",
+/// "lines", "composite" (the far layer blended in) and "resolve" (end of the render pass: tiles written out,
+/// layout transition).
 struct GpuPassTime {
     std::string name;        ///< pass label
     double begin_ms = 0.0;   ///< start, ms after the frame's first timestamp
@@ -272,6 +252,8 @@ private:
         VkDescriptorSet set = VK_NULL_HANDLE;
         gpu::Buffer positions, normals, instances, lines, lighting;
         gpu::Buffer proxy_indices;  // fill_box_batch_indices for proxy_capacity boxes (rewritten on growth)
+        gpu::LayerTarget far_layer;  // half the target's size, made at the first frame with a far layer
+        VkDescriptorSet far_set = VK_NULL_HANDLE;  // material set sampling far_layer (the composite's set 1)
         uint32_t proxy_capacity = 0;
         bool pending = false;
         bool set_dirty = true;
@@ -283,13 +265,18 @@ private:
     Status ensure(gpu::Buffer& buffer, uint64_t bytes, bool& grew);
     Status ensure_proxy_indices(Slot& slot, uint32_t boxes);
     Status retire(Slot& slot);
-    uint64_t upload(const FrameInput& frame, Slot& slot);
+    uint64_t upload(const FrameInput& frame, Slot& slot, VkExtent2D extent);
+    void plan_far_layer_for(const FrameInput& frame, VkExtent2D extent, const ImpostorInstance* drawn);
+    Status ensure_far_layer(Slot& slot, VkExtent2D extent);
+    uint32_t record_far_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
+    uint32_t record_composite(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
     Status record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot);
     Status init_materials();
     Status ensure_queries(Slot& slot, uint32_t count);
     uint32_t pass_id(std::string_view name);
     void end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass);
-    uint32_t record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height);
+    // Draws the impostor records of the far layer's runs (far: each run's [split, end), else [first, split)).
+    uint32_t record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height, bool far);
     uint32_t record_proxies(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
     [[nodiscard]] static uint32_t impostor_base(const FrameInput& frame);
 
@@ -315,6 +302,9 @@ private:
     std::vector<float> depth_;                        // per mesh: distance ahead of the camera (draw order)
     std::vector<uint32_t> impostor_order_;            // impostors nearest first within each atlas's run
     std::vector<float> impostor_depth_;               // per impostor: distance ahead of the camera
+    std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (the far layer's planning)
+    FarLayerPlan far_plan_;                           // this frame's impostor runs and far layer
+    uint32_t impostor_base_ = 0;                      // this frame's first impostor record in the instance buffer
     std::vector<std::string> pass_names_;             // mesh pass labels, then fixed ones, by first use
     std::vector<uint32_t> draw_order_;                // topologies by pass (stable): the recording order
     std::vector<GpuPassTime> last_passes_;

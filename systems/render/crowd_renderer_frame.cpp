@@ -13,7 +13,7 @@
 #include <cstring>
 
 namespace aloha {
-uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
+uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot, VkExtent2D extent) {
     const size_t nt = topologies_.size(), ng = 2 * nt;
     // Counting sort of meshes by group 2 * topology + dithered (stable, so the result depends only on the input
     // order): a topology's fading meshes follow its others and are drawn with the dithered pipelines.
@@ -60,10 +60,12 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot) {
         std::memcpy(static_cast<void*>(instances + frame.meshes.size()), frame.proxies.data(),
                     frame.proxies.size_bytes());
     // Impostors nearest first within each atlas's run (systems/render/impostor_order.hpp).
+    impostor_base_ = impostor_base(frame);
     if (!frame.impostors.empty())
         copy_impostors_nearest_first(frame.impostors, frame.camera.view,
-                                     reinterpret_cast<ImpostorInstance*>(slot.instances.mapped()) + impostor_base(frame), impostor_order_,
+                                     reinterpret_cast<ImpostorInstance*>(slot.instances.mapped()) + impostor_base_, impostor_order_,
                                      impostor_depth_);
+    plan_far_layer_for(frame, extent, reinterpret_cast<const ImpostorInstance*>(slot.instances.mapped()) + impostor_base_);
     gpu::LitLighting lighting;
     lighting.sky = glm::vec4(frame.sky_colour, 1.0f);
     lighting.ground = glm::vec4(frame.ground_colour, 1.0f);
@@ -134,28 +136,20 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         vkCmdResetQueryPool(cmd, slot.queries, 0, slot.query_capacity);
         vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, slot.queries, 0);
     }
-    VkClearValue clears[2]{};
-    clears[0].color = {{frame.clear_colour.r, frame.clear_colour.g, frame.clear_colour.b, frame.clear_colour.a}};
-    clears[1].depthStencil = {1.0f, 0};
-    VkRenderPassBeginInfo rbi{};
-    rbi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-    rbi.renderPass = target.render_pass;
-    rbi.framebuffer = target.framebuffer;
-    rbi.renderArea = {{0, 0}, target.extent};
-    rbi.clearValueCount = 2;
-    rbi.pClearValues = clears;
-    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+    gpu::LitPush push;
+    push.view_proj = gpu::vulkan_clip_from_gl() * frame.camera.proj * frame.camera.view;
+    push.light = glm::vec4(glm::normalize(frame.light_direction), frame.ambient);
+    push.camera = glm::vec4(glm::vec3(glm::inverse(frame.camera.view)[3]), 1.0f);
+    uint32_t draws = 0;
+    // The far layer first, in its own render pass: the frame's pass composites it (record_composite).
+    if (far_plan_.far_count > 0) draws += record_far_layer(cmd, slot, push, target.extent);
+    gpu::begin_render_pass(cmd, target, VkClearColorValue{{frame.clear_colour.r, frame.clear_colour.g, frame.clear_colour.b, frame.clear_colour.a}});
     const VkViewport vp{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
     const VkRect2D sc{{0, 0}, target.extent};
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &sc);
 
-    gpu::LitPush push;
-    push.view_proj = gpu::vulkan_clip_from_gl() * frame.camera.proj * frame.camera.view;
-    push.light = glm::vec4(glm::normalize(frame.light_direction), frame.ambient);
-    push.camera = glm::vec4(glm::vec3(glm::inverse(frame.camera.view)[3]), 1.0f);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    uint32_t draws = 0;
     const bool any_mesh = !frame.meshes.empty() || !frame.proxies.empty() || !frame.impostors.empty();
     const uint32_t normals = frame.write_normals ? uint32_t{gpu::kLitNormals} : 0u;
     if (any_mesh) {
@@ -225,7 +219,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     }
     if (in_pass) end_pass(cmd, slot, pass);
     draws += record_proxies(frame, cmd, slot, push);
-    draws += record_impostors(frame, cmd, slot, push, float(target.extent.height));
+    draws += record_impostors(cmd, slot, push, float(target.extent.height), /*far=*/false);
     if (!frame.lines.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.lines());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 1, &slot.set, 0, nullptr);
@@ -235,6 +229,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         ++draws;
         end_pass(cmd, slot, {pass_id("lines"), 1, frame.lines.size(), 0});
     }
+    if (far_plan_.far_count > 0) draws += record_composite(cmd, slot, push);
     vkCmdEndRenderPass(cmd);
     if (options_.pass_timestamps)
         end_pass(cmd, slot, {pass_id("resolve"), 0, 0, 0});

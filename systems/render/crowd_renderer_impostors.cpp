@@ -66,6 +66,7 @@ Result<uint32_t> CrowdRenderer::register_impostor_atlas(const TextureImage& imag
     Result<VkDescriptorSet> set = pipes_.material_set(cells.value(), t.view(), t.sampler());
     if (!set) return set.error();
     atlases_.push_back({layout, std::move(cells).value(), set.value()});
+    atlas_layouts_.push_back(layout);
     return static_cast<uint32_t>(atlases_.size() - 1);
 }
 
@@ -75,29 +76,27 @@ uint32_t CrowdRenderer::impostor_base(const FrameInput& frame) {
     return static_cast<uint32_t>((bytes + sizeof(ImpostorInstance) - 1) / sizeof(ImpostorInstance));
 }
 
-uint32_t CrowdRenderer::record_impostors(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push,
-                                         float viewport_height) {
-    if (frame.impostors.empty()) return 0;
+uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height, bool far) {
+    uint64_t count = 0;
+    for (const ImpostorRun& run : far_plan_.runs) count += far ? run.end - run.split : run.split - run.first;
+    if (count == 0) return 0;
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.impostor());
-    const uint32_t base = impostor_base(frame);
+    const uint32_t base = impostor_base_;
     uint32_t draws = 0;
-    const auto n = static_cast<uint32_t>(frame.impostors.size());
-    for (uint32_t first = 0; first < n;) {  // one draw per run of one atlas
-        const uint32_t atlas = frame.impostors[first].atlas;
-        uint32_t end = first + 1;
-        while (end < n && frame.impostors[end].atlas == atlas) ++end;
-        const Atlas& a = atlases_[atlas];
+    for (const ImpostorRun& run : far_plan_.runs) {  // one draw per run of one atlas (its near or its far part)
+        const uint32_t first = far ? run.split : run.first, end = far ? run.end : run.split;
+        if (end == first) continue;
+        const Atlas& a = atlases_[run.atlas];
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &a.set, 0, nullptr);
         push.offsets = glm::uvec4(a.layout.directions, a.layout.rows, base + first, 0u);
         push.base_colour = glm::vec4(a.layout.width, a.layout.bottom, a.layout.height, viewport_height);
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDraw(cmd, 6, end - first, 0, 0);
         ++draws;
-        first = end;
     }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
-    end_pass(cmd, slot, {pass_id("impostors"), draws, frame.impostors.size(), 2 * uint64_t{n}});
+    end_pass(cmd, slot, {pass_id(far ? "far layer" : "impostors"), draws, count, 2 * count});
     return draws;
 }
 

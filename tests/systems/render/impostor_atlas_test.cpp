@@ -112,35 +112,48 @@ Result<gpu::Rgba8Image> draw(CrowdRenderer& r, gpu::Context& ctx, const FrameInp
 // ends' by at most 1 - cos 45 = 0.29 of the light range (75 levels), the bound for every pixel. The mean
 // absolute difference against the same pixel (not its neighbourhood) is at most 6 levels: half of that
 // 20-level bound where the surface curves most, far less over the flatter body, plus the 1-level quantisation.
-void expect_matches(const gpu::Rgba8Image& direct, const gpu::Rgba8Image& impostor) {
-    const Mask a = mask_of(direct), b = mask_of(impostor);
-    size_t outside = 0, compared = 0, area = 0;
+// `other` against `reference` within `r` px: silhouette pixels of either more than r px from the other's
+// silhouette, and for each pixel r px inside both, its largest channel excess over the reference's range
+// within r px and the summed |difference| from the same pixel.
+struct Comparison {
+    size_t area = 0, outside = 0;
     double sum = 0.0;
-    int worst = 0;
-    std::vector<int> excess;  // per compared pixel: its largest channel excess over the direct range
+    std::vector<int> excess;  // per compared pixel
+    [[nodiscard]] double mean() const { return excess.empty() ? 0.0 : sum / double(3 * excess.size()); }
+};
+Comparison compare(const gpu::Rgba8Image& reference, const gpu::Rgba8Image& other, int r) {
+    const Mask a = mask_of(reference), b = mask_of(other);
+    Comparison out;
     for (int y = 0; y < int(kSize); ++y)
         for (int x = 0; x < int(kSize); ++x) {
-            area += a.at(x, y);
-            if ((a.at(x, y) && !b.near(x, y, 2)) || (b.at(x, y) && !a.near(x, y, 2))) ++outside;
-            if (!a.inside(x, y, 2) || !b.inside(x, y, 2)) continue;
+            out.area += a.at(x, y);
+            if ((a.at(x, y) && !b.near(x, y, r)) || (b.at(x, y) && !a.near(x, y, r))) ++out.outside;
+            if (!a.inside(x, y, r) || !b.inside(x, y, r)) continue;
             const size_t i = (size_t(y) * kSize + size_t(x)) * 4;
             int pixel_excess = 0;
             for (size_t c = 0; c < 3; ++c) {
-                sum += std::abs(int(direct.pixels[i + c]) - int(impostor.pixels[i + c]));
-                int lo = 255, hi = 0;  // the direct render's range within 2 px
-                for (int dy = -2; dy <= 2; ++dy)
-                    for (int dx = -2; dx <= 2; ++dx) {
-                        const int v = direct.pixels[(size_t(y + dy) * kSize + size_t(x + dx)) * 4 + c];
+                out.sum += std::abs(int(reference.pixels[i + c]) - int(other.pixels[i + c]));
+                int lo = 255, hi = 0;  // the reference's range within r px
+                for (int dy = -r; dy <= r; ++dy)
+                    for (int dx = -r; dx <= r; ++dx) {
+                        const int v = reference.pixels[(size_t(y + dy) * kSize + size_t(x + dx)) * 4 + c];
                         lo = std::min(lo, v);
                         hi = std::max(hi, v);
                     }
-                const int v = impostor.pixels[i + c];
+                const int v = other.pixels[i + c];
                 pixel_excess = std::max(pixel_excess, v < lo ? lo - v : v > hi ? v - hi : 0);
             }
-            worst = std::max(worst, pixel_excess);
-            excess.push_back(pixel_excess);
-            ++compared;
+            out.excess.push_back(pixel_excess);
         }
+    return out;
+}
+
+void expect_matches(const gpu::Rgba8Image& direct, const gpu::Rgba8Image& impostor) {
+    Comparison cmp = compare(direct, impostor, 2);
+    const size_t area = cmp.area, outside = cmp.outside, compared = cmp.excess.size();
+    std::vector<int>& excess = cmp.excess;
+    const int worst = excess.empty() ? 0 : *std::max_element(excess.begin(), excess.end());
+    const double sum = cmp.sum;
     EXPECT_GT(area, 1500u) << "the figure fills about 110 x 30 pixels";
     EXPECT_EQ(outside, 0u) << "silhouette pixels more than 2 px from the other render's silhouette";
     ASSERT_GT(compared, 500u);
@@ -238,6 +251,71 @@ TEST(ImpostorAtlas, CellTableHoldsEachCellsCoveredTexels) {
     EXPECT_EQ(t[2], glm::vec4(2.0f / 8.0f, 1.0f / 4.0f, 5.0f / 8.0f, 3.0f / 4.0f));
     EXPECT_EQ(t[3], glm::vec4(0.0f, 0.0f, 1.0f / 8.0f, 1.0f / 4.0f));  // row 1, dir 0: the corner texel
     EXPECT_EQ(t[4], glm::vec4(0.0f));
+}
+
+
+// The far layer (systems/render/far_layer.hpp): a figure 45 px tall, under the 70 px limit, drawn as an
+// impostor into the half-resolution layer and composited, against the same impostor drawn at full resolution.
+// Bounds: the layer's alpha test samples every second pixel, so its silhouette moves by up to one layer texel
+// (2 px), and the composite's test of the filtered coverage at one half moves it by at most half a texel more:
+// every silhouette pixel of either render lies within 3 px of the other's. Inside both, a layer texel shows the
+// atlas one mip level coarser (a footprint twice as wide) and the composite interpolates neighbouring texels,
+// so each pixel's colour lies in the range of the full-resolution render within 3 px, widened by rounding (the
+// layer's 8 bits divided by a filtered coverage of at least one half: 2 levels); the mean difference from the
+// same pixel stays under 12 levels (the figure's shading changes by about 4 levels a pixel across its body,
+// over the 3 px reach).
+TEST(ImpostorAtlas, FarLayerMatchesTheFullResolutionImpostorAndKeepsDepthOrder) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    ImpostorBakeInput in = bake_input(fig, 2);
+    in.directions = 16;
+    in.cell_height_px = 96;
+    Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
+    ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
+    RendererOptions full_options;
+    full_options.far_layer_below_px = 0.0f;
+    Result<std::unique_ptr<CrowdRenderer>> far = CrowdRenderer::create(*ctx), full = CrowdRenderer::create(*ctx, full_options);
+    ASSERT_TRUE(far.ok() && full.ok());
+    uint32_t topology = 0, id = 0;
+    for (CrowdRenderer* r : {far.value().get(), full.value().get()}) {
+        Result<uint32_t> t = r->register_topology(fig.indices, 0, true);
+        Result<uint32_t> a = r->register_impostor_atlas(atlas.value().image, atlas.value().layout);
+        ASSERT_TRUE(t.ok() && a.ok());
+        topology = t.value();
+        id = a.value();
+    }
+    FrameInput frame = camera_frame(0.4f);
+    frame.camera.proj = glm::perspective(2.0f * std::atan(2.56f / kDistance), 1.0f, 1.0f, 100.0f);  // 1.8 m over 45 px
+    ImpostorInstance inst;
+    inst.colour = glm::vec4(0.85f, 0.65f, 0.5f, 1.0f);
+    inst.atlas = id;
+    frame.impostors = std::span(&inst, 1);
+    Result<gpu::Rgba8Image> a = draw(*full.value(), *ctx, frame), b = draw(*far.value(), *ctx, frame);
+    ASSERT_TRUE(a.ok() && b.ok());
+    const Comparison cmp = compare(a.value(), b.value(), 3);
+    const size_t area = cmp.area, outside = cmp.outside, compared = cmp.excess.size();
+    const std::vector<int>& excess = cmp.excess;
+    EXPECT_GT(area, 250u) << "the figure fills about 45 x 12 pixels";
+    EXPECT_EQ(outside, 0u) << "silhouette pixels more than 3 px from the other render's silhouette";
+    ASSERT_GT(compared, 40u);
+    EXPECT_LE(cmp.mean(), 12.0) << "mean colour difference inside both silhouettes (levels)";
+    EXPECT_LE(*std::max_element(excess.begin(), excess.end()), 2) << "colour outside the full-resolution range within 3 px (levels)";
+    if (std::getenv("ALOHA_DUMP_IMPOSTOR")) {
+        (void)gpu::write_png("/tmp/far_full.png", kSize, kSize, a.value().pixels);
+        (void)gpu::write_png("/tmp/far_layer.png", kSize, kSize, b.value().pixels);
+    }
+
+    // A mesh on screen 5 m behind the impostor: nothing nearer than it (and its reach) may go behind everything,
+    // so the far layer draws nothing and both renderers make the same picture, pixel for pixel.
+    const glm::vec3 eye = glm::vec3(glm::inverse(frame.camera.view)[3]);
+    const glm::mat4 model = glm::translate(glm::mat4(1.0f), -0.2f * eye + glm::vec3(0.0f, 0.0f, 0.0f));
+    const std::vector<DeformableMesh> meshes = {{topology, fig.positions, fig.normals, model, glm::vec4(0.4f, 0.6f, 0.9f, 1.0f)}};
+    frame.meshes = meshes;
+    Result<gpu::Rgba8Image> c = draw(*full.value(), *ctx, frame), d = draw(*far.value(), *ctx, frame);
+    ASSERT_TRUE(c.ok() && d.ok());
+    EXPECT_EQ(c.value().pixels, d.value().pixels);
+    EXPECT_TRUE(ctx->validation_messages().empty());
 }
 
 }  // namespace

@@ -1,0 +1,52 @@
+// A render target drawn in one render pass and sampled by a later pass of the same command buffer: a layer
+// composited into the frame (the far crowd drawn at half resolution, systems/render/far_layer.hpp).
+#pragma once
+
+#include "engine/core/result.hpp"
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/offscreen_target.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+namespace aloha::gpu {
+
+class Context;
+
+/// A colour + D32 depth target whose render pass (create_render_pass, so pipelines built for any ALOHA
+/// target draw into it) clears both and leaves the colour in SHADER_READ_ONLY_OPTIMAL, its writes made
+/// visible to later fragment-shader reads; with a linear, edge-clamped sampler for those reads. Move-only.
+class LayerTarget {
+public:
+    /// Creates a `width` x `height` layer (both > 0) of `colour_format` (a format the renderer's
+    /// pipelines were built for). Errors: Vulkan failures.
+    [[nodiscard]] static Result<LayerTarget> create(const Context& ctx, uint32_t width, uint32_t height, VkFormat colour_format);
+    LayerTarget() = default;
+    ~LayerTarget() { destroy(); }
+    LayerTarget(LayerTarget&& other) noexcept;
+    LayerTarget& operator=(LayerTarget&& other) noexcept;
+    LayerTarget(const LayerTarget&) = delete;
+    LayerTarget& operator=(const LayerTarget&) = delete;
+
+    /// The view a renderer draws into.
+    [[nodiscard]] TargetView view() const;
+    /// Size in pixels ({0, 0} before create).
+    [[nodiscard]] VkExtent2D extent() const { return colour_.extent(); }
+    /// The colour image's view, for a combined image sampler in SHADER_READ_ONLY_OPTIMAL.
+    [[nodiscard]] VkImageView colour_view() const { return colour_.view(); }
+    /// Linear filtering, clamped to the edge, no mips.
+    [[nodiscard]] VkSampler sampler() const { return sampler_; }
+    /// Releases everything now (also done by the destructor); the device must not be using it.
+    void destroy();
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    Image colour_;
+    Image depth_;
+    VkRenderPass render_pass_ = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+};
+
+}  // namespace aloha::gpu

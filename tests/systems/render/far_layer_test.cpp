@@ -1,0 +1,126 @@
+// Far layer planning (systems/render/far_layer.hpp): which impostors go to the half-resolution layer, and the
+// screen rectangle the composite covers.
+#include "engine/gpu/lit_pipeline.hpp"
+#include "systems/render/far_layer.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+namespace aloha {
+namespace {
+
+// Camera at the origin looking down -Z, 60 degree vertical field of view, 1280 x 720.
+struct View {
+    glm::mat4 view = glm::lookAt(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    glm::mat4 proj = glm::perspective(glm::radians(60.0f), 1280.0f / 720.0f, 0.1f, 500.0f);
+    glm::mat4 clip = gpu::vulkan_clip_from_gl() * proj * view;
+    float focal_px = 0.5f * 720.0f * proj[1][1];  // 623.5 px per unit of height at distance 1
+};
+
+struct Records {
+    std::vector<ImpostorInstance> records;
+    std::vector<uint32_t> order;
+    std::vector<float> depth;
+    // One record at distance d ahead (x sideways), of `atlas`; records of one atlas must be added nearest first.
+    void add(float d, float x, uint32_t atlas) {
+        ImpostorInstance r;
+        r.position_scale = glm::vec4(x, -0.9f, -d, 1.0f);
+        r.atlas = atlas;
+        records.push_back(r);
+        order.push_back(static_cast<uint32_t>(order.size()));
+        depth.push_back(d);
+    }
+};
+
+FarLayerInput input_of(const View& v, const Records& r, const std::vector<ImpostorAtlasLayout>& layouts) {
+    FarLayerInput in;
+    in.records = r.records;
+    in.order = r.order;
+    in.depth = r.depth;
+    in.layouts = layouts;
+    in.clip_from_world = v.clip;
+    in.focal_px = v.focal_px;
+    in.below_px = 70.0f;
+    in.viewport_width = 1280.0f;
+    in.viewport_height = 720.0f;
+    return in;
+}
+
+TEST(FarLayer, EachRunSplitsAtItsFirstRecordBeyondBothLimits) {
+    const View v;
+    const std::vector<ImpostorAtlasLayout> layouts = {{16, 9, 1.0f, 0.0f, 1.8f}, {16, 9, 1.0f, 0.0f, 0.9f}};
+    Records r;
+    // A 1.8 m quad is under 70 px beyond 623.5 * 1.8 / 70 = 16.0 m; a 0.9 m one beyond 8.0 m.
+    for (const float d : {5.0f, 10.0f, 15.9f, 16.2f, 40.0f}) r.add(d, 0.0f, 0);
+    for (const float d : {5.0f, 7.9f, 8.1f, 30.0f}) r.add(d, 0.0f, 1);
+    FarLayerPlan plan;
+    plan_far_layer(input_of(v, r, layouts), plan);
+    ASSERT_EQ(plan.runs.size(), 2u);
+    EXPECT_EQ(plan.runs[0].first, 0u);
+    EXPECT_EQ(plan.runs[0].split, 3u) << "16.2 m is the first 1.8 m record under 70 px";
+    EXPECT_EQ(plan.runs[0].end, 5u);
+    EXPECT_EQ(plan.runs[1].first, 5u);
+    EXPECT_EQ(plan.runs[1].split, 7u) << "8.1 m is the first 0.9 m record under 70 px";
+    EXPECT_EQ(plan.runs[1].atlas, 1u);
+    EXPECT_EQ(plan.far_count, 4u);
+
+    // Something drawn at full resolution reaches 35 m: only what lies beyond it may go behind everything.
+    FarLayerInput in = input_of(v, r, layouts);
+    in.beyond_depth = 35.0f;
+    plan_far_layer(in, plan);
+    EXPECT_EQ(plan.runs[0].split, 4u);
+    EXPECT_EQ(plan.runs[1].split, 9u);
+    EXPECT_EQ(plan.far_count, 1u);
+
+    in.below_px = 0.0f;  // off: every record at full resolution
+    plan_far_layer(in, plan);
+    EXPECT_EQ(plan.far_count, 0u);
+    EXPECT_EQ(plan.runs[0].split, plan.runs[0].end);
+}
+
+TEST(FarLayer, RectangleHoldsEveryFarQuadAndIsWholeScreenNearTheEye) {
+    const View v;
+    const std::vector<ImpostorAtlasLayout> layouts = {{16, 9, 1.0f, 0.0f, 1.8f}};
+    Records r;
+    for (int i = 0; i < 40; ++i) r.add(20.0f + 2.0f * float(i), -12.0f + 0.6f * float(i), 0);
+    FarLayerPlan plan;
+    plan_far_layer(input_of(v, r, layouts), plan);
+    ASSERT_EQ(plan.far_count, 40u);
+    // Every corner of every quad (width 1, height 1.8, facing the camera: here the xy plane), in NDC.
+    for (const ImpostorInstance& rec : r.records)
+        for (const float dx : {-0.5f, 0.5f})
+            for (const float dy : {0.0f, 1.8f}) {
+                const glm::vec4 c = v.clip * glm::vec4(glm::vec3(rec.position_scale) + glm::vec3(dx, dy, 0.0f), 1.0f);
+                const glm::vec2 ndc = glm::vec2(c) / c.w;
+                EXPECT_GE(ndc.x, plan.ndc_rect.x);
+                EXPECT_LE(ndc.x, plan.ndc_rect.z);
+                EXPECT_GE(ndc.y, plan.ndc_rect.y);
+                EXPECT_LE(ndc.y, plan.ndc_rect.w);
+            }
+    EXPECT_LT(plan.ndc_rect.w - plan.ndc_rect.y, 1.0f) << "a band, not the whole screen: the quads lie along the horizon";
+
+    Records near_eye;
+    near_eye.add(30.0f, 0.0f, 0);
+    near_eye.records[0].position_scale.w = 40.0f;  // a 72 m quad whose sphere reaches behind the eye (never under 70 px
+    FarLayerInput in = input_of(v, near_eye, layouts);  // in practice; below_px raised so that it goes to the layer)
+    in.below_px = 1e6f;
+    plan_far_layer(in, plan);
+    ASSERT_EQ(plan.far_count, 1u);
+    EXPECT_EQ(plan.ndc_rect, glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f));
+}
+
+TEST(FarLayer, SphereOutsideViewTestsTheSideAndNearPlanes) {
+    const View v;
+    EXPECT_FALSE(sphere_outside_view(v.clip, {0.0f, 0.0f, -10.0f}, 0.5f)) << "straight ahead";
+    EXPECT_TRUE(sphere_outside_view(v.clip, {0.0f, 0.0f, 10.0f}, 0.5f)) << "behind the eye";
+    // The right plane at 10 m lies at x = 10 tan(30 deg) * aspect = 10.26 m.
+    EXPECT_FALSE(sphere_outside_view(v.clip, {10.5f, 0.0f, -10.0f}, 0.5f)) << "overlaps the right edge";
+    EXPECT_TRUE(sphere_outside_view(v.clip, {12.0f, 0.0f, -10.0f}, 0.5f)) << "wholly right of it";
+    EXPECT_TRUE(sphere_outside_view(v.clip, {0.0f, 7.0f, -10.0f}, 0.5f)) << "wholly above the top plane (5.77 m)";
+}
+
+}  // namespace
+}  // namespace aloha
