@@ -1,7 +1,7 @@
 #version 450
 // Composite vertex shader: one quad over the screen rectangle push base_colour gives (x0, y0, x1, y1 in
-// Vulkan NDC), at the far plane (depth 1), so that with a LESS_OR_EQUAL depth test it covers only the pixels
-// nothing was drawn on (gpu::LitPipelines::composite; the far layer of systems/render/far_layer.hpp).
+// Vulkan NDC); the fragment shader writes each pixel's depth from the layer (gpu::LitPipelines::composite;
+// the far layer of systems/render/far_layer.hpp).
 
 layout(push_constant) uniform Push {
     mat4 view_proj;

@@ -15,8 +15,9 @@ namespace aloha::gpu {
 class Context;
 
 /// A colour + D32 depth target whose render pass (create_render_pass, so pipelines built for any ALOHA
-/// target draw into it) clears both and leaves the colour in SHADER_READ_ONLY_OPTIMAL, its writes made
-/// visible to later fragment-shader reads; with a linear, edge-clamped sampler for those reads. Move-only.
+/// target draw into it) clears both and leaves the colour in SHADER_READ_ONLY_OPTIMAL and the depth in
+/// DEPTH_STENCIL_READ_ONLY_OPTIMAL, their writes made visible to later fragment-shader reads; with a linear,
+/// edge-clamped sampler for the colour and a nearest one for the depth. Move-only.
 class LayerTarget {
 public:
     /// Creates a `width` x `height` layer (both > 0) of `colour_format` (a format the renderer's
@@ -37,6 +38,10 @@ public:
     [[nodiscard]] VkImageView colour_view() const { return colour_.view(); }
     /// Linear filtering, clamped to the edge, no mips.
     [[nodiscard]] VkSampler sampler() const { return sampler_; }
+    /// The depth image's view, for a combined image sampler in DEPTH_STENCIL_READ_ONLY_OPTIMAL.
+    [[nodiscard]] VkImageView depth_view() const { return depth_.view(); }
+    /// Nearest filtering, clamped to the edge (for the depth).
+    [[nodiscard]] VkSampler depth_sampler() const { return depth_sampler_; }
     /// Releases everything now (also done by the destructor); the device must not be using it.
     void destroy();
 
@@ -47,6 +52,7 @@ private:
     VkRenderPass render_pass_ = VK_NULL_HANDLE;
     VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;
+    VkSampler depth_sampler_ = VK_NULL_HANDLE;
 };
 
 }  // namespace aloha::gpu

@@ -34,13 +34,26 @@ Result<VkShaderModule> make_module(VkDevice device, std::span<const uint32_t> co
     return m;
 }
 
+// One descriptor of `set` at `binding`: a buffer (buffer != nullptr) or a combined image sampler.
+VkWriteDescriptorSet descriptor_write(VkDescriptorSet set, uint32_t binding, const VkDescriptorBufferInfo* buffer,
+                                      const VkDescriptorImageInfo* image = nullptr) {
+    VkWriteDescriptorSet w{};
+    w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = buffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pBufferInfo = buffer;
+    w.pImageInfo = image;
+    return w;
+}
+
 struct PipelineDesc {
     std::span<const uint32_t> vert;
     std::span<const uint32_t> frag;
     VkPrimitiveTopology topology;
     VkCompareOp depth_compare;
     VkCullModeFlags cull;
-    bool depth_write = true;
 };
 
 Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass,
@@ -81,7 +94,7 @@ Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRen
     VkPipelineDepthStencilStateCreateInfo ds{};
     ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
     ds.depthTestEnable = VK_TRUE;
-    ds.depthWriteEnable = d.depth_write ? VK_TRUE : VK_FALSE;
+    ds.depthWriteEnable = VK_TRUE;
     ds.depthCompareOp = d.depth_compare;
     VkPipelineColorBlendAttachmentState cb{};
     cb.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
@@ -202,8 +215,6 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         {&lp.vertex_lit_culled_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
         {&lp.lines_, {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE}},
         {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
-        {&lp.composite_, {k_composite_vert_spv, k_composite_frag_spv, kTriangles, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE,
-                          /*depth_write=*/false}},
         // Dithered (fading characters): lit as above plus the screen-door discard; with constant fragments the
         // per-pixel shaders (profiling only: the fading few keep their look, not the constant cost).
         {&lp.dithered_[0], {k_lit_mesh_vert_spv, k_lit_mesh_dither_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
@@ -216,6 +227,30 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         if (!p) return p.error();
         *out = p.value();
     }
+    // The composite: its own set 0 (the layer's colour and depth), the same push constants.
+    VkDescriptorSetLayoutBinding cb[2]{};
+    for (uint32_t i = 0; i < 2; ++i) {
+        cb[i].binding = i;
+        cb[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        cb[i].descriptorCount = 1;
+        cb[i].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+    }
+    sli.bindingCount = 2;
+    sli.pBindings = cb;
+    ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.composite_set_layout_));
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &lp.composite_set_layout_;
+    ALOHA_VK_RETURN(vkCreatePipelineLayout(lp.device_, &pli, nullptr, &lp.composite_layout_));
+    const VkDescriptorPoolSize cps{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kCompositeSets};
+    dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+    dpi.maxSets = kCompositeSets;
+    dpi.pPoolSizes = &cps;
+    ALOHA_VK_RETURN(vkCreateDescriptorPool(lp.device_, &dpi, nullptr, &lp.composite_pool_));
+    Result<VkPipeline> composite = make_pipeline(lp.device_, lp.composite_layout_, render_pass,
+                                                 {k_composite_vert_spv, k_composite_frag_spv, kTriangles, VK_COMPARE_OP_LESS_OR_EQUAL,
+                                                  VK_CULL_MODE_NONE});
+    if (!composite) return composite.error();
+    lp.composite_ = composite.value();
     return lp;
 }
 
@@ -232,7 +267,10 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       vertex_lit_(std::exchange(o.vertex_lit_, VK_NULL_HANDLE)),
       vertex_lit_culled_(std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE)),
       impostor_(std::exchange(o.impostor_, VK_NULL_HANDLE)),
-      composite_(std::exchange(o.composite_, VK_NULL_HANDLE)) {
+      composite_(std::exchange(o.composite_, VK_NULL_HANDLE)),
+      composite_set_layout_(std::exchange(o.composite_set_layout_, VK_NULL_HANDLE)),
+      composite_layout_(std::exchange(o.composite_layout_, VK_NULL_HANDLE)),
+      composite_pool_(std::exchange(o.composite_pool_, VK_NULL_HANDLE)) {
     for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
 }
 
@@ -252,6 +290,9 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         vertex_lit_culled_ = std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE);
         impostor_ = std::exchange(o.impostor_, VK_NULL_HANDLE);
         composite_ = std::exchange(o.composite_, VK_NULL_HANDLE);
+        composite_set_layout_ = std::exchange(o.composite_set_layout_, VK_NULL_HANDLE);
+        composite_layout_ = std::exchange(o.composite_layout_, VK_NULL_HANDLE);
+        composite_pool_ = std::exchange(o.composite_pool_, VK_NULL_HANDLE);
         for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
     }
     return *this;
@@ -266,6 +307,12 @@ void LitPipelines::destroy() {
     if (vertex_lit_culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_culled_, nullptr);
     if (impostor_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, impostor_, nullptr);
     if (composite_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, composite_, nullptr);
+    if (composite_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, composite_pool_, nullptr);
+    if (composite_layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, composite_layout_, nullptr);
+    if (composite_set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, composite_set_layout_, nullptr);
+    composite_pool_ = VK_NULL_HANDLE;
+    composite_layout_ = VK_NULL_HANDLE;
+    composite_set_layout_ = VK_NULL_HANDLE;
     for (VkPipeline& p : dithered_) {
         if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
         p = VK_NULL_HANDLE;
@@ -303,15 +350,26 @@ void LitPipelines::write_set(VkDescriptorSet set, const Buffer& positions, const
                                              {lines.handle(), 0, VK_WHOLE_SIZE},
                                              {lighting.handle(), 0, VK_WHOLE_SIZE}};
     VkWriteDescriptorSet w[5]{};
-    for (uint32_t i = 0; i < 5; ++i) {
-        w[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        w[i].dstSet = set;
-        w[i].dstBinding = i;
-        w[i].descriptorCount = 1;
-        w[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w[i].pBufferInfo = &infos[i];
-    }
+    for (uint32_t i = 0; i < 5; ++i) w[i] = descriptor_write(set, i, &infos[i]);
     vkUpdateDescriptorSets(device_, 5, w, 0, nullptr);
+}
+
+Result<VkDescriptorSet> LitPipelines::composite_set(VkImageView colour, VkSampler colour_sampler, VkImageView depth,
+                                                    VkSampler depth_sampler, VkDescriptorSet reuse) {
+    VkDescriptorSet set = reuse;
+    if (set == VK_NULL_HANDLE) {
+        VkDescriptorSetAllocateInfo ai{};
+        ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+        ai.descriptorPool = composite_pool_;
+        ai.descriptorSetCount = 1;
+        ai.pSetLayouts = &composite_set_layout_;
+        ALOHA_VK_RETURN(vkAllocateDescriptorSets(device_, &ai, &set));
+    }
+    const VkDescriptorImageInfo images[2] = {{colour_sampler, colour, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                             {depth_sampler, depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}};
+    const VkWriteDescriptorSet w[2] = {descriptor_write(set, 0, nullptr, &images[0]), descriptor_write(set, 1, nullptr, &images[1])};
+    vkUpdateDescriptorSets(device_, 2, w, 0, nullptr);
+    return set;
 }
 
 Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, VkImageView view, VkSampler sampler) {
@@ -342,17 +400,7 @@ Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, VkImageVie
     if (r != VK_SUCCESS) return vk_error("vkAllocateDescriptorSets (material)", r);
     const VkDescriptorBufferInfo buffer{uvs.handle(), 0, VK_WHOLE_SIZE};
     const VkDescriptorImageInfo image{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet w[2]{};
-    for (uint32_t i = 0; i < 2; ++i) {
-        w[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        w[i].dstSet = set;
-        w[i].dstBinding = i;
-        w[i].descriptorCount = 1;
-    }
-    w[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w[0].pBufferInfo = &buffer;
-    w[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    w[1].pImageInfo = &image;
+    const VkWriteDescriptorSet w[2] = {descriptor_write(set, 0, &buffer), descriptor_write(set, 1, nullptr, &image)};
     vkUpdateDescriptorSets(device_, 2, w, 0, nullptr);
     return set;
 }

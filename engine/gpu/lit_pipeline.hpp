@@ -112,10 +112,20 @@ public:
     /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
     [[nodiscard]] VkPipeline impostor() const { return impostor_; }
-    /// Composite pipeline (shaders/composite.*): 6 vertices, one quad over the NDC rectangle in base_colour at
-    /// depth 1, depth test LESS_OR_EQUAL without writes (so only where nothing was drawn), writing the layer in
-    /// set 1 binding 1 (filtered at gl_FragCoord * camera.xy) where its coverage is at least half.
+    /// Composite pipeline (shaders/composite.*, layout composite_layout()): 6 vertices, one quad over the NDC
+    /// rectangle in LitPush::base_colour; where the layer in set 0 (composite_set; filtered at gl_FragCoord *
+    /// camera.xy) covers at least half a pixel it writes the layer's colour and depth (the nearest of the four
+    /// depth texels around), depth-tested LESS_OR_EQUAL against what is drawn at full resolution.
     [[nodiscard]] VkPipeline composite() const { return composite_; }
+    /// The composite pipeline's layout: set 0 the layer (composite_set), the LitPush push constants.
+    [[nodiscard]] VkPipelineLayout composite_layout() const { return composite_layout_; }
+    /// Points a composite set (`reuse`, or a new one from a pool of kCompositeSets) at a layer's colour (in
+    /// SHADER_READ_ONLY_OPTIMAL) and depth (in DEPTH_STENCIL_READ_ONLY_OPTIMAL) with their samplers. The set must
+    /// not be in use by a pending command buffer.
+    [[nodiscard]] Result<VkDescriptorSet> composite_set(VkImageView colour, VkSampler colour_sampler, VkImageView depth,
+                                                        VkSampler depth_sampler, VkDescriptorSet reuse = VK_NULL_HANDLE);
+    /// Composite sets the pool holds (one per frame in flight is what a renderer needs).
+    static constexpr uint32_t kCompositeSets = 8;
     /// Line-list pipeline: unlit vertex colour, depth test LESS_OR_EQUAL.
     [[nodiscard]] VkPipeline lines() const { return lines_; }
     /// Layout for vkCmdPushConstants (stages vertex + fragment, LitPush) and vkCmdBindDescriptorSets.
@@ -146,6 +156,9 @@ private:
     VkPipeline vertex_lit_culled_ = VK_NULL_HANDLE;
     VkPipeline impostor_ = VK_NULL_HANDLE;
     VkPipeline composite_ = VK_NULL_HANDLE;
+    VkDescriptorSetLayout composite_set_layout_ = VK_NULL_HANDLE;
+    VkPipelineLayout composite_layout_ = VK_NULL_HANDLE;
+    VkDescriptorPool composite_pool_ = VK_NULL_HANDLE;
     VkPipeline dithered_[4] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};  ///< mesh, culled, vertex-lit, its culled
 };
 

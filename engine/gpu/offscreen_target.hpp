@@ -28,10 +28,12 @@ struct TargetView {
 /// Creates a render pass with one colour attachment of `colour_format` (cleared, stored, ending in
 /// `final_layout`) and one kDepthFormat attachment (cleared, not stored). `load_colour`: the colour
 /// is loaded instead, starting in `final_layout` (a pass drawn over an earlier one, e.g. the viewer's
-/// overlay), and depth is not cleared. Passes differing only in `load_colour` are compatible (same
-/// framebuffers). Caller destroys it.
+/// overlay), and depth is not cleared. `keep_depth`: the depth is stored and ends in
+/// DEPTH_STENCIL_READ_ONLY_OPTIMAL, for a later pass to sample (gpu::LayerTarget). Passes differing only in
+/// `load_colour` and `keep_depth` are compatible (same framebuffers, same pipelines). Caller destroys it.
 [[nodiscard]] Result<VkRenderPass> create_render_pass(VkDevice device, VkFormat colour_format,
-                                                      VkImageLayout final_layout, bool load_colour = false);
+                                                      VkImageLayout final_layout, bool load_colour = false,
+                                                      bool keep_depth = false);
 
 /// Creates the framebuffer of `render_pass` (create_render_pass's) over `colour` and `depth` views of
 /// `width` x `height`. Caller destroys it.

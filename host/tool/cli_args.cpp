@@ -4,6 +4,7 @@
 #include "host/tool/cli_args.hpp"
 
 #include "host/tool/cli_checks.hpp"
+#include "systems/render/far_layer.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -58,8 +59,8 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
         ->check(whole_number(1, 1'000'000));
     c.add_option("--width", b.width, "override the viewport width")->check(whole_number(16, 8192));
     c.add_option("--far-layer", b.far_layer,
-                 "impostors under PX pixels tall and behind every mesh are drawn at half resolution and composited "
-                 "behind the rest (default " + std::to_string(int(kDefaultFarLayerBelowPx)) + "; 0: all at full resolution)")
+                 "impostors under PX pixels tall are drawn at half resolution and composited "
+                 "with its depth (default " + std::to_string(int(kDefaultFarLayerBelowPx)) + " on a software rasteriser, 0 on a GPU; 0: all at full resolution)")
         ->check(whole_number(0, 8192));
     c.add_option("--height", b.height, "override the viewport height")->check(whole_number(16, 8192));
     c.add_option("--overlay", b.o.overlay, "draw bones, muscles and/or springs over the characters (e.g. bones,springs)")

@@ -3,7 +3,6 @@
 #pragma once
 
 #include "engine/core/result.hpp"
-#include "systems/render/far_layer.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -50,7 +49,7 @@ struct CliOptions {
     bool motion_metrics = false;       ///< --motion-metrics: foot skate and pops per animation level (profile)
     bool gpu_passes = false;           ///< --gpu-passes: per-pass GPU timestamps (profile)
     bool constant_fragments = false;   ///< --constant-fragments: unlit constant-colour fragments (profile)
-    float far_layer_px = kDefaultFarLayerBelowPx;  ///< --far-layer PX: RendererOptions::far_layer_below_px
+    std::optional<float> far_layer_px;  ///< --far-layer PX: RendererOptions::far_layer_below_px (unset: far_layer_default)
     bool gpu_overlap = false;          ///< --gpu-overlap on|off: GPU frame overlapped with the next CPU systems (profile)
     std::string joints;                ///< --joints FILE.csv: where export writes joint positions
     /// export --characters LIST: inclusive ranges of spawn indices ("0,5,10-20"); empty = every character

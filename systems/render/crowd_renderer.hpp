@@ -129,9 +129,9 @@ struct RendererOptions {
     bool constant_fragments = false;                   ///< meshes and proxies drawn with a constant-colour fragment
                                                        ///< shader (unlit albedo): profiling the fragment cost only
                                                        ///< (validation then warns of unread vertex outputs)
-    float far_layer_below_px = kDefaultFarLayerBelowPx; ///< impostors under this many pixels tall (at scale 1) and
-                                                       ///< behind every mesh and proxy are drawn at half resolution
-                                                       ///< and composited behind the rest (systems/render/far_layer.hpp);
+    float far_layer_below_px = kDefaultFarLayerBelowPx; ///< impostors under this many pixels tall (at scale 1) are
+                                                       ///< drawn at half resolution and composited with their depth
+                                                       ///< (systems/render/far_layer.hpp);
                                                        ///< 0: every impostor at full resolution
 };
 
@@ -253,7 +253,7 @@ private:
         gpu::Buffer positions, normals, instances, lines, lighting;
         gpu::Buffer proxy_indices;  // fill_box_batch_indices for proxy_capacity boxes (rewritten on growth)
         gpu::LayerTarget far_layer;  // half the target's size, made at the first frame with a far layer
-        VkDescriptorSet far_set = VK_NULL_HANDLE;  // material set sampling far_layer (the composite's set 1)
+        VkDescriptorSet far_set = VK_NULL_HANDLE;  // LitPipelines::composite_set sampling far_layer
         uint32_t proxy_capacity = 0;
         bool pending = false;
         bool set_dirty = true;
@@ -266,7 +266,7 @@ private:
     Status ensure_proxy_indices(Slot& slot, uint32_t boxes);
     Status retire(Slot& slot);
     uint64_t upload(const FrameInput& frame, Slot& slot, VkExtent2D extent);
-    void plan_far_layer_for(const FrameInput& frame, VkExtent2D extent, const ImpostorInstance* drawn);
+    void plan_far_layer_for(const FrameInput& frame, VkExtent2D extent);
     Status ensure_far_layer(Slot& slot, VkExtent2D extent);
     uint32_t record_far_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
     uint32_t record_composite(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);

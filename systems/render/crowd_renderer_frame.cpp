@@ -59,13 +59,13 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot, VkExtent2D e
     if (!frame.proxies.empty())
         std::memcpy(static_cast<void*>(instances + frame.meshes.size()), frame.proxies.data(),
                     frame.proxies.size_bytes());
-    // Impostors nearest first within each atlas's run (systems/render/impostor_order.hpp).
+    // Impostors nearest first within each atlas's run (systems/render/impostor_order.hpp), each run's far records
+    // (the half-resolution layer's, systems/render/far_layer.hpp) after its others.
     impostor_base_ = impostor_base(frame);
-    if (!frame.impostors.empty())
-        copy_impostors_nearest_first(frame.impostors, frame.camera.view,
-                                     reinterpret_cast<ImpostorInstance*>(slot.instances.mapped()) + impostor_base_, impostor_order_,
-                                     impostor_depth_);
-    plan_far_layer_for(frame, extent, reinterpret_cast<const ImpostorInstance*>(slot.instances.mapped()) + impostor_base_);
+    sort_impostors_nearest_first(frame.impostors, frame.camera.view, impostor_order_, impostor_depth_);
+    plan_far_layer_for(frame, extent);
+    auto* impostors = reinterpret_cast<ImpostorInstance*>(slot.instances.mapped()) + impostor_base_;
+    for (size_t k = 0; k < frame.impostors.size(); ++k) impostors[k] = frame.impostors[impostor_order_[k]];
     gpu::LitLighting lighting;
     lighting.sky = glm::vec4(frame.sky_colour, 1.0f);
     lighting.ground = glm::vec4(frame.ground_colour, 1.0f);
@@ -220,6 +220,8 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     if (in_pass) end_pass(cmd, slot, pass);
     draws += record_proxies(frame, cmd, slot, push);
     draws += record_impostors(cmd, slot, push, float(target.extent.height), /*far=*/false);
+    // The far layer, depth-tested against everything above (and the lines below against it).
+    if (far_plan_.far_count > 0) draws += record_composite(cmd, slot, push);
     if (!frame.lines.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.lines());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 1, &slot.set, 0, nullptr);
@@ -229,7 +231,6 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         ++draws;
         end_pass(cmd, slot, {pass_id("lines"), 1, frame.lines.size(), 0});
     }
-    if (far_plan_.far_count > 0) draws += record_composite(cmd, slot, push);
     vkCmdEndRenderPass(cmd);
     if (options_.pass_timestamps)
         end_pass(cmd, slot, {pass_id("resolve"), 0, 0, 0});

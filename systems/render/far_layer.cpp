@@ -7,16 +7,6 @@
 
 namespace aloha {
 
-bool sphere_outside_view(const glm::mat4& clip_from_world, const glm::vec3& centre, float radius) {
-    const glm::mat4 m = glm::transpose(clip_from_world);  // rows of the clip transform as columns
-    const glm::vec4 x = m[0], y = m[1], z = m[2], w = m[3];
-    const glm::vec4 p(centre, 1.0f);
-    // Each plane as a linear form of the world point; its gradient's length turns the form into a distance.
-    for (const glm::vec4& plane : {w - x, w + x, w - y, w + y, z})
-        if (glm::dot(plane, p) < -radius * glm::length(glm::vec3(plane))) return true;
-    return false;
-}
-
 void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
     out.runs.clear();
     out.far_count = 0;
@@ -33,13 +23,13 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
         if (enabled) {
             assert(atlas < in.layouts.size());
             const ImpostorAtlasLayout& layout = in.layouts[atlas];
-            const float limit = std::max(in.beyond_depth, in.focal_px * layout.height / in.below_px);
-            const auto* begin = in.order.data() + first;
-            const auto* split = std::partition_point(begin, in.order.data() + end, [&](uint32_t i) { return in.depth[i] <= limit; });
-            run.split = first + static_cast<uint32_t>(split - begin);
+            const float limit = in.focal_px * layout.height / in.below_px;
+            const auto near = [&](uint32_t i) { return in.depth[i] <= limit || in.records[i].forward_phase.w < 1.0f; };
+            const auto split = std::stable_partition(in.order.begin() + first, in.order.begin() + end, near);
+            run.split = static_cast<uint32_t>(split - in.order.begin());
             const float radius = 0.5f * std::sqrt(layout.width * layout.width + layout.height * layout.height);
             for (uint32_t k = run.split; k < end && !whole_screen; ++k) {
-                const glm::vec4& ps = in.records[k].position_scale;
+                const glm::vec4& ps = in.records[in.order[k]].position_scale;
                 const glm::vec3 centre = glm::vec3(ps) + glm::vec3(0.0f, ps.w * (layout.bottom + 0.5f * layout.height), 0.0f);
                 const glm::vec4 clip = in.clip_from_world * glm::vec4(centre, 1.0f);
                 const float r = radius * ps.w;

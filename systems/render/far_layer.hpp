@@ -19,6 +19,11 @@ namespace aloha {
 /// small impostors (docs/PERFORMANCE.md, "The far layer").
 inline constexpr float kDefaultFarLayerBelowPx = 70.0f;
 
+/// The far layer a host should ask for on a device: kDefaultFarLayerBelowPx on a software rasteriser (a CPU
+/// device, where a small quad's cost grows with the target's resolution), 0 on a GPU (where it buys nothing and
+/// costs the far crowd half its resolution).
+[[nodiscard]] inline float far_layer_default(bool cpu_device) { return cpu_device ? kDefaultFarLayerBelowPx : 0.0f; }
+
 /// One run of impostor records of one atlas, in draw order: [first, split) are drawn at full resolution,
 /// [split, end) into the far layer.
 struct ImpostorRun {
@@ -36,32 +41,27 @@ struct FarLayerPlan {
                                                ///< far record's quad and the filter's reach: the composite's quad
 };
 
-/// A frame's impostors and the limits of its far layer.
+/// A frame's impostors and the limit of its far layer.
 struct FarLayerInput {
-    std::span<const ImpostorInstance> records;     ///< in draw order: runs of equal atlas, each nearest first
-    std::span<const uint32_t> order;               ///< record k's index into `depth`
-    std::span<const float> depth;                  ///< distance ahead of the camera (view-space -z) by that index
+    std::span<const ImpostorInstance> records;     ///< as the frame gives them: runs of equal atlas
+    std::span<uint32_t> order;                     ///< the draw order (sort_impostors_nearest_first): order[k] is the
+                                                   ///< record drawn k-th, each run sorted nearest first; partitioned here
+    std::span<const float> depth;                  ///< each record's distance ahead of the camera (view-space -z)
     std::span<const ImpostorAtlasLayout> layouts;  ///< by atlas id (every record's atlas must be listed)
     glm::mat4 clip_from_world{1.0f};               ///< Vulkan clip space from world
     float focal_px = 0.0f;                         ///< pixels per unit of height at distance 1 (viewport height / 2
                                                    ///< * the projection's y scale); <= 0 (orthographic): no far layer
-    float below_px = 0.0f;                         ///< a record goes to the far layer only where its quad at scale 1
-                                                   ///< is under this many pixels tall; <= 0: no far layer
-    float beyond_depth = 0.0f;                     ///< and only beyond this distance (every mesh and proxy drawn at full
-                                                   ///< resolution lies nearer, with its reach), so all it holds is behind
+    float below_px = 0.0f;                         ///< a record goes to the far layer where its quad at scale 1 is under
+                                                   ///< this many pixels tall; <= 0: no far layer
     float viewport_width = 1.0f;                   ///< full-resolution pixels (the rectangle's padding)
     float viewport_height = 1.0f;
 };
 
-/// True when the sphere (world centre, radius) lies wholly outside one of the view volume's side or near planes
-/// of `clip_from_world` (Vulkan clip space: -w <= x, y <= w, 0 <= z): nothing of it can be on screen.
-[[nodiscard]] bool sphere_outside_view(const glm::mat4& clip_from_world, const glm::vec3& centre, float radius);
-
-/// Splits each run at its first record beyond both limits (depth > beyond_depth and quad height under
-/// below_px, i.e. depth > focal_px * layout.height / below_px): the runs are nearest first, so the far
-/// records are each run's tail. The rectangle bounds each far record's bounding sphere on screen, padded
-/// by two layer texels (the bilinear filter's reach); the whole screen when one lies at or behind the eye.
-/// Requires records sorted as described.
+/// Moves each run's far records (quad under below_px tall, i.e. depth > focal_px * layout.height / below_px, and
+/// not cross-fading: its dither pairs pixel for pixel with a mesh's at full resolution) behind its others in
+/// `order`, keeping both parts nearest first, and sets the runs' splits. The rectangle bounds each far record's
+/// bounding sphere on screen, padded by two layer texels (the filter's reach); the whole screen when one lies
+/// at or behind the eye's plane.
 void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out);
 
 }  // namespace aloha

@@ -11,8 +11,8 @@ void sort_nearest_first(std::span<uint32_t> order, std::span<const float> depth)
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return depth[a] < depth[b] || (depth[a] == depth[b] && a < b); });
 }
 
-void copy_impostors_nearest_first(std::span<const ImpostorInstance> impostors, const glm::mat4& view, ImpostorInstance* out,
-                                  std::vector<uint32_t>& order, std::vector<float>& depth) {
+void sort_impostors_nearest_first(std::span<const ImpostorInstance> impostors, const glm::mat4& view, std::vector<uint32_t>& order,
+                                  std::vector<float>& depth) {
     const auto n = static_cast<uint32_t>(impostors.size());
     const glm::vec4 forward = glm::row(view, 2);  // view-space z of a world point (negative ahead)
     depth.resize(n);
@@ -27,7 +27,12 @@ void copy_impostors_nearest_first(std::span<const ImpostorInstance> impostors, c
         sort_nearest_first(std::span(order).subspan(first, end - first), depth);
         first = end;
     }
-    for (uint32_t k = 0; k < n; ++k) out[k] = impostors[order[k]];
+}
+
+void copy_impostors_nearest_first(std::span<const ImpostorInstance> impostors, const glm::mat4& view, ImpostorInstance* out,
+                                  std::vector<uint32_t>& order, std::vector<float>& depth) {
+    sort_impostors_nearest_first(impostors, view, order, depth);
+    for (size_t k = 0; k < order.size(); ++k) out[k] = impostors[order[k]];
 }
 
 }  // namespace aloha

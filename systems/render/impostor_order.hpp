@@ -14,6 +14,12 @@ namespace aloha {
 /// Sorts `order` (indices into `depth`) nearest first, ties by index: the draw order of meshes and impostors.
 void sort_nearest_first(std::span<uint32_t> order, std::span<const float> depth);
 
+/// Fills `order` with the draw order of `impostors`: each run of equal atlas kept in place and sorted nearest
+/// first along the view direction of `view` (ties by input order), `order[k]` the input index drawn k-th; and
+/// `depth` with each input's distance ahead of the camera. Both are resized to the count.
+void sort_impostors_nearest_first(std::span<const ImpostorInstance> impostors, const glm::mat4& view, std::vector<uint32_t>& order,
+                                  std::vector<float>& depth);
+
 /// Copies `impostors` into `out` (as many records) with each run of equal atlas kept in place and sorted
 /// nearest first along the view direction of `view` (ties by input order): lavapipe tests depth before an
 /// alpha-tested fragment shader runs, so a near quad drawn first spares the far quads' pixels it hides.

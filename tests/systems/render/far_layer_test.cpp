@@ -35,7 +35,7 @@ struct Records {
     }
 };
 
-FarLayerInput input_of(const View& v, const Records& r, const std::vector<ImpostorAtlasLayout>& layouts) {
+FarLayerInput input_of(const View& v, Records& r, const std::vector<ImpostorAtlasLayout>& layouts) {
     FarLayerInput in;
     in.records = r.records;
     in.order = r.order;
@@ -49,7 +49,7 @@ FarLayerInput input_of(const View& v, const Records& r, const std::vector<Impost
     return in;
 }
 
-TEST(FarLayer, EachRunSplitsAtItsFirstRecordBeyondBothLimits) {
+TEST(FarLayer, EachRunsRecordsUnderTheLimitGoLastNearestFirst) {
     const View v;
     const std::vector<ImpostorAtlasLayout> layouts = {{16, 9, 1.0f, 0.0f, 1.8f}, {16, 9, 1.0f, 0.0f, 0.9f}};
     Records r;
@@ -67,13 +67,16 @@ TEST(FarLayer, EachRunSplitsAtItsFirstRecordBeyondBothLimits) {
     EXPECT_EQ(plan.runs[1].atlas, 1u);
     EXPECT_EQ(plan.far_count, 4u);
 
-    // Something drawn at full resolution reaches 35 m: only what lies beyond it may go behind everything.
-    FarLayerInput in = input_of(v, r, layouts);
-    in.beyond_depth = 35.0f;
+    // A cross-fading record (its dither pairs with a mesh's at full resolution) stays at full resolution; the
+    // run's far part keeps its order.
+    Records fading = r;
+    fading.records[3].forward_phase.w = -0.5f;
+    FarLayerInput in = input_of(v, fading, layouts);
     plan_far_layer(in, plan);
     EXPECT_EQ(plan.runs[0].split, 4u);
-    EXPECT_EQ(plan.runs[1].split, 9u);
-    EXPECT_EQ(plan.far_count, 1u);
+    EXPECT_EQ(fading.order[3], 3u) << "the fading record joins the full-resolution part";
+    EXPECT_EQ(fading.order[4], 4u);
+    EXPECT_EQ(plan.far_count, 3u);
 
     in.below_px = 0.0f;  // off: every record at full resolution
     plan_far_layer(in, plan);
@@ -110,16 +113,6 @@ TEST(FarLayer, RectangleHoldsEveryFarQuadAndIsWholeScreenNearTheEye) {
     plan_far_layer(in, plan);
     ASSERT_EQ(plan.far_count, 1u);
     EXPECT_EQ(plan.ndc_rect, glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f));
-}
-
-TEST(FarLayer, SphereOutsideViewTestsTheSideAndNearPlanes) {
-    const View v;
-    EXPECT_FALSE(sphere_outside_view(v.clip, {0.0f, 0.0f, -10.0f}, 0.5f)) << "straight ahead";
-    EXPECT_TRUE(sphere_outside_view(v.clip, {0.0f, 0.0f, 10.0f}, 0.5f)) << "behind the eye";
-    // The right plane at 10 m lies at x = 10 tan(30 deg) * aspect = 10.26 m.
-    EXPECT_FALSE(sphere_outside_view(v.clip, {10.5f, 0.0f, -10.0f}, 0.5f)) << "overlaps the right edge";
-    EXPECT_TRUE(sphere_outside_view(v.clip, {12.0f, 0.0f, -10.0f}, 0.5f)) << "wholly right of it";
-    EXPECT_TRUE(sphere_outside_view(v.clip, {0.0f, 7.0f, -10.0f}, 0.5f)) << "wholly above the top plane (5.77 m)";
 }
 
 }  // namespace
