@@ -69,10 +69,9 @@ void LayerTarget::destroy() {
     if (device_ == VK_NULL_HANDLE) return;
     if (sampler_ != VK_NULL_HANDLE) vkDestroySampler(device_, sampler_, nullptr);
     if (depth_sampler_ != VK_NULL_HANDLE) vkDestroySampler(device_, depth_sampler_, nullptr);
-    depth_sampler_ = VK_NULL_HANDLE;
     if (framebuffer_ != VK_NULL_HANDLE) vkDestroyFramebuffer(device_, framebuffer_, nullptr);
     if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device_, render_pass_, nullptr);
-    sampler_ = VK_NULL_HANDLE;
+    sampler_ = depth_sampler_ = VK_NULL_HANDLE;
     framebuffer_ = VK_NULL_HANDLE;
     render_pass_ = VK_NULL_HANDLE;
     colour_.destroy();

@@ -242,7 +242,6 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     pli.pSetLayouts = &lp.composite_set_layout_;
     ALOHA_VK_RETURN(vkCreatePipelineLayout(lp.device_, &pli, nullptr, &lp.composite_layout_));
     const VkDescriptorPoolSize cps{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * kCompositeSets};
-    dpi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
     dpi.maxSets = kCompositeSets;
     dpi.pPoolSizes = &cps;
     ALOHA_VK_RETURN(vkCreateDescriptorPool(lp.device_, &dpi, nullptr, &lp.composite_pool_));

@@ -71,7 +71,7 @@ Status open_gpu(WindowGpu& g, GLFWwindow* window, const CliOptions& options) {
     if (!target.ok()) return target.error();
     g.target = std::move(target.value());
     RendererOptions ro;
-    ro.far_layer_below_px = options.far_layer_px.value_or(far_layer_default(g.context->is_cpu_device()));
+    ro.far_layer_below_px = options.far_layer_px;
     ro.colour_format = g.target->colour_format();
     auto renderer = CrowdRenderer::create(*g.context, ro);
     if (!renderer.ok()) return renderer.error();

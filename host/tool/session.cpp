@@ -110,7 +110,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     session->world = std::move(world.value());
     if (!render) return session;
     RendererOptions ro;
-    ro.far_layer_below_px = options.far_layer_px.value_or(far_layer_default(session->context->is_cpu_device()));
+    ro.far_layer_below_px = options.far_layer_px;
     ro.pass_timestamps = options.gpu_passes;
     ro.constant_fragments = options.constant_fragments;
     auto renderer = CrowdRenderer::create(*session->context, ro);

@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -129,16 +130,16 @@ struct RendererOptions {
     bool constant_fragments = false;                   ///< meshes and proxies drawn with a constant-colour fragment
                                                        ///< shader (unlit albedo): profiling the fragment cost only
                                                        ///< (validation then warns of unread vertex outputs)
-    float far_layer_below_px = kDefaultFarLayerBelowPx; ///< impostors under this many pixels tall (at scale 1) are
+    std::optional<float> far_layer_below_px;           ///< impostors under this many pixels tall (at scale 1) are
                                                        ///< drawn at half resolution and composited with their depth
-                                                       ///< (systems/render/far_layer.hpp);
-                                                       ///< 0: every impostor at full resolution
+                                                       ///< (systems/render/far_layer.hpp); 0: every impostor at full
+                                                       ///< resolution; unset: far_layer_default(the context's device)
 };
 
 /// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
 /// "far layer" (the far impostors at half resolution, before the frame's render pass), one per mesh pass label
 /// (register_topology's `pass`: all topologies with that label, drawn together), "proxies", "impostors",
-/// "lines", "composite" (the far layer blended in) and "resolve" (end of the render pass: tiles written out,
+/// "lines", "composite" (the far layer written in with its depth) and "resolve" (end of the render pass: tiles written out,
 /// layout transition).
 struct GpuPassTime {
     std::string name;        ///< pass label
@@ -303,6 +304,7 @@ private:
     std::vector<uint32_t> impostor_order_;            // impostors nearest first within each atlas's run
     std::vector<float> impostor_depth_;               // per impostor: distance ahead of the camera
     std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (the far layer's planning)
+    float far_layer_below_px_ = 0.0f;                 // options_.far_layer_below_px resolved for the device
     FarLayerPlan far_plan_;                           // this frame's impostor runs and far layer
     uint32_t impostor_base_ = 0;                      // this frame's first impostor record in the instance buffer
     std::vector<std::string> pass_names_;             // mesh pass labels, then fixed ones, by first use

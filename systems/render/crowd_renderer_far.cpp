@@ -18,7 +18,7 @@ void CrowdRenderer::plan_far_layer_for(const FrameInput& frame, VkExtent2D exten
     in.clip_from_world = gpu::vulkan_clip_from_gl() * frame.camera.proj * frame.camera.view;
     const bool perspective = frame.camera.proj[2][3] != 0.0f;
     in.focal_px = perspective ? 0.5f * float(extent.height) * std::abs(frame.camera.proj[1][1]) : 0.0f;
-    in.below_px = options_.far_layer_below_px;
+    in.below_px = far_layer_below_px_;
     in.viewport_width = float(std::max(extent.width, 1u));
     in.viewport_height = float(std::max(extent.height, 1u));
     plan_far_layer(in, far_plan_);

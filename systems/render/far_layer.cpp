@@ -15,6 +15,8 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
     const bool enabled = in.focal_px > 0.0f && in.below_px > 0.0f;
     glm::vec2 lo(1e30f), hi(-1e30f);
     bool whole_screen = false;
+    // NDC per unit of view-space x and y at distance 1 (the projection's P00 and P11).
+    const glm::vec2 scale(2.0f * in.focal_px / in.viewport_width, 2.0f * in.focal_px / in.viewport_height);
     for (uint32_t first = 0; first < n;) {
         const uint32_t atlas = in.records[first].atlas;
         uint32_t end = first + 1;
@@ -39,7 +41,6 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
                 }
                 // Over the sphere, clip x ranges over clip.x +- P00 r and w over w +- r (symmetric projection:
                 // clip x = P00 * view x, w = the distance ahead); x / w lies between the extremes of those bounds.
-                const glm::vec2 scale(2.0f * in.focal_px / in.viewport_width, 2.0f * in.focal_px / in.viewport_height);
                 for (const float sx : {-1.0f, 1.0f})
                     for (const float sw : {-1.0f, 1.0f}) {
                         const glm::vec2 p = (glm::vec2(clip) + sx * r * scale) / (clip.w + sw * r);

@@ -15,11 +15,11 @@
 
 namespace aloha {
 
-/// RendererOptions::far_layer_below_px by default: on the software rasteriser the far layer halves the cost of
-/// small impostors (docs/PERFORMANCE.md, "The far layer").
+/// The far layer's limit on a software rasteriser, where it halves the cost of small impostors
+/// (docs/PERFORMANCE.md, "The far layer").
 inline constexpr float kDefaultFarLayerBelowPx = 70.0f;
 
-/// The far layer a host should ask for on a device: kDefaultFarLayerBelowPx on a software rasteriser (a CPU
+/// The far layer a CrowdRenderer draws when RendererOptions::far_layer_below_px is unset: kDefaultFarLayerBelowPx on a software rasteriser (a CPU
 /// device, where a small quad's cost grows with the target's resolution), 0 on a GPU (where it buys nothing and
 /// costs the far crowd half its resolution).
 [[nodiscard]] inline float far_layer_default(bool cpu_device) { return cpu_device ? kDefaultFarLayerBelowPx : 0.0f; }

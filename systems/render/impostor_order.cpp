@@ -29,10 +29,4 @@ void sort_impostors_nearest_first(std::span<const ImpostorInstance> impostors, c
     }
 }
 
-void copy_impostors_nearest_first(std::span<const ImpostorInstance> impostors, const glm::mat4& view, ImpostorInstance* out,
-                                  std::vector<uint32_t>& order, std::vector<float>& depth) {
-    sort_impostors_nearest_first(impostors, view, order, depth);
-    for (size_t k = 0; k < order.size(); ++k) out[k] = impostors[order[k]];
-}
-
 }  // namespace aloha

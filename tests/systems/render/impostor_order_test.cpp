@@ -17,10 +17,13 @@ TEST(ImpostorOrder, EachAtlasRunIsSortedNearestFirstInPlace) {
         in[i].position_scale = glm::vec4(float(i), 0.0f, z[i], 1.0f);  // x tells the input position
         in[i].atlas = atlas[i];
     }
-    std::vector<ImpostorInstance> out(5);
     std::vector<uint32_t> order;
     std::vector<float> depth;
-    copy_impostors_nearest_first(in, view, out.data(), order, depth);
+    sort_impostors_nearest_first(in, view, order, depth);
+    ASSERT_EQ(order.size(), 5u);
+    for (uint32_t i = 0; i < 5; ++i) EXPECT_EQ(depth[i], -z[i]) << "distance ahead of input " << i;
+    std::vector<ImpostorInstance> out(5);
+    for (uint32_t k = 0; k < 5; ++k) out[k] = in[order[k]];
     // Atlas 3: 10 m (input 1), then the two at 30 m in input order (0, 2); atlas 1: 5 m (3), 50 m (4).
     const float expected_x[5] = {1.0f, 0.0f, 2.0f, 3.0f, 4.0f};
     for (uint32_t k = 0; k < 5; ++k) {
