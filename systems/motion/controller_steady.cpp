@@ -78,6 +78,9 @@ bool MotionController::step_steady(const Walker& w, float dt, std::span<MotionSt
     if (due && use == PoseUse::Unseen && clip) {
         h.stale = 1;
         due = false;
+        // The lock holds feet across poses that are shown; the walk goes on unshown, so when the character
+        // is seen again its feet are elsewhere: it starts afresh then (FootLock::reset).
+        if (foot_lock_) foot_lock_->reset(c);
     }
     if (due) {
         mark_due(c, e, h, st, sched, sched.interval > 1 && clip, false, dt, out);  // pose_one takes the clocks from h

@@ -252,6 +252,8 @@ void MotionController::step_active(const Walker& w, float dt, std::span<MotionSt
         ch.inertial_slot < 0 && ch.slots_in_use == 0) {
         h.stale = 1;
         due = false;
+        // Its feet walk on unshown: the lock starts afresh when it is seen again (controller_steady.cpp).
+        if (foot_lock_) foot_lock_->reset(c);
     }
     if (due) {
         // Throttled clip playback and kinematic walks are shown interpolated between this update and

@@ -121,9 +121,12 @@ void FootLock::apply(uint32_t c, float dt, const Transform& placement, std::span
         if (locked_[i] && ((!heel_down && !toe_down) || glm::length(moved) > params_.release_speed * dt)) locked_[i] = 0;
         if (!locked_[i] && engage && (heel_down || toe_down) && glm::length(moved) < params_.engage_speed * dt)
             locked_[i] = 1;
-        if (locked_[i]) {
-            offset_[i] -= moved;  // what the pose moved the contact point, undone
-            if (glm::length(offset_[i]) > max_offset) locked_[i] = 0;
+        if (locked_[i]) offset_[i] -= moved;  // what the pose moved the contact point, undone
+        // Never past the reach margin: a foot held that far is let go where the margin ends (whatever the
+        // time since the last apply: a held foot must not pull the leg towards a spot the body has left).
+        if (const float length = glm::length(offset_[i]); length > max_offset) {
+            locked_[i] = 0;
+            offset_[i] *= max_offset / length;
         }
         // A foot let go decays its offset in the air only: on the ground it keeps the offset and moves as
         // the pose moves it (a decay there would slide it slowly, the very skate the lock is for).

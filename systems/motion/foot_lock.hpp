@@ -30,7 +30,7 @@ struct FootLockParams {
     float engage_speed = 0.5f;      ///< a low point moving slower than this (m/s, horizontal) gets locked
     float release_speed = 1.5f;     ///< a held foot whose pose moves faster than this (m/s) is swinging: let go
     float release_time = 0.05f;     ///< time constant (s) of the offset's decay once the foot lifts off
-    float max_offset = 0.15f;       ///< largest offset held, in leg lengths; past it the foot is let go
+    float max_offset = 0.15f;       ///< largest offset, in leg lengths: a held foot reaching it is let go there
     float ground_rise = 0.02f;      ///< m/s the remembered lowest height rises (adapts to a new clip)
     float ground_floor = 0.02f;     ///< the remembered lowest height stays at most this far below the rest sole (m)
 };

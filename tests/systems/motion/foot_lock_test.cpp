@@ -162,5 +162,67 @@ TEST_F(FootLockWalk, TurningPathSkatesLessWithTheLock) {
     }
 }
 
+// A walker nobody looks at (PoseUse::Unseen: its clip pose is left stale) walks on for 3 s and is then
+// seen again, as a crowd character is when it comes out of an impostor or out of view. Its feet are
+// then metres from where the lock last held them: the lock must start afresh, not pull the legs towards
+// the old spot (which drew crowd_10k's skinned walkers with their legs stretched out behind them). Bar:
+// every offset within the lock's reach margin (max_offset leg lengths, its documented bound) and every
+// ankle within a leg's length of its hip (a leg cannot reach further), on each frame after it is seen.
+TEST_F(FootLockWalk, SeenAgainAfterWalkingUnseenStartsAfresh) {
+    for (float hz : {30.0f, 60.0f}) {
+        Walker w(*this, 1.4f);
+        w.lod() = level(1, WalkMethod::ClipPlayback, 4);
+        std::vector<uint8_t> use(1, static_cast<uint8_t>(PoseUse::EveryFrame));
+        w.mc.set_pose_use(use);
+        const float dt = 1.0f / hz;
+        const float margin = w.mc.foot_lock()->params().max_offset * rig.leg_length * w.xs[0].scale;
+        float worst_offset = 0.0f, worst_reach = 0.0f;
+        size_t held = 0;
+        for (int f = 0; f < static_cast<int>(std::lround(7.0f / dt)); ++f) {
+            const float t = static_cast<float>(f) * dt;
+            use[0] = static_cast<uint8_t>(t >= 2.0f && t < 5.0f ? PoseUse::Unseen : PoseUse::EveryFrame);
+            w.step(dt);
+            if (t < 5.0f) continue;
+            const auto model = w.mc.poses().view(0).model;
+            for (int side = 0; side < 2; ++side) {
+                held += w.mc.foot_lock()->locked(0, side) ? 1 : 0;
+                worst_offset = std::max(worst_offset, glm::length(w.mc.foot_lock()->offset(0, side)));
+                const glm::vec3 hip(model[static_cast<size_t>(rig.hip[static_cast<size_t>(side)])][3]);
+                const glm::vec3 ankle(model[static_cast<size_t>(rig.ankle[static_cast<size_t>(side)])][3]);
+                worst_reach = std::max(worst_reach, glm::length(ankle - hip) / rig.leg_length);
+            }
+        }
+        std::printf("%.0f Hz, seen again after 3 s unseen: largest offset %.1f mm (margin %.1f), largest hip-ankle "
+                    "distance %.3f leg lengths, %zu foot-frames held\n",
+                    static_cast<double>(hz), static_cast<double>(1000.0f * worst_offset), static_cast<double>(1000.0f * margin),
+                    static_cast<double>(worst_reach), held);
+        EXPECT_LE(worst_offset, margin * 1.0001f) << hz << " Hz";
+        EXPECT_LE(worst_reach, 1.0f + 1e-3f) << hz << " Hz";
+        EXPECT_GT(held, 0u) << hz << " Hz: the lock works again once the walker is seen";
+    }
+}
+
+// Whatever the gap since the last apply, a held foot's offset never passes the reach margin: a walker
+// that jumps 3 m between two applies (a long gap, a teleport) has its foot let go at the margin.
+TEST_F(FootLockWalk, OffsetNeverPassesTheReachMargin) {
+    Walker w(*this, 1.4f);
+    w.lod() = level(0, WalkMethod::Kinematic, 1);
+    for (int f = 0; f < 60; ++f) w.step(1.0f / 60.0f);
+    FootLock lock(sk, rig, 1);
+    std::vector<glm::mat4> model(w.mc.poses().view(0).model.begin(), w.mc.poses().view(0).model.end());
+    Transform at = w.xs[0];
+    at.position = glm::vec3(0.0f);
+    lock.apply(0, 1.0f / 60.0f, at, model);
+    lock.apply(0, 1.0f / 60.0f, at, model);  // standing still: whatever is down is held
+    at.position.z += 3.0f;
+    std::vector<glm::mat4> moved(w.mc.poses().view(0).model.begin(), w.mc.poses().view(0).model.end());
+    lock.apply(0, 2.0f, at, moved);
+    const float margin = lock.params().max_offset * rig.leg_length * at.scale;
+    for (int side = 0; side < 2; ++side) {
+        EXPECT_LE(glm::length(lock.offset(0, side)), margin * 1.0001f) << "side " << side;
+        EXPECT_FALSE(lock.locked(0, side) && glm::length(lock.offset(0, side)) >= margin * 0.9999f) << "side " << side;
+    }
+}
+
 }  // namespace
 }  // namespace aloha
