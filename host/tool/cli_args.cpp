@@ -22,7 +22,7 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 struct Bindings {
     CliOptions o;
     std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "off", counts, characters, frames, frame_range, selection;
-    std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer;
+    std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
 
@@ -60,7 +60,11 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
     c.add_option("--width", b.width, "override the viewport width")->check(whole_number(16, 8192));
     c.add_option("--far-layer", b.far_layer,
                  "impostors under PX pixels tall are drawn at half resolution and composited "
-                 "with its depth (default " + std::to_string(int(kDefaultFarLayerBelowPx)) + " on a software rasteriser, 0 on a GPU; 0: all at full resolution)")
+                 "with its depth (PX at a 720-pixel viewport height, scaled with it; default " + std::to_string(int(kDefaultFarLayerBelowPx)) + " on a software rasteriser, 0 on a GPU; 0: all at full resolution)")
+        ->check(whole_number(0, 8192));
+    c.add_option("--far-layer-meshes", b.far_layer_meshes,
+                 "characters' meshes under PX pixels tall at 720 lines (not cross-fading) go to the same half-resolution layer (default " +
+                     std::to_string(int(kDefaultFarLayerMeshesBelowPx)) + " on a software rasteriser, 0 on a GPU; 0: all at full resolution)")
         ->check(whole_number(0, 8192));
     c.add_option("--height", b.height, "override the viewport height")->check(whole_number(16, 8192));
     c.add_option("--overlay", b.o.overlay, "draw bones, muscles and/or springs over the characters (e.g. bones,springs)")
@@ -193,6 +197,7 @@ void convert(Bindings& b) {
     if (!b.frame.empty()) o.frame = u32(b.frame);
     if (!b.width.empty()) o.width = u32(b.width);
     if (!b.far_layer.empty()) o.far_layer_px = float(u32(b.far_layer));
+    if (!b.far_layer_meshes.empty()) o.far_layer_meshes_px = float(u32(b.far_layer_meshes));
     if (!b.height.empty()) o.height = u32(b.height);
     if (!b.threads.empty()) o.threads = u32(b.threads);
     if (!b.compare_frames.empty()) o.compare_frames = u32(b.compare_frames);

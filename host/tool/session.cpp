@@ -111,6 +111,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     if (!render) return session;
     RendererOptions ro;
     ro.far_layer_below_px = options.far_layer_px;
+    ro.far_layer_meshes_below_px = options.far_layer_meshes_px;
     ro.pass_timestamps = options.gpu_passes;
     ro.constant_fragments = options.constant_fragments;
     auto renderer = CrowdRenderer::create(*session->context, ro);

@@ -130,10 +130,14 @@ struct RendererOptions {
     bool constant_fragments = false;                   ///< meshes and proxies drawn with a constant-colour fragment
                                                        ///< shader (unlit albedo): profiling the fragment cost only
                                                        ///< (validation then warns of unread vertex outputs)
-    std::optional<float> far_layer_below_px;           ///< impostors under this many pixels tall (at scale 1) are
+    std::optional<float> far_layer_below_px;           ///< impostors under this many pixels tall (at scale 1, on a
+                                                       ///< 720-line target: scaled with its height, far_layer_limit) are
                                                        ///< drawn at half resolution and composited with their depth
                                                        ///< (systems/render/far_layer.hpp); 0: every impostor at full
                                                        ///< resolution; unset: far_layer_default(the context's device)
+    std::optional<float> far_layer_meshes_below_px;    ///< meshes under this many pixels tall, not cross-fading, likewise;
+                                                       ///< 0: every mesh at full resolution; unset:
+                                                       ///< far_layer_meshes_default(the context's device)
 };
 
 /// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
@@ -269,7 +273,13 @@ private:
     uint64_t upload(const FrameInput& frame, Slot& slot, VkExtent2D extent);
     void plan_far_layer_for(const FrameInput& frame, VkExtent2D extent);
     Status ensure_far_layer(Slot& slot, VkExtent2D extent);
-    uint32_t record_far_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
+    uint32_t record_far_layer(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
+    // The pipeline of a topology's meshes that are not fading.
+    [[nodiscard]] VkPipeline whole_pipeline(const Topology& topo) const;
+    // Draws instances [first, first + count) of mesh group g (topology g / 2) with `pipeline` and the `dither` mode
+    // bits, one draw per material; binds `pipeline` unless `bound` is it (and records it there). Returns the draws.
+    uint32_t draw_mesh_group(VkCommandBuffer cmd, const FrameInput& frame, uint32_t g, uint32_t first, uint32_t count,
+                             VkPipeline pipeline, uint32_t dither, gpu::LitPush& push, VkPipeline& bound);
     uint32_t record_composite(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
     Status record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot);
     Status init_materials();
@@ -305,6 +315,9 @@ private:
     std::vector<float> impostor_depth_;               // per impostor: distance ahead of the camera
     std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (the far layer's planning)
     float far_layer_below_px_ = 0.0f;                 // options_.far_layer_below_px resolved for the device
+    float far_layer_meshes_below_px_ = 0.0f;          // options_.far_layer_meshes_below_px resolved for the device
+    std::vector<FarMeshGroup> far_mesh_groups_;       // per topology t: its whole group 2t's records in order_
+    std::vector<FarMeshBound> far_mesh_bounds_;       // per mesh: measured where it may be under the mesh limit
     FarLayerPlan far_plan_;                           // this frame's impostor runs and far layer
     uint32_t impostor_base_ = 0;                      // this frame's first impostor record in the instance buffer
     std::vector<std::string> pass_names_;             // mesh pass labels, then fixed ones, by first use

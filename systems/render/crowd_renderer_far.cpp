@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace aloha {
 
@@ -18,9 +19,41 @@ void CrowdRenderer::plan_far_layer_for(const FrameInput& frame, VkExtent2D exten
     in.clip_from_world = gpu::vulkan_clip_from_gl() * frame.camera.proj * frame.camera.view;
     const bool perspective = frame.camera.proj[2][3] != 0.0f;
     in.focal_px = perspective ? 0.5f * float(extent.height) * std::abs(frame.camera.proj[1][1]) : 0.0f;
-    in.below_px = far_layer_below_px_;
+    in.below_px = far_layer_limit(far_layer_below_px_, float(extent.height));
     in.viewport_width = float(std::max(extent.width, 1u));
     in.viewport_height = float(std::max(extent.height, 1u));
+    // Whole (not fading) mesh groups, one per topology; a fading mesh's dither pairs pixel for pixel with its
+    // partner's at full resolution. Bounds only where a mesh could be under the limit: a mesh is measured from its
+    // vertices (model space, placed by its model matrix) beyond the distance at which a 3 m figure would be.
+    far_mesh_groups_.resize(topologies_.size());
+    for (size_t t = 0; t < topologies_.size(); ++t) far_mesh_groups_[t] = {group_start_[2 * t], group_count_[2 * t]};
+    far_mesh_bounds_.assign(frame.meshes.size(), FarMeshBound{glm::vec4(0.0f), -1.0f});
+    const float meshes_below_px = far_layer_limit(far_layer_meshes_below_px_, float(extent.height));
+    const float min_depth = far_mesh_min_depth(in.focal_px, meshes_below_px, 3.0f);
+    for (const FarMeshGroup& g : far_mesh_groups_)
+        for (uint32_t k = g.first; k < g.first + g.count; ++k) {
+            const uint32_t i = order_[k];
+            if (!(depth_[i] > min_depth)) continue;
+            const DeformableMesh& m = frame.meshes[i];
+            glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+            for (const glm::vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+            const float scale = std::max({glm::length(glm::vec3(m.model[0])), glm::length(glm::vec3(m.model[1])),
+                                          glm::length(glm::vec3(m.model[2]))});
+            const glm::vec3 centre(m.model * glm::vec4(0.5f * (lo + hi), 1.0f));
+            // Height on screen: the box's vertical world extent (its corners through the model matrix).
+            float top = -std::numeric_limits<float>::max(), bottom = std::numeric_limits<float>::max();
+            for (int c = 0; c < 8; ++c) {
+                const glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+                const float y = (m.model * glm::vec4(corner, 1.0f)).y;
+                top = std::max(top, y), bottom = std::min(bottom, y);
+            }
+            far_mesh_bounds_[i] = {glm::vec4(centre, 0.5f * glm::length(hi - lo) * scale), top - bottom};
+        }
+    in.mesh_order = order_;
+    in.mesh_groups = far_mesh_groups_;
+    in.mesh_bounds = far_mesh_bounds_;
+    in.mesh_depth = depth_;
+    in.meshes_below_px = meshes_below_px;
     plan_far_layer(in, far_plan_);
 }
 
@@ -41,7 +74,8 @@ Status CrowdRenderer::ensure_far_layer(Slot& slot, VkExtent2D extent) {
     return {};
 }
 
-uint32_t CrowdRenderer::record_far_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent) {
+uint32_t CrowdRenderer::record_far_layer(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push,
+                                        VkExtent2D extent) {
     const gpu::TargetView view = slot.far_layer.view();
     gpu::begin_render_pass(cmd, view, VkClearColorValue{});  // transparent black: where the layer is empty
     const float height = 0.5f * float(extent.height);
@@ -51,7 +85,17 @@ uint32_t CrowdRenderer::record_far_layer(VkCommandBuffer cmd, Slot& slot, gpu::L
     vkCmdSetScissor(cmd, 0, 1, &sc);
     const VkDescriptorSet sets[2] = {slot.set, plain_set_};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 2, sets, 0, nullptr);
-    const uint32_t draws = record_impostors(cmd, slot, push, height, /*far=*/true);
+    // The far meshes (each whole group's tail, nearest first), then the far impostors behind them.
+    uint32_t draws = 0;
+    VkPipeline bound = VK_NULL_HANDLE;
+    for (const uint32_t t : draw_order_) {
+        const FarMeshGroup& g = far_mesh_groups_[t];
+        const uint32_t split = far_plan_.mesh_splits[t], end = g.first + g.count;
+        if (split == end) continue;
+        vkCmdBindIndexBuffer(cmd, topologies_[t].indices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        draws += draw_mesh_group(cmd, frame, 2 * t, split - g.first, end - split, whole_pipeline(topologies_[t]), 0u, push, bound);
+    }
+    draws += record_impostors(cmd, slot, push, height, /*far=*/true);
     vkCmdEndRenderPass(cmd);
     return draws;
 }

@@ -40,6 +40,12 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot, VkExtent2D e
     for (uint32_t i = 0; i < frame.meshes.size(); ++i) depth_[i] = -glm::dot(forward, frame.meshes[i].model[3]);
     for (size_t g = 0; g < ng; ++g)
         sort_nearest_first(std::span(order_).subspan(group_start_[g], group_count_[g]), depth_);
+    // Impostors nearest first within each atlas's run (systems/render/impostor_order.hpp); the far layer
+    // (systems/render/far_layer.hpp) then moves each run's and each whole mesh group's far part behind its others,
+    // before anything is copied (a mesh's vertices follow its place in the order).
+    impostor_base_ = impostor_base(frame);
+    sort_impostors_nearest_first(frame.impostors, frame.camera.view, impostor_order_, impostor_depth_);
+    plan_far_layer_for(frame, extent);
 
     std::byte* pos = slot.positions.mapped();
     std::byte* nrm = slot.normals.mapped();
@@ -59,11 +65,6 @@ uint64_t CrowdRenderer::upload(const FrameInput& frame, Slot& slot, VkExtent2D e
     if (!frame.proxies.empty())
         std::memcpy(static_cast<void*>(instances + frame.meshes.size()), frame.proxies.data(),
                     frame.proxies.size_bytes());
-    // Impostors nearest first within each atlas's run (systems/render/impostor_order.hpp), each run's far records
-    // (the half-resolution layer's, systems/render/far_layer.hpp) after its others.
-    impostor_base_ = impostor_base(frame);
-    sort_impostors_nearest_first(frame.impostors, frame.camera.view, impostor_order_, impostor_depth_);
-    plan_far_layer_for(frame, extent);
     auto* impostors = reinterpret_cast<ImpostorInstance*>(slot.instances.mapped()) + impostor_base_;
     for (size_t k = 0; k < frame.impostors.size(); ++k) impostors[k] = frame.impostors[impostor_order_[k]];
     gpu::LitLighting lighting;
@@ -142,7 +143,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     push.camera = glm::vec4(glm::vec3(glm::inverse(frame.camera.view)[3]), 1.0f);
     uint32_t draws = 0;
     // The far layer first, in its own render pass: the frame's pass composites it (record_composite).
-    if (far_plan_.far_count > 0) draws += record_far_layer(cmd, slot, push, target.extent);
+    if (far_plan_.far_count > 0) draws += record_far_layer(frame, cmd, slot, push, target.extent);
     gpu::begin_render_pass(cmd, target, VkClearColorValue{{frame.clear_colour.r, frame.clear_colour.g, frame.clear_colour.b, frame.clear_colour.a}});
     const VkViewport vp{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
     const VkRect2D sc{{0, 0}, target.extent};
@@ -151,7 +152,6 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
 
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const bool any_mesh = !frame.meshes.empty() || !frame.proxies.empty() || !frame.impostors.empty();
-    const uint32_t normals = frame.write_normals ? uint32_t{gpu::kLitNormals} : 0u;
     if (any_mesh) {
         const VkDescriptorSet sets[2] = {slot.set, plain_set_};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 2, sets, 0, nullptr);
@@ -159,33 +159,8 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     VkPipeline bound = VK_NULL_HANDLE;
     PassRecord pass;
     bool in_pass = false;
-    // Instances [first, first + count) of group g (topology g / 2) with `pipeline`, `dither` bits in the mode.
     auto draw_group = [&](uint32_t g, uint32_t first, uint32_t count, VkPipeline pipeline, uint32_t dither) {
-        const Topology& topo = topologies_[g / 2];
-        if (pipeline != bound) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-            bound = pipeline;
-        }
-        const uint32_t vertex_base = group_vertex_base_[g] + first * topo.vertex_count, instance_base = group_start_[g] + first;
-        if (!frame.materials || topo.ranges.empty()) {
-            push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, gpu::kLitMesh | normals | dither);
-            push.base_colour = glm::vec4(1.0f);
-            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, topo.index_count, count, 0, 0, 0);
-            ++draws;
-            return;
-        }
-        for (const Range& r : topo.ranges) {  // one draw per material, every instance of the run
-            const Material& m = materials_[r.material];
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
-            const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
-            push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, textured | normals | dither);
-            push.base_colour = m.colour;
-            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-            vkCmdDrawIndexed(cmd, r.index_count, count, r.first_index, 0, 0);
-            ++draws;
-        }
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
+        draws += draw_mesh_group(cmd, frame, g, first, count, pipeline, dither, push, bound);
     };
     for (const uint32_t t : draw_order_) {
         const uint32_t whole = 2 * t, faded = 2 * t + 1;
@@ -201,11 +176,9 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
         const uint32_t draws_before = draws;
         const Topology& topo = topologies_[t];
         vkCmdBindIndexBuffer(cmd, topo.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        if (group_count_[whole] > 0) {
-            const VkPipeline want = topo.vertex_lighting ? (topo.cull_back_faces ? pipes_.vertex_lit_culled() : pipes_.vertex_lit())
-                                                         : (topo.cull_back_faces ? pipes_.mesh_culled() : pipes_.mesh());
-            draw_group(whole, 0, group_count_[whole], want, 0u);
-        }
+        // The whole group's near part; its far part went to the far layer (record_far_layer).
+        const uint32_t near = far_plan_.mesh_splits[t] - group_start_[whole];
+        if (near > 0) draw_group(whole, 0, near, whole_pipeline(topo), 0u);
         // Fading meshes: one draw (per material) per run of equal dither bits, in the group's (nearest-first) order.
         const VkPipeline dithered = pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces);
         for (uint32_t k = 0; k < group_count_[faded];) {
@@ -239,6 +212,43 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     ALOHA_VK_RETURN(vkEndCommandBuffer(cmd));
     last_draw_count_ = draws;
     return {};
+}
+
+VkPipeline CrowdRenderer::whole_pipeline(const Topology& topo) const {
+    return topo.vertex_lighting ? (topo.cull_back_faces ? pipes_.vertex_lit_culled() : pipes_.vertex_lit())
+                                : (topo.cull_back_faces ? pipes_.mesh_culled() : pipes_.mesh());
+}
+
+uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& frame, uint32_t g, uint32_t first, uint32_t count,
+                                        VkPipeline pipeline, uint32_t dither, gpu::LitPush& push, VkPipeline& bound) {
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    const uint32_t normals = frame.write_normals ? uint32_t{gpu::kLitNormals} : 0u;
+    const Topology& topo = topologies_[g / 2];
+    if (pipeline != bound) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        bound = pipeline;
+    }
+    const uint32_t vertex_base = group_vertex_base_[g] + first * topo.vertex_count, instance_base = group_start_[g] + first;
+    if (!frame.materials || topo.ranges.empty()) {
+        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, gpu::kLitMesh | normals | dither);
+        push.base_colour = glm::vec4(1.0f);
+        vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+        vkCmdDrawIndexed(cmd, topo.index_count, count, 0, 0, 0);
+        return 1;
+    }
+    uint32_t draws = 0;
+    for (const Range& r : topo.ranges) {  // one draw per material, every instance of the run
+        const Material& m = materials_[r.material];
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
+        const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
+        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, textured | normals | dither);
+        push.base_colour = m.colour;
+        vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+        vkCmdDrawIndexed(cmd, r.index_count, count, r.first_index, 0, 0);
+        ++draws;
+    }
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
+    return draws;
 }
 
 }  // namespace aloha

@@ -4,19 +4,64 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 namespace aloha {
+namespace {
+
+// The screen rectangle of a set of world spheres (Vulkan NDC), or the whole screen once one reaches the eye's plane.
+class ScreenBound {
+public:
+    ScreenBound(const glm::mat4& clip_from_world, glm::vec2 scale) : clip_from_world_(clip_from_world), scale_(scale) {}
+
+    void add(const glm::vec3& centre, float r) {
+        if (whole_screen_) return;
+        const glm::vec4 clip = clip_from_world_ * glm::vec4(centre, 1.0f);
+        if (clip.w <= r) {  // the sphere reaches the eye's plane: no finite bound
+            whole_screen_ = true;
+            return;
+        }
+        // Over the sphere, clip x ranges over clip.x +- P00 r and w over w +- r (symmetric projection:
+        // clip x = P00 * view x, w = the distance ahead); x / w lies between the extremes of those bounds.
+        for (const float sx : {-1.0f, 1.0f})
+            for (const float sw : {-1.0f, 1.0f}) {
+                const glm::vec2 p = (glm::vec2(clip) + sx * r * scale_) / (clip.w + sw * r);
+                lo_ = glm::min(lo_, p);
+                hi_ = glm::max(hi_, p);
+            }
+    }
+
+    // Padded by `pad` (NDC) and clamped to the screen.
+    [[nodiscard]] glm::vec4 rect(glm::vec2 pad) const {
+        if (whole_screen_) return glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f);
+        return glm::vec4(glm::clamp(lo_ - pad, -1.0f, 1.0f), glm::clamp(hi_ + pad, -1.0f, 1.0f));
+    }
+
+private:
+    glm::mat4 clip_from_world_;
+    glm::vec2 scale_;
+    glm::vec2 lo_{1e30f}, hi_{-1e30f};
+    bool whole_screen_ = false;
+};
+
+}  // namespace
+
+float far_mesh_min_depth(float focal_px, float below_px, float max_height) {
+    if (focal_px <= 0.0f || below_px <= 0.0f) return std::numeric_limits<float>::infinity();
+    return focal_px * max_height / below_px;
+}
 
 void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
     out.runs.clear();
+    out.mesh_splits.clear();
     out.far_count = 0;
+    out.far_meshes = 0;
     const auto n = static_cast<uint32_t>(in.records.size());
     assert(in.order.size() == n);
     const bool enabled = in.focal_px > 0.0f && in.below_px > 0.0f;
-    glm::vec2 lo(1e30f), hi(-1e30f);
-    bool whole_screen = false;
     // NDC per unit of view-space x and y at distance 1 (the projection's P00 and P11).
-    const glm::vec2 scale(2.0f * in.focal_px / in.viewport_width, 2.0f * in.focal_px / in.viewport_height);
+    ScreenBound bound(in.clip_from_world,
+                      glm::vec2(2.0f * in.focal_px / in.viewport_width, 2.0f * in.focal_px / in.viewport_height));
     for (uint32_t first = 0; first < n;) {
         const uint32_t atlas = in.records[first].atlas;
         uint32_t end = first + 1;
@@ -30,39 +75,39 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
             const auto split = std::stable_partition(in.order.begin() + first, in.order.begin() + end, near);
             run.split = static_cast<uint32_t>(split - in.order.begin());
             const float radius = 0.5f * std::sqrt(layout.width * layout.width + layout.height * layout.height);
-            for (uint32_t k = run.split; k < end && !whole_screen; ++k) {
+            for (uint32_t k = run.split; k < end; ++k) {
                 const glm::vec4& ps = in.records[in.order[k]].position_scale;
-                const glm::vec3 centre = glm::vec3(ps) + glm::vec3(0.0f, ps.w * (layout.bottom + 0.5f * layout.height), 0.0f);
-                const glm::vec4 clip = in.clip_from_world * glm::vec4(centre, 1.0f);
-                const float r = radius * ps.w;
-                if (clip.w <= r) {  // the sphere reaches the eye's plane: no finite bound
-                    whole_screen = true;
-                    break;
-                }
-                // Over the sphere, clip x ranges over clip.x +- P00 r and w over w +- r (symmetric projection:
-                // clip x = P00 * view x, w = the distance ahead); x / w lies between the extremes of those bounds.
-                for (const float sx : {-1.0f, 1.0f})
-                    for (const float sw : {-1.0f, 1.0f}) {
-                        const glm::vec2 p = (glm::vec2(clip) + sx * r * scale) / (clip.w + sw * r);
-                        lo = glm::min(lo, p);
-                        hi = glm::max(hi, p);
-                    }
+                bound.add(glm::vec3(ps) + glm::vec3(0.0f, ps.w * (layout.bottom + 0.5f * layout.height), 0.0f), radius * ps.w);
             }
             out.far_count += end - run.split;
         }
         out.runs.push_back(run);
         first = end;
     }
-    if (out.far_count == 0) return;
-    if (whole_screen) {
-        out.ndc_rect = glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f);
-        return;
+    const bool meshes = in.focal_px > 0.0f && in.meshes_below_px > 0.0f;
+    for (const FarMeshGroup& g : in.mesh_groups) {
+        assert(g.first + g.count <= in.mesh_order.size());
+        uint32_t split = g.first + g.count;
+        if (meshes) {
+            // Near: not measured, or at least meshes_below_px tall on screen.
+            const auto near = [&](uint32_t m) {
+                const FarMeshBound& b = in.mesh_bounds[m];
+                return b.height < 0.0f || in.mesh_depth[m] <= 0.0f || b.height * in.focal_px >= in.meshes_below_px * in.mesh_depth[m];
+            };
+            const auto begin = in.mesh_order.begin() + g.first;
+            split = static_cast<uint32_t>(std::stable_partition(begin, begin + g.count, near) - in.mesh_order.begin());
+            for (uint32_t k = split; k < g.first + g.count; ++k) {
+                const glm::vec4& s = in.mesh_bounds[in.mesh_order[k]].sphere;
+                bound.add(glm::vec3(s), s.w);
+            }
+            out.far_meshes += g.first + g.count - split;
+        }
+        out.mesh_splits.push_back(split);
     }
+    out.far_count += out.far_meshes;
+    if (out.far_count == 0) return;
     // Two layer texels (four pixels) of padding: the bilinear filter reads one texel beyond the quad's edge.
-    const glm::vec2 pad(8.0f / in.viewport_width, 8.0f / in.viewport_height);
-    lo = glm::clamp(lo - pad, -1.0f, 1.0f);
-    hi = glm::clamp(hi + pad, -1.0f, 1.0f);
-    out.ndc_rect = glm::vec4(lo, hi);
+    out.ndc_rect = bound.rect(glm::vec2(8.0f / in.viewport_width, 8.0f / in.viewport_height));
 }
 
 }  // namespace aloha

@@ -1,7 +1,7 @@
-// The far layer: impostors far enough behind everything else that they can be drawn into a target of half
-// the frame's resolution (gpu::LayerTarget) and composited behind what is drawn at full resolution
-// (gpu::LitPipelines::composite). On lavapipe a small quad's cost is per 4x4 block it touches, mostly along
-// its edges, so it grows with the target's side: at half resolution the far crowd costs about half
+// The far layer: impostors and meshes small on screen, drawn into a target of half the frame's resolution
+// (gpu::LayerTarget) and composited with their depth into what is drawn at full resolution
+// (gpu::LitPipelines::composite). On lavapipe a small quad's or triangle's cost is per 4x4 block it touches,
+// mostly along its edges, so it grows with the target's side: at half resolution the far crowd costs about half
 // (docs/PERFORMANCE.md, "The far layer").
 #pragma once
 
@@ -19,10 +19,40 @@ namespace aloha {
 /// (docs/PERFORMANCE.md, "The far layer").
 inline constexpr float kDefaultFarLayerBelowPx = 70.0f;
 
+/// The far layer's limit for meshes on a software rasteriser: characters under 120 px tall, the small end of the
+/// skinned level on tier low (70-250 px), where a triangle covers a few pixels and its cost is the blocks it
+/// touches (docs/PERFORMANCE.md, "Small meshes in the far layer").
+inline constexpr float kDefaultFarLayerMeshesBelowPx = 120.0f;
+
 /// The far layer a CrowdRenderer draws when RendererOptions::far_layer_below_px is unset: kDefaultFarLayerBelowPx on a software rasteriser (a CPU
 /// device, where a small quad's cost grows with the target's resolution), 0 on a GPU (where it buys nothing and
 /// costs the far crowd half its resolution).
 [[nodiscard]] inline float far_layer_default(bool cpu_device) { return cpu_device ? kDefaultFarLayerBelowPx : 0.0f; }
+
+/// The same for meshes (RendererOptions::far_layer_meshes_below_px unset): kDefaultFarLayerMeshesBelowPx on a
+/// software rasteriser, 0 on a GPU.
+[[nodiscard]] inline float far_layer_meshes_default(bool cpu_device) { return cpu_device ? kDefaultFarLayerMeshesBelowPx : 0.0f; }
+
+/// The viewport height the far layer's limits are given at: a limit of L px applies as L * height / 720 on a target
+/// `height` pixels high, so the same share of the screen goes to the layer at any resolution (at 480 x 270 a 120 px
+/// limit would take every character of a crowd and soften it; scaled, it takes those under 45 px).
+inline constexpr float kFarLayerReferenceHeight = 720.0f;
+
+/// A far-layer limit `px` (given at kFarLayerReferenceHeight) on a viewport `viewport_height` pixels high.
+[[nodiscard]] inline float far_layer_limit(float px, float viewport_height) { return px * viewport_height / kFarLayerReferenceHeight; }
+
+/// One group of meshes drawn together (one topology, none cross-fading): records [first, first + count) of
+/// FarLayerInput::mesh_order.
+struct FarMeshGroup {
+    uint32_t first = 0;
+    uint32_t count = 0;
+};
+
+/// A mesh's extent for the far layer: its bounding sphere (world) and its height (world units, top to bottom).
+struct FarMeshBound {
+    glm::vec4 sphere{0.0f};  ///< xyz centre, w radius
+    float height = 0.0f;     ///< < 0: not measured (a mesh too near to be under any limit): kept at full resolution
+};
 
 /// One run of impostor records of one atlas, in draw order: [first, split) are drawn at full resolution,
 /// [split, end) into the far layer.
@@ -36,7 +66,10 @@ struct ImpostorRun {
 /// What plan_far_layer decided for one frame.
 struct FarLayerPlan {
     std::vector<ImpostorRun> runs;             ///< every run of the frame's impostor records, in order
-    uint32_t far_count = 0;                    ///< records in the far layer (0: no far pass, no composite)
+    std::vector<uint32_t> mesh_splits;         ///< per FarLayerInput::mesh_groups entry: its records [first, split)
+                                               ///< are drawn at full resolution, [split, first + count) in the layer
+    uint32_t far_count = 0;                    ///< records and meshes in the far layer (0: no far pass, no composite)
+    uint32_t far_meshes = 0;                   ///< of which meshes
     glm::vec4 ndc_rect{-1.0f, -1.0f, 1.0f, 1.0f};  ///< screen rectangle (Vulkan NDC x0, y0, x1, y1) holding every
                                                ///< far record's quad and the filter's reach: the composite's quad
 };
@@ -55,13 +88,24 @@ struct FarLayerInput {
                                                    ///< this many pixels tall; <= 0: no far layer
     float viewport_width = 1.0f;                   ///< full-resolution pixels (the rectangle's padding)
     float viewport_height = 1.0f;
+    std::span<uint32_t> mesh_order;                ///< mesh draw order: each group's records nearest first; partitioned here
+    std::span<const FarMeshGroup> mesh_groups;     ///< the groups that may go to the layer (not cross-fading)
+    std::span<const FarMeshBound> mesh_bounds;     ///< by mesh id (the values of mesh_order)
+    std::span<const float> mesh_depth;             ///< by mesh id: distance ahead of the camera (view-space -z)
+    float meshes_below_px = 0.0f;                  ///< a mesh goes to the far layer where it is under this many pixels
+                                                   ///< tall (height * focal_px / depth); <= 0: no mesh in the layer
 };
+
+/// The least distance at which a mesh `max_height` world units tall can be under `below_px` pixels: meshes nearer
+/// than this need no bound (FarMeshBound::height < 0). Infinite when the layer takes no meshes.
+[[nodiscard]] float far_mesh_min_depth(float focal_px, float below_px, float max_height);
 
 /// Moves each run's far records (quad under below_px tall, i.e. depth > focal_px * layout.height / below_px, and
 /// not cross-fading: its dither pairs pixel for pixel with a mesh's at full resolution) behind its others in
 /// `order`, keeping both parts nearest first, and sets the runs' splits. The rectangle bounds each far record's
 /// bounding sphere on screen, padded by two layer texels (the filter's reach); the whole screen when one lies
-/// at or behind the eye's plane.
+/// at or behind the eye's plane. Likewise each mesh group: its meshes under meshes_below_px (measured ones only)
+/// go behind its others, both parts nearest first, and their spheres join the rectangle.
 void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out);
 
 }  // namespace aloha

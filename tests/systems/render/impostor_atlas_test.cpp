@@ -254,6 +254,22 @@ TEST(ImpostorAtlas, CellTableHoldsEachCellsCoveredTexels) {
 }
 
 
+// The far layer's bounds against full resolution (derived below): no silhouette pixel more than 3 px from the other
+// render's silhouette, mean difference at most 12 levels, no colour beyond the full render's range within 3 px by
+// more than 2 levels.
+void expect_layer_matches(const Comparison& c) {
+    EXPECT_EQ(c.outside, 0u) << "silhouette pixels more than 3 px from the other render's silhouette";
+    EXPECT_LE(c.mean(), 12.0) << "mean colour difference inside both silhouettes (levels)";
+    EXPECT_LE(*std::max_element(c.excess.begin(), c.excess.end()), 2) << "colour outside the full-resolution range within 3 px";
+}
+
+// A placement `ahead` metres from the figure towards the eye of `frame`, 0.3 m to the side, scaled by `scale`.
+glm::mat4 towards_eye(const FrameInput& frame, float ahead, float scale = 1.0f) {
+    const glm::vec3 eye = glm::vec3(glm::inverse(frame.camera.view)[3]);
+    return glm::translate(glm::mat4(1.0f), ahead / kDistance * (eye - glm::vec3(0.0f, 0.9f, 0.0f)) + glm::vec3(0.3f, 0.0f, 0.0f)) *
+           glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+}
+
 // The far layer (systems/render/far_layer.hpp): a figure 45 px tall, under the 70 px limit, drawn as an
 // impostor into the half-resolution layer and composited, against the same impostor drawn at full resolution.
 // Bounds: the layer's alpha test samples every second pixel, so its silhouette moves by up to one layer texel
@@ -273,9 +289,12 @@ TEST(ImpostorAtlas, FarLayerMatchesTheFullResolutionImpostorInDepthOrder) {
     in.cell_height_px = 96;
     Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
     ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
-    RendererOptions full_options;
+    RendererOptions full_options, far_options;  // meshes at full resolution in both (FarLayerMeshMatches... below)
     full_options.far_layer_below_px = 0.0f;
-    Result<std::unique_ptr<CrowdRenderer>> far = CrowdRenderer::create(*ctx), full = CrowdRenderer::create(*ctx, full_options);
+    full_options.far_layer_meshes_below_px = 0.0f;
+    far_options.far_layer_meshes_below_px = 0.0f;
+    far_options.far_layer_below_px = 70.0f * kFarLayerReferenceHeight / float(kSize);  // 70 px on this 128-line target
+    Result<std::unique_ptr<CrowdRenderer>> far = CrowdRenderer::create(*ctx, far_options), full = CrowdRenderer::create(*ctx, full_options);
     ASSERT_TRUE(far.ok() && full.ok());
     uint32_t topology = 0, id = 0;
     for (CrowdRenderer* r : {far.value().get(), full.value().get()}) {
@@ -301,6 +320,7 @@ TEST(ImpostorAtlas, FarLayerMatchesTheFullResolutionImpostorInDepthOrder) {
     ASSERT_GT(compared, 40u);
     EXPECT_LE(cmp.mean(), 12.0) << "mean colour difference inside both silhouettes (levels)";
     EXPECT_LE(*std::max_element(excess.begin(), excess.end()), 2) << "colour outside the full-resolution range within 3 px (levels)";
+    EXPECT_NE(a.value().pixels, b.value().pixels) << "the layer was used: the two renders differ";
     if (std::getenv("ALOHA_DUMP_IMPOSTOR")) {
         (void)gpu::write_png("/tmp/far_full.png", kSize, kSize, a.value().pixels);
         (void)gpu::write_png("/tmp/far_layer.png", kSize, kSize, b.value().pixels);
@@ -309,23 +329,59 @@ TEST(ImpostorAtlas, FarLayerMatchesTheFullResolutionImpostorInDepthOrder) {
     // Depth order: the composite writes the layer's depth, so a mesh 5 m behind the impostor is hidden where the
     // impostor covers it and a mesh 5 m in front hides the impostor, as at full resolution (same bounds: only the
     // impostor's own pixels differ between the two renders).
-    const glm::vec3 eye = glm::vec3(glm::inverse(frame.camera.view)[3]);
     for (const float ahead : {-5.0f, 5.0f}) {
         SCOPED_TRACE(ahead < 0.0f ? "mesh behind" : "mesh in front");
-        const glm::mat4 model = glm::translate(glm::mat4(1.0f), ahead / kDistance * (eye - glm::vec3(0.0f, 0.9f, 0.0f)) + glm::vec3(0.3f, 0.0f, 0.0f));
-        const std::vector<DeformableMesh> meshes = {{topology, fig.positions, fig.normals, model, glm::vec4(0.4f, 0.6f, 0.9f, 1.0f)}};
+        const std::vector<DeformableMesh> meshes = {{topology, fig.positions, fig.normals, towards_eye(frame, ahead), glm::vec4(0.4f, 0.6f, 0.9f, 1.0f)}};
         frame.meshes = meshes;
         Result<gpu::Rgba8Image> c = draw(*full.value(), *ctx, frame), d = draw(*far.value(), *ctx, frame);
         ASSERT_TRUE(c.ok() && d.ok());
-        const Comparison order = compare(c.value(), d.value(), 3);
-        EXPECT_EQ(order.outside, 0u);
-        EXPECT_LE(order.mean(), 12.0);
-        EXPECT_LE(*std::max_element(order.excess.begin(), order.excess.end()), 2);
+        expect_layer_matches(compare(c.value(), d.value(), 3));
         if (std::getenv("ALOHA_DUMP_IMPOSTOR")) {
             (void)gpu::write_png("/tmp/far_order_full" + std::to_string(int(ahead)) + ".png", kSize, kSize, c.value().pixels);
             (void)gpu::write_png("/tmp/far_order_layer" + std::to_string(int(ahead)) + ".png", kSize, kSize, d.value().pixels);
         }
     }
+    EXPECT_TRUE(ctx->validation_messages().empty());
+}
+
+// A mesh under the far layer's mesh limit (RendererOptions::far_layer_meshes_below_px, on by default on lavapipe) is
+// drawn at half resolution and composited with its depth. Against the same mesh at full resolution, with the
+// impostor test's bounds and reasons above: silhouettes within 3 px, colours within the full render's range within
+// 3 px plus 2 levels, mean difference under 12 levels; and a full-resolution mesh 5 m in front still hides it.
+TEST(ImpostorAtlas, FarLayerMeshMatchesTheFullResolutionMesh) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    RendererOptions full_options, far_options;
+    full_options.far_layer_meshes_below_px = 0.0f;
+    // 100 px on this 128-line target (limits are given at 720 lines): the figure below is 45 px tall, the one in front 169 px.
+    far_options.far_layer_meshes_below_px = 100.0f * kFarLayerReferenceHeight / float(kSize);
+    Result<std::unique_ptr<CrowdRenderer>> far = CrowdRenderer::create(*ctx, far_options), full = CrowdRenderer::create(*ctx, full_options);
+    ASSERT_TRUE(far.ok() && full.ok());
+    uint32_t topology = 0;
+    for (CrowdRenderer* r : {far.value().get(), full.value().get()}) {
+        Result<uint32_t> t = r->register_topology(fig.indices, 0, true);
+        ASSERT_TRUE(t.ok());
+        topology = t.value();
+    }
+    FrameInput frame = camera_frame(0.4f);
+    frame.camera.proj = glm::perspective(2.0f * std::atan(2.56f / kDistance), 1.0f, 1.0f, 100.0f);  // 1.8 m over 45 px
+    const std::vector<DeformableMesh> alone = {{topology, fig.positions, fig.normals, glm::mat4(1.0f), glm::vec4(0.85f, 0.65f, 0.5f, 1.0f)}};
+    frame.meshes = alone;
+    Result<gpu::Rgba8Image> a = draw(*full.value(), *ctx, frame), b = draw(*far.value(), *ctx, frame);
+    ASSERT_TRUE(a.ok() && b.ok());
+    const Comparison cmp = compare(a.value(), b.value(), 3);
+    EXPECT_GT(cmp.area, 250u) << "the figure fills about 45 x 12 pixels";
+    ASSERT_GT(cmp.excess.size(), 40u);
+    expect_layer_matches(cmp);
+    EXPECT_NE(a.value().pixels, b.value().pixels) << "the layer was used: the two renders differ";
+
+    // A mesh 5 m in front of it, big enough to stay at full resolution, hides it where it covers it in both.
+    const std::vector<DeformableMesh> both = {alone[0], {topology, fig.positions, fig.normals, towards_eye(frame, 5.0f, 3.0f), glm::vec4(0.4f, 0.6f, 0.9f, 1.0f)}};
+    frame.meshes = both;
+    Result<gpu::Rgba8Image> c = draw(*full.value(), *ctx, frame), d = draw(*far.value(), *ctx, frame);
+    ASSERT_TRUE(c.ok() && d.ok());
+    expect_layer_matches(compare(c.value(), d.value(), 3));
     EXPECT_TRUE(ctx->validation_messages().empty());
 }
 
