@@ -21,7 +21,7 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 // What the subcommands write into: CliOptions plus the text of options converted after the parse.
 struct Bindings {
     CliOptions o;
-    std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "on", counts, characters, frames, frame_range, selection;
+    std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "off", counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
@@ -131,9 +131,7 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
                       "cost from the vertex and binning cost (profiling only)");
     profile->add_option("--gpu-overlap", b.gpu_overlap,
                         "on: the GPU draws a frame while the next frame's CPU systems run (two frames in flight; the "
-                        "whole frame is the interval between frames; the default: a lower crowd_10k p95 in 9 of 12 alternated pairs, "
-                        "docs/PERFORMANCE.md); off: "
-                        "each frame waits for its GPU work")
+                        "whole frame is the interval between frames); off: each frame waits for its GPU work (default off: not yet shown faster, docs/PERFORMANCE.md)")
         ->check(on_off());
     add_colour(*profile, b);
     add_common(*profile, b, false);
