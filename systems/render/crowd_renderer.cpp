@@ -71,7 +71,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
         if (!st) return st;
     }
     growth_events_ = 0;  // initial allocations are not growth
-    for (const char* fixed : {"far layer", "proxies", "impostors", "lines", "composite", "resolve"}) pass_id(fixed);
+    for (const char* fixed : {"far meshes", "far layer", "proxies", "impostors", "lines", "composite", "resolve"}) pass_id(fixed);
     return init_materials();
 }
 

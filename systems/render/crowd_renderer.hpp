@@ -141,7 +141,8 @@ struct RendererOptions {
 };
 
 /// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
-/// "far layer" (the far impostors at half resolution, before the frame's render pass), one per mesh pass label
+/// "far meshes" and "far layer" (the small meshes, then the far impostors, at half resolution, before the frame's
+/// render pass), one per mesh pass label
 /// (register_topology's `pass`: all topologies with that label, drawn together), "proxies", "impostors",
 /// "lines", "composite" (the far layer written in with its depth) and "resolve" (end of the render pass: tiles written out,
 /// layout transition).

@@ -88,14 +88,18 @@ uint32_t CrowdRenderer::record_far_layer(const FrameInput& frame, VkCommandBuffe
     // The far meshes (each whole group's tail, nearest first), then the far impostors behind them.
     uint32_t draws = 0;
     VkPipeline bound = VK_NULL_HANDLE;
+    PassRecord meshes{pass_id("far meshes"), 0, 0, 0};
     for (const uint32_t t : draw_order_) {
         const FarMeshGroup& g = far_mesh_groups_[t];
         const uint32_t split = far_plan_.mesh_splits[t], end = g.first + g.count;
         if (split == end) continue;
         vkCmdBindIndexBuffer(cmd, topologies_[t].indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        draws += draw_mesh_group(cmd, frame, 2 * t, split - g.first, end - split, whole_pipeline(topologies_[t]), 0u, push, bound);
+        meshes.draws += draw_mesh_group(cmd, frame, 2 * t, split - g.first, end - split, whole_pipeline(topologies_[t]), 0u, push, bound);
+        meshes.instances += end - split;
+        meshes.triangles += uint64_t(topologies_[t].index_count / 3) * (end - split);
     }
-    draws += record_impostors(cmd, slot, push, height, /*far=*/true);
+    if (meshes.instances > 0) end_pass(cmd, slot, meshes);
+    draws += meshes.draws + record_impostors(cmd, slot, push, height, /*far=*/true);
     vkCmdEndRenderPass(cmd);
     return draws;
 }

@@ -164,20 +164,20 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     };
     for (const uint32_t t : draw_order_) {
         const uint32_t whole = 2 * t, faded = 2 * t + 1;
-        if (group_count_[whole] + group_count_[faded] == 0) continue;
+        // The whole group's near part here; its far part went to the far layer (record_far_layer).
+        const uint32_t near = far_plan_.mesh_splits[t] - group_start_[whole];
+        if (near + group_count_[faded] == 0) continue;
         if (in_pass && pass.name != topologies_[t].pass) {
             end_pass(cmd, slot, pass);
             pass = {};
         }
         in_pass = true;
         pass.name = topologies_[t].pass;
-        pass.instances += group_count_[whole] + group_count_[faded];
-        pass.triangles += uint64_t(topologies_[t].index_count / 3) * (group_count_[whole] + group_count_[faded]);
+        pass.instances += near + group_count_[faded];
+        pass.triangles += uint64_t(topologies_[t].index_count / 3) * (near + group_count_[faded]);
         const uint32_t draws_before = draws;
         const Topology& topo = topologies_[t];
         vkCmdBindIndexBuffer(cmd, topo.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
-        // The whole group's near part; its far part went to the far layer (record_far_layer).
-        const uint32_t near = far_plan_.mesh_splits[t] - group_start_[whole];
         if (near > 0) draw_group(whole, 0, near, whole_pipeline(topo), 0u);
         // Fading meshes: one draw (per material) per run of equal dither bits, in the group's (nearest-first) order.
         const VkPipeline dithered = pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces);
