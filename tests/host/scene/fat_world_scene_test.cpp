@@ -17,7 +17,7 @@ namespace {
 
 // One humanoid, close to the camera: runs at 2.5 m/s along +Z for 1.2 s, then rests (a 0.05 s cross-fade).
 SceneDesc run_then_stop_scene() {
-    auto scene = parse_scene(R"({
+    return scene_test::scene_from_json(R"({
       "name": "fat_world", "rules": "builtin:default", "frames": 200, "dt": 0.0166667,
       "viewport": {"width": 320, "height": 240},
       "camera": {"position": [0.0, 1.2, -4.0], "target": [0.0, 1.0, 2.0], "fov_deg": 45},
@@ -25,8 +25,6 @@ SceneDesc run_then_stop_scene() {
         "requests": [{"type": "walk", "speed": 2.5, "direction": [0, 0, 1], "duration": 1.2},
                      {"type": "rest", "crossfade": 0.05}]}]
     })", "fat_world.json");
-    EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.error().to_string());
-    return scene.ok() ? scene.value() : SceneDesc{};
 }
 
 TEST(FatWorld, WorldRunThenStopOvershootsAndSettles) {

@@ -18,7 +18,7 @@ namespace {
 
 // 150 walkers on a 25 m disc; the camera comes from 120 m away to 8 m from the centre over 3 s, then holds.
 SceneDesc fly_in_scene() {
-    auto scene = parse_scene(R"({
+    return scene_test::scene_from_json(R"({
       "name": "fly_in", "rules": "builtin:default", "frames": 360, "dt": 0.0166667,
       "viewport": {"width": 1280, "height": 720},
       "camera": {"fov_deg": 55, "far": 1000, "keys": [
@@ -27,8 +27,6 @@ SceneDesc fly_in_scene() {
       "crowds": [{"type": "humanoid", "count": 150, "layout": "disc", "radius": 25, "seed": 5,
                   "mix": {"walk": 1.0}, "speed": [0.8, 1.6]}]
     })", "fly_in.json");
-    EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.error().to_string());
-    return scene.ok() ? scene.value() : SceneDesc{};
 }
 
 // The bound: a sole point (under an ankle or a toe) of a drawn walker at most 0.45 m above the ground. The
