@@ -31,26 +31,23 @@ public:
     LayerTarget& operator=(const LayerTarget&) = delete;
 
     /// The view a renderer draws into.
-    [[nodiscard]] TargetView view() const;
+    [[nodiscard]] TargetView view() const { return attachments_.view(); }
     /// Size in pixels ({0, 0} before create).
-    [[nodiscard]] VkExtent2D extent() const { return colour_.extent(); }
+    [[nodiscard]] VkExtent2D extent() const { return attachments_.extent(); }
     /// The colour image's view, for a combined image sampler in SHADER_READ_ONLY_OPTIMAL.
-    [[nodiscard]] VkImageView colour_view() const { return colour_.view(); }
+    [[nodiscard]] VkImageView colour_view() const { return attachments_.colour().view(); }
     /// Linear filtering, clamped to the edge, no mips.
     [[nodiscard]] VkSampler sampler() const { return sampler_; }
     /// The depth image's view, for a combined image sampler in DEPTH_STENCIL_READ_ONLY_OPTIMAL.
-    [[nodiscard]] VkImageView depth_view() const { return depth_.view(); }
+    [[nodiscard]] VkImageView depth_view() const { return attachments_.depth().view(); }
     /// Nearest filtering, clamped to the edge (for the depth).
     [[nodiscard]] VkSampler depth_sampler() const { return depth_sampler_; }
     /// Releases everything now (also done by the destructor); the device must not be using it.
     void destroy();
 
 private:
-    VkDevice device_ = VK_NULL_HANDLE;
-    Image colour_;
-    Image depth_;
-    VkRenderPass render_pass_ = VK_NULL_HANDLE;
-    VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+    Attachments attachments_;
+    VkDevice device_ = VK_NULL_HANDLE;  // the samplers'
     VkSampler sampler_ = VK_NULL_HANDLE;
     VkSampler depth_sampler_ = VK_NULL_HANDLE;
 };

@@ -96,33 +96,78 @@ void begin_render_pass(VkCommandBuffer cmd, const TargetView& target, const VkCl
     vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
 }
 
-Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t width, uint32_t height, bool srgb) {
-    OffscreenTarget t;
-    t.device_ = ctx.device();
-    const VkFormat fmt = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-    Result<Image> colour = Image::create(ctx, width, height, fmt,
-                                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                             VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+Result<Attachments> Attachments::create(const Context& ctx, uint32_t width, uint32_t height, VkFormat colour_format,
+                                       VkImageUsageFlags colour_usage, VkImageUsageFlags depth_usage, VkImageLayout final_layout,
+                                       bool keep_depth) {
+    Attachments a;
+    a.device_ = ctx.device();
+    Result<Image> colour = Image::create(ctx, width, height, colour_format, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | colour_usage,
                                          VK_IMAGE_ASPECT_COLOR_BIT);
     if (!colour) return colour.error();
-    t.colour_ = std::move(colour).value();
-    Result<Image> depth = Image::create(ctx, width, height, kDepthFormat,
-                                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    a.colour_ = std::move(colour).value();
+    Result<Image> depth = Image::create(ctx, width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | depth_usage,
+                                        VK_IMAGE_ASPECT_DEPTH_BIT);
     if (!depth) return depth.error();
-    t.depth_ = std::move(depth).value();
-    Result<VkRenderPass> rp = create_render_pass(t.device_, fmt, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    a.depth_ = std::move(depth).value();
+    Result<VkRenderPass> rp = create_render_pass(a.device_, colour_format, final_layout, /*load_colour=*/false, keep_depth);
     if (!rp) return rp.error();
-    t.render_pass_ = rp.value();
-    Result<VkFramebuffer> fb = create_framebuffer(t.device_, t.render_pass_, t.colour_.view(), t.depth_.view(), width, height);
+    a.render_pass_ = rp.value();
+    Result<VkFramebuffer> fb = create_framebuffer(a.device_, a.render_pass_, a.colour_.view(), a.depth_.view(), width, height);
     if (!fb) return fb.error();
-    t.framebuffer_ = fb.value();
+    a.framebuffer_ = fb.value();
+    return a;
+}
+
+Attachments::Attachments(Attachments&& other) noexcept
+    : device_(std::exchange(other.device_, VK_NULL_HANDLE)),
+      colour_(std::move(other.colour_)),
+      depth_(std::move(other.depth_)),
+      render_pass_(std::exchange(other.render_pass_, VK_NULL_HANDLE)),
+      framebuffer_(std::exchange(other.framebuffer_, VK_NULL_HANDLE)) {}
+
+Attachments& Attachments::operator=(Attachments&& other) noexcept {
+    if (this != &other) {
+        destroy();
+        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
+        colour_ = std::move(other.colour_);
+        depth_ = std::move(other.depth_);
+        render_pass_ = std::exchange(other.render_pass_, VK_NULL_HANDLE);
+        framebuffer_ = std::exchange(other.framebuffer_, VK_NULL_HANDLE);
+    }
+    return *this;
+}
+
+TargetView Attachments::view() const {
+    return TargetView{render_pass_, framebuffer_, colour_.extent(), colour_.format()};
+}
+
+void Attachments::destroy() {
+    if (device_ != VK_NULL_HANDLE) {
+        if (framebuffer_ != VK_NULL_HANDLE) vkDestroyFramebuffer(device_, framebuffer_, nullptr);
+        if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device_, render_pass_, nullptr);
+    }
+    framebuffer_ = VK_NULL_HANDLE;
+    render_pass_ = VK_NULL_HANDLE;
+    depth_.destroy();
+    colour_.destroy();
+    device_ = VK_NULL_HANDLE;
+}
+
+Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t width, uint32_t height, bool srgb) {
+    OffscreenTarget t;
+    const VkFormat fmt = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    Result<Attachments> attachments = Attachments::create(ctx, width, height, fmt,
+                                                          VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, 0,
+                                                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, /*keep_depth=*/false);
+    if (!attachments) return attachments.error();
+    t.attachments_ = std::move(attachments).value();
     Result<Buffer> rb = Buffer::create(ctx, VkDeviceSize(width) * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     if (!rb) return rb.error();
     t.readback_ = std::move(rb).value();
 
     // Clear once and leave the colour image in TRANSFER_SRC_OPTIMAL, the layout every pass ends in,
     // so read_back() is valid even before anything is drawn.
-    const VkImage image = t.colour_.handle();
+    const VkImage image = t.colour().handle();
     Status s = ctx.submit_once([image](VkCommandBuffer cmd) {
         record_colour_transition(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                  {0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT},
@@ -138,47 +183,14 @@ Result<OffscreenTarget> OffscreenTarget::create(const Context& ctx, uint32_t wid
     return t;
 }
 
-OffscreenTarget::OffscreenTarget(OffscreenTarget&& other) noexcept
-    : device_(std::exchange(other.device_, VK_NULL_HANDLE)),
-      colour_(std::move(other.colour_)),
-      depth_(std::move(other.depth_)),
-      render_pass_(std::exchange(other.render_pass_, VK_NULL_HANDLE)),
-      framebuffer_(std::exchange(other.framebuffer_, VK_NULL_HANDLE)),
-      readback_(std::move(other.readback_)) {}
-
-OffscreenTarget& OffscreenTarget::operator=(OffscreenTarget&& other) noexcept {
-    if (this != &other) {
-        destroy();
-        device_ = std::exchange(other.device_, VK_NULL_HANDLE);
-        colour_ = std::move(other.colour_);
-        depth_ = std::move(other.depth_);
-        render_pass_ = std::exchange(other.render_pass_, VK_NULL_HANDLE);
-        framebuffer_ = std::exchange(other.framebuffer_, VK_NULL_HANDLE);
-        readback_ = std::move(other.readback_);
-    }
-    return *this;
-}
-
 void OffscreenTarget::destroy() {
-    if (device_ != VK_NULL_HANDLE) {
-        if (framebuffer_ != VK_NULL_HANDLE) vkDestroyFramebuffer(device_, framebuffer_, nullptr);
-        if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device_, render_pass_, nullptr);
-    }
-    framebuffer_ = VK_NULL_HANDLE;
-    render_pass_ = VK_NULL_HANDLE;
     readback_.destroy();
-    depth_.destroy();
-    colour_.destroy();
-    device_ = VK_NULL_HANDLE;
-}
-
-TargetView OffscreenTarget::view() const {
-    return TargetView{render_pass_, framebuffer_, colour_.extent(), colour_.format()};
+    attachments_.destroy();
 }
 
 Result<Rgba8Image> OffscreenTarget::read_back(const Context& ctx) const {
-    const VkExtent2D ext = colour_.extent();
-    const VkImage image = colour_.handle();
+    const VkExtent2D ext = extent();
+    const VkImage image = colour().handle();
     const VkBuffer dst = readback_.handle();
     Status s = ctx.submit_once([&](VkCommandBuffer cmd) {
         // Make earlier render-pass writes available to this copy (same queue, earlier submission).

@@ -68,6 +68,42 @@ void record_colour_transition(VkCommandBuffer cmd, VkImage image, VkImageLayout 
 /// The RGBA8 image of `extent` held in mapped memory at `mapped` (tightly packed rows).
 [[nodiscard]] Rgba8Image image_from_mapped(const void* mapped, VkExtent2D extent);
 
+/// A colour image and a kDepthFormat depth image of one size with their render pass (create_render_pass) and
+/// framebuffer: what every target drawn offscreen owns (OffscreenTarget, LayerTarget). Move-only.
+class Attachments {
+public:
+    /// Creates the two images (attachment usage plus `colour_usage` / `depth_usage`), a render pass ending the colour
+    /// in `final_layout` (`keep_depth`: the depth stored and left readable, as create_render_pass) and the
+    /// framebuffer; `width`, `height` > 0. Errors: Vulkan failures.
+    [[nodiscard]] static Result<Attachments> create(const Context& ctx, uint32_t width, uint32_t height, VkFormat colour_format,
+                                                    VkImageUsageFlags colour_usage, VkImageUsageFlags depth_usage,
+                                                    VkImageLayout final_layout, bool keep_depth);
+    Attachments() = default;
+    ~Attachments() { destroy(); }
+    Attachments(Attachments&& other) noexcept;
+    Attachments& operator=(Attachments&& other) noexcept;
+    Attachments(const Attachments&) = delete;
+    Attachments& operator=(const Attachments&) = delete;
+
+    /// The view a renderer draws into.
+    [[nodiscard]] TargetView view() const;
+    /// Size in pixels ({0, 0} before create).
+    [[nodiscard]] VkExtent2D extent() const { return colour_.extent(); }
+    /// The colour image.
+    [[nodiscard]] const Image& colour() const { return colour_; }
+    /// The depth image.
+    [[nodiscard]] const Image& depth() const { return depth_; }
+    /// Releases everything now (also done by the destructor); the device must not be using it.
+    void destroy();
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    Image colour_;
+    Image depth_;
+    VkRenderPass render_pass_ = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+};
+
 /// A headless colour (R8G8B8A8 UNORM or SRGB) + depth (D32) target with its render pass and framebuffer.
 /// After each render pass the colour image is in TRANSFER_SRC_OPTIMAL, ready for read_back(). Move-only.
 class OffscreenTarget {
@@ -77,29 +113,24 @@ public:
     [[nodiscard]] static Result<OffscreenTarget> create(const Context& ctx, uint32_t width, uint32_t height,
                                                         bool srgb = false);
     OffscreenTarget() = default;
-    ~OffscreenTarget() { destroy(); }
-    OffscreenTarget(OffscreenTarget&& other) noexcept;
-    OffscreenTarget& operator=(OffscreenTarget&& other) noexcept;
+    OffscreenTarget(OffscreenTarget&&) noexcept = default;
+    OffscreenTarget& operator=(OffscreenTarget&&) noexcept = default;
     OffscreenTarget(const OffscreenTarget&) = delete;
     OffscreenTarget& operator=(const OffscreenTarget&) = delete;
 
     /// The view a renderer draws into.
-    [[nodiscard]] TargetView view() const;
+    [[nodiscard]] TargetView view() const { return attachments_.view(); }
     /// Size in pixels.
-    [[nodiscard]] VkExtent2D extent() const { return colour_.extent(); }
+    [[nodiscard]] VkExtent2D extent() const { return attachments_.extent(); }
     /// The colour image (for custom copies).
-    [[nodiscard]] const Image& colour() const { return colour_; }
+    [[nodiscard]] const Image& colour() const { return attachments_.colour(); }
     /// Copies the colour image to the CPU, waiting for all earlier work on ctx's queue to finish.
     [[nodiscard]] Result<Rgba8Image> read_back(const Context& ctx) const;
     /// Releases everything now (also done by the destructor); the device must be idle.
     void destroy();
 
 private:
-    VkDevice device_ = VK_NULL_HANDLE;
-    Image colour_;
-    Image depth_;
-    VkRenderPass render_pass_ = VK_NULL_HANDLE;
-    VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+    Attachments attachments_;
     Buffer readback_;
 };
 

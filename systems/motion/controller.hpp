@@ -267,6 +267,9 @@ private:
     void pose_one(const Due& d, size_t worker);
     // Runs the foot lock on the pose `d`'s character shows this frame (last, after keys and offsets).
     void lock_feet(const Due& d);
+    // Leaves character `c`'s pose stale (nobody reads it; posed at once when it is seen again) and forgets its foot
+    // lock: the walk goes on unshown, so when it is seen again its feet are elsewhere (FootLock::reset).
+    void leave_stale(uint32_t c, Hot& h);
     void update_slots(uint32_t c, Character& ch);
     // Phase 1's output of one block of walk_ (blocks run concurrently, merged in order afterwards).
     struct StepBlock {

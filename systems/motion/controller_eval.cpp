@@ -164,6 +164,11 @@ void MotionController::lock_feet(const Due& d) {
     h.since_locked = 0.0f;
 }
 
+void MotionController::leave_stale(uint32_t c, Hot& h) {
+    h.stale = 1;
+    if (foot_lock_) foot_lock_->reset(c);
+}
+
 void MotionController::evaluate_due(size_t begin, size_t end, size_t worker) {
     end = std::min(end, work_count());
     // Per level and cost class time of this chunk, added to level_ns_ once at the end (one clock read

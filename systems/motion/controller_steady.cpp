@@ -76,11 +76,8 @@ bool MotionController::step_steady(const Walker& w, float dt, std::span<MotionSt
     bool due = sched.on_phase || (h.stale && use != PoseUse::Unseen) || (h.keys_stale && use == PoseUse::EveryFrame);
     const bool clip = h.steady != Steady::Hold;  // clip_driven(): its pose is a function of the clip clock
     if (due && use == PoseUse::Unseen && clip) {
-        h.stale = 1;
+        leave_stale(c, h);
         due = false;
-        // The lock holds feet across poses that are shown; the walk goes on unshown, so when the character
-        // is seen again its feet are elsewhere: it starts afresh then (FootLock::reset).
-        if (foot_lock_) foot_lock_->reset(c);
     }
     if (due) {
         mark_due(c, e, h, st, sched, sched.interval > 1 && clip, false, dt, out);  // pose_one takes the clocks from h

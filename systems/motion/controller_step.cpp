@@ -250,10 +250,8 @@ void MotionController::step_active(const Walker& w, float dt, std::span<MotionSt
     // feet, IK, simulations), fades, overlays and inertialization are always posed.
     if (due && use == PoseUse::Unseen && clip_driven(ch, lod) && ch.fade_left <= 0.0f && !ch.overlay.on &&
         ch.inertial_slot < 0 && ch.slots_in_use == 0) {
-        h.stale = 1;
+        leave_stale(c, h);
         due = false;
-        // Its feet walk on unshown: the lock starts afresh when it is seen again (controller_steady.cpp).
-        if (foot_lock_) foot_lock_->reset(c);
     }
     if (due) {
         // Throttled clip playback and kinematic walks are shown interpolated between this update and

@@ -244,8 +244,7 @@ private:
         glm::vec4 colour{1.0f};       // display-space base colour
         int texture = -1;
     };
-    struct Atlas {
-        ImpostorAtlasLayout layout;
+    struct Atlas {  // its layout is atlas_layouts_[id]
         gpu::Buffer cells;                     // impostor_cell_table: the texel grid, then each cell's bounds
         VkDescriptorSet set = VK_NULL_HANDLE;  // cells + the atlas texture
     };
@@ -314,7 +313,7 @@ private:
     std::vector<float> depth_;                        // per mesh: distance ahead of the camera (draw order)
     std::vector<uint32_t> impostor_order_;            // impostors nearest first within each atlas's run
     std::vector<float> impostor_depth_;               // per impostor: distance ahead of the camera
-    std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (the far layer's planning)
+    std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (drawing and the far layer's planning)
     float far_layer_below_px_ = 0.0f;                 // options_.far_layer_below_px resolved for the device
     float far_layer_meshes_below_px_ = 0.0f;          // options_.far_layer_meshes_below_px resolved for the device
     std::vector<FarMeshGroup> far_mesh_groups_;       // per topology t: its whole group 2t's records in order_

@@ -10,6 +10,25 @@
 
 namespace aloha {
 
+namespace {
+
+// The mesh's bounding sphere (world: its model-space box through the model matrix, radius scaled by the largest
+// axis scale) and its world height (the vertical extent of that box's corners).
+FarMeshBound far_mesh_bound(const DeformableMesh& m) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const float scale = std::max({glm::length(glm::vec3(m.model[0])), glm::length(glm::vec3(m.model[1])), glm::length(glm::vec3(m.model[2]))});
+    float top = -std::numeric_limits<float>::max(), bottom = std::numeric_limits<float>::max();
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+        const float y = (m.model * glm::vec4(corner, 1.0f)).y;
+        top = std::max(top, y), bottom = std::min(bottom, y);
+    }
+    return {glm::vec4(glm::vec3(m.model * glm::vec4(0.5f * (lo + hi), 1.0f)), 0.5f * glm::length(hi - lo) * scale), top - bottom};
+}
+
+}  // namespace
+
 void CrowdRenderer::plan_far_layer_for(const FrameInput& frame, VkExtent2D extent) {
     FarLayerInput in;
     in.records = frame.impostors;
@@ -23,32 +42,16 @@ void CrowdRenderer::plan_far_layer_for(const FrameInput& frame, VkExtent2D exten
     in.viewport_width = float(std::max(extent.width, 1u));
     in.viewport_height = float(std::max(extent.height, 1u));
     // Whole (not fading) mesh groups, one per topology; a fading mesh's dither pairs pixel for pixel with its
-    // partner's at full resolution. Bounds only where a mesh could be under the limit: a mesh is measured from its
-    // vertices (model space, placed by its model matrix) beyond the distance at which a 3 m figure would be.
+    // partner's at full resolution. With meshes in the layer, each whole group's meshes are measured from their
+    // vertices (model space, placed by the model matrix): its height says whether it is under the limit, whatever
+    // its size, so every one is measured.
     far_mesh_groups_.resize(topologies_.size());
     for (size_t t = 0; t < topologies_.size(); ++t) far_mesh_groups_[t] = {group_start_[2 * t], group_count_[2 * t]};
-    far_mesh_bounds_.assign(frame.meshes.size(), FarMeshBound{glm::vec4(0.0f), -1.0f});
     const float meshes_below_px = far_layer_limit(far_layer_meshes_below_px_, float(extent.height));
-    const float min_depth = far_mesh_min_depth(in.focal_px, meshes_below_px, 3.0f);
-    for (const FarMeshGroup& g : far_mesh_groups_)
-        for (uint32_t k = g.first; k < g.first + g.count; ++k) {
-            const uint32_t i = order_[k];
-            if (!(depth_[i] > min_depth)) continue;
-            const DeformableMesh& m = frame.meshes[i];
-            glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-            for (const glm::vec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-            const float scale = std::max({glm::length(glm::vec3(m.model[0])), glm::length(glm::vec3(m.model[1])),
-                                          glm::length(glm::vec3(m.model[2]))});
-            const glm::vec3 centre(m.model * glm::vec4(0.5f * (lo + hi), 1.0f));
-            // Height on screen: the box's vertical world extent (its corners through the model matrix).
-            float top = -std::numeric_limits<float>::max(), bottom = std::numeric_limits<float>::max();
-            for (int c = 0; c < 8; ++c) {
-                const glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-                const float y = (m.model * glm::vec4(corner, 1.0f)).y;
-                top = std::max(top, y), bottom = std::min(bottom, y);
-            }
-            far_mesh_bounds_[i] = {glm::vec4(centre, 0.5f * glm::length(hi - lo) * scale), top - bottom};
-        }
+    far_mesh_bounds_.resize(frame.meshes.size());
+    if (meshes_below_px > 0.0f && in.focal_px > 0.0f)
+        for (const FarMeshGroup& g : far_mesh_groups_)
+            for (uint32_t k = g.first; k < g.first + g.count; ++k) far_mesh_bounds_[order_[k]] = far_mesh_bound(frame.meshes[order_[k]]);
     in.mesh_order = order_;
     in.mesh_groups = far_mesh_groups_;
     in.mesh_bounds = far_mesh_bounds_;

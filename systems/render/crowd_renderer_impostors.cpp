@@ -65,7 +65,7 @@ Result<uint32_t> CrowdRenderer::register_impostor_atlas(const TextureImage& imag
     const gpu::Texture& t = textures_.back();
     Result<VkDescriptorSet> set = pipes_.material_set(cells.value(), t.view(), t.sampler());
     if (!set) return set.error();
-    atlases_.push_back({layout, std::move(cells).value(), set.value()});
+    atlases_.push_back({std::move(cells).value(), set.value()});
     atlas_layouts_.push_back(layout);
     return static_cast<uint32_t>(atlases_.size() - 1);
 }
@@ -87,10 +87,10 @@ uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::L
     for (const ImpostorRun& run : far_plan_.runs) {  // one draw per run of one atlas (its near or its far part)
         const uint32_t first = far ? run.split : run.first, end = far ? run.end : run.split;
         if (end == first) continue;
-        const Atlas& a = atlases_[run.atlas];
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &a.set, 0, nullptr);
-        push.offsets = glm::uvec4(a.layout.directions, a.layout.rows, base + first, 0u);
-        push.base_colour = glm::vec4(a.layout.width, a.layout.bottom, a.layout.height, viewport_height);
+        const ImpostorAtlasLayout& layout = atlas_layouts_[run.atlas];
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[run.atlas].set, 0, nullptr);
+        push.offsets = glm::uvec4(layout.directions, layout.rows, base + first, 0u);
+        push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, viewport_height);
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDraw(cmd, 6, end - first, 0, 0);
         ++draws;

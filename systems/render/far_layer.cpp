@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <limits>
 
 namespace aloha {
 namespace {
@@ -46,11 +45,6 @@ private:
 
 }  // namespace
 
-float far_mesh_min_depth(float focal_px, float below_px, float max_height) {
-    if (focal_px <= 0.0f || below_px <= 0.0f) return std::numeric_limits<float>::infinity();
-    return focal_px * max_height / below_px;
-}
-
 void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
     out.runs.clear();
     out.mesh_splits.clear();
@@ -89,10 +83,9 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
         assert(g.first + g.count <= in.mesh_order.size());
         uint32_t split = g.first + g.count;
         if (meshes) {
-            // Near: not measured, or at least meshes_below_px tall on screen.
+            // Near: at or behind the eye's plane, or at least meshes_below_px tall on screen.
             const auto near = [&](uint32_t m) {
-                const FarMeshBound& b = in.mesh_bounds[m];
-                return b.height < 0.0f || in.mesh_depth[m] <= 0.0f || b.height * in.focal_px >= in.meshes_below_px * in.mesh_depth[m];
+                return in.mesh_depth[m] <= 0.0f || in.mesh_bounds[m].height * in.focal_px >= in.meshes_below_px * in.mesh_depth[m];
             };
             const auto begin = in.mesh_order.begin() + g.first;
             split = static_cast<uint32_t>(std::stable_partition(begin, begin + g.count, near) - in.mesh_order.begin());

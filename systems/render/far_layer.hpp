@@ -51,7 +51,7 @@ struct FarMeshGroup {
 /// A mesh's extent for the far layer: its bounding sphere (world) and its height (world units, top to bottom).
 struct FarMeshBound {
     glm::vec4 sphere{0.0f};  ///< xyz centre, w radius
-    float height = 0.0f;     ///< < 0: not measured (a mesh too near to be under any limit): kept at full resolution
+    float height = 0.0f;     ///< world units
 };
 
 /// One run of impostor records of one atlas, in draw order: [first, split) are drawn at full resolution,
@@ -90,21 +90,18 @@ struct FarLayerInput {
     float viewport_height = 1.0f;
     std::span<uint32_t> mesh_order;                ///< mesh draw order: each group's records nearest first; partitioned here
     std::span<const FarMeshGroup> mesh_groups;     ///< the groups that may go to the layer (not cross-fading)
-    std::span<const FarMeshBound> mesh_bounds;     ///< by mesh id (the values of mesh_order)
+    std::span<const FarMeshBound> mesh_bounds;     ///< by mesh id (the values of mesh_order); read only when
+                                                   ///< meshes_below_px > 0
     std::span<const float> mesh_depth;             ///< by mesh id: distance ahead of the camera (view-space -z)
     float meshes_below_px = 0.0f;                  ///< a mesh goes to the far layer where it is under this many pixels
                                                    ///< tall (height * focal_px / depth); <= 0: no mesh in the layer
 };
 
-/// The least distance at which a mesh `max_height` world units tall can be under `below_px` pixels: meshes nearer
-/// than this need no bound (FarMeshBound::height < 0). Infinite when the layer takes no meshes.
-[[nodiscard]] float far_mesh_min_depth(float focal_px, float below_px, float max_height);
-
 /// Moves each run's far records (quad under below_px tall, i.e. depth > focal_px * layout.height / below_px, and
 /// not cross-fading: its dither pairs pixel for pixel with a mesh's at full resolution) behind its others in
 /// `order`, keeping both parts nearest first, and sets the runs' splits. The rectangle bounds each far record's
 /// bounding sphere on screen, padded by two layer texels (the filter's reach); the whole screen when one lies
-/// at or behind the eye's plane. Likewise each mesh group: its meshes under meshes_below_px (measured ones only)
+/// at or behind the eye's plane. Likewise each mesh group: its meshes under meshes_below_px
 /// go behind its others, both parts nearest first, and their spheres join the rectangle.
 void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out);
 

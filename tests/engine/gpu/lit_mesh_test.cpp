@@ -103,17 +103,7 @@ TEST(LitMesh, QuadCoverageColourDepthAndOrientation) {
         const TargetView view = target.value().view();
         const LitPipelines& lp = pipes.value();
         Status drawn = ctx.submit_once([&](VkCommandBuffer cmd) {
-            VkClearValue clears[2]{};
-            clears[0].color = {{0.0f, 0.0f, 0.0f, 1.0f}};
-            clears[1].depthStencil = {1.0f, 0};
-            VkRenderPassBeginInfo rbi{};
-            rbi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-            rbi.renderPass = view.render_pass;
-            rbi.framebuffer = view.framebuffer;
-            rbi.renderArea = {{0, 0}, view.extent};
-            rbi.clearValueCount = 2;
-            rbi.pClearValues = clears;
-            vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+            begin_render_pass(cmd, view, VkClearColorValue{{0.0f, 0.0f, 0.0f, 1.0f}});
             VkViewport vp{0, 0, float(kSize), float(kSize), 0, 1};
             VkRect2D sc{{0, 0}, view.extent};
             vkCmdSetViewport(cmd, 0, 1, &vp);

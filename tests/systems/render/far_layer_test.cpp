@@ -117,19 +117,19 @@ TEST(FarLayer, RectangleHoldsEveryFarQuadAndIsWholeScreenNearTheEye) {
     EXPECT_EQ(plan.ndc_rect, glm::vec4(-1.0f, -1.0f, 1.0f, 1.0f));
 }
 
-// Meshes: in each group (nearest first) those under the mesh limit go last, nearest first; unmeasured ones
-// (height < 0, too near to be small) stay at full resolution; their spheres join the rectangle; 0 turns it off.
+// Meshes: in each group (nearest first) those under the mesh limit go last, nearest first (a tall one far away
+// stays at full resolution); their spheres join the rectangle; 0 turns it off.
 TEST(FarLayer, EachMeshGroupsMeshesUnderTheLimitGoLastAndTheRectangleHoldsThem) {
     const View v;
     Records none;
-    // Group 0: five 1.7 m figures; under 120 px beyond 623.5 * 1.7 / 120 = 8.83 m. Group 1: two, the nearer unmeasured.
+    // Group 0: five 1.7 m figures; under 120 px beyond 623.5 * 1.7 / 120 = 8.83 m. Group 1: two, the nearer 7 m tall.
     const std::vector<float> depth = {4.0f, 8.8f, 8.9f, 20.0f, 6.0f, 30.0f, 50.0f};
     std::vector<FarMeshBound> bounds;
     for (size_t i = 0; i < depth.size(); ++i) {
         const float x = -3.0f + float(i);
         bounds.push_back({glm::vec4(x, 0.0f, -depth[i], 0.9f), 1.7f});
     }
-    bounds[5].height = -1.0f;  // not measured: kept at full resolution whatever its distance
+    bounds[5].height = 7.0f;  // 623.5 * 7 / 30 = 145 px at 30 m: kept at full resolution
     std::vector<uint32_t> order = {0, 1, 4, 2, 3, 5, 6};  // group 0 = [0, 5) nearest first, group 1 = [5, 7)
     std::sort(order.begin(), order.begin() + 5, [&](uint32_t a, uint32_t b) { return depth[a] < depth[b]; });
     const std::vector<FarMeshGroup> groups = {{0, 5}, {5, 2}};
@@ -144,7 +144,7 @@ TEST(FarLayer, EachMeshGroupsMeshesUnderTheLimitGoLastAndTheRectangleHoldsThem) 
     ASSERT_EQ(plan.mesh_splits.size(), 2u);
     EXPECT_EQ(plan.mesh_splits[0], 3u) << "4, 6 and 8.8 m are at least 120 px; 8.9 and 20 m are under";
     EXPECT_EQ(std::vector<uint32_t>(order.begin(), order.begin() + 5), (std::vector<uint32_t>{0, 4, 1, 2, 3}));
-    EXPECT_EQ(plan.mesh_splits[1], 6u) << "the unmeasured mesh stays; 50 m goes";
+    EXPECT_EQ(plan.mesh_splits[1], 6u) << "the 7 m mesh at 30 m stays; 50 m goes";
     EXPECT_EQ(plan.far_meshes, 3u);
     EXPECT_EQ(plan.far_count, 3u);
     for (uint32_t k : {3u, 4u, 6u}) {  // each far sphere's extreme points lie inside the rectangle
@@ -158,9 +158,6 @@ TEST(FarLayer, EachMeshGroupsMeshesUnderTheLimitGoLastAndTheRectangleHoldsThem) 
             EXPECT_LE(ndc.y, plan.ndc_rect.w);
         }
     }
-    // The least depth worth measuring: a 3 m figure at 120 px.
-    EXPECT_NEAR(far_mesh_min_depth(v.focal_px, 120.0f, 3.0f), v.focal_px * 3.0f / 120.0f, 1e-4f);
-    EXPECT_TRUE(std::isinf(far_mesh_min_depth(v.focal_px, 0.0f, 3.0f)));
 
     in.meshes_below_px = 0.0f;  // off
     plan_far_layer(in, plan);
