@@ -163,6 +163,7 @@ Result<std::unique_ptr<World>> World::create(const SceneDesc& scene, const World
 Status World::load(const SceneDesc& scene, const WorldOptions& options) {
     scene_ = scene;
     options_ = options;
+    overlap_policy_ = GpuOverlapPolicy(options.overlap_gpu);
     if (options.characters) {
         // Rescale the crowds so the scene has the asked number of characters in all.
         const uint64_t placed = scene_.characters.size();

@@ -17,6 +17,7 @@
 #include "engine/scheduler/scheduler.hpp"
 #include "systems/frame/draw_lists.hpp"
 #include "systems/frame/geometry_frame.hpp"
+#include "systems/frame/gpu_overlap_policy.hpp"
 #include "systems/frame/level_groups.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/lod/attributes.hpp"
@@ -71,9 +72,10 @@ struct WorldOptions {
     uint8_t overlay = 0;                   ///< OverlayBits: bones, muscle outlines, fat springs
     bool keep_refined_surfaces = true;     ///< false (runs with no renderer): subdivided skins are
                                            ///< computed each frame but not kept (see GeometryController)
-    bool overlap_gpu = false;              ///< true: the render system submits the frame and returns, so the GPU
+    GpuOverlap overlap_gpu = GpuOverlap::Off;  ///< On: the render system submits the frame and returns, so the GPU
                                            ///< draws it while the next step()'s CPU systems run (the renderer
-                                           ///< waits for a frame slot when it comes round again); read back the
+                                           ///< waits for a frame slot when it comes round again); Auto: so
+                                           ///< while the GPU's frame is long (GpuOverlapPolicy); read back the
                                            ///< target on the renderer's queue or after finish_rendering()
     bool bake_cache = true;                ///< reuse the character types' load-time bakes (generated skins) from
                                            ///< the on-disk bake cache and save new ones there (false: always build)
@@ -99,7 +101,7 @@ public:
     /// Attaches a renderer and target for the Render phase (mesh topologies are registered with it on
     /// first use); nullptr detaches.
     Status attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target);
-    /// Waits until the GPU has drawn every frame submitted so far (only overlap_gpu leaves any in flight)
+    /// Waits until the GPU has drawn every frame submitted so far (only an overlapped frame leaves any in flight)
     /// and makes last_gpu_ms() the newest frame's. Errors: Vulkan failures.
     Status finish_rendering();
     /// The view the LOD is computed for: from the next step() on, `key` seen with a vertical field of
@@ -140,10 +142,12 @@ public:
     /// The last frame's draw lists.
     [[nodiscard]] const RenderLists& render_lists() const { return lists_; }
     /// GPU ms of the newest frame the GPU has finished (-1 without a renderer): the last Render phase's,
-    /// or with overlap_gpu an earlier frame's until finish_rendering().
+    /// or when overlapped an earlier frame's until finish_rendering().
     [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
     /// The last frame's CPU systems (every phase before Render), ms: what a single-total budget steers.
     [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }
+    /// Frame pacing against the GPU (WorldOptions::overlap_gpu): frames overlapped so far, the last decision.
+    [[nodiscard]] const GpuOverlapPolicy& gpu_overlap() const { return overlap_policy_; }
     /// The last frame's animation part (the motion system), ms.
     [[nodiscard]] double last_animation_ms() const { return last_animation_ms_; }
     /// The last frame's geometry part (the muscle and spring_skin systems), ms.
@@ -259,6 +263,7 @@ private:
     glm::vec2 override_viewport_{1280.0f, 720.0f};
     Status render_status_;
     double last_cpu_ms_ = 0.0;
+    GpuOverlapPolicy overlap_policy_;
     std::optional<std::pair<uint32_t, uint8_t>> pin_;  ///< spawn index, geometric level (pin_geom_level)
     uint64_t frame_ = 0;
     float time_ = 0.0f;

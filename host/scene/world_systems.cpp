@@ -319,7 +319,9 @@ void World::register_systems() {
         input.lines = lists_.lines;
         input.impostors = lists_.impostors;
         Status s = renderer_->render(input, *target_);
-        if (s.ok() && !options_.overlap_gpu) s = renderer_->finish();  // else drawn while the next step runs
+        // Overlapped: drawn while the next step runs; else waited for here (every frame still in flight).
+        const bool overlap = overlap_policy_.decide(last_cpu_ms_, last_gpu_ms_);
+        if (s.ok() && !overlap) s = renderer_->finish();
         render_status_ = s;
         last_gpu_ms_ = renderer_->last_gpu_ms();
     }));

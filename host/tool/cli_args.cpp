@@ -21,7 +21,7 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 // What the subcommands write into: CliOptions plus the text of options converted after the parse.
 struct Bindings {
     CliOptions o;
-    std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "off", counts, characters, frames, frame_range, selection;
+    std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
@@ -131,8 +131,10 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
                       "cost from the vertex and binning cost (profiling only)");
     profile->add_option("--gpu-overlap", b.gpu_overlap,
                         "on: the GPU draws a frame while the next frame's CPU systems run (two frames in flight; the "
-                        "whole frame is the interval between frames); off: each frame waits for its GPU work (default off: not yet shown faster, docs/PERFORMANCE.md)")
-        ->check(on_off());
+                        "whole frame is the interval between frames); off: each frame waits for its GPU work; auto (default): "
+                        "overlapped while the GPU's frame is longer than 16.7 ms and the CPU systems take 1 ms or more "
+                        "(docs/PERFORMANCE.md)")
+        ->check(one_of({"on", "off", "auto"}));
     add_colour(*profile, b);
     add_common(*profile, b, false);
 
@@ -186,7 +188,7 @@ void convert(Bindings& b) {
     o.lod = b.lod == "on";
     o.cache = b.cache == "on";
     o.occlusion = b.occlusion == "on";
-    o.gpu_overlap = b.gpu_overlap == "on";
+    o.gpu_overlap = parse_gpu_overlap(b.gpu_overlap).value_or(GpuOverlap::Auto);  // checked by one_of above
     if (!b.budget.empty()) o.budget = b.budget == "on";
     ms(b.budget_ms, o.budget_ms);
     ms(b.budget_single_ms, o.budget_single_ms);

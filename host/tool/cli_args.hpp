@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine/core/result.hpp"
+#include "systems/frame/gpu_overlap_policy.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -52,7 +53,7 @@ struct CliOptions {
     std::optional<float> far_layer_px;  ///< --far-layer PX: RendererOptions::far_layer_below_px (unset: far_layer_default)
     std::optional<float> far_layer_meshes_px;  ///< --far-layer-meshes PX: RendererOptions::far_layer_meshes_below_px
                                                ///< (unset: far_layer_meshes_default)
-    bool gpu_overlap = false;          ///< --gpu-overlap on|off: GPU frame overlapped with the next CPU systems (profile)
+    GpuOverlap gpu_overlap = GpuOverlap::Auto;  ///< --gpu-overlap on|off|auto: GPU frame overlapped with the next CPU systems (profile)
     std::string joints;                ///< --joints FILE.csv: where export writes joint positions
     /// export --characters LIST: inclusive ranges of spawn indices ("0,5,10-20"); empty = every character
     std::vector<std::pair<uint32_t, uint32_t>> character_ranges;

@@ -30,6 +30,7 @@ struct FrameRecord {
     std::vector<double> system_ms;  // per scheduler system
     double cpu_ms = 0, render_ms = 0, gpu_ms = -1, frame_ms = 0;
     double process_cpu_ms = 0;  // CPU time of every thread of the process (lavapipe's too) during the step
+    bool overlapped = false;    // the frame's GPU work was left in flight (GpuOverlapPolicy)
     std::vector<uint32_t> geom_levels, anim_levels;
     std::array<uint32_t, 6> geom_methods{};
     std::array<uint32_t, 3> walk_methods{};
@@ -37,6 +38,14 @@ struct FrameRecord {
     LodSample lod;
     GpuSample gpu;
 };
+
+// The header's note on frame pacing: how many measured frames were overlapped, under which mode.
+std::string gpu_overlap_line(GpuOverlap mode, size_t overlapped, size_t frames) {
+    if (mode == GpuOverlap::Off) return "";
+    if (mode == GpuOverlap::On) return ", GPU overlapped with the next frame (--gpu-overlap on)";
+    return ", GPU overlapped with the next frame in " + std::to_string(overlapped) + " of " + std::to_string(frames) +
+           " frames (--gpu-overlap auto)";
+}
 
 void progress(size_t done, size_t total, bool tty, const std::string& label) {
     if (total == 0) return;
@@ -174,6 +183,7 @@ int run_profile(const CliOptions& options) {
         r.frame_ms = static_cast<double>(sched.frame_timings().latest()) * 1e-6;
         r.gpu_ms = world.last_gpu_ms();
         r.process_cpu_ms = cpu_after - cpu_before;
+        r.overlapped = world.gpu_overlap().overlapping();
         const LodStats& st = world.lod_stats();
         r.geom_levels = st.per_geom_level;
         r.anim_levels = st.per_anim_level;
@@ -216,7 +226,9 @@ int run_profile(const CliOptions& options) {
     report["warmup"] = options.warmup;
     report["threads"] = options.threads;
     // Overlapped: a frame's GPU figures are those of the newest frame finished when it ended (one or two back).
-    report["gpu_overlap"] = render && world.options().overlap_gpu;
+    const size_t overlapped = static_cast<size_t>(std::count_if(records.begin(), records.end(), [](const FrameRecord& r) { return r.overlapped; }));
+    report["gpu_overlap"] = {{"mode", gpu_overlap_name(render ? world.options().overlap_gpu : GpuOverlap::Off)},
+                             {"frames_overlapped", overlapped}};
     report["lod"] = options.lod;
     report["budget_ms"] = options.budget_ms ? nlohmann::json(*options.budget_ms) : nlohmann::json(nullptr);
     {
@@ -301,7 +313,7 @@ int run_profile(const CliOptions& options) {
         for (const auto& g : gnames) f << ",geom_" << g;
         for (const auto& a : anames) f << ",anim_" << a;
         if (fidelity) f << ",mean_deviation_px,max_deviation_px,psnr_db,change_px,switches";
-        f << ",animation_ms,geometry_ms,geom_switches,anim_switches,visible,occluded,process_cpu_ms\n";
+        f << ",animation_ms,geometry_ms,geom_switches,anim_switches,visible,occluded,process_cpu_ms,gpu_overlapped\n";
         for (size_t i = 0; i < records.size(); ++i) {
             const auto& r = records[i];
             f << i << "," << r.cpu_ms << "," << r.render_ms << "," << r.gpu_ms << "," << r.frame_ms;
@@ -312,7 +324,8 @@ int run_profile(const CliOptions& options) {
                 f << "," << r.fidelity.mean_deviation_px << "," << r.fidelity.max_deviation_px << "," << r.fidelity.psnr_db
                   << "," << r.fidelity.changed_fraction << "," << r.fidelity.switches;
             f << "," << r.lod.animation_ms << "," << r.lod.geometry_ms << "," << r.lod.geom_switches << ","
-              << r.lod.anim_switches << "," << r.lod.visible << "," << r.lod.occluded << "," << r.process_cpu_ms << "\n";
+              << r.lod.anim_switches << "," << r.lod.visible << "," << r.lod.occluded << "," << r.process_cpu_ms << ","
+              << (r.overlapped ? 1 : 0) << "\n";
         }
     }
     // ---- trace.json
@@ -346,7 +359,7 @@ int run_profile(const CliOptions& options) {
     // ---- summary table
     std::cout << "\n" << s.scene.name << ": " << n << " characters, " << frames << " frames (+" << options.warmup
               << " warm-up), lod " << (options.lod ? "on" : "off") << ", " << (render ? s.context->device_name() : "no render")
-              << (render && world.options().overlap_gpu ? ", GPU overlapped with the next frame (--gpu-overlap on)" : "") << "\n";
+              << (render ? gpu_overlap_line(world.options().overlap_gpu, overlapped, frames) : std::string()) << "\n";
     std::cout << std::left << std::setw(22) << "system" << std::right << std::setw(10) << "mean" << std::setw(10) << "p50"
               << std::setw(10) << "p95" << std::setw(10) << "p99" << std::setw(10) << "max" << "  (ms)\n";
     auto row = [&](const std::string& name, const SeriesStats& st) {

@@ -85,7 +85,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     // poses no stage of the frame reads.
     wo.pose_every_character = options.motion_metrics || options.fidelity || options.command == "export";
     if (!options.tier.empty()) wo.tier = options.tier;
-    wo.overlap_gpu = render && options.command == "profile" && options.gpu_overlap;
+    wo.overlap_gpu = render && options.command == "profile" ? options.gpu_overlap : GpuOverlap::Off;
     gpu::ContextOptions co;
     const char* env = std::getenv("ALOHA_VALIDATION");
     co.validation = options.validation || (env && std::string(env) == "1");

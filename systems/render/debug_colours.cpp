@@ -9,7 +9,8 @@ constexpr glm::vec4 rgb8(int r, int g, int b) { return {r / 255.0f, g / 255.0f, 
 
 constexpr glm::vec4 kLevels[kLevelPaletteSize] = {
     rgb8(230, 25, 25),  rgb8(245, 130, 20), rgb8(240, 220, 30),  rgb8(60, 190, 75),
-    rgb8(40, 200, 220), rgb8(40, 90, 230),  rgb8(150, 60, 210),  rgb8(128, 128, 128)};
+    rgb8(40, 200, 220), rgb8(40, 90, 230),  rgb8(150, 60, 210),  rgb8(240, 50, 230),
+    rgb8(170, 110, 40), rgb8(128, 128, 128)};
 
 constexpr glm::vec4 kRules[kRulePaletteSize] = {
     rgb8(230, 25, 75),  rgb8(60, 180, 75),  rgb8(255, 225, 25), rgb8(0, 130, 200),

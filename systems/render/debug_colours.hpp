@@ -9,7 +9,7 @@
 namespace aloha {
 
 /// Number of distinct colours in the LOD-level palette (levels beyond it wrap around).
-inline constexpr int kLevelPaletteSize = 8;
+inline constexpr int kLevelPaletteSize = 10;
 /// Number of distinct colours in the rule palette (rule ids wrap around).
 inline constexpr int kRulePaletteSize = 12;
 

@@ -12,5 +12,6 @@ list(APPEND ALOHA_GEOMETRY_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/controller_update.cpp
   ${CMAKE_CURRENT_LIST_DIR}/level_fades.cpp
   ${CMAKE_CURRENT_LIST_DIR}/simplified_indices.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/surface_distance.cpp
   ${CMAKE_CURRENT_LIST_DIR}/fat_regions.cpp
   ${CMAKE_CURRENT_LIST_DIR}/controller_reference.cpp)

@@ -128,7 +128,7 @@ TEST(Golden, CrowdInEachDebugColouring) {
         // submitted frame, so the picture after 20 steps is the serial run's bit for bit (same draws,
         // same inputs, lavapipe deterministic in one process).
         WorldOptions overlapped = o;
-        overlapped.overlap_gpu = true;
+        overlapped.overlap_gpu = GpuOverlap::On;
         const gpu::Rgba8Image drawn_while_next_frame_runs = render(s, 20, 480, 270, overlapped);
         ASSERT_EQ(drawn_while_next_frame_runs.pixels.size(), image.pixels.size());
         EXPECT_TRUE(drawn_while_next_frame_runs.pixels == image.pixels) << "overlap_gpu changed the picture";

@@ -20,8 +20,8 @@ namespace {
 
 const std::string kData = std::string(ALOHA_SOURCE_DIR) + "/data/";
 
-// Geometric levels of data/rules/default.json.
-constexpr uint8_t kLayeredHigh = 1, kLayeredLow = 2, kSkinned = 3, kProxy = 4, kImpostor = 5;
+// Geometric levels of data/rules/default.json (4 and 5 are skinned_fine and skinned_light).
+constexpr uint8_t kLayeredHigh = 1, kLayeredLow = 2, kSkinned = 3, kProxy = 6, kImpostor = 7;
 
 struct Fixture {
     std::unique_ptr<gpu::Context> ctx;

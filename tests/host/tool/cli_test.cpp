@@ -55,6 +55,12 @@ TEST(Cli, ParsesBakeCacheOptions) {
     EXPECT_FALSE(d.value().budget.has_value());  // the rule file decides
     EXPECT_TRUE(d.value().occlusion);
     EXPECT_TRUE(d.value().tier.empty());
+    EXPECT_EQ(d.value().gpu_overlap, GpuOverlap::Auto);  // overlapped only while the GPU frame is long
+    for (const auto& [name, mode] : {std::pair{"on", GpuOverlap::On}, std::pair{"off", GpuOverlap::Off}, std::pair{"auto", GpuOverlap::Auto}}) {
+        auto g = parse({"profile", "scene.json", "--gpu-overlap", name});
+        ASSERT_TRUE(g.ok()) << g.error().to_string();
+        EXPECT_EQ(g.value().gpu_overlap, mode);
+    }
 }
 
 TEST(Cli, RejectsBadArgumentsNamingThem) {
@@ -73,6 +79,7 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"profile", "s.json", "--budget", "maybe"}, "'--budget' expects on or off"},
         {{"profile", "s.json", "--occlusion", "1"}, "'--occlusion' expects on or off"},
         {{"profile", "s.json", "--cache", "no"}, "'--cache' expects on or off"},
+        {{"profile", "s.json", "--gpu-overlap", "yes"}, "'--gpu-overlap' expects"},
         {{"profile", "s.json", "--cache", "off", "--cache-dir", "d"}, "goes with --cache on"},
         {{"profile", "s.json", "--tier"}, "'--tier' needs a value"},
         {{"profile", "s.json", "--threads", "1000"}, "[0, 256]"},

@@ -187,9 +187,9 @@ TEST_F(ExportSkin, WritesTheCurrentLevelWithoutLevel) {
 
 TEST_F(ExportSkin, RigidProxyLevelWritesTheBoxesItDraws) {
     const std::string out = (dir / "proxy.glb").string();
-    const RunResult r = export_skin("--frame 2 --character 1 --level 4 --out " + out);
+    const RunResult r = export_skin("--frame 2 --character 1 --level 6 --out " + out);  // proxy
     ASSERT_EQ(r.code, 0) << r.output;
-    auto world = world_at(2, 1, uint8_t{4});
+    auto world = world_at(2, 1, uint8_t{6});
     ASSERT_TRUE(world);
     MotionSample sample;
     world->motion_sample(1, sample);
@@ -206,9 +206,9 @@ TEST_F(ExportSkin, RefusesBadArgumentsNamingThemAndTheRange) {
     const std::vector<Case> cases = {
         {"--frame 2 --character 3 --out " + out, "--character 3 is past the crowd"},
         {"--frame 6 --character 0 --out " + out, "--frame 6 is past the scene"},
-        {"--frame 2 --character 0 --level 7 --out " + out, "--level 7 is past the rule table's geometric levels"},
-        {"--frame 2 --character 0 --level 5 --out " + out, "is an impostor"},
-        {"--frame 2 --character 0 --level 6 --out " + out, "is hidden"},
+        {"--frame 2 --character 0 --level 9 --out " + out, "--level 9 is past the rule table's geometric levels"},
+        {"--frame 2 --character 0 --level 7 --out " + out, "is an impostor"},
+        {"--frame 2 --character 0 --level 8 --out " + out, "is hidden"},
         {"--character 0 --out " + out, "needs --frame"},
         {"--frame 1 --out " + out, "needs --character"},
         {"--frame 1 --character 0 --out " + (dir / "bad.obj").string(), "expects a .glb file"},
@@ -220,10 +220,10 @@ TEST_F(ExportSkin, RefusesBadArgumentsNamingThemAndTheRange) {
         EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
         EXPECT_FALSE(fs::exists(out)) << c.args;
     }
-    // The ranges are named: 3 characters (0 to 2), 6 frames (0 to 5), 7 levels (0 to 6).
+    // The ranges are named: 3 characters (0 to 2), 6 frames (0 to 5), 9 levels (0 to 8).
     EXPECT_NE(export_skin("--frame 2 --character 3 --out " + out).output.find("0 to 2"), std::string::npos);
     EXPECT_NE(export_skin("--frame 6 --character 0 --out " + out).output.find("0 to 5"), std::string::npos);
-    EXPECT_NE(export_skin("--frame 1 --character 0 --level 7 --out " + out).output.find("0 to 6"), std::string::npos);
+    EXPECT_NE(export_skin("--frame 1 --character 0 --level 9 --out " + out).output.find("0 to 8"), std::string::npos);
 }
 
 TEST_F(ExportSkin, NeverOverwritesWithoutForce) {

@@ -13,6 +13,7 @@ aloha_test(geomctl_tests
     ${CMAKE_CURRENT_LIST_DIR}/controller_layers_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/muscle_volume_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/simplified_indices_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/surface_distance_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/skin_bake_test.cpp
   LIBS aloha::geometry aloha::assets aloha::motion
   LABELS geometry)
