@@ -19,10 +19,12 @@ namespace aloha {
 /// (docs/PERFORMANCE.md, "The far layer").
 inline constexpr float kDefaultFarLayerBelowPx = 70.0f;
 
-/// The far layer's limit for meshes on a software rasteriser: characters under 120 px tall, the small end of the
-/// skinned level on tier low (70-250 px), where a triangle covers a few pixels and its cost is the blocks it
-/// touches (docs/PERFORMANCE.md, "Small meshes in the far layer").
-inline constexpr float kDefaultFarLayerMeshesBelowPx = 120.0f;
+/// The far layer's limit for meshes on a software rasteriser: characters under 70 px tall, the size under which
+/// impostors go there too (on tier low the meshes that small are the periphery's and fast movers'), where a triangle
+/// covers a pixel or two and its cost is the blocks it touches. 120 px was the default until measurements showed no
+/// gain beyond the machine's noise while walkers of 70-120 px visibly lost their detail at half resolution
+/// (docs/PERFORMANCE.md, "Small meshes in the far layer" and "Lighter skinned meshes on tier low").
+inline constexpr float kDefaultFarLayerMeshesBelowPx = 70.0f;
 
 /// The far layer a CrowdRenderer draws when RendererOptions::far_layer_below_px is unset: kDefaultFarLayerBelowPx on a software rasteriser (a CPU
 /// device, where a small quad's cost grows with the target's resolution), 0 on a GPU (where it buys nothing and
