@@ -43,6 +43,8 @@ struct FrameSource {
 
 // Characters per parallel chunk for the cheap per-character LOD loops.
 constexpr size_t kLodGrain = 2048;
+// Characters per part of the occlusion grid's rasterisation, at least (each part clears and merges a grid of its own).
+constexpr size_t kOcclusionPartGrain = 256;
 
 }  // namespace
 
@@ -114,9 +116,11 @@ void World::register_systems() {
             job.camera = camera_;
             job.grid = &occlusion_grid_;
             job.attributes = a.write<LodAttributes>();
-            // Pass 1 in one part per thread (a grid each, merged: the same grid bit for bit); pass 2
-            // only reads the grid, in parallel chunks.
-            const size_t parts = std::max<size_t>(1, ctx.threads());
+            // Pass 1 in one part per thread (a grid each, merged: the same grid bit for bit), but no more parts
+            // than kOcclusionPartGrain characters each fill: a small crowd (a close-up's one character) is rasterised on
+            // this thread, not handed to a worker that a busy machine may leave unscheduled for milliseconds
+            // (closeup: one frame's lod_occlusion took 5.2 ms). Pass 2 only reads the grid, in parallel chunks.
+            const size_t parts = std::clamp<size_t>(job.transforms.size() / kOcclusionPartGrain, 1, std::max<size_t>(1, ctx.threads()));
             job.PrepareParts(parts);
             ctx.parallel_for(parts, 1, [&](size_t b, size_t e) {
                 for (size_t p = b; p < e; ++p) job.RasterisePart(p, parts);
