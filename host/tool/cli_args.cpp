@@ -125,7 +125,8 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
                       "table; see docs/MOTION.md for the contact thresholds)");
     profile->add_flag("--gpu-passes", b.o.gpu_passes,
                       "GPU timestamps after every pass (each level's meshes, proxies, lines, resolve) in report.json, "
-                      "trace.json and the table; on lavapipe each flushes (docs/PERFORMANCE.md)");
+                      "trace.json and the table; on lavapipe each flushes and a pass's figure can hold earlier passes' "
+                      "rasterisation: compare frame totals there (docs/PERFORMANCE.md)");
     profile->add_flag("--constant-fragments", b.o.constant_fragments,
                       "meshes and proxies drawn unlit with a constant-colour fragment shader, to tell the fragment "
                       "cost from the vertex and binning cost (profiling only)");
