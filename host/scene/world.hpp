@@ -146,7 +146,7 @@ public:
     [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
     /// The last frame's CPU systems (every phase before Render), ms: what a single-total budget steers.
     [[nodiscard]] double last_cpu_ms() const { return last_cpu_ms_; }
-    /// Frame pacing against the GPU (WorldOptions::overlap_gpu): frames overlapped so far, the last decision.
+    /// Frame pacing against the GPU (WorldOptions::overlap_gpu): the last frame's decision, the smoothed times.
     [[nodiscard]] const GpuOverlapPolicy& gpu_overlap() const { return overlap_policy_; }
     /// The last frame's animation part (the motion system), ms.
     [[nodiscard]] double last_animation_ms() const { return last_animation_ms_; }

@@ -27,8 +27,6 @@ bool GpuOverlapPolicy::decide(double cpu_ms, double gpu_ms) {
                 overlapping_ = gpu_ms_ >= settings_.leave_gpu_ms && cpu_ms_ >= 0.5 * settings_.min_cpu_ms;
             break;
     }
-    ++frames_;
-    if (overlapping_) ++overlapped_;
     return overlapping_;
 }
 

@@ -49,15 +49,11 @@ public:
 
     /// Whether the frame about to be submitted should be left in flight. `cpu_ms`: the newest frame's CPU
     /// systems' time; `gpu_ms`: the newest GPU time measured (< 0: none yet, e.g. while the first frames are
-    /// in flight; it is then left out of the average). Counts the overlapped frames.
+    /// in flight; it is then left out of the average).
     bool decide(double cpu_ms, double gpu_ms);
 
-    [[nodiscard]] GpuOverlap mode() const { return mode_; }
     /// The last decision.
     [[nodiscard]] bool overlapping() const { return overlapping_; }
-    /// Frames decide() has been asked about, and of them those it overlapped.
-    [[nodiscard]] uint64_t frames() const { return frames_; }
-    [[nodiscard]] uint64_t frames_overlapped() const { return overlapped_; }
     /// The smoothed times Auto decides on (-1 before the first measurement).
     [[nodiscard]] double smoothed_cpu_ms() const { return cpu_ms_; }
     [[nodiscard]] double smoothed_gpu_ms() const { return gpu_ms_; }
@@ -68,8 +64,6 @@ private:
     bool overlapping_ = false;
     double cpu_ms_ = -1.0;
     double gpu_ms_ = -1.0;
-    uint64_t frames_ = 0;
-    uint64_t overlapped_ = 0;
 };
 
 }  // namespace aloha

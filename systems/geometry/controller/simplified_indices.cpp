@@ -46,7 +46,6 @@ SimplifiedIndices simplify_indices(std::span<const glm::vec3> positions, std::sp
     // Each round keeps at least one more vertex or lowers the simplifier's error, and with every vertex kept the
     // list is the full one (distance 0): the loop ends. The cap only guards against a bound no float reaches.
     for (uint32_t round = 0; round < 4 * positions.size() + 64; ++round) {
-        out.rounds = round + 1;
         simplified = simplify_around(positions, indices, kept, meshopt_error);
         const SurfaceDistance to_simplified(positions, simplified);
         const SurfaceDistance::Result full_side = to_simplified.from(indices);
@@ -76,7 +75,6 @@ SimplifiedIndices simplify_indices(std::span<const glm::vec3> positions, std::sp
                     for (int k = 0; k < 3; ++k) kept[indices[3 * f + k]] = true;
         }
     }
-    for (const bool k : kept) out.protected_vertices += k ? 1u : 0u;
     out.indices.resize(simplified.size());
     meshopt_optimizeVertexCache(out.indices.data(), simplified.data(), simplified.size(), positions.size());
     return out;

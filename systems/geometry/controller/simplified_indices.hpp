@@ -16,8 +16,6 @@ struct SimplifiedIndices {
     float extent = 0.0f;            ///< meshopt_simplifyScale: the largest side of the positions' bounding box
     float distance = 0.0f;          ///< two-sided distance between the new surface and the full one (absolute,
                                     ///< the positions' units; surface_distance.hpp's samples), <= the bound
-    uint32_t protected_vertices = 0;  ///< vertices kept with their whole fan so that the bound holds (see below)
-    uint32_t rounds = 0;            ///< simplifications run (1 when meshoptimizer's result held the bound at once)
 };
 
 /// Simplifies the triangle list `indices` over `positions` (the rest surface) so that the two surfaces lie

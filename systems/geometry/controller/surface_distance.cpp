@@ -52,6 +52,11 @@ SurfaceDistance::SurfaceDistance(std::span<const glm::vec3> positions, std::span
     touching_.resize(to.size());
     std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
     for (size_t i = 0; i < to.size(); ++i) touching_[fill[to[i]]++] = static_cast<uint32_t>(i / 3);
+    longest_edge_.resize(to.size() / 3);
+    for (size_t t = 0; t < longest_edge_.size(); ++t) {
+        const glm::vec3 a = positions[to[3 * t]], b = positions[to[3 * t + 1]], c = positions[to[3 * t + 2]];
+        longest_edge_[t] = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    }
 }
 
 float SurfaceDistance::distance(glm::vec3 p, std::span<const uint32_t> near_vertices) const {
@@ -65,9 +70,8 @@ float SurfaceDistance::distance(glm::vec3 p, std::span<const uint32_t> near_vert
     // Every triangle, skipped where even its nearest corner's distance minus its longest edge is no better.
     for (uint32_t t = 0; t < to_.size() / 3; ++t) {
         const glm::vec3 a = positions_[to_[3 * t]], b = positions_[to_[3 * t + 1]], c = positions_[to_[3 * t + 2]];
-        const float edge = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
         const float corner = std::min({glm::length(p - a), glm::length(p - b), glm::length(p - c)});
-        if (corner - edge >= best) continue;  // every point of the triangle is within `edge` of a corner
+        if (corner - longest_edge_[t] >= best) continue;  // every point of the triangle is within its longest edge of a corner
         best = std::min(best, triangle(t));
     }
     return best;
@@ -87,10 +91,6 @@ SurfaceDistance::Result SurfaceDistance::from(std::span<const uint32_t> from) co
         r.largest = std::max(r.largest, worst);
     }
     return r;
-}
-
-float two_sided_distance(std::span<const glm::vec3> positions, std::span<const uint32_t> a, std::span<const uint32_t> b) {
-    return std::max(SurfaceDistance(positions, b).from(a).largest, SurfaceDistance(positions, a).from(b).largest);
 }
 
 }  // namespace aloha

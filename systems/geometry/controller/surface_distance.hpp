@@ -42,10 +42,7 @@ private:
     std::span<const uint32_t> to_;
     std::vector<uint32_t> first_;      // per vertex: its triangles are touching_[first_[v], first_[v + 1])
     std::vector<uint32_t> touching_;   // triangle numbers of `to`
+    std::vector<float> longest_edge_;  // per triangle of `to`: the search's pruning radius
 };
-
-/// The two-sided (Hausdorff) distance between two triangle lists over the same vertices, at the samples above.
-[[nodiscard]] float two_sided_distance(std::span<const glm::vec3> positions, std::span<const uint32_t> a,
-                                       std::span<const uint32_t> b);
 
 }  // namespace aloha
