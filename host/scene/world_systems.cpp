@@ -304,12 +304,13 @@ void World::register_systems() {
     }));
 
     // The draw lists; registering a new topology or material writes the renderer's tables.
-    using DrawAccess = Access<Reads<SurfaceResource, PoseResource, GroupingResource, Transform, LodState, AnimLod, MotionState>,
+    using DrawAccess = Access<Reads<SurfaceResource, PoseResource, GroupingResource, Transform, LodState, LodAttributes, AnimLod, MotionState>,
                               Writes<DrawListResource, RendererTablesResource>>;
     scheduler_.add(make_system<DrawAccess>("render_prepare", WorldPhase::Render, source, [this](SystemContext&, const DrawAccess& a) {
         if (!renderer_) return;
         render_status_ = draws_.gather(renderer_, draw_types_, groups_, a.read<Transform>(), a.read<LodState>(), a.read<AnimLod>(),
-                                       DrawSettings{options_.colour, options_.overlay}, lists_, a.read<MotionState>());
+                                       DrawSettings{options_.colour, options_.overlay}, lists_, a.read<MotionState>(),
+                                       a.read<LodAttributes>());
     }));
 
     using RenderAccess = Access<Reads<DrawListResource, RendererTablesResource, CameraResource>, Writes<GpuResource>>;

@@ -41,6 +41,7 @@ Status DrawListBuilder::gather_impostors(const DrawType& draw, const LevelRange&
     const GeometryController& gc = *draw.geometry;
     for (uint32_t p = r.begin; p < r.end; ++p) {
         const uint32_t e = groups.order[p], id = groups.ids[p];
+        if (!f.in_view(e)) continue;
         const LevelFade* fade = f.settings.overlay ? nullptr : gc.fade(id);
         if (!fade || !fade->into_impostor()) {
             out.impostors.push_back(impostor_instance(draw, r.type, e, f, 1.0f));

@@ -25,7 +25,7 @@ void DrawListBuilder::reset() {
 Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
                                std::span<const Transform> transforms, std::span<const LodState> states,
                                std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out,
-                               std::span<const MotionState> motion) {
+                               std::span<const MotionState> motion, std::span<const LodAttributes> attributes) {
     out.meshes.clear();
     out.proxies.clear();
     out.lines.clear();
@@ -34,7 +34,7 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
     out.drawn_twice = 0;
     fading_proxies_.clear();
     fading_runs_.clear();
-    const Frame f{renderer, transforms, states, anims, motion, settings};
+    const Frame f{renderer, transforms, states, anims, motion, attributes, settings};
     // A character fading out of the impostor level into this range's drawn level: its share of pixels here,
     // the rest drawn as its impostor (1: not fading, or no impostor to fade with).
     auto fade_in = [&](const DrawType& draw, const GeometryController& gc, uint16_t type, uint32_t e, uint32_t id) {
@@ -58,7 +58,7 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
             for (uint32_t p = r.begin; p < r.end; ++p) {
                 const uint32_t e = groups.order[p], id = groups.ids[p];
                 const std::span<const glm::mat4> boxes = gc.proxy_boxes(id);
-                if (boxes.empty()) continue;
+                if (boxes.empty() || !f.in_view(e)) continue;
                 const glm::mat4 world = world_matrix(transforms[e]);
                 const glm::vec4 colour = character_colour(settings.colour, states[e], anims[e], true);
                 const float share = fade_in(draw, gc, r.type, e, id);
@@ -74,7 +74,7 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
         for (uint32_t p = r.begin; p < r.end; ++p) {
             const uint32_t e = groups.order[p], id = groups.ids[p];
             const SurfaceView surface = gc.surface(id);
-            if (surface.positions.empty()) continue;
+            if (surface.positions.empty() || !f.in_view(e)) continue;
             const glm::mat4 world = world_matrix(transforms[e]);
             if (settings.overlay) {  // the skin is left out so the inner layers (bones, muscles, springs) show
                 overlays(draw, id, world, settings.overlay, out);

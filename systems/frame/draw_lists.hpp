@@ -77,12 +77,14 @@ public:
     /// fade_proxy_boxes), with complementary dithers (DeformableMesh::dither, ProxyFade, the impostor's
     /// forward_phase.w = -share); one between two mesh levels (LevelFade::between_meshes) is drawn at both,
     /// the left level's kept surface with the complement of the entered one's dither (dither = -share);
-    /// without overlays only.
+    /// without overlays only. With `attributes` (per element; empty: every character is drawn) a character
+    /// whose bounds lie wholly outside the view frustum (LodAttributes::visible == 0) is left out at any
+    /// level: its level may be held there by the resolver's hysteresis, but it has no pixel to draw.
     /// Errors: the renderer refusing a topology, texture or material (the lists are then partial).
     Status gather(CrowdRenderer* renderer, std::span<const DrawType> types, const CharacterGroups& groups,
                   std::span<const Transform> transforms, std::span<const LodState> states,
                   std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out,
-                  std::span<const MotionState> motion = {});
+                  std::span<const MotionState> motion = {}, std::span<const LodAttributes> attributes = {});
     /// The renderer id of `surface`'s topology for type `type`, registering it (and the type's
     /// materials) on first use.
     Result<uint32_t> topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface);
@@ -98,7 +100,10 @@ private:
         std::span<const LodState> states;
         std::span<const AnimLod> anims;
         std::span<const MotionState> motion;
+        std::span<const LodAttributes> attributes;
         const DrawSettings& settings;
+        /// False when element e is known to lie outside the view frustum.
+        [[nodiscard]] bool in_view(uint32_t e) const { return attributes.empty() || attributes[e].visible != 0; }
     };
     Status gather_impostors(const DrawType& draw, const LevelRange& r, const CharacterGroups& groups, const Frame& f, RenderLists& out);
     /// Element e (character `id` of `type`) as its impostor, faded to show 1 - drawn_share of its pixels (1: all).

@@ -1,7 +1,8 @@
 // A character switching between the impostor level and a drawn level, or between the skinned level and a
 // layered one, in a World with a renderer: the switch is cross-faded over the longer of the two levels' geomorph
 // frames (LevelFade), the draw lists holding the character twice with complementary shares, and the level being
-// left stays posed while it fades.
+// left stays posed while it fades. And a character wholly outside the view is left out of the draw lists
+// at whatever level it is held.
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/offscreen_target.hpp"
 #include "host/scene/character_runtime.hpp"
@@ -286,6 +287,42 @@ TEST(WorldCrossFade, SkinnedAndLayeredSwitchesFadeBetweenTheTwoMeshesAndThenDrop
                 EXPECT_LT(worst, 1e-5f);
             }
         }
+    }
+    EXPECT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
+    f.world.reset();
+    f.renderer.reset();
+    EXPECT_EQ(f.ctx->validation_message_count(), 0u);
+}
+
+// A character held at a drawn level (here pinned; in a crowd, by the resolver's hysteresis for 0.2 s after it
+// leaves the view) is not drawn while its bounds lie wholly outside the view frustum: at the mesh, proxy
+// and impostor levels alike, and it is drawn again once the view turns back.
+TEST(WorldDrawLists, LeaveOutCharactersOutsideTheView) {
+    Fixture f;
+    if (!make(f)) return;
+    World& w = *f.world;
+    const glm::vec2 viewport(160.0f, 240.0f);
+    for (const uint8_t level : {kSkinned, kProxy, kImpostor}) {
+        SCOPED_TRACE("level " + std::to_string(level));
+        w.set_view_override(std::nullopt, 50.0f, viewport);
+        settle_at(w, level);
+        const Drawn seen = drawn(w);
+        EXPECT_GT(seen.meshes + seen.proxies + seen.impostors, 0u);
+        // Far from the walker's circle about the origin and looking away from it: behind the camera.
+        w.set_view_override(CameraKey{0.0f, glm::vec3(500.0f, 1.7f, 500.0f), glm::vec3(1000.0f, 1.7f, 1000.0f)}, 50.0f, viewport);
+        w.step();
+        EXPECT_EQ(w.explain(0)["attributes"]["visible"], false);
+        EXPECT_EQ(w.runtime(0).geometry->level_of(0), level);  // still held at the level
+        const Drawn away = drawn(w);
+        EXPECT_EQ(away.meshes, 0u);
+        EXPECT_EQ(away.proxies, 0u);
+        EXPECT_EQ(away.impostors, 0u);
+        w.set_view_override(std::nullopt, 50.0f, viewport);
+        w.step();
+        const Drawn back = drawn(w);
+        EXPECT_EQ(back.meshes, seen.meshes);
+        EXPECT_EQ(back.proxies, seen.proxies);
+        EXPECT_EQ(back.impostors, seen.impostors);
     }
     EXPECT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
     f.world.reset();
