@@ -134,7 +134,7 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
                         "on: the GPU draws a frame while the next frame's CPU systems run (two frames in flight; the "
                         "whole frame is the interval between frames); off: each frame waits for its GPU work; auto (default): "
                         "overlapped while the GPU's frame is longer than 16.7 ms and the CPU systems take 1 ms or more "
-                        "(docs/PERFORMANCE.md)")
+                        "(docs/PERFORMANCE.md); with --fidelity every frame is waited for")
         ->check(one_of({"on", "off", "auto"}));
     add_colour(*profile, b);
     add_common(*profile, b, false);
@@ -287,6 +287,8 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
     if (o.scene.empty()) return cli_error("'aloha " + o.command + "' needs a scene file");
     if (!o.cache && !o.cache_dir.empty()) return cli_error("--cache-dir names the bake cache's directory: it goes with --cache on, not off");
     if (o.command == "scale" && o.counts.empty()) return cli_error("'aloha scale' needs --counts A,B,...");
+    if (o.fidelity && b.gpu_overlap == "on")
+        return cli_error("--fidelity reads each frame back before the next one starts: it cannot go with --gpu-overlap on");
     if (o.command == "export") {
         if (Status st = check_export(o); !st.ok()) return st.error();
     }

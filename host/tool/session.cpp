@@ -85,7 +85,9 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     // poses no stage of the frame reads.
     wo.pose_every_character = options.motion_metrics || options.fidelity || options.command == "export";
     if (!options.tier.empty()) wo.tier = options.tier;
-    wo.overlap_gpu = render && options.command == "profile" ? options.gpu_overlap : GpuOverlap::Off;
+    // The fidelity probe reads each frame back and renders its reference with the same renderer before the
+    // next step: no frame is left in flight (the overlap policy would otherwise read the probe's GPU time).
+    wo.overlap_gpu = render && options.command == "profile" && !options.fidelity ? options.gpu_overlap : GpuOverlap::Off;
     gpu::ContextOptions co;
     const char* env = std::getenv("ALOHA_VALIDATION");
     co.validation = options.validation || (env && std::string(env) == "1");

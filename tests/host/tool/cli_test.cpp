@@ -80,6 +80,7 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"profile", "s.json", "--occlusion", "1"}, "'--occlusion' expects on or off"},
         {{"profile", "s.json", "--cache", "no"}, "'--cache' expects on or off"},
         {{"profile", "s.json", "--gpu-overlap", "yes"}, "'--gpu-overlap' expects"},
+        {{"profile", "s.json", "--fidelity", "--gpu-overlap", "on"}, "cannot go with --gpu-overlap on"},
         {{"profile", "s.json", "--cache", "off", "--cache-dir", "d"}, "goes with --cache on"},
         {{"profile", "s.json", "--tier"}, "'--tier' needs a value"},
         {{"profile", "s.json", "--threads", "1000"}, "[0, 256]"},

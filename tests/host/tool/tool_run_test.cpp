@@ -92,6 +92,22 @@ TEST(Tool, ProfileWritesEveryReport) {
     fs::remove_all(out);
 }
 
+// --fidelity waits for every frame (its probe reads each one back and draws its reference with the same
+// renderer), so the default --gpu-overlap auto runs serially and the report says so.
+TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
+    const fs::path out = temp_dir("profile_fidelity");
+    const RunResult r = run("profile " + kScenes + "closeup.json --frames 4 --warmup 1 --fidelity --quiet --validation --out " +
+                            (out / "p").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream in(out / "p" / "report.json");
+    const nlohmann::json report = nlohmann::json::parse(in);
+    EXPECT_EQ(report["gpu_overlap"]["mode"], "off");
+    EXPECT_EQ(report["gpu_overlap"]["frames_overlapped"], 0);
+    EXPECT_EQ(report["fidelity"]["psnr_db"]["count"], 4);
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    fs::remove_all(out);
+}
+
 TEST(Tool, RenderWritesAPngAndRefusesToOverwrite) {
     const fs::path out = temp_dir("render");
     const std::string png = (out / "f.png").string();
