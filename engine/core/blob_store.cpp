@@ -69,18 +69,13 @@ std::string temporary_name(const fs::path& entry) {
     return entry.filename().string() + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1));
 }
 
-// True when `path` starts with the store's magic (one of its entries, whatever its state).
-bool is_entry_file(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    char magic[8] = {};
-    return in.read(magic, 8) && std::memcmp(magic, BlobStore::kMagic, 8) == 0;
-}
-
 }  // namespace
 
-std::shared_ptr<BlobStore> BlobStore::open(const fs::path& dir, std::vector<uint8_t> code_version, BlobStoreLog log) {
+std::shared_ptr<BlobStore> BlobStore::open(const fs::path& dir, std::vector<uint8_t> code_version, BlobStoreLog log,
+                                           uint64_t max_bytes) {
     std::shared_ptr<BlobStore> store(new BlobStore());
     store->dir_ = dir;
+    store->max_bytes_ = max_bytes;
     store->code_version_ = std::move(code_version);
     store->log_ = std::move(log);
     std::error_code ec;
@@ -99,7 +94,14 @@ std::shared_ptr<BlobStore> BlobStore::open(const fs::path& dir, std::vector<uint
         store->say("bake cache: cannot write in directory '" + dir.string() + "' (" + why + "); loading without the cache");
         return nullptr;
     }
+    (void)store->trim();
     return store;
+}
+
+bool BlobStore::is_entry(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[8] = {};
+    return in.read(magic, 8) && std::memcmp(magic, kMagic, 8) == 0;
 }
 
 void BlobStore::say(const std::string& message) const {
@@ -153,6 +155,9 @@ std::optional<std::vector<uint8_t>> BlobStore::get(std::span<const uint8_t> key)
     if (stored_key.size() != k.size() || std::memcmp(stored_key.data(), k.data(), k.size()) != 0)
         return reject("holds another key (a digest collision)");
     hits_.fetch_add(1);
+    // Used now: the trim removes the entries used longest ago first.
+    std::error_code ec;
+    fs::last_write_time(path, fs::file_time_type::clock::now(), ec);
     return std::vector<uint8_t>(payload.begin(), payload.end());
 }
 
@@ -173,7 +178,7 @@ void BlobStore::put(std::span<const uint8_t> key, std::span<const uint8_t> paylo
         if (!write_failed_.exchange(true)) say("bake cache: cannot save entry '" + path.string() + "' (" + why + "); going on without saving");
     };
     std::error_code ec;
-    if (fs::exists(path, ec) && !is_entry_file(path)) return fail("a file that is not a bake cache entry has its name; left alone");
+    if (fs::exists(path, ec) && !is_entry(path)) return fail("a file that is not a bake cache entry has its name; left alone");
     const fs::path temp = dir_ / temporary_name(path);
     const std::span<const uint8_t> parts[3] = {{reinterpret_cast<const uint8_t*>(&h), sizeof h}, k, payload};
     std::string why;
@@ -187,9 +192,10 @@ void BlobStore::put(std::span<const uint8_t> key, std::span<const uint8_t> paylo
         return fail(ec.message());
     }
     writes_.fetch_add(1);
+    (void)trim();
 }
 
-BlobStoreCounts BlobStore::counts() const { return {hits_.load(), misses_.load(), rejected_.load(), writes_.load()}; }
+BlobStoreCounts BlobStore::counts() const { return {hits_.load(), misses_.load(), rejected_.load(), writes_.load(), evicted_.load()}; }
 
 std::optional<fs::path> default_cache_directory() {
     const auto env = [](const char* name) -> std::string {

@@ -50,7 +50,7 @@ Result<std::vector<std::unique_ptr<CharacterRuntime>>> make_character_runtimes(c
     return out;
 }
 
-std::shared_ptr<const BlobStore> open_bake_cache(bool enabled, const std::optional<std::string>& dir) {
+std::shared_ptr<const BlobStore> open_bake_cache(bool enabled, const std::optional<std::string>& dir, std::optional<uint64_t> max_bytes) {
     if (!enabled) return nullptr;
     const std::optional<std::filesystem::path> where = dir ? std::optional<std::filesystem::path>(*dir) : default_cache_directory();
     if (!where) {
@@ -65,7 +65,7 @@ std::shared_ptr<const BlobStore> open_bake_cache(bool enabled, const std::option
             std::fprintf(stderr, "bake cache: off, no code version: %s\n", version.error().to_string().c_str());
         return nullptr;
     }
-    return BlobStore::open(*where, version.value());
+    return BlobStore::open(*where, version.value(), {}, max_bytes ? *max_bytes : default_cache_limit_bytes());
 }
 
 }  // namespace aloha

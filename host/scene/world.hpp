@@ -81,6 +81,8 @@ struct WorldOptions {
                                            ///< the on-disk bake cache and save new ones there (false: always build)
     std::optional<std::string> bake_cache_dir;  ///< the bake cache's directory; default: $ALOHA_CACHE_DIR, else
                                                 ///< $XDG_CACHE_HOME/aloha, else $HOME/.cache/aloha
+    std::optional<uint64_t> bake_cache_max_bytes;  ///< the bake cache's size limit (0: none); default:
+                                                   ///< $ALOHA_CACHE_MAX_MB MiB, else 1 GiB (least recently used go first)
     bool pose_every_character = false;     ///< true: every character's pose is current every frame, seen or
                                            ///< not (tools that read every pose: motion metrics, export);
                                            ///< false: poses nobody reads are left out (PoseUse)

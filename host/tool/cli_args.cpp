@@ -3,6 +3,7 @@
 // Error values naming the argument; nothing here runs per frame.
 #include "host/tool/cli_args.hpp"
 
+#include "engine/core/blob_store.hpp"
 #include "host/tool/cli_checks.hpp"
 #include "systems/render/far_layer.hpp"
 
@@ -21,7 +22,7 @@ const std::set<std::string> kCommands = {"render", "view", "profile", "scale", "
 // What the subcommands write into: CliOptions plus the text of options converted after the parse.
 struct Bindings {
     CliOptions o;
-    std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", counts, characters, frames, frame_range, selection;
+    std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", cache_max_mb, counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
@@ -37,6 +38,10 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
     c.add_option("--cache-dir", b.o.cache_dir,
                  "the bake cache's directory (default: $ALOHA_CACHE_DIR, else $XDG_CACHE_HOME/aloha, else ~/.cache/aloha)")
         ->check(non_empty());
+    c.add_option("--cache-max-mb", b.cache_max_mb,
+                 "the bake cache's size limit in MiB, the entries used longest ago removed first (0 = no limit; default: "
+                 "$ALOHA_CACHE_MAX_MB, else 1024)")
+        ->check(whole_number(0, 4'000'000'000));
     c.add_option("--budget-ms", b.budget_ms,
                  "CPU frame budget: lower detail where least noticed to fit X ms (the rule file's animation/geometry "
                  "split kept, scaled to X; without a split one total)")->check(milliseconds());
@@ -203,6 +208,7 @@ void convert(Bindings& b) {
     if (!b.far_layer_meshes.empty()) o.far_layer_meshes_px = float(u32(b.far_layer_meshes));
     if (!b.height.empty()) o.height = u32(b.height);
     if (!b.threads.empty()) o.threads = u32(b.threads);
+    if (!b.cache_max_mb.empty()) o.cache_max_bytes = parse_cache_limit_mib(b.cache_max_mb);
     if (!b.compare_frames.empty()) o.compare_frames = u32(b.compare_frames);
     if (!b.characters.empty()) o.characters = u32(b.characters);
     if (!b.character.empty()) o.character = u32(b.character);
@@ -286,6 +292,7 @@ Result<CliOptions> parse_cli(const std::vector<std::string>& args) {
     const CliOptions& o = b.o;
     if (o.scene.empty()) return cli_error("'aloha " + o.command + "' needs a scene file");
     if (!o.cache && !o.cache_dir.empty()) return cli_error("--cache-dir names the bake cache's directory: it goes with --cache on, not off");
+    if (!o.cache && o.cache_max_bytes) return cli_error("--cache-max-mb limits the bake cache: it goes with --cache on, not off");
     if (o.command == "scale" && o.counts.empty()) return cli_error("'aloha scale' needs --counts A,B,...");
     if (o.fidelity && b.gpu_overlap == "on")
         return cli_error("--fidelity reads each frame back before the next one starts: it cannot go with --gpu-overlap on");

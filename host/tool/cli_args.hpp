@@ -34,6 +34,7 @@ struct CliOptions {
     uint32_t threads = 0;              ///< --threads T (0 = all cores)
     bool cache = true;                 ///< --cache on|off: reuse load-time bakes from the bake cache
     std::string cache_dir;             ///< --cache-dir DIR: the bake cache's directory ("" = the default)
+    std::optional<uint64_t> cache_max_bytes;  ///< --cache-max-mb N: the bake cache's size limit (unset: the default)
     std::optional<uint32_t> characters;///< --characters N: rescale the scene's crowds to N characters
     bool fidelity = false;             ///< --fidelity
     bool no_render = false;            ///< --no-render: CPU systems only

@@ -67,6 +67,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     wo.lod = options.lod;
     wo.bake_cache = options.cache;
     if (!options.cache_dir.empty()) wo.bake_cache_dir = options.cache_dir;
+    wo.bake_cache_max_bytes = options.cache_max_bytes;
     wo.budget_ms = options.budget_ms;
     wo.seed_override = options.seed.value_or(0);
     wo.characters = options.characters;

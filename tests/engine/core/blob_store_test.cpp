@@ -1,6 +1,7 @@
 // BlobStore: round trip, entries another code version or format cannot read, truncated, corrupt and
-// foreign files rejected (one message naming the file) and rebuilt, unusable directories; ByteReader's
-// bounds; build-id reading.
+// foreign files rejected (one message naming the file) and rebuilt, unusable directories; the size limit
+// (least recently used entries removed, foreign files and the newest entry kept); ByteReader's bounds;
+// build-id reading.
 #include "engine/core/blob_store.hpp"
 #include "engine/core/build_id.hpp"
 #include "engine/core/byte_io.hpp"
@@ -8,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <fstream>
 
 namespace aloha {
@@ -25,8 +28,8 @@ struct StoreFixture : ::testing::Test {
         fs::remove_all(dir);
     }
     void TearDown() override { fs::remove_all(dir); }
-    std::shared_ptr<BlobStore> open(std::vector<uint8_t> version = {1, 2, 3}) {
-        return BlobStore::open(dir, std::move(version), [this](const std::string& m) { messages.push_back(m); });
+    std::shared_ptr<BlobStore> open(std::vector<uint8_t> version = {1, 2, 3}, uint64_t max_bytes = BlobStore::kDefaultMaxBytes) {
+        return BlobStore::open(dir, std::move(version), [this](const std::string& m) { messages.push_back(m); }, max_bytes);
     }
 };
 
@@ -129,6 +132,87 @@ TEST_F(StoreFixture, DirectoryThatCannotBeMadeMeansNoStoreWithOneMessage) {
     EXPECT_FALSE(store);
     ASSERT_EQ(said.size(), 1u);
     EXPECT_NE(said[0].find((dir / "file" / "cache").string()), std::string::npos) << said[0];
+}
+
+// Entries "e0".."e{n-1}" of `payload_bytes` each, e0 used longest ago (modification times an hour apart,
+// the last an hour ago); returns their file sizes.
+std::vector<uint64_t> put_aged(BlobStore& store, size_t n, size_t payload_bytes) {
+    std::vector<uint64_t> sizes;
+    const auto now = fs::file_time_type::clock::now();
+    for (size_t i = 0; i < n; ++i) {
+        const auto key = bytes_of("e" + std::to_string(i));
+        store.put(key, std::vector<uint8_t>(payload_bytes, static_cast<uint8_t>(i)));
+        fs::last_write_time(store.entry_path(key), now - std::chrono::hours(n - i));
+        sizes.push_back(fs::file_size(store.entry_path(key)));
+    }
+    return sizes;
+}
+
+TEST_F(StoreFixture, OpeningOverTheLimitRemovesTheEntriesUsedLongestAgo) {
+    auto unlimited = open({1, 2, 3}, 0);
+    const std::vector<uint64_t> sizes = put_aged(*unlimited, 4, 1000);
+    EXPECT_EQ(unlimited->counts().evicted, 0u);
+    // Room for two and a half entries: e0 and e1 go, e2 and e3 stay.
+    auto limited = open({1, 2, 3}, sizes[0] * 5 / 2);
+    EXPECT_EQ(limited->counts().evicted, 2u);
+    for (size_t i = 0; i < 4; ++i) EXPECT_EQ(limited->get(bytes_of("e" + std::to_string(i))).has_value(), i >= 2) << i;
+    const BlobStoreTrim again = limited->trim();
+    EXPECT_EQ(again.entries, 2u);
+    EXPECT_EQ(again.bytes, sizes[2] + sizes[3]);
+    EXPECT_EQ(again.removed, 0u);
+}
+
+TEST_F(StoreFixture, AHitMakesAnEntryTheMostRecentlyUsed) {
+    auto unlimited = open({1, 2, 3}, 0);
+    const std::vector<uint64_t> sizes = put_aged(*unlimited, 3, 1000);
+    ASSERT_TRUE(unlimited->get(bytes_of("e0")));  // the oldest, used now
+    // A put over a limit of two entries trims: e1 is now the one used longest ago.
+    auto limited = open({1, 2, 3}, sizes[0] * 3);
+    limited->put(bytes_of("e3"), std::vector<uint8_t>(1000, 3));
+    EXPECT_EQ(limited->counts().evicted, 1u);
+    EXPECT_FALSE(limited->get(bytes_of("e1")));
+    for (const char* kept : {"e0", "e2", "e3"}) EXPECT_TRUE(limited->get(bytes_of(kept))) << kept;
+}
+
+TEST_F(StoreFixture, TheLimitNeverRemovesForeignFilesOrTheNewestEntry) {
+    auto unlimited = open({1, 2, 3}, 0);
+    put_aged(*unlimited, 3, 1000);
+    // A foreign file under an entry's name, one under another name, a temporary file a crashed write left
+    // two hours ago and one being written now.
+    const fs::path foreign_entry = unlimited->entry_path(bytes_of("foreign"));
+    write_bytes(foreign_entry, std::vector<uint8_t>(5000, 7));
+    fs::last_write_time(foreign_entry, fs::file_time_type::clock::now() - std::chrono::hours(10));
+    write_bytes(dir / "notes.txt", std::vector<uint8_t>(5000, 8));
+    const fs::path stale = dir / (foreign_entry.filename().string() + ".tmp.1.0"), fresh = dir / (foreign_entry.filename().string() + ".tmp.2.0");
+    write_bytes(stale, bytes_of("half"));
+    fs::last_write_time(stale, fs::file_time_type::clock::now() - std::chrono::hours(2));
+    write_bytes(fresh, bytes_of("half"));
+    auto tiny = open({1, 2, 3}, 1);  // one byte: everything that may go, goes
+    const BlobStoreTrim t = tiny->trim();
+    EXPECT_EQ(tiny->counts().evicted, 2u);  // e0 and e1 when opened; the foreign file is not an entry
+    EXPECT_TRUE(fs::exists(foreign_entry));
+    EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_TRUE(fs::exists(fresh));
+    EXPECT_TRUE(tiny->get(bytes_of("e2")));  // the newest entry stays, whatever the limit
+    EXPECT_EQ(t.removed, 0u);
+}
+
+TEST(CacheLimit, ParsesWholeMebibytesAndNamesABadEnvironmentValue) {
+    EXPECT_EQ(parse_cache_limit_mib("0"), 0u);
+    EXPECT_EQ(parse_cache_limit_mib("512"), uint64_t{512} << 20);
+    for (const char* bad : {"", "-1", "1.5", "12MB", "1099511627777", "99999999999999"}) EXPECT_FALSE(parse_cache_limit_mib(bad)) << bad;
+    std::vector<std::string> said;
+    const auto log = [&](const std::string& m) { said.push_back(m); };
+    ::setenv("ALOHA_CACHE_MAX_MB", "lots", 1);
+    EXPECT_EQ(default_cache_limit_bytes(log), BlobStore::kDefaultMaxBytes);
+    ASSERT_EQ(said.size(), 1u);
+    EXPECT_NE(said[0].find("ALOHA_CACHE_MAX_MB='lots'"), std::string::npos) << said[0];
+    ::setenv("ALOHA_CACHE_MAX_MB", "64", 1);
+    EXPECT_EQ(default_cache_limit_bytes(log), uint64_t{64} << 20);
+    ::unsetenv("ALOHA_CACHE_MAX_MB");
+    EXPECT_EQ(default_cache_limit_bytes(log), BlobStore::kDefaultMaxBytes);
+    EXPECT_EQ(said.size(), 1u);
 }
 
 TEST(ByteReader, ReadsBackWhatWasWrittenAndStopsAtTheEnd) {

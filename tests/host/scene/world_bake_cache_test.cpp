@@ -142,5 +142,17 @@ TEST_F(WorldBakeCache, CacheOffOpensNothing) {
     EXPECT_TRUE(fs::is_directory(dir / "on"));
 }
 
+TEST_F(WorldBakeCache, SizeLimitFromTheHostOrTheDefault) {
+    const auto given = open_bake_cache(true, (dir / "on").string(), uint64_t{64} << 20);
+    ASSERT_TRUE(given);
+    EXPECT_EQ(given->max_bytes(), uint64_t{64} << 20);
+    const auto unlimited = open_bake_cache(true, (dir / "on").string(), 0);
+    ASSERT_TRUE(unlimited);
+    EXPECT_EQ(unlimited->max_bytes(), 0u);
+    const auto fallback = open_bake_cache(true, (dir / "on").string());
+    ASSERT_TRUE(fallback);
+    EXPECT_EQ(fallback->max_bytes(), default_cache_limit_bytes());
+}
+
 }  // namespace
 }  // namespace aloha

@@ -47,6 +47,10 @@ TEST(Cli, ParsesBakeCacheOptions) {
     ASSERT_TRUE(on.ok()) << on.error().to_string();
     EXPECT_TRUE(on.value().cache);
     EXPECT_EQ(on.value().cache_dir, "/tmp/bakes");
+    EXPECT_FALSE(on.value().cache_max_bytes.has_value());  // the default limit ($ALOHA_CACHE_MAX_MB, else 1 GiB)
+    auto limited = parse({"profile", "s.json", "--cache-max-mb", "256"});
+    ASSERT_TRUE(limited.ok()) << limited.error().to_string();
+    EXPECT_EQ(limited.value().cache_max_bytes, uint64_t{256} << 20);
     auto off = parse({"profile", "s.json", "--cache", "off"});
     ASSERT_TRUE(off.ok()) << off.error().to_string();
     EXPECT_FALSE(off.value().cache);
@@ -82,6 +86,8 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"profile", "s.json", "--gpu-overlap", "yes"}, "'--gpu-overlap' expects"},
         {{"profile", "s.json", "--fidelity", "--gpu-overlap", "on"}, "cannot go with --gpu-overlap on"},
         {{"profile", "s.json", "--cache", "off", "--cache-dir", "d"}, "goes with --cache on"},
+        {{"profile", "s.json", "--cache", "off", "--cache-max-mb", "5"}, "--cache-max-mb limits the bake cache"},
+        {{"profile", "s.json", "--cache-max-mb", "lots"}, "'--cache-max-mb' expects"},
         {{"profile", "s.json", "--tier"}, "'--tier' needs a value"},
         {{"profile", "s.json", "--threads", "1000"}, "[0, 256]"},
         {{"profile", "s.json", "--frame", "3"}, "not known to 'aloha profile'"},
