@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -99,6 +100,7 @@ private:
     uint64_t max_bytes_ = kDefaultMaxBytes;
     mutable std::atomic<uint64_t> hits_{0}, misses_{0}, rejected_{0}, writes_{0}, evicted_{0};
     mutable std::atomic<bool> write_failed_{false};
+    mutable std::mutex trim_mutex_;  ///< one trim at a time in this process (two would remove more than needed)
 };
 
 /// The default store directory: $ALOHA_CACHE_DIR when set and not empty, else $XDG_CACHE_HOME/aloha

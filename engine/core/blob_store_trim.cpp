@@ -43,6 +43,7 @@ struct Entry {
 }  // namespace
 
 BlobStoreTrim BlobStore::trim() const {
+    const std::lock_guard<std::mutex> lock(trim_mutex_);
     BlobStoreTrim out;
     std::vector<Entry> entries;
     const auto now = fs::file_time_type::clock::now();
