@@ -104,6 +104,10 @@ TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
     EXPECT_EQ(report["gpu_overlap"]["mode"], "off");
     EXPECT_EQ(report["gpu_overlap"]["frames_overlapped"], 0);
     EXPECT_EQ(report["fidelity"]["psnr_db"]["count"], 4);
+    // The detrended whole-frame comparison: 3 compared frames, of which the first and last cannot be centred.
+    const nlohmann::json& detrended = report["fidelity"]["popping"]["detrended"];
+    EXPECT_EQ(detrended["switch_frames"].get<size_t>() + detrended["ordinary_frames"].get<size_t>(), 1u);
+    EXPECT_NE(r.output.find("detrended"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
     fs::remove_all(out);
 }
