@@ -271,7 +271,9 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
                                    {"switch_residual_max", detrended_test.switch_residual_max},
                                    {"ordinary_residual_p95", detrended_test.ordinary_residual_p95},
                                    {"p_value", detrended_test.p_value},
-                                   {"no_worse_than_ordinary", detrended_test.no_worse},
+                                   // Null when one side is empty: nothing to compare.
+                                   {"no_worse_than_ordinary", detrended_test.switch_frames > 0 && detrended_test.ordinary_frames == 0
+                                                                  ? nlohmann::json(nullptr) : nlohmann::json(detrended_test.no_worse)},
                                    {"note", "Each frame's change less the median of its neighbours (up to 4 each side, as many on both), "
                                             "which a smooth trend of the whole picture cancels; p_value: the chance, if switch and "
                                             "ordinary frames were exchangeable, that the switch frames rank at least this high on "
@@ -304,7 +306,8 @@ std::string fidelity_summary(const nlohmann::json& report) {
                   p["ordinary_change_p95"].get<double>(),
                   p["switch_no_worse_than_ordinary_p95"].is_null() ? "no ordinary frame to compare"
                   : p["switch_no_worse_than_ordinary_p95"].get<bool>() ? "ok" : "OVER",
-                  d["p_value"].get<double>(), d["no_worse_than_ordinary"].get<bool>() ? "ok" : "WORSE",
+                  d["p_value"].get<double>(),
+                  d["no_worse_than_ordinary"].is_null() ? "no ordinary frame to compare" : d["no_worse_than_ordinary"].get<bool>() ? "ok" : "WORSE",
                   l["above_history"].get<size_t>(), l["events"].get<size_t>(), l["expected_above_without_pops"].get<double>(),
                   l["p_value"].get<double>(), l["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS",
                   c["above_history"].get<size_t>(), c["events"].get<size_t>(), c["expected_above_without_pops"].get<double>(),
