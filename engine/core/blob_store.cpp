@@ -192,7 +192,9 @@ void BlobStore::put(std::span<const uint8_t> key, std::span<const uint8_t> paylo
         return fail(ec.message());
     }
     writes_.fetch_add(1);
-    (void)trim();
+    // Over the limit as this process last counted the store plus what it has written since: count again.
+    const uint64_t written = sizeof h + k.size() + payload.size();
+    if (max_bytes_ != 0 && known_bytes_.fetch_add(written) + written > max_bytes_) (void)trim();
 }
 
 BlobStoreCounts BlobStore::counts() const { return {hits_.load(), misses_.load(), rejected_.load(), writes_.load(), evicted_.load()}; }

@@ -12,9 +12,10 @@
 // that is not one of its entries.
 //
 // The store keeps itself under a size limit (least recently used first): a hit refreshes its entry's
-// modification time, and open() and each put() remove the entries used longest ago while the entries
-// together are over the limit (never the newest one), along with temporary files a crashed writer left
-// over an hour ago. Entries are recognised by name and magic; nothing else in the directory is touched.
+// modification time, and open() and a put() that may take the store over it remove the entries used
+// longest ago while the entries together are over the limit (never the newest one), along with
+// temporary files a crashed writer left over an hour ago. Entries are recognised by name and magic;
+// nothing else in the directory is touched.
 #pragma once
 
 #include <atomic>
@@ -72,7 +73,8 @@ public:
     /// The payload saved for `key`, or nothing (no entry, or one rejected with a message).
     [[nodiscard]] std::optional<std::vector<uint8_t>> get(std::span<const uint8_t> key) const;
     /// Saves `payload` for `key` (atomically replacing an entry of the store), then trims the store to its
-    /// limit. A failed write gives one message for the store's life and is otherwise ignored (the store
+    /// limit when the entries' bytes at the last trim plus this process's writes since exceed it (a
+    /// replaced entry counts twice until then; other processes' writes are counted at the next trim). A failed write gives one message for the store's life and is otherwise ignored (the store
     /// is a cache).
     void put(std::span<const uint8_t> key, std::span<const uint8_t> payload) const;
     /// Removes entries, least recently used first (by modification time), while the entries are over the
@@ -99,6 +101,7 @@ private:
     BlobStoreLog log_;
     uint64_t max_bytes_ = kDefaultMaxBytes;
     mutable std::atomic<uint64_t> hits_{0}, misses_{0}, rejected_{0}, writes_{0}, evicted_{0};
+    mutable std::atomic<uint64_t> known_bytes_{0};  ///< the entries' bytes at the last trim() plus this process's writes since
     mutable std::atomic<bool> write_failed_{false};
     mutable std::mutex trim_mutex_;  ///< one trim at a time in this process (two would remove more than needed)
 };

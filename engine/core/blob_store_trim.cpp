@@ -65,7 +65,10 @@ BlobStoreTrim BlobStore::trim() const {
         out.bytes += bytes;
     }
     out.entries = entries.size();
-    if (max_bytes_ == 0 || out.bytes <= max_bytes_) return out;
+    if (max_bytes_ == 0 || out.bytes <= max_bytes_) {
+        known_bytes_.store(out.bytes);
+        return out;
+    }
     // Least recently used first; the most recent entry stays whatever its size.
     std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.used < b.used || (a.used == b.used && a.path < b.path); });
     for (size_t i = 0; i + 1 < entries.size() && out.bytes > max_bytes_; ++i) {
@@ -78,6 +81,7 @@ BlobStoreTrim BlobStore::trim() const {
         out.removed_bytes += e.bytes;
     }
     evicted_.fetch_add(out.removed);
+    known_bytes_.store(out.bytes);
     return out;
 }
 

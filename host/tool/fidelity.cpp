@@ -225,7 +225,8 @@ Result<std::unique_ptr<FidelityProbe>> FidelityProbe::create(Session& session) {
 nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const std::vector<std::string>& level_names) {
     const std::vector<FidelityFrame> frames = with_changes_after(measured);
     nlohmann::json j;
-    std::vector<double> mean, max, psnr_values, ordinary, at_switch;
+    std::vector<double> mean, max, psnr_values, ordinary, at_switch, changes;
+    std::vector<uint8_t> switch_flags;
     size_t levels = 0;
     for (const auto& f : frames) levels = std::max(levels, f.mean_deviation_per_level.size());
     std::vector<double> level_sum(levels, 0.0), level_max(levels, 0.0);
@@ -236,6 +237,8 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
         max.push_back(f.max_deviation_px);
         psnr_values.push_back(f.psnr_db);
         if (k > 0) (f.switches > 0 ? at_switch : ordinary).push_back(f.changed_fraction);
+        changes.push_back(f.changed_fraction);
+        switch_flags.push_back(f.switches > 0 ? 1 : 0);
         for (size_t l = 0; l < f.mean_deviation_per_level.size(); ++l) {
             if (f.mean_deviation_per_level[l] < 0) continue;
             level_sum[l] += f.mean_deviation_per_level[l];
@@ -253,9 +256,6 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
                                             : nlohmann::json{{"level", l}, {"mean_px", nullptr}, {"max_px", nullptr}});
     j["deviation_per_level"] = per_level;
     const SeriesStats ord = summarize(ordinary), sw = summarize(at_switch);
-    std::vector<double> changes;
-    std::vector<uint8_t> switch_flags;
-    for (const FidelityFrame& f : frames) changes.push_back(f.changed_fraction), switch_flags.push_back(f.switches > 0 ? 1 : 0);
     const SwitchFrameTest detrended_test = switch_frame_test(changes, switch_flags);
     j["popping"] = {{"ordinary_frames", ord.count},
                     {"switch_frames", sw.count},

@@ -57,8 +57,9 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
         if (method == GeomMethod::RigidProxy) {
             for (uint32_t p = r.begin; p < r.end; ++p) {
                 const uint32_t e = groups.order[p], id = groups.ids[p];
+                if (!f.in_view(e)) continue;
                 const std::span<const glm::mat4> boxes = gc.proxy_boxes(id);
-                if (boxes.empty() || !f.in_view(e)) continue;
+                if (boxes.empty()) continue;
                 const glm::mat4 world = world_matrix(transforms[e]);
                 const glm::vec4 colour = character_colour(settings.colour, states[e], anims[e], true);
                 const float share = fade_in(draw, gc, r.type, e, id);
@@ -73,8 +74,9 @@ Status DrawListBuilder::gather(CrowdRenderer* renderer, std::span<const DrawType
         if (!renderer) continue;  // meshes need a renderer's topology ids
         for (uint32_t p = r.begin; p < r.end; ++p) {
             const uint32_t e = groups.order[p], id = groups.ids[p];
+            if (!f.in_view(e)) continue;
             const SurfaceView surface = gc.surface(id);
-            if (surface.positions.empty() || !f.in_view(e)) continue;
+            if (surface.positions.empty()) continue;
             const glm::mat4 world = world_matrix(transforms[e]);
             if (settings.overlay) {  // the skin is left out so the inner layers (bones, muscles, springs) show
                 overlays(draw, id, world, settings.overlay, out);
