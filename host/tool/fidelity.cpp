@@ -2,6 +2,7 @@
 #include "host/tool/fidelity.hpp"
 
 #include "host/tool/fidelity_popping.hpp"
+#include "host/tool/image_compare.hpp"
 #include "host/tool/session.hpp"
 #include "host/tool/stats.hpp"
 #include "host/tool/switch_frames.hpp"
@@ -15,42 +16,6 @@
 namespace aloha::tool {
 
 namespace {
-
-// PSNR of two RGBA8 images over RGB (dB); identical images give 99.
-double psnr(const gpu::Rgba8Image& a, const gpu::Rgba8Image& b) {
-    double se = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i + 3 < a.pixels.size() && i + 3 < b.pixels.size(); i += 4)
-        for (int c = 0; c < 3; ++c) {
-            const double d = double(a.pixels[i + c]) - double(b.pixels[i + c]);
-            se += d * d;
-            ++n;
-        }
-    if (n == 0 || se == 0.0) return 99.0;
-    const double mse = se / double(n);
-    return 10.0 * std::log10(255.0 * 255.0 / mse);
-}
-
-// Mean absolute RGB change between two frames, as a fraction of full scale.
-double mean_change(const gpu::Rgba8Image& a, const gpu::Rgba8Image& b) {
-    double sum = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i + 3 < a.pixels.size() && i + 3 < b.pixels.size(); i += 4)
-        for (int c = 0; c < 3; ++c) sum += std::abs(double(a.pixels[i + c]) - double(b.pixels[i + c])), ++n;
-    return n ? sum / (255.0 * double(n)) : 0.0;
-}
-
-// Per pixel, the summed |RGB change| between two frames of the same size (0..765); empty when they differ.
-void change_map(const gpu::Rgba8Image& a, const gpu::Rgba8Image& b, std::vector<uint16_t>& out) {
-    out.clear();
-    if (a.pixels.size() != b.pixels.size() || a.width != b.width || a.height != b.height) return;
-    out.resize(a.pixels.size() / 4);
-    for (size_t p = 0; p < out.size(); ++p) {
-        int sum = 0;
-        for (int c = 0; c < 3; ++c) sum += std::abs(int(a.pixels[4 * p + c]) - int(b.pixels[4 * p + c]));
-        out[p] = static_cast<uint16_t>(sum);
-    }
-}
 
 // The kinds of switch (from, to) among `rects`, sorted: the order of a frame's by_pair.
 std::vector<std::pair<uint8_t, uint8_t>> switch_kinds(std::span<const SwitchRect> rects) {
@@ -153,10 +118,15 @@ public:
             out.max_deviation_px = std::max(out.max_deviation_px, frame_.deviation_max[l]);
         }
         out.mean_deviation_px = count ? sum / double(count) : 0.0;
-        out.psnr_db = psnr(lod.value(), reference.value());
-        out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(lod.value(), previous_);
+        const std::span<const uint8_t> now = lod.value().pixels, now_reference = reference.value().pixels;
+        out.psnr_db = psnr_db(now, now_reference);
+        out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(now, previous_.pixels);
         out.switches = frame_.switches;
-        change_map(lod.value(), previous_, change_now_);
+        change_map(now, previous_.pixels, change_now_);
+        if (!previous_.pixels.empty()) {
+            out.error_change = error_change(now, now_reference, previous_.pixels, previous_reference_.pixels, error_change_now_);
+            out.error_change_in_switches = sum_in_all_rects(frame_.switch_rects, lod.value().width, error_change_now_);
+        }
         if (out.switches > 0) out.by_pair = pair_changes(frame_.switch_rects, lod.value().width, change_now_, history_, stamp_, stamp_id_);
         follow_earlier_switches(lod.value().width, out);
         if (!change_now_.empty()) {  // the first frame has no change map: no history yet
@@ -165,6 +135,7 @@ public:
             change_now_ = {};
         }
         previous_ = std::move(lod.value());
+        previous_reference_ = std::move(reference.value());
         return out;
     }
 
@@ -204,7 +175,26 @@ private:
     Session& s_;
     gpu::OffscreenTarget reference_target_;
     ReferenceFrame frame_;
+    // The summed values of `map` over the union of `rects` (each pixel once), in changed_fraction units.
+    double sum_in_all_rects(std::span<const SwitchRect> rects, uint32_t width, const std::vector<uint16_t>& map) {
+        if (map.empty() || width == 0) return 0.0;
+        stamp_.resize(map.size(), 0);
+        const uint32_t id = ++stamp_id_;
+        uint64_t sum = 0;
+        for (const SwitchRect& r : rects)
+            for (int y = r.y0; y < r.y1; ++y)
+                for (int x = r.x0; x < r.x1; ++x) {
+                    const size_t p = size_t(y) * width + size_t(x);
+                    if (p >= map.size() || stamp_[p] == id) continue;
+                    stamp_[p] = id;
+                    sum += map[p];
+                }
+        return double(sum) / (255.0 * 3.0 * double(map.size()));
+    }
+
     gpu::Rgba8Image previous_;
+    gpu::Rgba8Image previous_reference_;
+    std::vector<uint16_t> error_change_now_;             ///< per-pixel change of the LOD's error, this frame
     std::vector<uint16_t> change_now_;                   ///< per-pixel change map of this frame
     std::deque<std::vector<uint16_t>> history_;          ///< the maps of up to kPopHistoryFrames frames before, newest first
     std::vector<uint32_t> stamp_;                       ///< pair_changes' scratch
@@ -278,6 +268,7 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
                                             "which a smooth trend of the whole picture cancels; p_value: the chance, if switch and "
                                             "ordinary frames were exchangeable, that the switch frames rank at least this high on "
                                             "average (20,000 random relabellings, fixed seed). no_worse_than_ordinary: p >= 0.05."}}},
+                    {"against_reference", error_change_popping(frames)},
                     {"by_kind", popping_by_kind(frames, level_names)},
                     {"local", local_popping(frames, level_names)}};
     const double overall_mean = mean.empty() ? 0.0 : summarize(mean).mean;
@@ -312,7 +303,18 @@ std::string fidelity_summary(const nlohmann::json& report) {
                   l["p_value"].get<double>(), l["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS",
                   c["above_history"].get<size_t>(), c["events"].get<size_t>(), c["expected_above_without_pops"].get<double>(),
                   c["p_value"].get<double>(), c["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS");
-    return line;
+    std::string out = line;
+    const nlohmann::json& e = p["against_reference"];
+    const auto verdict = [](const nlohmann::json& v, const char* bad) { return v.is_null() ? "no ordinary frame to compare" : v.get<bool>() ? "ok" : bad; };
+    std::snprintf(line, sizeof line,
+                  "fidelity against the reference (the change of the LOD's error, the picture's own motion cancelled): switch "
+                  "frames' largest %.6f against the ordinary p95 %.6f (%s), detrended p = %.3f (%s); %.1f%% of the switch "
+                  "frames' error change inside the switching characters\n",
+                  e["switch_error_change_max"].get<double>(), e["ordinary_error_change_p95"].get<double>(),
+                  verdict(e["switch_no_worse_than_ordinary_p95"], "OVER"), e["detrended"]["p_value"].get<double>(),
+                  verdict(e["detrended"]["no_worse_than_ordinary"], "WORSE"),
+                  e["share_inside_switching_characters"].is_null() ? 0.0 : 100.0 * e["share_inside_switching_characters"].get<double>());
+    return out + line;
 }
 
 }  // namespace aloha::tool

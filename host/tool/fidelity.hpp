@@ -42,6 +42,11 @@ struct FidelityFrame {
     std::vector<double> max_deviation_per_level;
     double psnr_db = 0;                ///< LOD render vs full-detail render
     double changed_fraction = 0;       ///< mean absolute RGB change from the previous LOD frame (0..1)
+    /// Mean over pixels and channels of |(lod - reference) now - (lod - reference) on the frame before|, as a
+    /// fraction of full scale (image_compare.hpp's error_change); 0 on the first frame. What the camera and
+    /// the characters' motion change in both pictures cancels: this is what the LOD alone changed.
+    double error_change = 0;
+    double error_change_in_switches = 0;  ///< the part of error_change inside this frame's switching characters' rectangles
     uint32_t switches = 0;             ///< visible characters that changed geometric level this frame
     std::vector<SwitchPairChange> by_pair;  ///< switch frames: the change attributed to each kind of switch
     /// This frame's change inside the rectangles of an earlier frame's switch: by_pair[pair] of the frame

@@ -1,6 +1,8 @@
 #include "host/tool/fidelity_popping.hpp"
 
 #include "host/tool/pop_statistics.hpp"
+#include "host/tool/stats.hpp"
+#include "host/tool/switch_frames.hpp"
 
 #include <algorithm>
 
@@ -126,6 +128,39 @@ nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std
         "moving across them, or a character walking in) is above the frames before but not the frames after. A "
         "cross-fade spreads a switch over its fade frames, which then count as ordinary frames after it.";
     return j;
+}
+
+nlohmann::json error_change_popping(const std::vector<FidelityFrame>& frames) {
+    std::vector<double> ordinary, at_switch, series;
+    std::vector<uint8_t> flags;
+    double switch_total = 0, switch_inside = 0;
+    for (size_t k = 0; k < frames.size(); ++k) {
+        const FidelityFrame& f = frames[k];
+        series.push_back(f.error_change);
+        flags.push_back(f.switches > 0 ? 1 : 0);
+        if (k == 0) continue;
+        (f.switches > 0 ? at_switch : ordinary).push_back(f.error_change);
+        if (f.switches > 0) switch_total += f.error_change, switch_inside += f.error_change_in_switches;
+    }
+    const SeriesStats ord = summarize(ordinary), sw = summarize(at_switch);
+    const SwitchFrameTest t = switch_frame_test(series, flags);
+    const bool nothing_to_compare = sw.count > 0 && ord.count == 0;
+    return {{"ordinary_frames", ord.count},
+            {"switch_frames", sw.count},
+            {"ordinary_error_change_p95", ord.p95},
+            {"ordinary_error_change_mean", ord.mean},
+            {"switch_error_change_max", sw.max},
+            {"switch_error_change_mean", sw.mean},
+            {"switch_no_worse_than_ordinary_p95", nothing_to_compare ? nlohmann::json(nullptr) : nlohmann::json(sw.count == 0 || sw.max <= ord.p95)},
+            {"share_inside_switching_characters", switch_total > 0 ? nlohmann::json(switch_inside / switch_total) : nlohmann::json(nullptr)},
+            {"detrended", {{"switch_residual_max", t.switch_residual_max},
+                           {"ordinary_residual_p95", t.ordinary_residual_p95},
+                           {"p_value", t.p_value},
+                           {"no_worse_than_ordinary", t.switch_frames > 0 && t.ordinary_frames == 0 ? nlohmann::json(nullptr) : nlohmann::json(t.no_worse)}}},
+            {"note", "error change: per pixel and channel |(LOD - reference) - (the same on the frame before)|, mean over the "
+                     "frame as a fraction of full scale. The reference draws every visible character at full detail with the "
+                     "same camera, poses and light, so the picture's own motion cancels and what is left is what the LOD "
+                     "changed: a switch that pops raises it on its frame, inside the switching characters' rectangles."}};
 }
 
 }  // namespace aloha::tool

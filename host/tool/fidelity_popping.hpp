@@ -1,5 +1,6 @@
-// The popping part of the fidelity report: the switch frames' change by kind of switch, and the local
-// pop tests (pop_statistics.hpp) over the switches' own pixels.
+// The popping part of the fidelity report: the switch frames' change by kind of switch, the local pop
+// tests (pop_statistics.hpp) over the switches' own pixels, and the switch frames' change of the LOD's
+// error against the reference.
 #pragma once
 
 #include "host/tool/fidelity.hpp"
@@ -24,5 +25,12 @@ namespace aloha::tool {
 /// frames before (the object's own figures) and, under "centred", against the frames before and after.
 /// Requires each SwitchPairChange's `after` filled (fidelity_report does it).
 [[nodiscard]] nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names);
+
+/// The whole-frame switch bar read on the change of the LOD's error against the full-detail reference
+/// (FidelityFrame::error_change), where the camera's and the characters' own motion cancel: the switch
+/// frames' largest error change against the ordinary frames' 95th percentile (null when one side is
+/// empty), the same detrended and ranked (switch_frames.hpp), and the share of the switch frames' error
+/// change that lies inside the switching characters' rectangles. Frame 0, with no frame before, is left out.
+[[nodiscard]] nlohmann::json error_change_popping(const std::vector<FidelityFrame>& frames);
 
 }  // namespace aloha::tool

@@ -69,5 +69,29 @@ TEST(FidelityPopping, TooFewFramesAfterLeaveTheSwitchOutOfTheCentredTest) {
     EXPECT_EQ(j["centred"]["short_history"], 1);
 }
 
+// The error-change bar: 20 frames, ordinary ones changing the error by 0.001 to 0.0019 (p95 0.0019), a
+// switch frame at 0.0015 with two thirds of it inside its characters: within the bar, share 2/3. A second
+// switch frame at 0.004 puts the switch frames over it.
+TEST(FidelityPopping, ErrorChangeBarComparesSwitchFramesWithOrdinaryOnes) {
+    std::vector<FidelityFrame> frames(21);
+    for (size_t k = 1; k < frames.size(); ++k) frames[k].error_change = 0.001 + 0.0001 * double(k % 10);
+    frames[10].switches = 1;
+    frames[10].error_change = 0.0015;
+    frames[10].error_change_in_switches = 0.001;
+    nlohmann::json j = error_change_popping(frames);
+    EXPECT_EQ(j["switch_frames"], 1);
+    EXPECT_EQ(j["ordinary_frames"], 19);
+    EXPECT_NEAR(j["ordinary_error_change_p95"].get<double>(), 0.0019, 1e-12);
+    EXPECT_EQ(j["switch_no_worse_than_ordinary_p95"], true);
+    EXPECT_NEAR(j["share_inside_switching_characters"].get<double>(), 2.0 / 3.0, 1e-12);
+    frames[15].switches = 3;
+    frames[15].error_change = 0.004;
+    j = error_change_popping(frames);
+    EXPECT_EQ(j["switch_no_worse_than_ordinary_p95"], false);
+    // With every frame after the first holding a switch there is nothing to compare with.
+    for (auto& f : frames) f.switches = 1;
+    EXPECT_TRUE(error_change_popping(frames)["switch_no_worse_than_ordinary_p95"].is_null());
+}
+
 }  // namespace
 }  // namespace aloha::tool

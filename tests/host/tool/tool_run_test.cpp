@@ -108,6 +108,14 @@ TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
     const nlohmann::json& detrended = report["fidelity"]["popping"]["detrended"];
     EXPECT_EQ(detrended["switch_frames"].get<size_t>() + detrended["ordinary_frames"].get<size_t>(), 1u);
     EXPECT_NE(r.output.find("detrended"), std::string::npos) << r.output;
+    // The error-change reading compares every frame after the first, and frames.csv carries its column.
+    const nlohmann::json& against = report["fidelity"]["popping"]["against_reference"];
+    EXPECT_EQ(against["switch_frames"].get<size_t>() + against["ordinary_frames"].get<size_t>(), 3u);
+    EXPECT_NE(r.output.find("fidelity against the reference"), std::string::npos) << r.output;
+    std::ifstream csv(out / "p" / "frames.csv");
+    std::string header;
+    std::getline(csv, header);
+    EXPECT_NE(header.find(",error_change,error_change_in_switches"), std::string::npos) << header;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
     fs::remove_all(out);
 }
