@@ -39,10 +39,14 @@ struct ReferenceFrame {
     std::vector<double> deviation_sum;            ///< per geometric level: summed screen deviation (px)
     std::vector<double> deviation_max;            ///< per geometric level: largest deviation (px)
     std::vector<uint64_t> deviation_count;        ///< per geometric level: vertices measured
+    /// Per geometric level, the same vertices with the displayed level's own springs at rest and no
+    /// morph: the level's geometric error alone (summed px). deviation_sum less this is roughly what
+    /// the fat springs' motion adds, which the full-detail body has as well.
+    std::vector<double> rest_deviation_sum;
     uint32_t switches = 0;                        ///< visible characters that switched level this frame
     std::vector<SwitchRect> switch_rects;         ///< those characters, one each
     std::vector<std::vector<glm::vec3>> positions, normals;     ///< storage behind `meshes`
-    std::vector<glm::vec3> current_scratch, reference_scratch;  ///< reused per character
+    std::vector<glm::vec3> current_scratch, reference_scratch, rest_scratch;  ///< reused per character
 };
 
 /// The richest Layered level of `table`: the full-detail picture the fidelity check renders.

@@ -107,17 +107,20 @@ public:
         auto reference = reference_target_.read_back(*s_.context);
         if (!reference.ok()) return reference.error();
         FidelityFrame out;
-        double sum = 0.0;
+        double sum = 0.0, rest_sum = 0.0;
         uint64_t count = 0;
         for (size_t l = 0; l < frame_.deviation_sum.size(); ++l) {
             const uint64_t n = frame_.deviation_count[l];
             out.mean_deviation_per_level.push_back(n ? frame_.deviation_sum[l] / double(n) : -1.0);
+            out.mean_rest_deviation_per_level.push_back(n ? frame_.rest_deviation_sum[l] / double(n) : -1.0);
+            rest_sum += frame_.rest_deviation_sum[l];
             out.max_deviation_per_level.push_back(n ? frame_.deviation_max[l] : -1.0);
             sum += frame_.deviation_sum[l];
             count += n;
             out.max_deviation_px = std::max(out.max_deviation_px, frame_.deviation_max[l]);
         }
         out.mean_deviation_px = count ? sum / double(count) : 0.0;
+        out.mean_rest_deviation_px = count ? rest_sum / double(count) : 0.0;
         const std::span<const uint8_t> now = lod.value().pixels, now_reference = reference.value().pixels;
         out.psnr_db = psnr_db(now, now_reference);
         out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(now, previous_.pixels);
@@ -215,15 +218,16 @@ Result<std::unique_ptr<FidelityProbe>> FidelityProbe::create(Session& session) {
 nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const std::vector<std::string>& level_names) {
     const std::vector<FidelityFrame> frames = with_changes_after(measured);
     nlohmann::json j;
-    std::vector<double> mean, max, psnr_values, ordinary, at_switch, changes;
+    std::vector<double> mean, rest_mean, max, psnr_values, ordinary, at_switch, changes;
     std::vector<uint8_t> switch_flags;
     size_t levels = 0;
     for (const auto& f : frames) levels = std::max(levels, f.mean_deviation_per_level.size());
-    std::vector<double> level_sum(levels, 0.0), level_max(levels, 0.0);
+    std::vector<double> level_sum(levels, 0.0), level_rest_sum(levels, 0.0), level_max(levels, 0.0);
     std::vector<size_t> level_frames(levels, 0);
     for (size_t k = 0; k < frames.size(); ++k) {
         const FidelityFrame& f = frames[k];
         mean.push_back(f.mean_deviation_px);
+        rest_mean.push_back(f.mean_rest_deviation_px);
         max.push_back(f.max_deviation_px);
         psnr_values.push_back(f.psnr_db);
         if (k > 0) (f.switches > 0 ? at_switch : ordinary).push_back(f.changed_fraction);
@@ -232,18 +236,22 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
         for (size_t l = 0; l < f.mean_deviation_per_level.size(); ++l) {
             if (f.mean_deviation_per_level[l] < 0) continue;
             level_sum[l] += f.mean_deviation_per_level[l];
+            if (l < f.mean_rest_deviation_per_level.size()) level_rest_sum[l] += f.mean_rest_deviation_per_level[l];
             level_max[l] = std::max(level_max[l], f.max_deviation_per_level[l]);
             ++level_frames[l];
         }
     }
     j["mean_deviation_px"] = to_json(summarize(mean));
+    // The levels' geometric error alone: the displayed level's springs at rest (as the reference's are).
+    j["mean_rest_deviation_px"] = to_json(summarize(rest_mean));
     j["max_deviation_px"] = to_json(summarize(max));
     j["psnr_db"] = to_json(summarize(psnr_values));
     nlohmann::json per_level = nlohmann::json::array();
     for (size_t l = 0; l < levels; ++l)
         per_level.push_back(level_frames[l] ? nlohmann::json{{"level", l}, {"mean_px", level_sum[l] / double(level_frames[l])},
+                                                             {"rest_mean_px", level_rest_sum[l] / double(level_frames[l])},
                                                              {"max_px", level_max[l]}}
-                                            : nlohmann::json{{"level", l}, {"mean_px", nullptr}, {"max_px", nullptr}});
+                                            : nlohmann::json{{"level", l}, {"mean_px", nullptr}, {"rest_mean_px", nullptr}, {"max_px", nullptr}});
     j["deviation_per_level"] = per_level;
     const SeriesStats ord = summarize(ordinary), sw = summarize(at_switch);
     const SwitchFrameTest detrended_test = switch_frame_test(changes, switch_flags);
@@ -274,7 +282,9 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
     const double overall_mean = mean.empty() ? 0.0 : summarize(mean).mean;
     j["target_mean_deviation_under_1px"] = overall_mean < 1.0;
     j["note"] = "Deviation compares each mesh-level character's displayed control surface with its level-0 control "
-                "surface (springs at rest), projected to pixels; rigid proxies and hidden characters have no skin to "
+                "surface (springs at rest), projected to pixels; mean_rest_deviation_px (and rest_mean_px per level) "
+                "puts the displayed level's own springs at rest too, leaving the level's geometric error without the fat "
+                "springs' motion, which the full-detail body has as well; rigid proxies, impostors and hidden characters have no skin to "
                 "compare and count only in the PSNR, whose reference renders every visible character at the richest "
                 "layered level.";
     return j;
@@ -288,12 +298,13 @@ std::string fidelity_summary(const nlohmann::json& report) {
     const nlohmann::json& d = p["detrended"];
     char line[1024];
     std::snprintf(line, sizeof line,
-                  "fidelity: PSNR %.2f dB (min %.2f), mean deviation %.2f px; switch frames' largest change %.6f against the "
+                  "fidelity: PSNR %.2f dB (min %.2f), mean deviation %.2f px (%.2f px with the shown level's springs at rest too); switch frames' largest change %.6f against the "
                   "ordinary p95 %.6f (%s); detrended (against neighbours, all switch frames ranked against the ordinary): "
                   "p = %.3f (%s); local: %zu of %zu switches' shares of the change above their pixels' last ones, %.1f expected "
                   "without pops, p = %.3f (%s); centred (frames before and after): %zu of %zu above, %.1f expected, p = %.3f (%s)\n",
                   report["psnr_db"]["mean"].get<double>(), report["psnr_db"]["min"].get<double>(),
-                  report["mean_deviation_px"]["mean"].get<double>(), p["switch_change_max"].get<double>(),
+                  report["mean_deviation_px"]["mean"].get<double>(), report["mean_rest_deviation_px"]["mean"].get<double>(),
+                  p["switch_change_max"].get<double>(),
                   p["ordinary_change_p95"].get<double>(),
                   p["switch_no_worse_than_ordinary_p95"].is_null() ? "no ordinary frame to compare"
                   : p["switch_no_worse_than_ordinary_p95"].get<bool>() ? "ok" : "OVER",

@@ -40,6 +40,10 @@ struct FidelityFrame {
     double max_deviation_px = 0;       ///< largest such distance
     std::vector<double> mean_deviation_per_level;  ///< by geometric level (-1 when no character there)
     std::vector<double> max_deviation_per_level;
+    /// The same vertices with the displayed level's springs at rest and no morph (ReferenceFrame's
+    /// rest_deviation_sum): the levels' geometric error without the fat springs' own motion.
+    double mean_rest_deviation_px = 0;
+    std::vector<double> mean_rest_deviation_per_level;  ///< by geometric level (-1 when no character there)
     double psnr_db = 0;                ///< LOD render vs full-detail render
     double changed_fraction = 0;       ///< mean absolute RGB change from the previous LOD frame (0..1)
     /// Mean over pixels and channels of |(lod - reference) now - (lod - reference) on the frame before|, as a

@@ -59,9 +59,11 @@ std::span<const glm::vec3> GeometryController::fat_spring_ends(uint32_t characte
 }
 
 void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t character, uint8_t reference_level,
-                                         std::vector<glm::vec3>& current, std::vector<glm::vec3>& reference) const {
+                                         std::vector<glm::vec3>& current, std::vector<glm::vec3>& reference,
+                                         std::vector<glm::vec3>* current_at_rest) const {
     current.clear();
     reference.clear();
+    if (current_at_rest) current_at_rest->clear();
     const uint8_t l = level_of(character);
     if (l == kNoLevel) return;
     const Level& C = *levels_[l];
@@ -70,8 +72,10 @@ void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t chara
     if (!C.mesh_level || !R.mesh_level || !C.store.valid[s]) return;
     const std::span<const glm::vec3> shown = C.control(s);
     current.assign(shown.begin(), shown.end());
+    const std::span<const glm::mat4> pose = poses.joints(character, geometry_->joint_count());
+    if (current_at_rest) control_surface(C, pose, *current_at_rest);
     std::vector<glm::vec3> ref_control;
-    control_surface(R, poses.joints(character, geometry_->joint_count()), ref_control);
+    control_surface(R, pose, ref_control);
     if (C.same_skin(R)) {  // same vertices at both levels
         reference = std::move(ref_control);
         return;

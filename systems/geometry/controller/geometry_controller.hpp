@@ -268,9 +268,13 @@ public:
     /// (the displayed surface, before subdivision) `current` gets the vertex and `reference` the
     /// reference level's control surface (springs at rest) at the same (muscle, theta, phi) (bilinear
     /// on the reference grid), or the same mesh vertex for a real mesh. Both are empty when either
-    /// level is not a mesh level or the character has not been updated yet. Allocates.
+    /// level is not a mesh level or the character has not been updated yet. `current_at_rest`, when
+    /// given, gets the current level's control surface for the same pose with its springs at rest and
+    /// no morph (vertex for vertex with `current`): `current - current_at_rest` is the springs' own
+    /// motion and any geomorph, `current_at_rest - reference` the level's geometric error. Allocates.
     void deviation_pairs(const PoseSource& poses, uint32_t character, uint8_t reference_level,
-                         std::vector<glm::vec3>& current, std::vector<glm::vec3>& reference) const;
+                         std::vector<glm::vec3>& current, std::vector<glm::vec3>& reference,
+                         std::vector<glm::vec3>* current_at_rest = nullptr) const;
 
     struct Level;  ///< per-level shared data + storage (internal)
 

@@ -236,5 +236,33 @@ TEST(GeometryControllerMorph, ReferenceSurfaceAndDeviationPairs) {
     EXPECT_TRUE(ref.empty());
 }
 
+// The at-rest side of deviation_pairs: a character walking at the reference level itself has its fat
+// springs displaced by the motion, so its displayed surface differs from the reference (springs at
+// rest); with its own springs put at rest too the difference is gone. That split is what the fidelity
+// report's rest deviation reads: the level's geometric error without the springs' own motion.
+TEST(GeometryControllerMorph, DeviationAtRestLeavesOutTheSpringsOwnMotion) {
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, test::test_levels(), 1);
+    ctl.begin_level(0, 1, -1, 0);  // Layered(16, 12), the reference level below
+    const uint32_t c0 = 0;
+    std::vector<glm::mat4> pose;
+    for (int frame = 300; frame <= 330; frame += 2) {  // a second of walking: the springs lag the body
+        pose = test::clip_pose(g.skeleton(), humanoid().clip, frame);
+        ctl.update(1, std::span(&c0, 1), PoseSource{pose.data(), 0}, 1.0f / 30.0f);
+    }
+    const PoseSource src{pose.data(), 0};
+    std::vector<glm::vec3> current, ref, rest;
+    ctl.deviation_pairs(src, 0, 1, current, ref, &rest);
+    ASSERT_EQ(rest.size(), current.size());
+    ASSERT_EQ(ref.size(), current.size());
+    EXPECT_GT(test::max_distance(current, ref), 1e-4f) << "the springs did not move: the test shows nothing";
+    EXPECT_LE(test::max_distance(rest, ref), kRound);
+    // Without the at-rest output the pairs are the same.
+    std::vector<glm::vec3> current2, ref2;
+    ctl.deviation_pairs(src, 0, 1, current2, ref2);
+    EXPECT_EQ(test::max_distance(current2, current), 0.0f);
+    EXPECT_EQ(test::max_distance(ref2, ref), 0.0f);
+}
+
 }  // namespace
 }  // namespace aloha
