@@ -43,6 +43,7 @@ struct ReferenceFrame {
     /// morph: the level's geometric error alone (summed px). deviation_sum less this is roughly what
     /// the fat springs' motion adds, which the full-detail body has as well.
     std::vector<double> rest_deviation_sum;
+    std::vector<uint64_t> rest_deviation_count;   ///< per geometric level: vertices in rest_deviation_sum
     uint32_t switches = 0;                        ///< visible characters that switched level this frame
     std::vector<SwitchRect> switch_rects;         ///< those characters, one each
     std::vector<std::vector<glm::vec3>> positions, normals;     ///< storage behind `meshes`

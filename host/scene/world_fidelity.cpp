@@ -61,6 +61,7 @@ Status reference_frame(World& host, ReferenceFrame& out) {
     out.deviation_max.assign(out.deviation_sum.size(), 0.0);
     out.deviation_count.assign(out.deviation_sum.size(), 0);
     out.rest_deviation_sum.assign(out.deviation_sum.size(), 0.0);
+    out.rest_deviation_count.assign(out.deviation_sum.size(), 0);
     out.switches = 0;
     out.switch_rects.clear();
     auto g = character_group(host.registry());
@@ -89,15 +90,17 @@ Status reference_frame(World& host, ReferenceFrame& out) {
         // Screen-space deviation of the displayed control surface from the richest level's.
         rt.geometry->deviation_pairs(poses, refs[i].id, 0, out.current_scratch, out.reference_scratch, &out.rest_scratch);
         const uint8_t level = states[i].geom_level;
-        const size_t pairs = std::min(out.current_scratch.size(), out.rest_scratch.size());
-        for (size_t k = 0; k < pairs; ++k) {
+        for (size_t k = 0; k < out.current_scratch.size(); ++k) {
             glm::vec2 a, b, r;
             if (!to_pixels(view_proj, glm::vec3(world * glm::vec4(out.current_scratch[k], 1.0f)), viewport, camera.near_plane, a) ||
-                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, camera.near_plane, b) ||
-                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.rest_scratch[k], 1.0f)), viewport, camera.near_plane, r))
+                !to_pixels(view_proj, glm::vec3(world * glm::vec4(out.reference_scratch[k], 1.0f)), viewport, camera.near_plane, b))
                 continue;
+            if (k < out.rest_scratch.size() &&
+                to_pixels(view_proj, glm::vec3(world * glm::vec4(out.rest_scratch[k], 1.0f)), viewport, camera.near_plane, r)) {
+                out.rest_deviation_sum[level] += glm::length(r - b);
+                ++out.rest_deviation_count[level];
+            }
             const double d = glm::length(a - b);
-            out.rest_deviation_sum[level] += glm::length(r - b);
             out.deviation_sum[level] += d;
             out.deviation_max[level] = std::max(out.deviation_max[level], d);
             ++out.deviation_count[level];

@@ -108,19 +108,20 @@ public:
         if (!reference.ok()) return reference.error();
         FidelityFrame out;
         double sum = 0.0, rest_sum = 0.0;
-        uint64_t count = 0;
+        uint64_t count = 0, rest_count = 0;
         for (size_t l = 0; l < frame_.deviation_sum.size(); ++l) {
-            const uint64_t n = frame_.deviation_count[l];
+            const uint64_t n = frame_.deviation_count[l], rest_n = frame_.rest_deviation_count[l];
             out.mean_deviation_per_level.push_back(n ? frame_.deviation_sum[l] / double(n) : -1.0);
-            out.mean_rest_deviation_per_level.push_back(n ? frame_.rest_deviation_sum[l] / double(n) : -1.0);
+            out.mean_rest_deviation_per_level.push_back(rest_n ? frame_.rest_deviation_sum[l] / double(rest_n) : -1.0);
             rest_sum += frame_.rest_deviation_sum[l];
+            rest_count += rest_n;
             out.max_deviation_per_level.push_back(n ? frame_.deviation_max[l] : -1.0);
             sum += frame_.deviation_sum[l];
             count += n;
             out.max_deviation_px = std::max(out.max_deviation_px, frame_.deviation_max[l]);
         }
         out.mean_deviation_px = count ? sum / double(count) : 0.0;
-        out.mean_rest_deviation_px = count ? rest_sum / double(count) : 0.0;
+        out.mean_rest_deviation_px = rest_count ? rest_sum / double(rest_count) : 0.0;
         const std::span<const uint8_t> now = lod.value().pixels, now_reference = reference.value().pixels;
         out.psnr_db = psnr_db(now, now_reference);
         out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(now, previous_.pixels);
@@ -236,7 +237,8 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
         for (size_t l = 0; l < f.mean_deviation_per_level.size(); ++l) {
             if (f.mean_deviation_per_level[l] < 0) continue;
             level_sum[l] += f.mean_deviation_per_level[l];
-            if (l < f.mean_rest_deviation_per_level.size()) level_rest_sum[l] += f.mean_rest_deviation_per_level[l];
+            if (l < f.mean_rest_deviation_per_level.size() && f.mean_rest_deviation_per_level[l] >= 0)
+                level_rest_sum[l] += f.mean_rest_deviation_per_level[l];
             level_max[l] = std::max(level_max[l], f.max_deviation_per_level[l]);
             ++level_frames[l];
         }
