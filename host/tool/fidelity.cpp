@@ -126,6 +126,7 @@ public:
         out.psnr_db = psnr_db(now, now_reference);
         out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(now, previous_.pixels);
         out.switches = frame_.switches;
+        for (const SwitchRect& r : frame_.switch_rects) out.switches_without_rect += (r.x1 <= r.x0 || r.y1 <= r.y0) ? 1u : 0u;
         change_map(now, previous_.pixels, change_now_);
         if (!previous_.pixels.empty()) {
             out.error_change = error_change(now, now_reference, previous_.pixels, previous_reference_.pixels, error_change_now_);
@@ -278,6 +279,7 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
                                             "which a smooth trend of the whole picture cancels; p_value: the chance, if switch and "
                                             "ordinary frames were exchangeable, that the switch frames rank at least this high on "
                                             "average (20,000 random relabellings, fixed seed). no_worse_than_ordinary: p >= 0.05."}}},
+                    {"over_p95", switch_frames_over_p95(frames, ord.p95)},
                     {"against_reference", error_change_popping(frames)},
                     {"by_kind", popping_by_kind(frames, level_names)},
                     {"local", local_popping(frames, level_names)}};
@@ -317,6 +319,14 @@ std::string fidelity_summary(const nlohmann::json& report) {
                   c["above_history"].get<size_t>(), c["events"].get<size_t>(), c["expected_above_without_pops"].get<double>(),
                   c["p_value"].get<double>(), c["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS");
     std::string out = line;
+    const nlohmann::json& o = p["over_p95"];
+    if (o["switch_frames_over"].get<size_t>() > 0) {
+        std::snprintf(line, sizeof line,
+                      "fidelity: %zu switch frame(s) over the ordinary p95, %zu of them still over with their switching "
+                      "characters' pixels taken out\n",
+                      o["switch_frames_over"].get<size_t>(), o["over_even_without_the_switching_characters"].get<size_t>());
+        out += line;
+    }
     const nlohmann::json& e = p["against_reference"];
     const auto verdict = [](const nlohmann::json& v, const char* bad) { return v.is_null() ? "no ordinary frame to compare" : v.get<bool>() ? "ok" : bad; };
     std::snprintf(line, sizeof line,

@@ -52,6 +52,7 @@ struct FidelityFrame {
     double error_change = 0;
     double error_change_in_switches = 0;  ///< the part of error_change inside this frame's switching characters' rectangles
     uint32_t switches = 0;             ///< visible characters that changed geometric level this frame
+    uint32_t switches_without_rect = 0; ///< of those, the ones with no screen rectangle (crossing the near plane)
     std::vector<SwitchPairChange> by_pair;  ///< switch frames: the change attributed to each kind of switch
     /// This frame's change inside the rectangles of an earlier frame's switch: by_pair[pair] of the frame
     /// frames_back frames before (1..kPopHistoryFrames).

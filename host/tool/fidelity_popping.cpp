@@ -130,6 +130,26 @@ nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std
     return j;
 }
 
+nlohmann::json switch_frames_over_p95(const std::vector<FidelityFrame>& frames, double ordinary_p95) {
+    size_t over = 0, still_over = 0;
+    nlohmann::json listed = nlohmann::json::array();
+    for (size_t k = 1; k < frames.size(); ++k) {
+        const FidelityFrame& f = frames[k];
+        if (f.switches == 0 || f.changed_fraction <= ordinary_p95) continue;
+        double in_switches = 0;
+        for (const SwitchPairChange& p : f.by_pair) in_switches += p.change;
+        ++over;
+        // A switching character without a rectangle (crossing the near plane) may hold any part of the
+        // change: such a frame is never said to be over without its switches.
+        const bool without = f.switches_without_rect == 0 && f.changed_fraction - in_switches > ordinary_p95;
+        still_over += without ? 1 : 0;
+        if (listed.size() < 20)
+            listed.push_back({{"frame", k}, {"change", f.changed_fraction}, {"change_in_switching_characters", in_switches},
+                              {"over_without_them", without}});
+    }
+    return {{"switch_frames_over", over}, {"over_even_without_the_switching_characters", still_over}, {"frames", listed}};
+}
+
 nlohmann::json error_change_popping(const std::vector<FidelityFrame>& frames) {
     std::vector<double> ordinary, at_switch, series;
     std::vector<uint8_t> flags;

@@ -26,6 +26,14 @@ namespace aloha::tool {
 /// Requires each SwitchPairChange's `after` filled (fidelity_report does it).
 [[nodiscard]] nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names);
 
+/// The switch frames whose whole change is over `ordinary_p95`, and how many of them stay over with the
+/// change inside their switching characters' rectangles taken out (every kind's rectangles, overlaps
+/// subtracted twice: never less than the switches' own share). A frame still over without those pixels
+/// is over for something else than its switches (the camera, the crowd's own motion); a frame with a
+/// switching character that has no rectangle (switches_without_rect) never counts so. Lists the frames over
+/// (index, change, the change in the switching rectangles), at most 20. Frame 0 is left out.
+[[nodiscard]] nlohmann::json switch_frames_over_p95(const std::vector<FidelityFrame>& frames, double ordinary_p95);
+
 /// The whole-frame switch bar read on the change of the LOD's error against the full-detail reference
 /// (FidelityFrame::error_change), where the camera's and the characters' own motion cancel: the switch
 /// frames' largest error change against the ordinary frames' 95th percentile (null when one side is

@@ -93,5 +93,29 @@ TEST(FidelityPopping, ErrorChangeBarComparesSwitchFramesWithOrdinaryOnes) {
     EXPECT_TRUE(error_change_popping(frames)["switch_no_worse_than_ordinary_p95"].is_null());
 }
 
+// A switch frame over the ordinary p95: when its switching characters' rectangles hold little of its
+// change it stays over without them (something else raised the frame); when they hold the excess it does not.
+TEST(FidelityPopping, SwitchFramesOverTheP95WithAndWithoutTheirSwitchingCharacters) {
+    std::vector<FidelityFrame> frames(5);
+    for (auto& f : frames) f.changed_fraction = 0.010;
+    SwitchPairChange small, large;
+    small.change = 0.0001;  // a character entering at the edge of the view: the frame is over by itself
+    large.change = 0.0030;  // a switch carrying the excess
+    frames[2].switches = 1, frames[2].changed_fraction = 0.012, frames[2].by_pair = {small};
+    frames[3].switches = 2, frames[3].changed_fraction = 0.012, frames[3].by_pair = {small, large};
+    frames[4].switches = 1, frames[4].changed_fraction = 0.009, frames[4].by_pair = {large};  // under the p95
+    const nlohmann::json j = switch_frames_over_p95(frames, 0.010);
+    EXPECT_EQ(j["switch_frames_over"], 2);
+    EXPECT_EQ(j["over_even_without_the_switching_characters"], 1);
+    ASSERT_EQ(j["frames"].size(), 2u);
+    EXPECT_EQ(j["frames"][0]["frame"], 2);
+    EXPECT_EQ(j["frames"][0]["over_without_them"], true);
+    EXPECT_NEAR(j["frames"][1]["change_in_switching_characters"].get<double>(), 0.0031, 1e-12);
+    EXPECT_EQ(j["frames"][1]["over_without_them"], false);
+    // A switching character crossing the near plane has no rectangle: its share is unknown.
+    frames[2].switches_without_rect = 1;
+    EXPECT_EQ(switch_frames_over_p95(frames, 0.010)["over_even_without_the_switching_characters"], 0);
+}
+
 }  // namespace
 }  // namespace aloha::tool
