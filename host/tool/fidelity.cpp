@@ -9,8 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <cstdio>
+#include <deque>
+#include <optional>
 #include <span>
 
 namespace aloha::tool {
@@ -26,21 +27,21 @@ std::vector<std::pair<uint8_t, uint8_t>> switch_kinds(std::span<const SwitchRect
     return kinds;
 }
 
-// The rectangles of `rects` whose switch is from -> to: their pixels (each counted once, `stamp` marking
-// them with a fresh id) summed in `maps` (the result has one sum per map) and their bounding rectangle.
-// `stamp` is scratch with one entry per pixel.
+// The rectangles of `rects` whose switch is `kind` (from, to), or all of them without a kind: their pixels
+// (each counted once, `stamp` marking them with a fresh id) summed in `maps` (the result has one sum per
+// map) and their bounding rectangle. `stamp` is scratch with one entry per pixel.
 struct RectSums {
     std::vector<double> sums;
     uint32_t characters = 0;
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
-RectSums sum_in_rects(std::span<const SwitchRect> rects, uint8_t from, uint8_t to, uint32_t width,
+RectSums sum_in_rects(std::span<const SwitchRect> rects, std::optional<std::pair<uint8_t, uint8_t>> kind, uint32_t width,
                       std::span<const std::vector<uint16_t>* const> maps, std::vector<uint32_t>& stamp, uint32_t& stamp_id) {
     RectSums out;
     out.sums.assign(maps.size(), 0.0);
     const uint32_t id = ++stamp_id;
     for (const SwitchRect& r : rects) {
-        if (r.from != from || r.to != to) continue;
+        if (kind && (r.from != kind->first || r.to != kind->second)) continue;
         if (out.characters++ == 0) out.x0 = r.x0, out.y0 = r.y0, out.x1 = r.x1, out.y1 = r.y1;
         out.x0 = std::min(out.x0, r.x0), out.y0 = std::min(out.y0, r.y0), out.x1 = std::max(out.x1, r.x1), out.y1 = std::max(out.y1, r.y1);
         for (int y = r.y0; y < r.y1; ++y)
@@ -69,7 +70,7 @@ std::vector<SwitchPairChange> pair_changes(std::span<const SwitchRect> rects, ui
     std::vector<const std::vector<uint16_t>*> maps{&now};
     for (const auto& h : history) maps.push_back(&h);
     for (const auto& [from, to] : switch_kinds(rects)) {
-        const RectSums sums = sum_in_rects(rects, from, to, width, maps, stamp, stamp_id);
+        const RectSums sums = sum_in_rects(rects, std::pair{from, to}, width, maps, stamp, stamp_id);
         SwitchPairChange pc;
         pc.from = from;
         pc.to = to;
@@ -124,13 +125,15 @@ public:
         out.mean_rest_deviation_px = rest_count ? rest_sum / double(rest_count) : 0.0;
         const std::span<const uint8_t> now = lod.value().pixels, now_reference = reference.value().pixels;
         out.psnr_db = psnr_db(now, now_reference);
-        out.changed_fraction = previous_.pixels.empty() ? 0.0 : mean_change(now, previous_.pixels);
         out.switches = frame_.switches;
         for (const SwitchRect& r : frame_.switch_rects) out.switches_without_rect += (r.x1 <= r.x0 || r.y1 <= r.y0) ? 1u : 0u;
-        change_map(now, previous_.pixels, change_now_);
-        if (!previous_.pixels.empty()) {
-            out.error_change = error_change(now, now_reference, previous_.pixels, previous_reference_.pixels, error_change_now_);
-            out.error_change_in_switches = sum_in_all_rects(frame_.switch_rects, lod.value().width, error_change_now_);
+        out.changed_fraction = change_map(now, previous_.pixels, change_now_);  // 0 and no map on the first frame
+        out.error_change = error_change(now, now_reference, previous_.pixels, previous_reference_.pixels, error_change_now_);
+        if (!error_change_now_.empty()) {
+            stamp_.resize(error_change_now_.size(), 0);
+            const std::vector<uint16_t>* error_map[1] = {&error_change_now_};
+            out.error_change_in_switches = sum_in_rects(frame_.switch_rects, std::nullopt, lod.value().width, error_map, stamp_, stamp_id_).sums[0] /
+                                           (255.0 * 3.0 * double(error_change_now_.size()));
         }
         if (out.switches > 0) out.by_pair = pair_changes(frame_.switch_rects, lod.value().width, change_now_, history_, stamp_, stamp_id_);
         follow_earlier_switches(lod.value().width, out);
@@ -162,7 +165,7 @@ private:
             const std::vector<uint16_t>* now[1] = {&change_now_};
             for (Followed& f : followed_) {
                 const auto kind = std::pair{f.rects.front().from, f.rects.front().to};
-                const RectSums sums = sum_in_rects(f.rects, kind.first, kind.second, width, now, stamp_, stamp_id_);
+                const RectSums sums = sum_in_rects(f.rects, kind, width, now, stamp_, stamp_id_);
                 out.later_changes.push_back({frame_index_ - f.frame, f.pair, sums.sums[0] * scale});
                 ++f.frames_seen;
             }
@@ -180,23 +183,6 @@ private:
     Session& s_;
     gpu::OffscreenTarget reference_target_;
     ReferenceFrame frame_;
-    // The summed values of `map` over the union of `rects` (each pixel once), in changed_fraction units.
-    double sum_in_all_rects(std::span<const SwitchRect> rects, uint32_t width, const std::vector<uint16_t>& map) {
-        if (map.empty() || width == 0) return 0.0;
-        stamp_.resize(map.size(), 0);
-        const uint32_t id = ++stamp_id_;
-        uint64_t sum = 0;
-        for (const SwitchRect& r : rects)
-            for (int y = r.y0; y < r.y1; ++y)
-                for (int x = r.x0; x < r.x1; ++x) {
-                    const size_t p = size_t(y) * width + size_t(x);
-                    if (p >= map.size() || stamp_[p] == id) continue;
-                    stamp_[p] = id;
-                    sum += map[p];
-                }
-        return double(sum) / (255.0 * 3.0 * double(map.size()));
-    }
-
     gpu::Rgba8Image previous_;
     gpu::Rgba8Image previous_reference_;
     std::vector<uint16_t> error_change_now_;             ///< per-pixel change of the LOD's error, this frame
@@ -220,26 +206,25 @@ Result<std::unique_ptr<FidelityProbe>> FidelityProbe::create(Session& session) {
 nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const std::vector<std::string>& level_names) {
     const std::vector<FidelityFrame> frames = with_changes_after(measured);
     nlohmann::json j;
-    std::vector<double> mean, rest_mean, max, psnr_values, ordinary, at_switch, changes;
+    std::vector<double> mean, rest_mean, max, psnr_values, changes;
     std::vector<uint8_t> switch_flags;
     size_t levels = 0;
     for (const auto& f : frames) levels = std::max(levels, f.mean_deviation_per_level.size());
     std::vector<double> level_sum(levels, 0.0), level_rest_sum(levels, 0.0), level_max(levels, 0.0);
-    std::vector<size_t> level_frames(levels, 0);
+    std::vector<size_t> level_frames(levels, 0), level_rest_frames(levels, 0);
     for (size_t k = 0; k < frames.size(); ++k) {
         const FidelityFrame& f = frames[k];
         mean.push_back(f.mean_deviation_px);
         rest_mean.push_back(f.mean_rest_deviation_px);
         max.push_back(f.max_deviation_px);
         psnr_values.push_back(f.psnr_db);
-        if (k > 0) (f.switches > 0 ? at_switch : ordinary).push_back(f.changed_fraction);
         changes.push_back(f.changed_fraction);
         switch_flags.push_back(f.switches > 0 ? 1 : 0);
         for (size_t l = 0; l < f.mean_deviation_per_level.size(); ++l) {
             if (f.mean_deviation_per_level[l] < 0) continue;
             level_sum[l] += f.mean_deviation_per_level[l];
             if (l < f.mean_rest_deviation_per_level.size() && f.mean_rest_deviation_per_level[l] >= 0)
-                level_rest_sum[l] += f.mean_rest_deviation_per_level[l];
+                level_rest_sum[l] += f.mean_rest_deviation_per_level[l], ++level_rest_frames[l];
             level_max[l] = std::max(level_max[l], f.max_deviation_per_level[l]);
             ++level_frames[l];
         }
@@ -252,34 +237,26 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
     nlohmann::json per_level = nlohmann::json::array();
     for (size_t l = 0; l < levels; ++l)
         per_level.push_back(level_frames[l] ? nlohmann::json{{"level", l}, {"mean_px", level_sum[l] / double(level_frames[l])},
-                                                             {"rest_mean_px", level_rest_sum[l] / double(level_frames[l])},
+                                                             {"rest_mean_px", level_rest_frames[l] ? nlohmann::json(level_rest_sum[l] / double(level_rest_frames[l])) : nlohmann::json(nullptr)},
                                                              {"max_px", level_max[l]}}
                                             : nlohmann::json{{"level", l}, {"mean_px", nullptr}, {"rest_mean_px", nullptr}, {"max_px", nullptr}});
     j["deviation_per_level"] = per_level;
-    const SeriesStats ord = summarize(ordinary), sw = summarize(at_switch);
-    const SwitchFrameTest detrended_test = switch_frame_test(changes, switch_flags);
-    j["popping"] = {{"ordinary_frames", ord.count},
-                    {"switch_frames", sw.count},
-                    {"ordinary_change_p95", ord.p95},
-                    {"switch_change_max", sw.max},
+    const SwitchBar bar = switch_bar(changes, switch_flags);
+    nlohmann::json detrended = detrended_json(bar.detrended);
+    detrended["note"] = "Each frame's change less the median of its neighbours (up to 4 each side, as many on both), "
+                        "which a smooth trend of the whole picture cancels; p_value: the chance, if switch and "
+                        "ordinary frames were exchangeable, that the switch frames rank at least this high on "
+                        "average (20,000 random relabellings, fixed seed). no_worse_than_ordinary: p >= 0.05.";
+    j["popping"] = {{"ordinary_frames", bar.ordinary.count},
+                    {"switch_frames", bar.at_switch.count},
+                    {"ordinary_change_p95", bar.ordinary.p95},
+                    {"switch_change_max", bar.at_switch.max},
                     // No ordinary frame (a switch on every frame after the first): nothing to compare with, null.
-                    {"switch_no_worse_than_ordinary_p95",
-                     sw.count > 0 && ord.count == 0 ? nlohmann::json(nullptr) : nlohmann::json(sw.count == 0 || sw.max <= ord.p95)},
+                    {"switch_no_worse_than_ordinary_p95", switch_bar_verdict(bar)},
                     // The same comparison with the scene's trend taken out, over all switch frames at once
                     // (host/tool/switch_frames.hpp).
-                    {"detrended", {{"switch_frames", detrended_test.switch_frames},
-                                   {"ordinary_frames", detrended_test.ordinary_frames},
-                                   {"switch_residual_max", detrended_test.switch_residual_max},
-                                   {"ordinary_residual_p95", detrended_test.ordinary_residual_p95},
-                                   {"p_value", detrended_test.p_value},
-                                   // Null when one side is empty: nothing to compare.
-                                   {"no_worse_than_ordinary", detrended_test.switch_frames > 0 && detrended_test.ordinary_frames == 0
-                                                                  ? nlohmann::json(nullptr) : nlohmann::json(detrended_test.no_worse)},
-                                   {"note", "Each frame's change less the median of its neighbours (up to 4 each side, as many on both), "
-                                            "which a smooth trend of the whole picture cancels; p_value: the chance, if switch and "
-                                            "ordinary frames were exchangeable, that the switch frames rank at least this high on "
-                                            "average (20,000 random relabellings, fixed seed). no_worse_than_ordinary: p >= 0.05."}}},
-                    {"over_p95", switch_frames_over_p95(frames, ord.p95)},
+                    {"detrended", std::move(detrended)},
+                    {"over_p95", switch_frames_over_p95(frames, bar.ordinary.p95)},
                     {"against_reference", error_change_popping(frames)},
                     {"by_kind", popping_by_kind(frames, level_names)},
                     {"local", local_popping(frames, level_names)}};

@@ -1,8 +1,6 @@
 #include "host/tool/fidelity_popping.hpp"
 
 #include "host/tool/pop_statistics.hpp"
-#include "host/tool/stats.hpp"
-#include "host/tool/switch_frames.hpp"
 
 #include <algorithm>
 
@@ -150,33 +148,47 @@ nlohmann::json switch_frames_over_p95(const std::vector<FidelityFrame>& frames, 
     return {{"switch_frames_over", over}, {"over_even_without_the_switching_characters", still_over}, {"frames", listed}};
 }
 
+SwitchBar switch_bar(std::span<const double> series, std::span<const uint8_t> switch_frame) {
+    std::vector<double> ordinary, at_switch;
+    for (size_t k = 1; k < series.size() && k < switch_frame.size(); ++k) (switch_frame[k] ? at_switch : ordinary).push_back(series[k]);
+    return {summarize(ordinary), summarize(at_switch), switch_frame_test(series, switch_frame)};
+}
+
+nlohmann::json switch_bar_verdict(const SwitchBar& bar) {
+    if (bar.at_switch.count > 0 && bar.ordinary.count == 0) return nullptr;
+    return bar.at_switch.count == 0 || bar.at_switch.max <= bar.ordinary.p95;
+}
+
+nlohmann::json detrended_json(const SwitchFrameTest& t) {
+    return {{"switch_frames", t.switch_frames},
+            {"ordinary_frames", t.ordinary_frames},
+            {"switch_residual_max", t.switch_residual_max},
+            {"ordinary_residual_p95", t.ordinary_residual_p95},
+            {"p_value", t.p_value},
+            // Null when one side is empty: nothing to compare.
+            {"no_worse_than_ordinary", t.switch_frames > 0 && t.ordinary_frames == 0 ? nlohmann::json(nullptr) : nlohmann::json(t.no_worse)}};
+}
+
 nlohmann::json error_change_popping(const std::vector<FidelityFrame>& frames) {
-    std::vector<double> ordinary, at_switch, series;
+    std::vector<double> series;
     std::vector<uint8_t> flags;
     double switch_total = 0, switch_inside = 0;
     for (size_t k = 0; k < frames.size(); ++k) {
         const FidelityFrame& f = frames[k];
         series.push_back(f.error_change);
         flags.push_back(f.switches > 0 ? 1 : 0);
-        if (k == 0) continue;
-        (f.switches > 0 ? at_switch : ordinary).push_back(f.error_change);
-        if (f.switches > 0) switch_total += f.error_change, switch_inside += f.error_change_in_switches;
+        if (k > 0 && f.switches > 0) switch_total += f.error_change, switch_inside += f.error_change_in_switches;
     }
-    const SeriesStats ord = summarize(ordinary), sw = summarize(at_switch);
-    const SwitchFrameTest t = switch_frame_test(series, flags);
-    const bool nothing_to_compare = sw.count > 0 && ord.count == 0;
-    return {{"ordinary_frames", ord.count},
-            {"switch_frames", sw.count},
-            {"ordinary_error_change_p95", ord.p95},
-            {"ordinary_error_change_mean", ord.mean},
-            {"switch_error_change_max", sw.max},
-            {"switch_error_change_mean", sw.mean},
-            {"switch_no_worse_than_ordinary_p95", nothing_to_compare ? nlohmann::json(nullptr) : nlohmann::json(sw.count == 0 || sw.max <= ord.p95)},
+    const SwitchBar bar = switch_bar(series, flags);
+    return {{"ordinary_frames", bar.ordinary.count},
+            {"switch_frames", bar.at_switch.count},
+            {"ordinary_error_change_p95", bar.ordinary.p95},
+            {"ordinary_error_change_mean", bar.ordinary.mean},
+            {"switch_error_change_max", bar.at_switch.max},
+            {"switch_error_change_mean", bar.at_switch.mean},
+            {"switch_no_worse_than_ordinary_p95", switch_bar_verdict(bar)},
             {"share_inside_switching_characters", switch_total > 0 ? nlohmann::json(switch_inside / switch_total) : nlohmann::json(nullptr)},
-            {"detrended", {{"switch_residual_max", t.switch_residual_max},
-                           {"ordinary_residual_p95", t.ordinary_residual_p95},
-                           {"p_value", t.p_value},
-                           {"no_worse_than_ordinary", t.switch_frames > 0 && t.ordinary_frames == 0 ? nlohmann::json(nullptr) : nlohmann::json(t.no_worse)}}},
+            {"detrended", detrended_json(bar.detrended)},
             {"note", "error change: per pixel and channel |(LOD - reference) - (the same on the frame before)|, mean over the "
                      "frame as a fraction of full scale. The reference draws every visible character at full detail with the "
                      "same camera, poses and light, so the picture's own motion cancels and what is left is what the LOD "

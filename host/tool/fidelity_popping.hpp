@@ -4,9 +4,12 @@
 #pragma once
 
 #include "host/tool/fidelity.hpp"
+#include "host/tool/stats.hpp"
+#include "host/tool/switch_frames.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -25,6 +28,21 @@ namespace aloha::tool {
 /// frames before (the object's own figures) and, under "centred", against the frames before and after.
 /// Requires each SwitchPairChange's `after` filled (fidelity_report does it).
 [[nodiscard]] nlohmann::json local_popping(const std::vector<FidelityFrame>& frames, const std::vector<std::string>& names);
+
+/// A whole-frame switch bar over one per-frame series (`series[k]` frame k's change from frame k - 1,
+/// `switch_frame[k]` whether frame k holds a switch; frame 0, with no change, is left out): the ordinary
+/// and switch frames' statistics and the detrended, ranked test (switch_frames.hpp).
+struct SwitchBar {
+    SeriesStats ordinary, at_switch;
+    SwitchFrameTest detrended;
+};
+[[nodiscard]] SwitchBar switch_bar(std::span<const double> series, std::span<const uint8_t> switch_frame);
+/// The bar's verdict: the switch frames' largest no more than the ordinary p95; null when there are switch
+/// frames but no ordinary one to compare with.
+[[nodiscard]] nlohmann::json switch_bar_verdict(const SwitchBar& bar);
+/// The detrended test as JSON: frames on each side, the residuals' largest and p95, p, and the verdict
+/// (p >= 0.05; null when one side is empty).
+[[nodiscard]] nlohmann::json detrended_json(const SwitchFrameTest& test);
 
 /// The switch frames whose whole change is over `ordinary_p95`, and how many of them stay over with the
 /// change inside their switching characters' rectangles taken out (every kind's rectangles, overlaps

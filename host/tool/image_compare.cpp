@@ -20,23 +20,18 @@ double psnr_db(std::span<const uint8_t> a, std::span<const uint8_t> b) {
     return 10.0 * std::log10(255.0 * 255.0 / (se / double(n)));
 }
 
-double mean_change(std::span<const uint8_t> now, std::span<const uint8_t> before) {
-    const size_t bytes = std::min(now.size(), before.size()) / 4 * 4;
-    uint64_t sum = 0;
-    for (size_t i = 0; i < bytes; i += 4)
-        for (size_t c = 0; c < 3; ++c) sum += uint64_t(std::abs(int(now[i + c]) - int(before[i + c])));
-    return bytes ? double(sum) / (255.0 * 3.0 * double(bytes / 4)) : 0.0;
-}
-
-void change_map(std::span<const uint8_t> now, std::span<const uint8_t> before, std::vector<uint16_t>& out) {
+double change_map(std::span<const uint8_t> now, std::span<const uint8_t> before, std::vector<uint16_t>& out) {
     out.clear();
-    if (now.size() != before.size()) return;
+    if (now.empty() || now.size() != before.size()) return 0.0;
     out.resize(now.size() / 4);
+    uint64_t total = 0;
     for (size_t p = 0; p < out.size(); ++p) {
         int sum = 0;
         for (size_t c = 0; c < 3; ++c) sum += std::abs(int(now[4 * p + c]) - int(before[4 * p + c]));
         out[p] = static_cast<uint16_t>(sum);
+        total += uint64_t(sum);
     }
+    return double(total) / (255.0 * 3.0 * double(out.size()));
 }
 
 double error_change(std::span<const uint8_t> lod, std::span<const uint8_t> reference, std::span<const uint8_t> lod_before,

@@ -14,11 +14,10 @@ namespace aloha::tool {
 /// PSNR of `a` against `b` over RGB, in dB; identical images give 99.
 [[nodiscard]] double psnr_db(std::span<const uint8_t> a, std::span<const uint8_t> b);
 
-/// Mean absolute RGB change from `before` to `now`, as a fraction of full scale (0..1).
-[[nodiscard]] double mean_change(std::span<const uint8_t> now, std::span<const uint8_t> before);
-
-/// Per pixel, the summed |RGB change| from `before` to `now` (0..765) in `out`; empty when the sizes differ.
-void change_map(std::span<const uint8_t> now, std::span<const uint8_t> before, std::vector<uint16_t>& out);
+/// Per pixel, the summed |RGB change| from `before` to `now` (0..765) in `out`, and the mean absolute
+/// change over every pixel and channel as a fraction of full scale (0..1) returned. Requires the two
+/// images to be the same size (else 0, `out` empty).
+double change_map(std::span<const uint8_t> now, std::span<const uint8_t> before, std::vector<uint16_t>& out);
 
 /// The change of the LOD picture's error from one frame to the next: per pixel and channel,
 /// |(lod - reference) - (lod_before - reference_before)|, summed over RGB (0..1530) into `out` (one
