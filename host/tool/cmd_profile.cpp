@@ -9,6 +9,7 @@
 #include "host/tool/profile_lod.hpp"
 #include "host/tool/session.hpp"
 #include "host/tool/stats.hpp"
+#include "host/tool/switch_hitch.hpp"
 #include "systems/lod/rule_table.hpp"
 
 #include <unistd.h>
@@ -71,29 +72,6 @@ auto series_of(const std::vector<FrameRecord>& records, Get get) {
     std::vector<std::decay_t<decltype(get(records.front()))>> v;
     for (const auto& r : records) v.push_back(get(r));
     return v;
-}
-
-// Runs the scene again with LOD off (CPU systems only) and compares per-frame CPU time.
-nlohmann::json compare_lod_off(const CliOptions& options, const SeriesStats& lod_on) {
-    CliOptions off = options;
-    off.lod = false;
-    off.no_render = true;
-    auto opened = open_session(off, /*render=*/false);
-    if (!opened.ok()) return {{"error", opened.error().to_string()}};
-    World& world = *opened.value()->world;
-    for (uint32_t f = 0; f < std::min<uint32_t>(options.warmup, 2); ++f) world.step();
-    std::vector<double> cpu;
-    for (uint32_t f = 0; f < options.compare_frames; ++f) {
-        world.step();
-        cpu.push_back(world.last_cpu_ms());
-        if (!options.quiet) progress(f + 1, options.compare_frames, isatty(2), "lod off ");
-    }
-    const SeriesStats st = summarize(cpu);
-    return {{"frames", options.compare_frames},
-            {"cpu_systems_ms", to_json(st)},
-            {"ratio_mean", lod_on.mean > 0 ? st.mean / lod_on.mean : 0.0},
-            {"ratio_p95", lod_on.p95 > 0 ? st.p95 / lod_on.p95 : 0.0},
-            {"target_ratio", 20.0}};
 }
 
 std::string fmt(double v) {
@@ -216,7 +194,9 @@ int run_profile(const CliOptions& options) {
 
     // ---- LOD off, same scene, same process: the slowdown ratio of the CPU systems.
     nlohmann::json compare = nullptr;
-    if (options.compare_lod) compare = compare_lod_off(options, summarize(series_of(records, [](const FrameRecord& r) { return r.cpu_ms; })));
+    if (options.compare_lod)
+        compare = compare_lod_off(options, summarize(series_of(records, [](const FrameRecord& r) { return r.cpu_ms; })),
+                                  [&](size_t done, size_t total) { if (!options.quiet) progress(done, total, isatty(2), "lod off "); });
 
     // ---- report.json
     nlohmann::json report;
@@ -255,6 +235,17 @@ int run_profile(const CliOptions& options) {
     const auto gpu = summarize(series([](const FrameRecord& r) { return r.gpu_ms; }));
     const auto frame = summarize(series([](const FrameRecord& r) { return r.frame_ms; }));
     report["cpu_systems_ms"] = to_json(cpu);
+    {  // the CPU systems only, as in cpu_ms
+        std::vector<std::string> names;
+        for (uint32_t i = 0; i < systems; ++i)
+            if (!is_render[i]) names.push_back(sched.names()[i]);
+        report["switch_hitch"] = switch_hitch_report(series_of(records, [&](const FrameRecord& r) {
+            HitchFrame h{r.cpu_ms, r.lod.geom_switches + r.lod.anim_switches, {}};
+            for (uint32_t i = 0; i < systems; ++i)
+                if (!is_render[i]) h.system_ms.push_back(r.system_ms[i]);
+            return h;
+        }), names);
+    }
     report["render_ms"] = to_json(rnd);
     report["gpu_ms"] = render ? to_json(gpu) : nlohmann::json(nullptr);
     report["frame_ms"] = to_json(frame);
@@ -371,6 +362,7 @@ int run_profile(const CliOptions& options) {
     for (uint32_t i = 0; i < systems; ++i)
         row(sched.names()[i], summarize(series([&](const FrameRecord& r) { return r.system_ms[i]; })));
     row("= CPU systems", cpu);
+    std::cout << switch_hitch_line(report["switch_hitch"]);
     if (render) {
         row("GPU (timestamps)", gpu);
         std::cout << gpu_table(report["render_passes"]);

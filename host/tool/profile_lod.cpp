@@ -1,6 +1,7 @@
 #include "host/tool/profile_lod.hpp"
 
 #include "host/scene/character_runtime.hpp"
+#include "host/tool/session.hpp"
 #include "host/tool/stats.hpp"
 
 #include <algorithm>
@@ -258,6 +259,28 @@ std::string lod_summary(const nlohmann::json& r) {
           << " visible characters fully occluded per frame (" << std::setprecision(3)
           << 100.0 * occ["fraction_of_visible"].get<double>() << "%)\n";
     return o.str();
+}
+
+nlohmann::json compare_lod_off(const CliOptions& options, const SeriesStats& lod_on, const std::function<void(size_t, size_t)>& on_frame) {
+    CliOptions off = options;
+    off.lod = false;
+    off.no_render = true;
+    auto opened = open_session(off, /*render=*/false);
+    if (!opened.ok()) return {{"error", opened.error().to_string()}};
+    World& world = *opened.value()->world;
+    for (uint32_t f = 0; f < std::min<uint32_t>(options.warmup, 2); ++f) world.step();
+    std::vector<double> cpu;
+    for (uint32_t f = 0; f < options.compare_frames; ++f) {
+        world.step();
+        cpu.push_back(world.last_cpu_ms());
+        on_frame(f + 1, options.compare_frames);
+    }
+    const SeriesStats st = summarize(cpu);
+    return {{"frames", options.compare_frames},
+            {"cpu_systems_ms", to_json(st)},
+            {"ratio_mean", lod_on.mean > 0 ? st.mean / lod_on.mean : 0.0},
+            {"ratio_p95", lod_on.p95 > 0 ? st.p95 / lod_on.p95 : 0.0},
+            {"target_ratio", 20.0}};
 }
 
 }  // namespace aloha::tool

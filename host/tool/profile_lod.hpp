@@ -3,11 +3,14 @@
 #pragma once
 
 #include "host/scene/world.hpp"
+#include "host/tool/cli_args.hpp"
+#include "host/tool/stats.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -61,5 +64,12 @@ void add_lod_report(const World& world, const std::vector<LodSample>& samples, d
 
 /// Lines for the printed summary (tier, budget parts against their targets, switches, occlusion).
 [[nodiscard]] std::string lod_summary(const nlohmann::json& report);
+
+/// Runs the scene of `options` again with LOD off (CPU systems only, `options.compare_frames` frames after at
+/// most 2 warm-up frames) and compares its CPU systems' time with `lod_on`'s: {frames, cpu_systems_ms,
+/// ratio_mean, ratio_p95, target_ratio}, or {error} when the scene cannot be opened. `on_frame(done, total)`
+/// is called after each frame (progress).
+[[nodiscard]] nlohmann::json compare_lod_off(const CliOptions& options, const SeriesStats& lod_on,
+                                             const std::function<void(size_t, size_t)>& on_frame);
 
 }  // namespace aloha::tool

@@ -49,6 +49,11 @@ TEST(Tool, ProfileWritesEveryReport) {
         EXPECT_TRUE(report["systems"]["lod_rules"].contains(k));
     }
     EXPECT_EQ(report["characters_per_level_per_frame"].size(), 6u);
+    // The switch-hitch reading covers every measured frame, split by whether a level changed in it.
+    const nlohmann::json& hitch = report["switch_hitch"];
+    EXPECT_EQ(hitch["all"]["frames"].get<size_t>(), 6u);
+    EXPECT_EQ(hitch["with_switch"]["frames"].get<size_t>() + hitch["without_switch"]["frames"].get<size_t>(), 6u);
+    EXPECT_DOUBLE_EQ(hitch["p95_ms"].get<double>(), report["cpu_systems_ms"]["p95"].get<double>());
     // The geometric controllers' work over the measured frames, one entry per geometric level: every
     // character drawn by a level was updated there once a frame (at most 200 x 6 updates in all).
     const nlohmann::json& work = report["geometry_work"];
