@@ -338,6 +338,7 @@ void World::step() {
     };
     last_animation_ms_ = latest_ms(motion_system_);
     last_geometry_ms_ = latest_ms(muscle_system_) + latest_ms(skin_system_);
+    if (reference_springs_) step_reference_springs();
     first_frame_ = false;
     ++frame_;
     time_ += dt;

@@ -100,6 +100,11 @@ public:
 
     /// Runs one frame of every system (CPU phases; the Render phase too when a renderer is attached).
     void step();
+    /// Fidelity: from the next step() on, after each frame's systems (outside their timings), every
+    /// character at a mesh level also carries the fat springs of geometric level 0, the deviation's
+    /// reference (GeometryController::step_reference_springs), so the deviation can be read against the
+    /// full-detail body with its own fat motion. Off drops them. Costs a level-0 skin per mesh character.
+    void set_reference_springs(bool on);
     /// Attaches a renderer and target for the Render phase (mesh topologies are registered with it on
     /// first use); nullptr detaches.
     Status attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* target);
@@ -270,6 +275,8 @@ private:
     uint64_t frame_ = 0;
     float time_ = 0.0f;
     bool first_frame_ = true;
+    bool reference_springs_ = false;                  ///< set_reference_springs
+    void step_reference_springs();                    ///< world_fidelity.cpp
 };
 
 }  // namespace aloha

@@ -44,10 +44,15 @@ struct ReferenceFrame {
     /// the fat springs' motion adds, which the full-detail body has as well.
     std::vector<double> rest_deviation_sum;
     std::vector<uint64_t> rest_deviation_count;   ///< per geometric level: vertices in rest_deviation_sum
+    /// Per geometric level, the displayed vertices against level 0 with its own fat springs moving (the
+    /// characters' reference springs, World::set_reference_springs): the full-detail body as it would move,
+    /// fat motion included (summed px). Only characters carrying reference springs count.
+    std::vector<double> moving_deviation_sum;
+    std::vector<uint64_t> moving_deviation_count;  ///< per geometric level: vertices in moving_deviation_sum
     uint32_t switches = 0;                        ///< visible characters that switched level this frame
     std::vector<SwitchRect> switch_rects;         ///< those characters, one each
     std::vector<std::vector<glm::vec3>> positions, normals;     ///< storage behind `meshes`
-    std::vector<glm::vec3> current_scratch, reference_scratch, rest_scratch;  ///< reused per character
+    std::vector<glm::vec3> current_scratch, reference_scratch, rest_scratch, moving_scratch;  ///< reused per character
 };
 
 /// The richest Layered level of `table`: the full-detail picture the fidelity check renders.

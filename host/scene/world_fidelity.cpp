@@ -47,6 +47,25 @@ SwitchRect bounds_rect(const glm::mat4& view_proj, const Transform& t, const Bou
 
 }  // namespace
 
+void World::set_reference_springs(bool on) {
+    reference_springs_ = on;
+    if (on) return;
+    for (auto& rt : types_) rt->geometry->step_reference_springs(0, {}, rt->poses(), scene_.dt, {});
+}
+
+void World::step_reference_springs() {
+    auto g = character_group(registry_);
+    auto refs = g.span<CharacterRef>();
+    auto transforms = g.span<Transform>();
+    for (size_t t = 0; t < types_.size(); ++t) {
+        std::vector<uint32_t> ids;
+        std::vector<Transform> placements;
+        for (size_t i = 0; i < g.size(); ++i)
+            if (refs[i].type == t) ids.push_back(refs[i].id), placements.push_back(transforms[i]);
+        types_[t]->geometry->step_reference_springs(0, ids, types_[t]->poses(), scene_.dt, placements);
+    }
+}
+
 uint8_t reference_level(const RuleTable& table) {
     for (size_t l = 0; l < table.geom_levels.size(); ++l)
         if (table.geom_lod(static_cast<uint8_t>(l)).method == GeomMethod::Layered) return static_cast<uint8_t>(l);
@@ -62,6 +81,8 @@ Status reference_frame(World& host, ReferenceFrame& out) {
     out.deviation_count.assign(out.deviation_sum.size(), 0);
     out.rest_deviation_sum.assign(out.deviation_sum.size(), 0.0);
     out.rest_deviation_count.assign(out.deviation_sum.size(), 0);
+    out.moving_deviation_sum.assign(out.deviation_sum.size(), 0.0);
+    out.moving_deviation_count.assign(out.deviation_sum.size(), 0);
     out.switches = 0;
     out.switch_rects.clear();
     auto g = character_group(host.registry());
@@ -88,7 +109,8 @@ Status reference_frame(World& host, ReferenceFrame& out) {
         const PoseSource poses = rt.poses();
         const glm::mat4 world = world_matrix(transforms[i]);
         // Screen-space deviation of the displayed control surface from the richest level's.
-        rt.geometry->deviation_pairs(poses, refs[i].id, 0, out.current_scratch, out.reference_scratch, &out.rest_scratch);
+        rt.geometry->deviation_pairs(poses, refs[i].id, 0, out.current_scratch, out.reference_scratch, &out.rest_scratch,
+                                     &out.moving_scratch);
         const uint8_t level = states[i].geom_level;
         for (size_t k = 0; k < out.current_scratch.size(); ++k) {
             glm::vec2 a, b, r;
@@ -99,6 +121,11 @@ Status reference_frame(World& host, ReferenceFrame& out) {
                 to_pixels(view_proj, glm::vec3(world * glm::vec4(out.rest_scratch[k], 1.0f)), viewport, camera.near_plane, r)) {
                 out.rest_deviation_sum[level] += glm::length(r - b);
                 ++out.rest_deviation_count[level];
+            }
+            if (k < out.moving_scratch.size() &&
+                to_pixels(view_proj, glm::vec3(world * glm::vec4(out.moving_scratch[k], 1.0f)), viewport, camera.near_plane, r)) {
+                out.moving_deviation_sum[level] += glm::length(a - r);
+                ++out.moving_deviation_count[level];
             }
             const double d = glm::length(a - b);
             out.deviation_sum[level] += d;

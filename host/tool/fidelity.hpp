@@ -44,6 +44,10 @@ struct FidelityFrame {
     /// rest_deviation_sum): the levels' geometric error without the fat springs' own motion.
     double mean_rest_deviation_px = 0;
     std::vector<double> mean_rest_deviation_per_level;  ///< by geometric level (-1 when no character there)
+    /// The displayed vertices against the full-detail body with its own fat springs moving (ReferenceFrame's
+    /// moving_deviation_sum): the deviation with the fat motion on both sides. -1 when no character counted.
+    double mean_moving_deviation_px = -1;
+    std::vector<double> mean_moving_deviation_per_level;  ///< by geometric level (-1 when no character there)
     double psnr_db = 0;                ///< LOD render vs full-detail render
     double changed_fraction = 0;       ///< mean absolute RGB change from the previous LOD frame (0..1)
     /// Mean over pixels and channels of |(lod - reference) now - (lod - reference) on the frame before|, as a

@@ -233,14 +233,17 @@ void BlendSpringJob::Run() const {
     const SpringStepper stepper(params);
     std::array<SpringStepper, kMaxSpringTunings> regions;  // per-region tunings (vertex_region)
     for (size_t r = 0; r < region_params.size() && !vertex_region.empty(); ++r) regions[r] = SpringStepper(region_params[r]);
-    const bool start = springs && !state.initialised[0];
+    // start: placed at rest this frame; adopt: placed last frame, this step moves them with their rest ends
+    // (fat_spring.hpp's kSpringsStarted).
+    const bool start = springs && state.initialised[0] == kSpringsRestart;
+    const bool adopt = springs && state.initialised[0] == kSpringsStarted;
     const size_t n = bindings.size();
     float roots[3][4], rests[3][4];  // four vertices' roots and rest ends, [axis][lane]
     for (size_t first = 0; first < n; first += 4) {
         // Four vertices at once where none has a degenerate frame (same bits as one by one).
         const size_t lanes = std::min<size_t>(4, n - first);
         const bool four = lanes == 4 && blend_rest_x4(muscle_positions, muscle_normals, V, &bindings[first], roots, rests);
-        if (four && springs && !start) {
+        if (four && springs && !start && !adopt) {
             const SpringStepper* tuned[4];
             for (size_t lane = 0; lane < 4; ++lane) tuned[lane] = vertex_region.empty() ? &stepper : &regions[vertex_region[first + lane]];
             spring_step_x4(roots, rests, tuned, &state.end[first], &state.velocity[first], &state.prev_rest[first]);
@@ -265,6 +268,7 @@ void BlendSpringJob::Run() const {
                 state.velocity[i] = glm::vec3(0.0f);
                 continue;
             }
+            if (adopt) state.velocity[i] = (rest - state.prev_rest[i]) * stepper.inv_dt;
             const glm::vec3 axis = rest - root;
             const float h = glm::length(axis);
             const glm::vec3 normal = h > 1e-6f ? axis / h : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -272,7 +276,8 @@ void BlendSpringJob::Run() const {
             tuned.step(rest, normal, h, state.end[i], state.velocity[i], state.prev_rest[i]);
         }
     }
-    if (start) state.initialised[0] = 1;
+    if (start) state.initialised[0] = kSpringsStarted;
+    if (adopt) state.initialised[0] = kSpringsRunning;
 }
 
 }  // namespace aloha

@@ -60,10 +60,11 @@ std::span<const glm::vec3> GeometryController::fat_spring_ends(uint32_t characte
 
 void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t character, uint8_t reference_level,
                                          std::vector<glm::vec3>& current, std::vector<glm::vec3>& reference,
-                                         std::vector<glm::vec3>* current_at_rest) const {
+                                         std::vector<glm::vec3>* current_at_rest, std::vector<glm::vec3>* reference_moving) const {
     current.clear();
     reference.clear();
     if (current_at_rest) current_at_rest->clear();
+    if (reference_moving) reference_moving->clear();
     const uint8_t l = level_of(character);
     if (l == kNoLevel) return;
     const Level& C = *levels_[l];
@@ -76,12 +77,22 @@ void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t chara
     if (current_at_rest) control_surface(C, pose, *current_at_rest);
     std::vector<glm::vec3> ref_control;
     control_surface(R, pose, ref_control);
+    // The reference springs as they moved: the reference level's shown control surface of their slot.
+    std::span<const glm::vec3> moving;
+    if (reference_moving && reference_level == reference_level_ && character < reference_slot_.size() &&
+        reference_slot_[character] != LevelFade::kNoSlot && reference_frames_[character] > 0)
+        moving = R.control(reference_slot_[character]);
     if (C.same_skin(R)) {  // same vertices at both levels
         reference = std::move(ref_control);
+        if (!moving.empty()) reference_moving->assign(moving.begin(), moving.end());
         return;
     }
+    const auto& map = geometry_->skin_map(R.theta_steps, R.phi_steps, C.theta_steps, C.phi_steps);
     reference.resize(current.size());
-    geometry_->skin_map(R.theta_steps, R.phi_steps, C.theta_steps, C.phi_steps).apply(ref_control, reference);
+    map.apply(ref_control, reference);
+    if (moving.empty()) return;
+    reference_moving->resize(current.size());
+    map.apply(moving, *reference_moving);
 }
 
 }  // namespace aloha

@@ -110,8 +110,9 @@ void carry_springs(Level& L, uint32_t s, const Transform* now, float dt) {
     st.placed[s] = 1;
 }
 
+// `control_only`: the shown control surface alone (no morph, no normals, no refinement): the reference springs.
 void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const FatSpringParams& params,
-                      std::span<const FatSpringParams> tunings) {
+                      std::span<const FatSpringParams> tunings, bool control_only = false) {
     SlotStore& st = L.store;
     // Skin vertices hang on blended muscle points; with the fat layer through the fat springs
     // (written to the spring ends), without it at the springs' rest ends (written to positions).
@@ -128,6 +129,7 @@ void run_layered_skin(const CharacterGeometry& g, Level& L, uint32_t s, const Fa
     const std::span<glm::vec3> fresh = st.positions(s);
     if (L.springs) std::copy(st.spring_end(s).begin(), st.spring_end(s).end(), fresh.begin());
     limit_skin_strain(L.control_edges, fresh);
+    if (control_only) return;
     if (!L.subdivision) {
         apply_morph(st, s, fresh, fresh);
         accumulate_vertex_normals(fresh, L.indices, st.normals(s));
@@ -243,6 +245,64 @@ void GeometryController::update_fades(const PoseSource& poses, float dt) {
                 break;
         }
     }
+}
+
+void GeometryController::drop_reference_springs() {
+    if (reference_level_ != kNoLevel && reference_level_ < levels_.size())
+        for (const uint32_t c : reference_characters_) levels_[reference_level_]->store.release(reference_slot_[c]);
+    for (const uint32_t c : reference_characters_) reference_slot_[c] = LevelFade::kNoSlot, reference_frames_[c] = 0;
+    reference_characters_.clear();
+    reference_level_ = kNoLevel;
+}
+
+void GeometryController::step_reference_springs(uint8_t reference_level, std::span<const uint32_t> characters, const PoseSource& poses,
+                                                float dt, std::span<const Transform> placements) {
+    assert(reference_level < levels_.size() && placements.size() == characters.size() && dt > 0.0f);
+    if (reference_level != reference_level_) drop_reference_springs();
+    Level& R = *levels_[reference_level];
+    if (!R.springs) return;
+    reference_level_ = reference_level;
+    reference_slot_.resize(level_of_.size(), LevelFade::kNoSlot);
+    reference_frames_.resize(level_of_.size(), 0);
+    // Kept: the characters given that are at a mesh level now; the others' slots go back to the store.
+    std::vector<uint8_t> keep(level_of_.size(), 0);
+    for (const uint32_t c : characters)
+        if (c < level_of_.size() && level_of_[c] != kNoLevel && levels_[level_of_[c]]->mesh_level) keep[c] = 1;
+    std::vector<uint32_t> kept;
+    for (const uint32_t c : reference_characters_) {
+        if (keep[c]) {
+            kept.push_back(c);
+            continue;
+        }
+        R.store.release(reference_slot_[c]);
+        reference_slot_[c] = LevelFade::kNoSlot;
+        reference_frames_[c] = 0;
+    }
+    reference_characters_ = std::move(kept);
+    const CharacterGeometry& g = *geometry_;
+    FatSpringParams params = spring_params_;
+    params.dt = dt;
+    std::array<FatSpringParams, kMaxSpringTunings> tunings;
+    region_spring_params(params, g.muscles().fat_regions, tunings);
+    for (size_t i = 0; i < characters.size(); ++i) {
+        const uint32_t c = characters[i];
+        if (c >= keep.size() || !keep[c]) continue;
+        uint32_t& s = reference_slot_[c];
+        if (s == LevelFade::kNoSlot) {  // started at rest, as a level's springs start when it is entered
+            s = R.store.acquire();
+            std::fill(R.store.spring_initialised(s).begin(), R.store.spring_initialised(s).end(), uint8_t{0});
+            R.store.placed[s] = 0;
+            reference_characters_.push_back(c);
+        }
+        run_muscles(g, R, s, poses.joints(c, g.joint_count()));
+        carry_springs(R, s, &placements[i], dt);
+        run_layered_skin(g, R, s, params, tunings, /*control_only=*/true);
+        ++reference_frames_[c];
+    }
+}
+
+uint32_t GeometryController::reference_spring_frames(uint32_t character) const {
+    return character < reference_frames_.size() ? reference_frames_[character] : 0;
 }
 
 void GeometryController::update(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt,

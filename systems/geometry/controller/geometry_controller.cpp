@@ -172,6 +172,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
 void GeometryController::set_levels(std::span<const GeomLod> levels) {
     assert(!levels.empty() && levels.size() < kNoLevel);
     end_fades();  // kept slots live in levels that may be rebuilt: the running cross-fades end here
+    drop_reference_springs();  // so do the reference springs' slots
     // Every generated skin the levels use, simplified in one pass (build_level then finds them built).
     if (geometry_->muscle_count() > 0 && !geometry_->has_mesh()) {
         std::vector<std::pair<uint32_t, uint32_t>> skins;

@@ -272,9 +272,22 @@ public:
     /// given, gets the current level's control surface for the same pose with its springs at rest and
     /// no morph (vertex for vertex with `current`): `current - current_at_rest` is the springs' own
     /// motion and any geomorph, `current_at_rest - reference` the level's geometric error. Allocates.
+    /// `reference_moving`, when given, gets the reference level's control surface with the character's
+    /// reference springs as they moved (step_reference_springs), matched like `reference`: the full-detail
+    /// body with its own fat motion. Empty when the character carries no reference springs at `reference_level`.
     void deviation_pairs(const PoseSource& poses, uint32_t character, uint8_t reference_level,
                          std::vector<glm::vec3>& current, std::vector<glm::vec3>& reference,
-                         std::vector<glm::vec3>* current_at_rest = nullptr) const;
+                         std::vector<glm::vec3>* current_at_rest = nullptr, std::vector<glm::vec3>* reference_moving = nullptr) const;
+    /// Reference springs (fidelity; a measurement tool, serial only, allocates): each of `characters` now at a
+    /// mesh level carries, beside its shown level, the fat springs of `reference_level` stepped by `dt` for
+    /// its pose in `poses` and its placement `placements[i]`, started at rest on the first call that gives it
+    /// (as a level's springs start when it is entered). Characters not given, or not at a mesh level, drop
+    /// theirs; a call with another reference level drops all. Nothing is carried when that level has no fat
+    /// springs. Requires placements.size() == characters.size().
+    void step_reference_springs(uint8_t reference_level, std::span<const uint32_t> characters, const PoseSource& poses, float dt,
+                                std::span<const Transform> placements);
+    /// Frames the character's reference springs have been stepped since they started (0: none carried).
+    [[nodiscard]] uint32_t reference_spring_frames(uint32_t character) const;
 
     struct Level;  ///< per-level shared data + storage (internal)
 
@@ -290,6 +303,7 @@ private:
     void begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames, bool between_meshes);
     void end_fade(uint32_t character);
     void end_fades();
+    void drop_reference_springs();  ///< every character's reference springs released
 
     const CharacterGeometry* geometry_;
     std::vector<std::unique_ptr<Level>> levels_;
@@ -299,6 +313,10 @@ private:
     std::vector<uint32_t> fade_index_;    ///< per character: its index in fades_, LevelFade::kNoSlot when none
     FatSpringParams spring_params_;
     bool keep_refined_ = true;
+    uint8_t reference_level_ = kNoLevel;          ///< the level of the reference springs (kNoLevel: none)
+    std::vector<uint32_t> reference_slot_;         ///< per character: its reference springs' slot there, or LevelFade::kNoSlot
+    std::vector<uint32_t> reference_frames_;       ///< per character: frames its reference springs were stepped
+    std::vector<uint32_t> reference_characters_;   ///< the characters carrying reference springs
 };
 
 }  // namespace aloha

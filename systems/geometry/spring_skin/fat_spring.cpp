@@ -76,20 +76,24 @@ void FatSpringJob::Run() const {
     for (size_t m = 0; m < muscles; ++m) {
         const float h = thickness[m];
         const size_t base = m * V;
-        if (!state.initialised[m]) {  // start at rest
+        if (state.initialised[m] == kSpringsRestart) {  // start at rest
             for (size_t i = base; i < base + V; ++i) {
                 const glm::vec3 rest = muscle_positions[i] + h * muscle_normals[i];
                 state.end[i] = rest;
                 state.prev_rest[i] = rest;
                 state.velocity[i] = glm::vec3(0.0f);
             }
-            state.initialised[m] = 1;
+            state.initialised[m] = kSpringsStarted;
             continue;
         }
+        const bool adopt = state.initialised[m] == kSpringsStarted;  // moving with the rest ends from this step
         for (size_t i = base; i < base + V; ++i) {
             const glm::vec3 n = muscle_normals[i];
-            stepper.step(muscle_positions[i] + h * n, n, h, state.end[i], state.velocity[i], state.prev_rest[i]);
+            const glm::vec3 rest = muscle_positions[i] + h * n;
+            if (adopt) state.velocity[i] = (rest - state.prev_rest[i]) * stepper.inv_dt;
+            stepper.step(rest, n, h, state.end[i], state.velocity[i], state.prev_rest[i]);
         }
+        state.initialised[m] = kSpringsRunning;
     }
 }
 

@@ -36,13 +36,21 @@ struct FatSpringParams {
 /// Most tunings one spring job mixes per vertex (BlendSpringJob::region_params).
 inline constexpr size_t kMaxSpringTunings = 16;
 
+/// The "initialised" flag's values. A spring restarts at its rest end (kSpringsRestart -> kSpringsStarted);
+/// its first step then gives it its rest end's velocity, so it starts moving with the body rather than
+/// from a standstill, which would jolt the fat of a walking character at every restart (a LOD switch)
+/// by its walking speed (kSpringsStarted -> kSpringsRunning); after that it is stepped.
+inline constexpr uint8_t kSpringsRestart = 0;
+inline constexpr uint8_t kSpringsStarted = 2;
+inline constexpr uint8_t kSpringsRunning = 1;
+
 /// Mutable per-spring state (structure of arrays), one entry per muscle surface vertex, plus one
 /// "initialised" flag per muscle. Views into a FatSpringPool (or any storage the caller owns).
 struct FatSpringStateView {
     std::span<glm::vec3> end;          ///< outer end position (the skin vertex), model space
     std::span<glm::vec3> velocity;     ///< outer end velocity (m/s)
     std::span<glm::vec3> prev_rest;    ///< rest position of the end at the previous frame
-    std::span<uint8_t> initialised;    ///< per muscle: 0 = (re)start at rest this frame, then set to 1
+    std::span<uint8_t> initialised;    ///< per muscle: kSpringsRestart / kSpringsStarted / kSpringsRunning (above)
 };
 
 /// Owns spring state for many characters laid out contiguously (character after character, each

@@ -220,6 +220,8 @@ TEST(BlendRest, SpringJobStepsTheSpringsAsTheScalarFormDoes) {
                 ref_velocity[i] = glm::vec3(0.0f);
                 continue;
             }
+            // The first step after the start gives each spring its rest end's velocity (kSpringsStarted).
+            if (frame == 1) ref_velocity[i] = (y - ref_prev[i]) * steppers[0].inv_dt;
             const float h = glm::length(y - r);
             const glm::vec3 nrm = h > 1e-6f ? (y - r) / h : glm::vec3(0.0f, 0.0f, 1.0f);
             steppers[region[i]].step(y, nrm, h, ref_end[i], ref_velocity[i], ref_prev[i]);

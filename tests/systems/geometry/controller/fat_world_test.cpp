@@ -206,6 +206,26 @@ TEST(FatWorld, SuddenStopOvershootsThenSettlesWithinHalfASecond) {
     }
 }
 
+// Springs that start (a character entering a layered level) while the character already walks or runs
+// start moving with it (kSpringsStarted): in a steady run, an inertial frame, their rest ends move at
+// one constant world velocity, so from the start on the skin stays at its rest ends up to rounding
+// (2.5 m/s over 1 s at 60 Hz: positions of a few metres, each frame's carry rounding by ~1e-7 m).
+// Springs started from a standstill would lag by the run's speed, up to their strain limit (centimetres).
+TEST(FatWorld, AStartWhileRunningDoesNotJoltTheSkin) {
+    const CharacterGeometry& g = *test::humanoid().geometry;
+    Walker w(g);
+    const float dt = 1.0f / 60.0f;
+    glm::vec3 position(0.0f, 0.0f, 5.0f);
+    float largest = 0.0f;
+    for (int f = 0; f < 60; ++f) {
+        position.z += 2.5f * dt;
+        w.step(at(position), dt);
+        const std::vector<float> d = w.deviation();
+        largest = std::max(largest, *std::max_element(d.begin(), d.end()));
+    }
+    EXPECT_LT(largest, 1e-5f);
+}
+
 TEST(FatWorld, FiniteAndWithinTheStrainLimitFrom15To240Hz) {
     const auto& h = test::humanoid();
     ASSERT_NE(h.geometry, nullptr);

@@ -5,6 +5,7 @@ aloha_test(geomctl_tests
     ${CMAKE_CURRENT_LIST_DIR}/controller_memory_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/slot_store_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_morph_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/reference_springs_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/level_fades_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_threads_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_gltf_test.cpp
