@@ -268,11 +268,11 @@ void BlendSpringJob::Run() const {
                 state.velocity[i] = glm::vec3(0.0f);
                 continue;
             }
-            if (adopt) state.velocity[i] = (rest - state.prev_rest[i]) * stepper.inv_dt;
             const glm::vec3 axis = rest - root;
             const float h = glm::length(axis);
             const glm::vec3 normal = h > 1e-6f ? axis / h : glm::vec3(0.0f, 0.0f, 1.0f);
             const SpringStepper& tuned = vertex_region.empty() ? stepper : regions[vertex_region[i]];
+            if (adopt) state.velocity[i] = (rest - state.prev_rest[i]) * tuned.inv_dt;
             tuned.step(rest, normal, h, state.end[i], state.velocity[i], state.prev_rest[i]);
         }
     }

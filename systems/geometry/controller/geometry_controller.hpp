@@ -231,7 +231,8 @@ public:
     [[nodiscard]] uint32_t slot_capacity(uint8_t level) const;
     /// Slots per page of `level`'s storage (capacity grows in these steps).
     [[nodiscard]] uint32_t slots_per_page(uint8_t level) const;
-    /// Characters currently at `level`.
+    /// Slots in use at `level`: its characters, plus the slots kept there by cross-fades out of it and by
+    /// reference springs (step_reference_springs).
     [[nodiscard]] uint32_t characters_at(uint8_t level) const;
     /// Bytes of all per-character storage (with a spare page prepared in the background) plus the
     /// shared index buffers.
