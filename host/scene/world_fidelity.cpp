@@ -57,13 +57,11 @@ void World::step_reference_springs() {
     auto g = character_group(registry_);
     auto refs = g.span<CharacterRef>();
     auto transforms = g.span<Transform>();
-    for (size_t t = 0; t < types_.size(); ++t) {
-        std::vector<uint32_t> ids;
-        std::vector<Transform> placements;
-        for (size_t i = 0; i < g.size(); ++i)
-            if (refs[i].type == t) ids.push_back(refs[i].id), placements.push_back(transforms[i]);
-        types_[t]->geometry->step_reference_springs(0, ids, types_[t]->poses(), scene_.dt, placements);
-    }
+    std::vector<std::vector<uint32_t>> ids(types_.size());  // one pass: each type's characters and placements
+    std::vector<std::vector<Transform>> placements(types_.size());
+    for (size_t i = 0; i < g.size(); ++i) ids[refs[i].type].push_back(refs[i].id), placements[refs[i].type].push_back(transforms[i]);
+    for (size_t t = 0; t < types_.size(); ++t)
+        types_[t]->geometry->step_reference_springs(0, ids[t], types_[t]->poses(), scene_.dt, placements[t]);
 }
 
 uint8_t reference_level(const RuleTable& table) {

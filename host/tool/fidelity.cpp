@@ -84,6 +84,34 @@ std::vector<SwitchPairChange> pair_changes(std::span<const SwitchRect> rects, ui
     return out;
 }
 
+// Per geometric level, one frame's mean of a summed deviation (-1 where the level had no vertex), and the
+// mean over all levels' vertices (`none` when there is no vertex at all).
+double level_means(std::span<const double> sums, std::span<const uint64_t> counts, std::vector<double>& per_level, double none) {
+    double sum = 0.0;
+    uint64_t count = 0;
+    per_level.clear();
+    for (size_t l = 0; l < sums.size(); ++l) {
+        per_level.push_back(counts[l] ? sums[l] / double(counts[l]) : -1.0);
+        sum += sums[l];
+        count += counts[l];
+    }
+    return count ? sum / double(count) : none;
+}
+
+// Per geometric level, a figure averaged over the frames where that level had one (>= 0).
+struct LevelAverage {
+    std::vector<double> sum;
+    std::vector<size_t> frames;
+    void add(std::span<const double> per_level) {
+        if (sum.size() < per_level.size()) sum.resize(per_level.size(), 0.0), frames.resize(per_level.size(), 0);
+        for (size_t l = 0; l < per_level.size(); ++l)
+            if (per_level[l] >= 0) sum[l] += per_level[l], ++frames[l];
+    }
+    [[nodiscard]] nlohmann::json at(size_t l) const {
+        return l < frames.size() && frames[l] ? nlohmann::json(sum[l] / double(frames[l])) : nlohmann::json(nullptr);
+    }
+};
+
 class Probe final : public FidelityProbe {
 public:
     explicit Probe(Session& s) : s_(s) {}
@@ -109,25 +137,16 @@ public:
         auto reference = reference_target_.read_back(*s_.context);
         if (!reference.ok()) return reference.error();
         FidelityFrame out;
-        double sum = 0.0, rest_sum = 0.0, moving_sum = 0.0;
-        uint64_t count = 0, rest_count = 0, moving_count = 0;
+        // A frame without mesh vertices reads 0 on each figure; the moving one reads -1 (not measured) when
+        // there were vertices but no reference springs (level 0 without fat springs).
+        out.mean_deviation_px = level_means(frame_.deviation_sum, frame_.deviation_count, out.mean_deviation_per_level, 0.0);
+        out.mean_rest_deviation_px = level_means(frame_.rest_deviation_sum, frame_.rest_deviation_count, out.mean_rest_deviation_per_level, 0.0);
+        out.mean_moving_deviation_px = level_means(frame_.moving_deviation_sum, frame_.moving_deviation_count, out.mean_moving_deviation_per_level,
+                                                   out.mean_deviation_px > 0.0 ? -1.0 : 0.0);
         for (size_t l = 0; l < frame_.deviation_sum.size(); ++l) {
-            const uint64_t n = frame_.deviation_count[l], rest_n = frame_.rest_deviation_count[l], moving_n = frame_.moving_deviation_count[l];
-            out.mean_deviation_per_level.push_back(n ? frame_.deviation_sum[l] / double(n) : -1.0);
-            out.mean_rest_deviation_per_level.push_back(rest_n ? frame_.rest_deviation_sum[l] / double(rest_n) : -1.0);
-            out.mean_moving_deviation_per_level.push_back(moving_n ? frame_.moving_deviation_sum[l] / double(moving_n) : -1.0);
-            rest_sum += frame_.rest_deviation_sum[l];
-            rest_count += rest_n;
-            moving_sum += frame_.moving_deviation_sum[l];
-            moving_count += moving_n;
-            out.max_deviation_per_level.push_back(n ? frame_.deviation_max[l] : -1.0);
-            sum += frame_.deviation_sum[l];
-            count += n;
+            out.max_deviation_per_level.push_back(frame_.deviation_count[l] ? frame_.deviation_max[l] : -1.0);
             out.max_deviation_px = std::max(out.max_deviation_px, frame_.deviation_max[l]);
         }
-        out.mean_deviation_px = count ? sum / double(count) : 0.0;
-        out.mean_rest_deviation_px = rest_count ? rest_sum / double(rest_count) : 0.0;
-        out.mean_moving_deviation_px = moving_count ? moving_sum / double(moving_count) : -1.0;
         const std::span<const uint8_t> now = lod.value().pixels, now_reference = reference.value().pixels;
         out.psnr_db = psnr_db(now, now_reference);
         out.switches = frame_.switches;
@@ -211,47 +230,42 @@ Result<std::unique_ptr<FidelityProbe>> FidelityProbe::create(Session& session) {
 nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const std::vector<std::string>& level_names) {
     const std::vector<FidelityFrame> frames = with_changes_after(measured);
     nlohmann::json j;
-    std::vector<double> mean, rest_mean, moving_mean, max, psnr_values, changes;
+    std::vector<double> mean, rest_mean, moving_mean, max, psnr_values, changes;  // per frame
     std::vector<uint8_t> switch_flags;
     size_t levels = 0;
     for (const auto& f : frames) levels = std::max(levels, f.mean_deviation_per_level.size());
-    std::vector<double> level_sum(levels, 0.0), level_rest_sum(levels, 0.0), level_moving_sum(levels, 0.0), level_max(levels, 0.0);
-    std::vector<size_t> level_frames(levels, 0), level_rest_frames(levels, 0), level_moving_frames(levels, 0);
+    LevelAverage literal, at_rest, moving;
+    std::vector<double> level_max(levels, 0.0);
     for (size_t k = 0; k < frames.size(); ++k) {
         const FidelityFrame& f = frames[k];
         mean.push_back(f.mean_deviation_px);
         rest_mean.push_back(f.mean_rest_deviation_px);
-        if (f.mean_moving_deviation_px >= 0) moving_mean.push_back(f.mean_moving_deviation_px);
+        moving_mean.push_back(f.mean_moving_deviation_px);  // -1: not measured on that frame
         max.push_back(f.max_deviation_px);
         psnr_values.push_back(f.psnr_db);
         changes.push_back(f.changed_fraction);
         switch_flags.push_back(f.switches > 0 ? 1 : 0);
-        for (size_t l = 0; l < f.mean_deviation_per_level.size(); ++l) {
-            if (f.mean_deviation_per_level[l] < 0) continue;
-            level_sum[l] += f.mean_deviation_per_level[l];
-            if (l < f.mean_rest_deviation_per_level.size() && f.mean_rest_deviation_per_level[l] >= 0)
-                level_rest_sum[l] += f.mean_rest_deviation_per_level[l], ++level_rest_frames[l];
-            if (l < f.mean_moving_deviation_per_level.size() && f.mean_moving_deviation_per_level[l] >= 0)
-                level_moving_sum[l] += f.mean_moving_deviation_per_level[l], ++level_moving_frames[l];
-            level_max[l] = std::max(level_max[l], f.max_deviation_per_level[l]);
-            ++level_frames[l];
-        }
+        literal.add(f.mean_deviation_per_level);
+        at_rest.add(f.mean_rest_deviation_per_level);
+        moving.add(f.mean_moving_deviation_per_level);
+        for (size_t l = 0; l < f.max_deviation_per_level.size(); ++l) level_max[l] = std::max(level_max[l], f.max_deviation_per_level[l]);
     }
     j["mean_deviation_px"] = to_json(summarize(mean));
     // The levels' geometric error alone: the displayed level's springs at rest (as the reference's are).
     j["mean_rest_deviation_px"] = to_json(summarize(rest_mean));
     // Against the full-detail body with its own fat springs moving (World::set_reference_springs): the fat
-    // motion on both sides, what the design bar's "full skin" moves like. Null when no frame had one.
-    j["mean_moving_reference_deviation_px"] = moving_mean.empty() ? nlohmann::json(nullptr) : to_json(summarize(moving_mean));
+    // motion on both sides, what the design bar's "full skin" moves like. Null when a frame had mesh vertices
+    // but no reference springs to measure them against.
+    const bool moving_measured = std::none_of(moving_mean.begin(), moving_mean.end(), [](double v) { return v < 0.0; });
+    j["mean_moving_reference_deviation_px"] = moving_measured ? to_json(summarize(moving_mean)) : nlohmann::json(nullptr);
     j["max_deviation_px"] = to_json(summarize(max));
     j["psnr_db"] = to_json(summarize(psnr_values));
     nlohmann::json per_level = nlohmann::json::array();
-    for (size_t l = 0; l < levels; ++l)
-        per_level.push_back(level_frames[l] ? nlohmann::json{{"level", l}, {"mean_px", level_sum[l] / double(level_frames[l])},
-                                                             {"rest_mean_px", level_rest_frames[l] ? nlohmann::json(level_rest_sum[l] / double(level_rest_frames[l])) : nlohmann::json(nullptr)},
-                                                             {"moving_reference_mean_px", level_moving_frames[l] ? nlohmann::json(level_moving_sum[l] / double(level_moving_frames[l])) : nlohmann::json(nullptr)},
-                                                             {"max_px", level_max[l]}}
-                                            : nlohmann::json{{"level", l}, {"mean_px", nullptr}, {"rest_mean_px", nullptr}, {"moving_reference_mean_px", nullptr}, {"max_px", nullptr}});
+    for (size_t l = 0; l < levels; ++l) {
+        const bool any = !literal.at(l).is_null();
+        per_level.push_back({{"level", l}, {"mean_px", literal.at(l)}, {"rest_mean_px", at_rest.at(l)}, {"moving_reference_mean_px", moving.at(l)},
+                             {"max_px", any ? nlohmann::json(level_max[l]) : nlohmann::json(nullptr)}});
+    }
     j["deviation_per_level"] = per_level;
     const SwitchBar bar = switch_bar(changes, switch_flags);
     nlohmann::json detrended = detrended_json(bar.detrended);
@@ -275,7 +289,7 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
     const double overall_mean = mean.empty() ? 0.0 : summarize(mean).mean;
     j["target_mean_deviation_under_1px"] = overall_mean < 1.0;
     j["target_mean_deviation_under_1px_against_moving_reference"] =
-        moving_mean.empty() ? nlohmann::json(nullptr) : nlohmann::json(summarize(moving_mean).mean < 1.0);
+        moving_measured ? nlohmann::json(summarize(moving_mean).mean < 1.0) : nlohmann::json(nullptr);
     j["note"] = "Deviation compares each mesh-level character's displayed control surface with its level-0 control "
                 "surface (springs at rest), projected to pixels; mean_rest_deviation_px (and rest_mean_px per level) "
                 "puts the displayed level's own springs at rest too, leaving the level's geometric error without the fat "

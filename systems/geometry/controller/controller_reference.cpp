@@ -80,7 +80,7 @@ void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t chara
     // The reference springs as they moved: the reference level's shown control surface of their slot.
     std::span<const glm::vec3> moving;
     if (reference_moving && reference_level == reference_level_ && character < reference_slot_.size() &&
-        reference_slot_[character] != LevelFade::kNoSlot && reference_frames_[character] > 0)
+        reference_slot_[character] != LevelFade::kNoSlot)  // a slot is stepped when it is taken
         moving = R.control(reference_slot_[character]);
     if (C.same_skin(R)) {  // same vertices at both levels
         reference = std::move(ref_control);

@@ -109,6 +109,9 @@ TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
     EXPECT_EQ(report["gpu_overlap"]["mode"], "off");
     EXPECT_EQ(report["gpu_overlap"]["frames_overlapped"], 0);
     EXPECT_EQ(report["fidelity"]["psnr_db"]["count"], 4);
+    // The default rules' level 0 has fat springs, so the deviation against the moving body is measured on
+    // every frame, as the literal one is (null would mean a frame's mesh vertices had no reference springs).
+    EXPECT_EQ(report["fidelity"]["mean_moving_reference_deviation_px"]["count"], 4);
     // The detrended whole-frame comparison: 3 compared frames, of which the first and last cannot be centred.
     const nlohmann::json& detrended = report["fidelity"]["popping"]["detrended"];
     EXPECT_EQ(detrended["switch_frames"].get<size_t>() + detrended["ordinary_frames"].get<size_t>(), 1u);
