@@ -77,6 +77,11 @@ void GeometryUpdateJob::RunMuscles() const {
 }
 
 void GeometryUpdateJob::RunSkin() const {
+    // Characters fading into the impostor level or another mesh level: the level they left, still drawn (a few
+    // per switch frame), posed first so that a level entered from another mesh level starts its geomorph from
+    // the left one's surface at this frame's pose.
+    for (const GeometryType& t : types)
+        if (t.controller) t.controller->update_fades(t.poses, dt);
     scratch->resize(groups->size());
     for (const LevelRange& r : groups->ranges) {
         const GeometryType& t = types[r.type];
@@ -108,10 +113,6 @@ void GeometryUpdateJob::RunSkin() const {
             t.controller->update_skin(r.level, ids.subspan(b, e - b), t.poses, dt, placed);
         });
     }
-    // Characters fading into the impostor level or another mesh level: the level they left, still drawn (a few
-    // per switch frame).
-    for (const GeometryType& t : types)
-        if (t.controller) t.controller->update_fades(t.poses, dt);
 }
 
 }  // namespace aloha

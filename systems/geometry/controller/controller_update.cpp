@@ -187,6 +187,7 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
         const uint32_t c = characters[i];
         assert(level_of(c) == level);
         const uint32_t s = slot_of_[c];
+        if (L.store.pending[s]) recapture_morph(c, L, s);
         switch (L.lod.method) {
             case GeomMethod::Hidden:
             case GeomMethod::Impostor:
@@ -206,6 +207,20 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
         }
         L.store.valid[s] = 1;
     }
+}
+
+void GeometryController::recapture_morph(uint32_t character, Level& to, uint32_t to_slot) {
+    // A cross-fade keeps the left level's slot and poses it every frame (update_fades, which the frame runs before
+    // the skins; called in any other order, the kept slot holds last frame's surface, which is what the switch
+    // captured): its surface at THIS frame's pose is where the entered level starts. The surface captured at the
+    // switch is the one shown last frame, at last frame's pose (older still where the left level's animation
+    // updates every few frames): morphing from it would replay the limbs' motion since then (centimetres on a
+    // walker's swinging foot) on top of the two levels' difference of shape.
+    if (character >= fade_index_.size() || fade_index_[character] == LevelFade::kNoSlot) return;
+    const LevelFade& f = fades_[fade_index_[character]];
+    if (!f.between_meshes || !f.keeps_left()) return;
+    const Level& from = *levels_[f.from_level];
+    if (from.store.valid[f.kept_slot]) capture_morph(from, f.kept_slot, to, to_slot);
 }
 
 void GeometryController::update_fades(const PoseSource& poses, float dt) {

@@ -271,7 +271,13 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
     if (old != kNoLevel) {
         Level& from = *levels_[old];
         const uint32_t os = slot_of_[character];
-        if (geomorph_frames > 0 && from.mesh_level && to.mesh_level && from.store.valid[os] && to.store.layout().morph > 0) {
+        // Two linear-blend levels over the same vertices (one with a simplified triangle list) put them at the same
+        // positions for the same pose: no difference of shape to slide over, only the limbs' motion since the
+        // surface was last shown (frames ago where the animation updates every few), which a morph would replay.
+        const bool same_positions = from.lod.method == GeomMethod::SkinnedMesh && to.lod.method == GeomMethod::SkinnedMesh &&
+                                    from.display_key == to.display_key;
+        if (geomorph_frames > 0 && from.mesh_level && to.mesh_level && from.store.valid[os] && to.store.layout().morph > 0 &&
+            !same_positions) {
             capture_morph(from, os, to, s);
             to.store.frames_total(s)[0] = geomorph_frames;
             to.store.frames_left(s)[0] = geomorph_frames;

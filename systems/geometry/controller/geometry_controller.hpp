@@ -139,7 +139,8 @@ public:
     void set_levels(std::span<const GeomLod> levels);
 
     /// `character` enters `level`: takes a slot there, starts a geomorph of `geomorph_frames` frames
-    /// from its old surface when both levels are mesh levels and the old surface has been shown,
+    /// from its old surface when both levels are mesh levels, the old surface has been shown and they are not two
+    /// SkinnedMesh levels over the same vertices (which place them alike: nothing to morph),
     /// and releases the old slot. A switch into or out of an impostor level from or to a drawn level
     /// cross-fades instead (LevelFade) over `fade_frames` frames when that is 2 or more; so does a switch
     /// between mesh levels whose displayed surfaces differ, the old one shown (geomorph kept as well). `previous_level`
@@ -162,7 +163,9 @@ public:
     [[nodiscard]] std::span<const LevelFade> fades() const { return fades_; }
     /// The kept slots of fades into the impostor level or between meshes: the left level's surface (or proxy
     /// boxes) for each character's pose in `poses` this frame, as update_muscles + update_skin would (fat springs
-    /// not carried with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) last step.
+    /// not carried with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) first step:
+    /// run before update_skin, a level entered by a cross-fade between meshes starts its geomorph from the kept
+    /// surface at this frame's pose (else from the one shown last frame).
     void update_fades(const PoseSource& poses, float dt);
     /// The surface `character` shows at the level it is fading out of (a LevelFade from a mesh level into the
     /// impostor level or another mesh level), as surface() would there; empty otherwise.
@@ -183,7 +186,9 @@ public:
     void update_muscles(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses);
     /// The `spring_skin` stage (Skin phase): rigid proxies and linear-blend skins from the poses;
     /// at muscle levels fat springs (frame time `dt` > 0) on the muscle surface update_muscles wrote
-    /// this frame, the skin, geomorph and OpenSubdiv refinement. Thread-safe for disjoint lists.
+    /// this frame, the skin, geomorph and OpenSubdiv refinement. A geomorph's start is the left level's surface:
+    /// the cross-fade's kept one as update_fades last posed it, else the one shown when the switch happened.
+    /// Thread-safe for disjoint lists.
     void update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
     /// The same with the characters' world placements this frame: the fat springs feel the root's
     /// motion (start, stop, turn, landing; fat_spring_frame.hpp), a teleport or snap excepted.
@@ -295,6 +300,8 @@ public:
 private:
     std::unique_ptr<Level> build_level(const GeomLod& lod, uint8_t index, uint8_t revision) const;
     void capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot);
+    // Re-captures a pending morph start from the cross-fade's kept slot of the left level (posed this frame).
+    void recapture_morph(uint32_t character, Level& to, uint32_t to_slot);
     void control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out,
                          bool strain_limited = true) const;
     void ensure_capacity(uint32_t character);

@@ -103,6 +103,36 @@ TEST(GeometryControllerMorph, SwitchesMoveEachVertexByAtMostTheJumpOverN) {
     }
 }
 
+// Two linear-blend levels over the same vertices (the second with a simplified triangle list, as the default rules'
+// skinned, skinned_fine and skinned_light) place them alike for a pose: a switch between them shows the entered
+// level's own surface at once, at the pose of the frame, with no geomorph replaying the motion since the left
+// level was last shown.
+TEST(GeometryControllerMorph, SkinnedLevelsOverTheSameVerticesSwitchWithoutAMorph) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    std::vector<GeomLod> levels = test::test_levels();
+    GeomLod simplified = levels[3];  // SkinnedMesh(8, 6)
+    simplified.simplify_error = 0.012f;
+    simplified.level = static_cast<uint8_t>(levels.size());
+    levels.push_back(simplified);
+    const uint8_t skinned = 3, light = simplified.level;
+    GeometryController ctl(g, levels, 2);
+    for (const uint32_t c : {0u, 1u}) ctl.begin_level(c, skinned, -1, 0);
+    const uint32_t both[2] = {0, 1}, switching[1] = {0}, witness[1] = {1};
+    auto pose = test::clip_pose(g.skeleton(), humanoid().clip, 600);
+    ctl.update(skinned, both, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+    const auto shown_before = copy(ctl.surface(0).positions);
+    for (const auto& [from, to] : {std::pair{skinned, light}, std::pair{light, skinned}}) {
+        ctl.begin_level(0, to, static_cast<int8_t>(from), 8);
+        EXPECT_EQ(ctl.geomorph_frames_left(0), 0);
+        pose = test::clip_pose(g.skeleton(), humanoid().clip, 604);  // four frames on
+        ctl.update(to, switching, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+        ctl.update(skinned, witness, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
+        EXPECT_EQ(copy(ctl.surface(0).positions), copy(ctl.surface(1).positions));  // the same skin of the same pose
+    }
+    EXPECT_GT(test::max_distance(shown_before, ctl.surface(1).positions), 0.01f);  // a morph would have replayed centimetres
+}
+
 // Distance of every point of `points` to the triangle surface (positions, indices): the closest
 // point found by map_surface's search (it can only overestimate the distance).
 std::vector<float> distance_to_surface(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,

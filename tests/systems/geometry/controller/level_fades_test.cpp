@@ -183,6 +183,45 @@ TEST(LevelFades, BetweenMeshLevelsTheLeftSurfaceStaysPosedAndIsDroppedAtTheEnd) 
     EXPECT_EQ(same.geomorph_frames_left(0), 6u);
 }
 
+// A mesh level entered by a cross-fade starts its geomorph from the left level's surface at the pose of the frame
+// it is first shown (the kept slot, posed by update_fades before the skins), not from the one shown at the switch:
+// between those two frames the limbs moved (further still when the left level's animation updates every few
+// frames), and a morph from there would replay that motion on top of the two levels' difference of shape.
+TEST(LevelFades, AMeshEnteredByACrossFadeStartsItsGeomorphAtThisFramesPose) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    GeometryController ctl(g, levels_with_impostor(), 3);
+    // Skinned (8, 6) into layered (8, 6): the same vertices, lit otherwise, so a cross-fade and a geomorph vertex
+    // by vertex. Character 1 stays skinned (the left surface at each pose); 2 enters the layered level without a
+    // morph (the entered level's own surface at the pose).
+    for (const uint32_t c : {0u, 1u}) ctl.begin_level(c, kSkinned, -1, 0);
+    const uint32_t both[2] = {0, 1}, switching[1] = {0}, left[1] = {1}, fresh[1] = {2};
+    const auto before = test::clip_pose(g.skeleton(), humanoid().clip, 500);
+    ctl.update(kSkinned, both, PoseSource{before.data(), 0}, 1.0f / 60.0f);
+    const std::vector<glm::vec3> shown_at_switch = copy(ctl.surface(0).positions);
+    constexpr uint16_t M = 5, N = 8;
+    ctl.begin_level(0, kLayered, kSkinned, M, N);
+    ctl.begin_level(2, kLayered, -1, 0);
+    const auto now = test::clip_pose(g.skeleton(), humanoid().clip, 504);  // four frames on: the skinned level's interval
+    ctl.update_fades(PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    ctl.update(kLayered, switching, PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    ctl.update(kLayered, fresh, PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    ctl.update(kSkinned, left, PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    const std::span<const glm::vec3> shown = ctl.surface(0).positions, entered = ctl.surface(2).positions,
+                                     left_now = ctl.surface(1).positions;
+    ASSERT_EQ(shown.size(), entered.size());
+    ASSERT_EQ(shown.size(), left_now.size());
+    // Frame 1 of M shows the entered surface plus (1 - 1 / M) of the offset to the start (geomorph.hpp).
+    constexpr float kept = 1.0f - 1.0f / float(M);
+    float worst = 0.0f, moved = 0.0f;
+    for (size_t i = 0; i < shown.size(); ++i) {
+        worst = std::max(worst, glm::length(shown[i] - (entered[i] + kept * (left_now[i] - entered[i]))));
+        moved = std::max(moved, glm::length(left_now[i] - shown_at_switch[i]));
+    }
+    EXPECT_LT(worst, 1e-5f);   // float rounding of the offset's subtraction and scaling
+    EXPECT_GT(moved, 0.01f);  // the start the switch captured was centimetres off: the test tells the two apart
+}
+
 TEST(LevelFades, OnlyImpostorSwitchesOfTwoFramesOrMoreFadeAndEveryEndReleasesTheKeptSlot) {
     ASSERT_NE(humanoid().geometry, nullptr);
     const CharacterGeometry& g = *humanoid().geometry;
