@@ -210,56 +210,65 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
 }
 
 void GeometryController::recapture_morph(uint32_t character, Level& to, uint32_t to_slot) {
-    // A cross-fade keeps the left level's slot and poses it every frame (update_fades, which the frame runs before
-    // the skins; called in any other order, the kept slot holds last frame's surface, which is what the switch
-    // captured): its surface at THIS frame's pose is where the entered level starts. The surface captured at the
-    // switch is the one shown last frame, at last frame's pose (older still where the left level's animation
-    // updates every few frames): morphing from it would replay the limbs' motion since then (centimetres on a
-    // walker's swinging foot) on top of the two levels' difference of shape.
-    if (character >= fade_index_.size() || fade_index_[character] == LevelFade::kNoSlot) return;
-    const LevelFade& f = fades_[fade_index_[character]];
-    if (!f.between_meshes || !f.keeps_left()) return;
-    const Level& from = *levels_[f.from_level];
-    if (from.store.valid[f.kept_slot]) capture_morph(from, f.kept_slot, to, to_slot);
+    // The left level's slot, kept by a cross-fade or as a morph source, is posed every frame (update_fades, which
+    // the frame runs before the skins; called in any other order, the kept slot holds last frame's surface, which
+    // is what the switch captured): its surface at THIS frame's pose is where the entered level starts. The surface
+    // captured at the switch is the one shown last frame, at last frame's pose (older still where the left level's
+    // animation updates every few frames): morphing from it would replay the limbs' motion since then (centimetres
+    // on a walker's swinging foot) on top of the two levels' difference of shape.
+    uint8_t from_level = kNoLevel;
+    uint32_t slot = LevelFade::kNoSlot;
+    if (const LevelFade* f = fade(character); f && f->between_meshes && f->keeps_left()) {
+        from_level = f->from_level;
+        slot = f->kept_slot;
+    } else {
+        for (const MorphSource& m : morph_sources_)
+            if (m.character == character) from_level = m.from_level, slot = m.slot;
+    }
+    if (from_level == kNoLevel) return;
+    const Level& from = *levels_[from_level];
+    if (from.store.valid[slot]) capture_morph(from, slot, to, to_slot);
+}
+
+void GeometryController::pose_kept_slot(Level& L, uint32_t slot, std::span<const glm::mat4> pose, const FatSpringParams& params,
+                                        std::span<const FatSpringParams> tunings, float dt) {
+    const CharacterGeometry& g = *geometry_;
+    L.work_characters.fetch_add(1, std::memory_order_relaxed);
+    switch (L.lod.method) {
+        case GeomMethod::RigidProxy:
+            run_proxy(g, L, slot, pose);
+            break;
+        case GeomMethod::SkinnedMesh:
+            L.work_vertices.fetch_add(L.control_vertices, std::memory_order_relaxed);
+            run_skinned(g, L, slot, pose);
+            break;
+        case GeomMethod::Layered:
+        case GeomMethod::Subdivided:
+            L.work_vertices.fetch_add(L.control_vertices, std::memory_order_relaxed);
+            if (L.springs) L.work_springs.fetch_add(L.control_vertices, std::memory_order_relaxed);
+            run_muscles(g, L, slot, pose);
+            if (L.springs) carry_springs(L, slot, nullptr, dt);
+            run_layered_skin(g, L, slot, params, tunings);
+            break;
+        case GeomMethod::Hidden:
+        case GeomMethod::Impostor:
+            break;
+    }
 }
 
 void GeometryController::update_fades(const PoseSource& poses, float dt) {
     assert(dt > 0.0f);
-    if (fades_.empty()) return;
-    const CharacterGeometry& g = *geometry_;
-    const size_t J = g.joint_count();
+    if (fades_.empty() && morph_sources_.empty()) return;
+    const size_t J = geometry_->joint_count();
     FatSpringParams params = spring_params_;
     params.dt = dt;
-    std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region: filled for the first layered level
-    bool tuned = false;
-    for (const LevelFade& f : fades_) {
-        if (!f.keeps_left()) continue;  // out of the impostor: the entered level's own stages run it
-        Level& L = *levels_[f.from_level];
-        const std::span<const glm::mat4> pose = poses.joints(f.character, J);
-        L.work_characters.fetch_add(1, std::memory_order_relaxed);
-        switch (L.lod.method) {
-            case GeomMethod::RigidProxy:
-                run_proxy(g, L, f.kept_slot, pose);
-                break;
-            case GeomMethod::SkinnedMesh:
-                L.work_vertices.fetch_add(L.control_vertices, std::memory_order_relaxed);
-                run_skinned(g, L, f.kept_slot, pose);
-                break;
-            case GeomMethod::Layered:
-            case GeomMethod::Subdivided:
-                L.work_vertices.fetch_add(L.control_vertices, std::memory_order_relaxed);
-                if (L.springs) L.work_springs.fetch_add(L.control_vertices, std::memory_order_relaxed);
-                if (!tuned) region_spring_params(params, g.muscles().fat_regions, tunings);
-                tuned = true;
-                run_muscles(g, L, f.kept_slot, pose);
-                if (L.springs) carry_springs(L, f.kept_slot, nullptr, dt);
-                run_layered_skin(g, L, f.kept_slot, params, tunings);
-                break;
-            case GeomMethod::Hidden:
-            case GeomMethod::Impostor:
-                break;
-        }
-    }
+    std::array<FatSpringParams, kMaxSpringTunings> tunings;  // per fat region
+    region_spring_params(params, geometry_->muscles().fat_regions, tunings);
+    for (const LevelFade& f : fades_)
+        if (f.keeps_left())  // out of the impostor: the entered level's own stages run it
+            pose_kept_slot(*levels_[f.from_level], f.kept_slot, poses.joints(f.character, J), params, tunings, dt);
+    for (const MorphSource& m : morph_sources_)
+        pose_kept_slot(*levels_[m.from_level], m.slot, poses.joints(m.character, J), params, tunings, dt);
 }
 
 void GeometryController::drop_reference_springs() {

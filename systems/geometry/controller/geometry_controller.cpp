@@ -172,6 +172,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
 void GeometryController::set_levels(std::span<const GeomLod> levels) {
     assert(!levels.empty() && levels.size() < kNoLevel);
     end_fades();  // kept slots live in levels that may be rebuilt: the running cross-fades end here
+    end_morph_sources();
     drop_reference_springs();  // so do the reference springs' slots
     // Every generated skin the levels use, simplified in one pass (build_level then finds them built).
     if (geometry_->muscle_count() > 0 && !geometry_->has_mesh()) {
@@ -263,6 +264,7 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
     const uint8_t old = level_of_[character];
     if (old == level) return;
     end_fade(character);  // a switch during a cross-fade ends it (its kept slot released)
+    end_morph_source(character);
     Level& to = *levels_[level];
     const uint32_t s = to.store.acquire();
     std::fill(to.store.spring_initialised(s).begin(), to.store.spring_initialised(s).end(), uint8_t{0});
@@ -271,6 +273,7 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
     if (old != kNoLevel) {
         Level& from = *levels_[old];
         const uint32_t os = slot_of_[character];
+        bool morphing = false;
         // Two linear-blend levels over the same vertices (one with a simplified triangle list) put them at the same
         // positions for the same pose: no difference of shape to slide over, only the limbs' motion since the
         // surface was last shown (frames ago where the animation updates every few), which a morph would replay.
@@ -278,6 +281,7 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
                                     from.display_key == to.display_key;
         if (geomorph_frames > 0 && from.mesh_level && to.mesh_level && from.store.valid[os] && to.store.layout().morph > 0 &&
             !same_positions) {
+            morphing = true;
             capture_morph(from, os, to, s);
             to.store.frames_total(s)[0] = geomorph_frames;
             to.store.frames_left(s)[0] = geomorph_frames;
@@ -287,11 +291,16 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
         // (LevelFade); into the impostor or a mesh level, the left level's slot stays while fading if it has been shown.
         const bool between_meshes = mesh_crossfades(old, level);
         const bool keep = to.lod.method == GeomMethod::Impostor || between_meshes;
+        // A morph not started from a fade's kept slot keeps the left slot as its source until the next advance_fades.
+        auto leave = [&] {
+            if (morphing) morph_sources_.push_back({character, old, os});
+            else from.store.release(os);
+        };
         if (fade_frames >= 2 && crossfades(old, level) && (!keep || from.store.valid[os])) {
             begin_fade(character, old, keep ? os : LevelFade::kNoSlot, fade_frames, between_meshes);
-            if (!keep) from.store.release(os);
+            if (!keep) leave();
         } else {
-            from.store.release(os);
+            leave();
         }
     }
     level_of_[character] = level;
@@ -303,6 +312,7 @@ void GeometryController::reserve(uint8_t level, uint32_t characters) { levels_.a
 void GeometryController::end_character(uint32_t character) {
     if (character >= level_of_.size() || level_of_[character] == kNoLevel) return;
     end_fade(character);
+    end_morph_source(character);
     levels_[level_of_[character]]->store.release(slot_of_[character]);
     level_of_[character] = kNoLevel;
 }

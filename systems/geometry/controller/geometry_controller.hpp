@@ -140,7 +140,8 @@ public:
 
     /// `character` enters `level`: takes a slot there, starts a geomorph of `geomorph_frames` frames
     /// from its old surface when both levels are mesh levels, the old surface has been shown and they are not two
-    /// SkinnedMesh levels over the same vertices (which place them alike: nothing to morph),
+    /// SkinnedMesh levels over the same vertices (which place them alike: nothing to morph); the old slot then
+    /// stays until the next advance_fades (posed by update_fades: the morph starts at the frame's pose),
     /// and releases the old slot. A switch into or out of an impostor level from or to a drawn level
     /// cross-fades instead (LevelFade) over `fade_frames` frames when that is 2 or more; so does a switch
     /// between mesh levels whose displayed surfaces differ, the old one shown (geomorph kept as well). `previous_level`
@@ -152,8 +153,8 @@ public:
         begin_level(character, level, previous_level, geomorph_frames, geomorph_frames);
     }
     /// Ends the frame's cross-fades: every LevelFade advances one frame, and those at their last frame end
-    /// (their kept slots released). Call once per frame before the frame's begin_level calls
-    /// (apply_level_switches does). Serial only.
+    /// (their kept slots released); the left levels' slots kept only for a geomorph's start (begin_level) are
+    /// released. Call once per frame before the frame's begin_level calls (apply_level_switches does). Serial only.
     void advance_fades();
     /// The cross-fade `character` is in, or nullptr (see LevelFade).
     [[nodiscard]] const LevelFade* fade(uint32_t character) const {
@@ -161,9 +162,9 @@ public:
     }
     /// Every running cross-fade (order unspecified but deterministic).
     [[nodiscard]] std::span<const LevelFade> fades() const { return fades_; }
-    /// The kept slots of fades into the impostor level or between meshes: the left level's surface (or proxy
-    /// boxes) for each character's pose in `poses` this frame, as update_muscles + update_skin would (fat springs
-    /// not carried with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) first step:
+    /// The kept slots of fades into the impostor level or between meshes, and of geomorphs without a fade: the
+    /// left level's surface (or proxy boxes) for each character's pose in `poses` this frame, as update_muscles +
+    /// update_skin would (fat springs not carried with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) first step:
     /// run before update_skin, a level entered by a cross-fade between meshes starts its geomorph from the kept
     /// surface at this frame's pose (else from the one shown last frame).
     void update_fades(const PoseSource& poses, float dt);
@@ -300,8 +301,14 @@ public:
 private:
     std::unique_ptr<Level> build_level(const GeomLod& lod, uint8_t index, uint8_t revision) const;
     void capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot);
-    // Re-captures a pending morph start from the cross-fade's kept slot of the left level (posed this frame).
+    // Re-captures a pending morph start from the left level's kept slot (a cross-fade's or a morph source's),
+    // posed this frame by update_fades.
     void recapture_morph(uint32_t character, Level& to, uint32_t to_slot);
+    // Poses the kept `slot` of level `L` for `pose`, as its level's stages would (update_fades).
+    void pose_kept_slot(Level& L, uint32_t slot, std::span<const glm::mat4> pose, const FatSpringParams& params,
+                        std::span<const FatSpringParams> tunings, float dt);
+    void end_morph_source(uint32_t character);  ///< releases the character's morph source slot, if any
+    void end_morph_sources();                   ///< releases every morph source slot
     void control_surface(const Level& level, std::span<const glm::mat4> pose, std::vector<glm::vec3>& out,
                          bool strain_limited = true) const;
     void ensure_capacity(uint32_t character);
@@ -319,6 +326,14 @@ private:
     std::vector<uint32_t> slot_of_;
     std::vector<LevelFade> fades_;        ///< running cross-fades
     std::vector<uint32_t> fade_index_;    ///< per character: its index in fades_, LevelFade::kNoSlot when none
+    // A left level's slot kept, where no cross-fade keeps it, from a switch that starts a geomorph until the next
+    // advance_fades: update_fades poses it, and the entered level's first update starts its morph from it.
+    struct MorphSource {
+        uint32_t character = 0;
+        uint8_t from_level = 0;
+        uint32_t slot = 0;
+    };
+    std::vector<MorphSource> morph_sources_;
     FatSpringParams spring_params_;
     bool keep_refined_ = true;
     uint8_t reference_level_ = kNoLevel;          ///< the level of the reference springs (kNoLevel: none)

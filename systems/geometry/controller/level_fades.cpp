@@ -1,6 +1,7 @@
 // GeometryController's cross-fades between the impostor level and a drawn level, and between two mesh levels
-// whose displayed surfaces differ (LevelFade): their bookkeeping across frames and the surfaces of the levels being left. The per-frame update of the kept
-// slots is with the other stages (controller_update.cpp).
+// whose displayed surfaces differ (LevelFade): their bookkeeping across frames and the surfaces of the levels being left;
+// and the left levels' slots kept one frame as a geomorph's start where no fade keeps them (morph sources). The per-frame
+// update of the kept slots is with the other stages (controller_update.cpp).
 #include "systems/geometry/controller/controller_level.hpp"
 
 #include <cassert>
@@ -60,7 +61,23 @@ void GeometryController::end_fades() {
     while (!fades_.empty()) end_fade(fades_.back().character);
 }
 
+void GeometryController::end_morph_source(uint32_t character) {
+    for (size_t i = 0; i < morph_sources_.size(); ++i) {
+        if (morph_sources_[i].character != character) continue;
+        levels_[morph_sources_[i].from_level]->store.release(morph_sources_[i].slot);
+        morph_sources_[i] = morph_sources_.back();
+        morph_sources_.pop_back();
+        return;
+    }
+}
+
+void GeometryController::end_morph_sources() {
+    for (const MorphSource& m : morph_sources_) levels_[m.from_level]->store.release(m.slot);
+    morph_sources_.clear();
+}
+
 void GeometryController::advance_fades() {
+    end_morph_sources();  // last frame's switches have started their morphs
     for (size_t i = 0; i < fades_.size();) {
         LevelFade& f = fades_[i];
         if (--f.frames_left > 0) {

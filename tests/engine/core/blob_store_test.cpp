@@ -93,7 +93,8 @@ void expect_rejected_then_rebuilt(StoreFixture& f, const std::function<void(std:
 }
 
 TEST_F(StoreFixture, TruncatedEntryIsRejectedAndRebuilt) {
-    expect_rejected_then_rebuilt(*this, [](std::vector<uint8_t>& b) { b.resize(b.size() - 5); }, "truncated");
+    // The entry is longer than its header (the size check keeps GCC's -O1 sanitizer build from seeing a wrapped size).
+    expect_rejected_then_rebuilt(*this, [](std::vector<uint8_t>& b) { if (b.size() > 5) b.resize(b.size() - 5); }, "truncated");
 }
 
 TEST_F(StoreFixture, EntryShorterThanItsHeaderIsRejectedAndRebuilt) {

@@ -26,6 +26,32 @@ std::vector<GeomLod> levels_with_impostor() {
 
 std::vector<glm::vec3> copy(std::span<const glm::vec3> s) { return {s.begin(), s.end()}; }
 
+// Runs frame `now` as the spring_skin stage does (the kept slots posed first) for character 0, which switched from
+// `from` into `to` with M geomorph frames, 1 left at `from` (the left surface at this pose) and 2, which entered `to`
+// without a morph (the entered surface); then checks that 0's first frame shows the entered surface plus (1 - 1 / M)
+// of the offset to the left one (geomorph.hpp) within float rounding, and that the left surface moved more than
+// 1 cm since `shown_at_switch` (the start the switch captured: the test tells the two apart).
+void expect_morph_starts_at_this_pose(GeometryController& ctl, uint8_t from, uint8_t to, const std::vector<glm::mat4>& now,
+                                      const std::vector<glm::vec3>& shown_at_switch, uint16_t M) {
+    const uint32_t switching[1] = {0}, left[1] = {1}, fresh[1] = {2};
+    ctl.update_fades(PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    ctl.update(to, switching, PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    ctl.update(to, fresh, PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    ctl.update(from, left, PoseSource{now.data(), 0}, 1.0f / 60.0f);
+    const std::span<const glm::vec3> shown = ctl.surface(0).positions, entered = ctl.surface(2).positions,
+                                     left_now = ctl.surface(1).positions;
+    ASSERT_EQ(shown.size(), entered.size());
+    ASSERT_EQ(shown.size(), left_now.size());
+    const float kept = 1.0f - 1.0f / float(M);
+    float worst = 0.0f, moved = 0.0f;
+    for (size_t i = 0; i < shown.size(); ++i) {
+        worst = std::max(worst, glm::length(shown[i] - (entered[i] + kept * (left_now[i] - entered[i]))));
+        moved = std::max(moved, glm::length(left_now[i] - shown_at_switch[i]));
+    }
+    EXPECT_LT(worst, 1e-5f);  // float rounding of the offset's subtraction and scaling
+    EXPECT_GT(moved, 0.01f);
+}
+
 TEST(LevelFades, IntoTheImpostorTheLeftMeshStaysPosedForNMinusOneFrames) {
     ASSERT_NE(humanoid().geometry, nullptr);
     const CharacterGeometry& g = *humanoid().geometry;
@@ -195,7 +221,7 @@ TEST(LevelFades, AMeshEnteredByACrossFadeStartsItsGeomorphAtThisFramesPose) {
     // by vertex. Character 1 stays skinned (the left surface at each pose); 2 enters the layered level without a
     // morph (the entered level's own surface at the pose).
     for (const uint32_t c : {0u, 1u}) ctl.begin_level(c, kSkinned, -1, 0);
-    const uint32_t both[2] = {0, 1}, switching[1] = {0}, left[1] = {1}, fresh[1] = {2};
+    const uint32_t both[2] = {0, 1};
     const auto before = test::clip_pose(g.skeleton(), humanoid().clip, 500);
     ctl.update(kSkinned, both, PoseSource{before.data(), 0}, 1.0f / 60.0f);
     const std::vector<glm::vec3> shown_at_switch = copy(ctl.surface(0).positions);
@@ -203,23 +229,44 @@ TEST(LevelFades, AMeshEnteredByACrossFadeStartsItsGeomorphAtThisFramesPose) {
     ctl.begin_level(0, kLayered, kSkinned, M, N);
     ctl.begin_level(2, kLayered, -1, 0);
     const auto now = test::clip_pose(g.skeleton(), humanoid().clip, 504);  // four frames on: the skinned level's interval
-    ctl.update_fades(PoseSource{now.data(), 0}, 1.0f / 60.0f);
-    ctl.update(kLayered, switching, PoseSource{now.data(), 0}, 1.0f / 60.0f);
-    ctl.update(kLayered, fresh, PoseSource{now.data(), 0}, 1.0f / 60.0f);
-    ctl.update(kSkinned, left, PoseSource{now.data(), 0}, 1.0f / 60.0f);
-    const std::span<const glm::vec3> shown = ctl.surface(0).positions, entered = ctl.surface(2).positions,
-                                     left_now = ctl.surface(1).positions;
-    ASSERT_EQ(shown.size(), entered.size());
-    ASSERT_EQ(shown.size(), left_now.size());
-    // Frame 1 of M shows the entered surface plus (1 - 1 / M) of the offset to the start (geomorph.hpp).
-    constexpr float kept = 1.0f - 1.0f / float(M);
-    float worst = 0.0f, moved = 0.0f;
-    for (size_t i = 0; i < shown.size(); ++i) {
-        worst = std::max(worst, glm::length(shown[i] - (entered[i] + kept * (left_now[i] - entered[i]))));
-        moved = std::max(moved, glm::length(left_now[i] - shown_at_switch[i]));
+    expect_morph_starts_at_this_pose(ctl, kSkinned, kLayered, now, shown_at_switch, M);
+}
+
+// The same where no cross-fade keeps the left level's slot (two layered levels at one (T, P), with and without the
+// fat: the same vertices, lit alike): the switch keeps the slot as the morph's source until the next advance_fades,
+// update_fades poses it, and the entered level starts from it at the frame's pose.
+TEST(LevelFades, AMorphWithoutAFadeStartsAtThisFramesPoseFromTheLeftSlotKeptOneFrame) {
+    ASSERT_NE(humanoid().geometry, nullptr);
+    const CharacterGeometry& g = *humanoid().geometry;
+    std::vector<GeomLod> levels = levels_with_impostor();
+    GeomLod lean = levels[kLayered];
+    lean.layers = kLayerSkeleton | kLayerMuscle | kLayerSkin;  // no fat springs
+    lean.level = static_cast<uint8_t>(levels.size());
+    levels.push_back(lean);
+    GeometryController ctl(g, levels, 3);
+    for (const uint32_t c : {0u, 1u}) ctl.begin_level(c, kLayered, -1, 0);
+    const uint32_t both[2] = {0, 1};
+    auto pose = test::clip_pose(g.skeleton(), humanoid().clip, 320);
+    for (int f = 0; f < 3; ++f) {  // a few frames walked, so the fat springs carry motion
+        pose = test::clip_pose(g.skeleton(), humanoid().clip, 320 + size_t(f));
+        ctl.update(kLayered, both, PoseSource{pose.data(), 0}, 1.0f / 60.0f);
     }
-    EXPECT_LT(worst, 1e-5f);   // float rounding of the offset's subtraction and scaling
-    EXPECT_GT(moved, 0.01f);  // the start the switch captured was centimetres off: the test tells the two apart
+    const std::vector<glm::vec3> shown_at_switch = copy(ctl.surface(0).positions);
+    constexpr uint16_t M = 5;
+    ctl.begin_level(0, lean.level, kLayered, M);
+    ctl.begin_level(2, lean.level, -1, 0);
+    EXPECT_EQ(ctl.fade(0), nullptr);                 // no cross-fade between these two
+    EXPECT_EQ(ctl.characters_at(kLayered), 2u);      // the witness and the morph's source
+    pose = test::clip_pose(g.skeleton(), humanoid().clip, 326);
+    expect_morph_starts_at_this_pose(ctl, kLayered, lean.level, pose, shown_at_switch, M);
+    ctl.advance_fades();  // the source has served: released
+    EXPECT_EQ(ctl.characters_at(kLayered), 1u);
+    // A switch back keeps it again; ending the character releases both its slots.
+    ctl.begin_level(0, kLayered, static_cast<int8_t>(lean.level), M);
+    EXPECT_EQ(ctl.characters_at(lean.level), 2u);
+    ctl.end_character(0);
+    EXPECT_EQ(ctl.characters_at(lean.level), 1u);
+    EXPECT_EQ(ctl.characters_at(kLayered), 1u);
 }
 
 TEST(LevelFades, OnlyImpostorSwitchesOfTwoFramesOrMoreFadeAndEveryEndReleasesTheKeptSlot) {
