@@ -140,9 +140,9 @@ public:
 
     /// `character` enters `level`: takes a slot there, starts a geomorph of `geomorph_frames` frames
     /// from its old surface when both levels are mesh levels, the old surface has been shown and they are not two
-    /// SkinnedMesh levels over the same vertices (which place them alike: nothing to morph); the old slot then
-    /// stays until the next advance_fades (posed by update_fades: the morph starts at the frame's pose),
-    /// and releases the old slot. A switch into or out of an impostor level from or to a drawn level
+    /// SkinnedMesh levels over the same vertices (which place them alike: nothing to morph), and releases the old
+    /// slot; a geomorph keeps it instead until the next advance_fades (posed by update_fades, it gives the morph
+    /// its start at the frame's pose) unless a cross-fade keeps it. A switch into or out of an impostor level from or to a drawn level
     /// cross-fades instead (LevelFade) over `fade_frames` frames when that is 2 or more; so does a switch
     /// between mesh levels whose displayed surfaces differ, the old one shown (geomorph kept as well). `previous_level`
     /// is the caller's view of the old level (-1 on spawn); the controller's own record wins when they
@@ -164,9 +164,9 @@ public:
     [[nodiscard]] std::span<const LevelFade> fades() const { return fades_; }
     /// The kept slots of fades into the impostor level or between meshes, and of geomorphs without a fade: the
     /// left level's surface (or proxy boxes) for each character's pose in `poses` this frame, as update_muscles +
-    /// update_skin would (fat springs not carried with the placement). Serial; the `spring_skin` stage's (GeometryUpdateJob::RunSkin) first step:
-    /// run before update_skin, a level entered by a cross-fade between meshes starts its geomorph from the kept
-    /// surface at this frame's pose (else from the one shown last frame).
+    /// update_skin would (fat springs not carried with the placement). Serial; the `spring_skin` stage's
+    /// (GeometryUpdateJob::RunSkin) first step: run before update_skin, an entered mesh level starts its geomorph
+    /// from the kept surface at this frame's pose (else from the one shown last frame).
     void update_fades(const PoseSource& poses, float dt);
     /// The surface `character` shows at the level it is fading out of (a LevelFade from a mesh level into the
     /// impostor level or another mesh level), as surface() would there; empty otherwise.
@@ -187,8 +187,8 @@ public:
     void update_muscles(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses);
     /// The `spring_skin` stage (Skin phase): rigid proxies and linear-blend skins from the poses;
     /// at muscle levels fat springs (frame time `dt` > 0) on the muscle surface update_muscles wrote
-    /// this frame, the skin, geomorph and OpenSubdiv refinement. A geomorph's start is the left level's surface:
-    /// the cross-fade's kept one as update_fades last posed it, else the one shown when the switch happened.
+    /// this frame, the skin, geomorph and OpenSubdiv refinement. A geomorph's start is the left level's kept slot
+    /// (a cross-fade's, or the morph's own) as update_fades last posed it, else the surface shown at the switch.
     /// Thread-safe for disjoint lists.
     void update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
     /// The same with the characters' world placements this frame: the fat springs feel the root's
