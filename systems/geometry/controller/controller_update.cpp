@@ -187,7 +187,7 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
         const uint32_t c = characters[i];
         assert(level_of(c) == level);
         const uint32_t s = slot_of_[c];
-        if (L.store.pending[s]) recapture_morph(c, L, s);
+        if (L.store.pending[s]) start_morph(c, L, s);
         switch (L.lod.method) {
             case GeomMethod::Hidden:
             case GeomMethod::Impostor:
@@ -209,13 +209,13 @@ void GeometryController::update_skin(uint8_t level, std::span<const uint32_t> ch
     }
 }
 
-void GeometryController::recapture_morph(uint32_t character, Level& to, uint32_t to_slot) {
-    // The left level's slot, kept by a cross-fade or as a morph source, is posed every frame (update_fades, which
-    // the frame runs before the skins; called in any other order, the kept slot holds last frame's surface, which
-    // is what the switch captured): its surface at THIS frame's pose is where the entered level starts. The surface
-    // captured at the switch is the one shown last frame, at last frame's pose (older still where the left level's
-    // animation updates every few frames): morphing from it would replay the limbs' motion since then (centimetres
-    // on a walker's swinging foot) on top of the two levels' difference of shape.
+void GeometryController::start_morph(uint32_t character, Level& to, uint32_t to_slot) {
+    // The left level's slot, kept by a cross-fade or as the morph's source, is posed every frame by update_fades,
+    // which the frame runs before the skins: its surface at THIS frame's pose is where the entered level starts.
+    // (Called in another order, the kept slot still holds the surface shown at the switch.) A start read when the
+    // switch happened would be last frame's surface at last frame's pose (older still where the left level's
+    // animation updates every few frames): morphing from it would replay the limbs' motion since then
+    // (centimetres on a walker's swinging foot) on top of the two levels' difference of shape.
     uint8_t from_level = kNoLevel;
     uint32_t slot = LevelFade::kNoSlot;
     if (const LevelFade* f = fade(character); f && f->between_meshes && f->keeps_left()) {
@@ -223,11 +223,19 @@ void GeometryController::recapture_morph(uint32_t character, Level& to, uint32_t
         slot = f->kept_slot;
     } else {
         for (const MorphSource& m : morph_sources_)
-            if (m.character == character) from_level = m.from_level, slot = m.slot;
+            if (m.character == character) {
+                from_level = m.from_level, slot = m.slot;
+                break;
+            }
     }
-    if (from_level == kNoLevel) return;
-    const Level& from = *levels_[from_level];
-    if (from.store.valid[slot]) capture_morph(from, slot, to, to_slot);
+    if (from_level != kNoLevel && levels_[from_level]->store.valid[slot]) {
+        capture_morph(*levels_[from_level], slot, to, to_slot);
+        return;
+    }
+    // The kept slot went (advance_fades ran between the switch and this first update): no start, no morph.
+    to.store.frames_total(to_slot)[0] = 0;
+    to.store.frames_left(to_slot)[0] = 0;
+    to.store.pending[to_slot] = 0;
 }
 
 void GeometryController::pose_kept_slot(Level& L, uint32_t slot, std::span<const glm::mat4> pose, const FatSpringParams& params,

@@ -281,8 +281,7 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
                                     from.display_key == to.display_key;
         if (geomorph_frames > 0 && from.mesh_level && to.mesh_level && from.store.valid[os] && to.store.layout().morph > 0 &&
             !same_positions) {
-            morphing = true;
-            capture_morph(from, os, to, s);
+            morphing = true;  // its start is read from the kept left slot at the first update (start_morph)
             to.store.frames_total(s)[0] = geomorph_frames;
             to.store.frames_left(s)[0] = geomorph_frames;
             to.store.pending[s] = 1;
@@ -291,7 +290,7 @@ void GeometryController::begin_level(uint32_t character, uint8_t level, int8_t p
         // (LevelFade); into the impostor or a mesh level, the left level's slot stays while fading if it has been shown.
         const bool between_meshes = mesh_crossfades(old, level);
         const bool keep = to.lod.method == GeomMethod::Impostor || between_meshes;
-        // A morph not started from a fade's kept slot keeps the left slot as its source until the next advance_fades.
+        // A morph whose left slot no fade keeps keeps it as its source until the next advance_fades.
         auto leave = [&] {
             if (morphing) morph_sources_.push_back({character, old, os});
             else from.store.release(os);

@@ -166,7 +166,7 @@ public:
     /// left level's surface (or proxy boxes) for each character's pose in `poses` this frame, as update_muscles +
     /// update_skin would (fat springs not carried with the placement). Serial; the `spring_skin` stage's
     /// (GeometryUpdateJob::RunSkin) first step: run before update_skin, an entered mesh level starts its geomorph
-    /// from the kept surface at this frame's pose (else from the one shown last frame).
+    /// from the kept surface at this frame's pose (else from the one shown at the switch).
     void update_fades(const PoseSource& poses, float dt);
     /// The surface `character` shows at the level it is fading out of (a LevelFade from a mesh level into the
     /// impostor level or another mesh level), as surface() would there; empty otherwise.
@@ -187,8 +187,9 @@ public:
     void update_muscles(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses);
     /// The `spring_skin` stage (Skin phase): rigid proxies and linear-blend skins from the poses;
     /// at muscle levels fat springs (frame time `dt` > 0) on the muscle surface update_muscles wrote
-    /// this frame, the skin, geomorph and OpenSubdiv refinement. A geomorph's start is the left level's kept slot
-    /// (a cross-fade's, or the morph's own) as update_fades last posed it, else the surface shown at the switch.
+    /// this frame, the skin, geomorph and OpenSubdiv refinement. A geomorph starts, on the entered level's first update,
+    /// from the left level's kept slot (a cross-fade's, or the morph's own) as update_fades last posed it (the
+    /// surface shown at the switch when it has not run since); dropped when advance_fades released that slot first.
     /// Thread-safe for disjoint lists.
     void update_skin(uint8_t level, std::span<const uint32_t> characters, const PoseSource& poses, float dt);
     /// The same with the characters' world placements this frame: the fat springs feel the root's
@@ -301,9 +302,9 @@ public:
 private:
     std::unique_ptr<Level> build_level(const GeomLod& lod, uint8_t index, uint8_t revision) const;
     void capture_morph(const Level& from, uint32_t from_slot, Level& to, uint32_t to_slot);
-    // Re-captures a pending morph start from the left level's kept slot (a cross-fade's or a morph source's),
-    // posed this frame by update_fades.
-    void recapture_morph(uint32_t character, Level& to, uint32_t to_slot);
+    // Reads a pending morph's start from the left level's kept slot (a cross-fade's or a morph source's), posed
+    // this frame by update_fades; without one the morph is dropped.
+    void start_morph(uint32_t character, Level& to, uint32_t to_slot);
     // Poses the kept `slot` of level `L` for `pose`, as its level's stages would (update_fades).
     void pose_kept_slot(Level& L, uint32_t slot, std::span<const glm::mat4> pose, const FatSpringParams& params,
                         std::span<const FatSpringParams> tunings, float dt);

@@ -103,7 +103,7 @@ public:
     [[nodiscard]] std::span<const glm::vec3> refined_positions(uint32_t s) const { return cpart<glm::vec3>(kRefinedPos, s); }
     [[nodiscard]] std::span<const glm::vec3> refined_normals(uint32_t s) const { return cpart<glm::vec3>(kRefinedNrm, s); }
 
-    /// Per-slot flags: a morph start is pending (deltas hold the old surface), the displayed control
+    /// Per-slot flags: a morph's start is still to be read (the first update fills deltas), the displayed control
     /// surface is `positions` (morph shown) rather than the spring ends, the slot has been updated.
     std::vector<uint8_t> pending;
     std::vector<uint8_t> shows_morph;
