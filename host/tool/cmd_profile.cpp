@@ -303,7 +303,7 @@ int run_profile(const CliOptions& options) {
         for (const auto& name : sched.names()) f << ",system_" << name << "_ms";  // apart from the totals
         for (const auto& g : gnames) f << ",geom_" << g;
         for (const auto& a : anames) f << ",anim_" << a;
-        if (fidelity) f << ",mean_deviation_px,mean_moving_reference_deviation_px,max_deviation_px,psnr_db,change_px,switches,error_change,error_change_in_switches";
+        if (fidelity) f << ",mean_deviation_px,mean_moving_reference_deviation_px,max_deviation_px,psnr_db,change_px,switches,error_change,error_change_in_switches,reference_change";
         f << ",animation_ms,geometry_ms,geom_switches,anim_switches,visible,occluded,process_cpu_ms,gpu_overlapped\n";
         for (size_t i = 0; i < records.size(); ++i) {
             const auto& r = records[i];
@@ -314,7 +314,7 @@ int run_profile(const CliOptions& options) {
             if (fidelity)
                 f << "," << r.fidelity.mean_deviation_px << "," << r.fidelity.mean_moving_deviation_px << "," << r.fidelity.max_deviation_px << "," << r.fidelity.psnr_db
                   << "," << r.fidelity.changed_fraction << "," << r.fidelity.switches << "," << r.fidelity.error_change << ","
-                  << r.fidelity.error_change_in_switches;
+                  << r.fidelity.error_change_in_switches << "," << r.fidelity.reference_changed_fraction;
             f << "," << r.lod.animation_ms << "," << r.lod.geometry_ms << "," << r.lod.geom_switches << ","
               << r.lod.anim_switches << "," << r.lod.visible << "," << r.lod.occluded << "," << r.process_cpu_ms << ","
               << (r.overlapped ? 1 : 0) << "\n";

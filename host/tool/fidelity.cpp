@@ -152,6 +152,7 @@ public:
         out.switches = frame_.switches;
         for (const SwitchRect& r : frame_.switch_rects) out.switches_without_rect += (r.x1 <= r.x0 || r.y1 <= r.y0) ? 1u : 0u;
         out.changed_fraction = change_map(now, previous_.pixels, change_now_);  // 0 and no map on the first frame
+        out.reference_changed_fraction = change_map(now_reference, previous_reference_.pixels, reference_change_now_);
         out.error_change = error_change(now, now_reference, previous_.pixels, previous_reference_.pixels, error_change_now_);
         if (!error_change_now_.empty()) {
             stamp_.resize(error_change_now_.size(), 0);
@@ -211,6 +212,7 @@ private:
     gpu::Rgba8Image previous_reference_;
     std::vector<uint16_t> error_change_now_;             ///< per-pixel change of the LOD's error, this frame
     std::vector<uint16_t> change_now_;                   ///< per-pixel change map of this frame
+    std::vector<uint16_t> reference_change_now_;         ///< the reference picture's change map (scratch)
     std::deque<std::vector<uint16_t>> history_;          ///< the maps of up to kPopHistoryFrames frames before, newest first
     std::vector<uint32_t> stamp_;                       ///< pair_changes' scratch
     uint32_t stamp_id_ = 0;
@@ -284,6 +286,7 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
                     {"detrended", std::move(detrended)},
                     {"over_p95", switch_frames_over_p95(frames, bar.ordinary.p95)},
                     {"against_reference", error_change_popping(frames)},
+                    {"control", reference_change_control(frames)},
                     {"by_kind", popping_by_kind(frames, level_names)},
                     {"local", local_popping(frames, level_names)}};
     const double overall_mean = mean.empty() ? 0.0 : summarize(mean).mean;
@@ -351,6 +354,17 @@ std::string fidelity_summary(const nlohmann::json& report) {
                   verdict(e["switch_no_worse_than_ordinary_p95"], "OVER"), e["detrended"]["p_value"].get<double>(),
                   verdict(e["detrended"]["no_worse_than_ordinary"], "WORSE"),
                   e["share_inside_switching_characters"].is_null() ? 0.0 : 100.0 * e["share_inside_switching_characters"].get<double>());
+    out += line;
+    const nlohmann::json& r = p["control"];
+    std::snprintf(line, sizeof line,
+                  "fidelity control (the reference picture, which switches nothing, on the same frames: the picture's own "
+                  "motion): switch frames' largest change %.6f against the ordinary p95 %.6f (%s), detrended p = %.3f (%s); "
+                  "the LOD picture's change less the reference's, detrended: p = %.3f (%s)\n",
+                  r["switch_change_max"].get<double>(), r["ordinary_change_p95"].get<double>(),
+                  verdict(r["switch_no_worse_than_ordinary_p95"], "OVER"), r["detrended"]["p_value"].get<double>(),
+                  verdict(r["detrended"]["no_worse_than_ordinary"], "WORSE"),
+                  r["raw_less_control"]["detrended"]["p_value"].get<double>(),
+                  verdict(r["raw_less_control"]["detrended"]["no_worse_than_ordinary"], "WORSE"));
     return out + line;
 }
 

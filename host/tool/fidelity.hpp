@@ -50,6 +50,9 @@ struct FidelityFrame {
     std::vector<double> mean_moving_deviation_per_level;  ///< by geometric level (-1 when no character there)
     double psnr_db = 0;                ///< LOD render vs full-detail render
     double changed_fraction = 0;       ///< mean absolute RGB change from the previous LOD frame (0..1)
+    /// The same change in the full-detail reference picture (every visible character at the richest level,
+    /// no switches): the picture's own motion on this frame, the control for the switch-frame tests.
+    double reference_changed_fraction = 0;
     /// Mean over pixels and channels of |(lod - reference) now - (lod - reference) on the frame before|, as a
     /// fraction of full scale (image_compare.hpp's error_change); 0 on the first frame. What the camera and
     /// the characters' motion change in both pictures cancels: this is what the LOD alone changed.

@@ -59,4 +59,13 @@ struct SwitchBar {
 /// change that lies inside the switching characters' rectangles. Frame 0, with no frame before, is left out.
 [[nodiscard]] nlohmann::json error_change_popping(const std::vector<FidelityFrame>& frames);
 
+/// The control for the whole-frame switch bar: the same bar and detrended test read on the full-detail
+/// reference picture's own change (FidelityFrame::reference_changed_fraction) with the LOD run's switch
+/// frames, where no switch happens. Switch frames that rank high there too coincide with the picture's own
+/// motion (say the occlusion rule switching a character as the one in front walks across it), not with
+/// anything a switch drew. Also the detrended test on the LOD picture's change less the reference's
+/// ("raw_less_control"): what the LOD picture changed beyond the picture's own motion, frame by frame.
+/// Frame 0, with no frame before, is left out.
+[[nodiscard]] nlohmann::json reference_change_control(const std::vector<FidelityFrame>& frames);
+
 }  // namespace aloha::tool

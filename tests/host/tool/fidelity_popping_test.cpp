@@ -117,5 +117,32 @@ TEST(FidelityPopping, SwitchFramesOverTheP95WithAndWithoutTheirSwitchingCharacte
     EXPECT_EQ(switch_frames_over_p95(frames, 0.010)["over_even_without_the_switching_characters"], 0);
 }
 
+// The control: switch frames that come when the picture itself changes most (the reference's change as
+// high as the LOD picture's) fail the raw bar and pass once the reference's change is taken out; a switch
+// that adds change of its own fails both. 21 frames, the picture's own change 0.001 to 0.0019 a frame.
+TEST(FidelityPopping, TheControlReadsTheSwitchFramesOnTheReferencesOwnChange) {
+    std::vector<FidelityFrame> frames(21);
+    for (size_t k = 1; k < frames.size(); ++k) {
+        frames[k].reference_changed_fraction = 0.001 + 0.0001 * double(k % 10);
+        frames[k].changed_fraction = frames[k].reference_changed_fraction;
+    }
+    for (size_t k : {4u, 9u, 14u, 19u}) {  // the frames where the picture changes most (k % 10 == 9 or 4)
+        frames[k].switches = 1;
+        frames[k].reference_changed_fraction += 0.002;
+        frames[k].changed_fraction += 0.002;
+    }
+    nlohmann::json j = reference_change_control(frames);
+    EXPECT_EQ(j["switch_frames"], 4);
+    EXPECT_EQ(j["ordinary_frames"], 16);
+    EXPECT_EQ(j["switch_no_worse_than_ordinary_p95"], false);  // the control fails too: the picture's own motion
+    EXPECT_LT(j["detrended"]["p_value"].get<double>(), 0.05);
+    EXPECT_EQ(j["raw_less_control"]["detrended"]["no_worse_than_ordinary"], true);  // nothing beyond it
+    // The same switches adding 0.001 of their own: the control is unchanged, the difference ranks them first.
+    for (size_t k : {4u, 9u, 14u, 19u}) frames[k].changed_fraction += 0.001;
+    j = reference_change_control(frames);
+    EXPECT_EQ(j["switch_no_worse_than_ordinary_p95"], false);
+    EXPECT_EQ(j["raw_less_control"]["detrended"]["no_worse_than_ordinary"], false);
+}
+
 }  // namespace
 }  // namespace aloha::tool

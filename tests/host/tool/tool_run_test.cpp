@@ -120,10 +120,14 @@ TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
     const nlohmann::json& against = report["fidelity"]["popping"]["against_reference"];
     EXPECT_EQ(against["switch_frames"].get<size_t>() + against["ordinary_frames"].get<size_t>(), 3u);
     EXPECT_NE(r.output.find("fidelity against the reference"), std::string::npos) << r.output;
+    // The control reads the same frames on the reference picture's own change.
+    const nlohmann::json& control = report["fidelity"]["popping"]["control"];
+    EXPECT_EQ(control["switch_frames"].get<size_t>() + control["ordinary_frames"].get<size_t>(), 3u);
+    EXPECT_NE(r.output.find("fidelity control"), std::string::npos) << r.output;
     std::ifstream csv(out / "p" / "frames.csv");
     std::string header;
     std::getline(csv, header);
-    EXPECT_NE(header.find(",error_change,error_change_in_switches"), std::string::npos) << header;
+    EXPECT_NE(header.find(",error_change,error_change_in_switches,reference_change"), std::string::npos) << header;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
     fs::remove_all(out);
 }
