@@ -1,8 +1,17 @@
 #include "engine/ecs/registry.hpp"
 
+#include <cstdio>
+#include <cstdlib>
+
 namespace aloha {
 
 Registry::~Registry() { groups_.clear(); }
+
+void Registry::abort_on_dead_entity(const char* call, Entity e) {
+    std::fprintf(stderr, "aloha: Registry::%s on a dead or stale entity (index %u, generation %u)\n", call,
+                 static_cast<unsigned>(e.index), static_cast<unsigned>(e.generation));
+    std::abort();
+}
 
 bool Registry::destroy(Entity e) {
     if (!entities_.valid(e)) return false;

@@ -44,10 +44,13 @@ public:
     /// Reserves room for `count` entities.
     void reserve(size_t count) { entities_.reserve(count); }
 
-    /// Gives live entity `e` a T built from `args` (replacing an existing one); returns it.
+    /// Gives live entity `e` a T built from `args` (replacing an existing one); returns it. A dead or stale
+    /// `e` is a programmer error that aborts with a message in every build: stored, it would take the place
+    /// of the live entity now in its slot (two entries for one index).
     template <class T, class... Args>
     T& emplace(Entity e, Args&&... args) {
-        assert(valid(e) && "emplace on a dead entity");
+        if (!valid(e)) [[unlikely]]
+            abort_on_dead_entity("emplace", e);
         return storage<T>().emplace(e, std::forward<Args>(args)...);
     }
     /// The T of `e`; requires has<T>(e).
@@ -150,6 +153,8 @@ public:
     void clear();
 
 private:
+    /// Prints which call got a dead or stale handle and aborts (the checks that stay in release builds).
+    [[noreturn]] static void abort_on_dead_entity(const char* call, Entity e);
     // The component type ids of Ts (constness ignored), in order: the key of their ViewCache.
     template <class... Ts>
     static std::span<const ComponentTypeId> cache_key() {

@@ -46,6 +46,19 @@ TEST(Entity, StaleHandleNeverReachesNewEntityData) {
     EXPECT_TRUE(r.has<Health>(reused));
 }
 
+// Emplacing on a stale handle would store a second entry for the slot the live entity now holds: it
+// aborts with a message in every build type (the assertion before it vanished in release builds).
+TEST(EntityDeathTest, EmplaceOnAStaleHandleAbortsInEveryBuild) {
+    Registry r;
+    const Entity old = r.create();
+    ASSERT_TRUE(r.destroy(old));
+    const Entity reused = r.create();
+    r.emplace<Health>(reused, 99);
+    EXPECT_DEATH(r.emplace<Health>(old, 7), "Registry::emplace on a dead or stale entity");
+    EXPECT_DEATH(r.emplace<Health>(kNullEntity, 7), "dead or stale");
+    EXPECT_EQ(r.get<Health>(reused).value, 99);
+}
+
 TEST(Entity, GenerationIncrementsOnEveryReuse) {
     EntityPool pool;
     Entity e = pool.create();
