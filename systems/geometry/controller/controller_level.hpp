@@ -1,6 +1,7 @@
 // Internal to the geometric controller: the shared data and storage of one level.
 #pragma once
 
+#include "systems/geometry/body_skin/surface_map.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/geometry/spring_skin/peeled.hpp"
 #include "systems/geometry/spring_skin/strain_limit.hpp"
@@ -35,6 +36,10 @@ struct GeometryController::Level {
     SkinSurfaceKey display_key;                    ///< the displayed surface (mesh levels): geomorph correspondences
     std::span<const uint32_t> indices;             ///< the level's triangle list
     std::vector<uint32_t> simplified_indices;      ///< SkinnedMesh with simplify_error: the list `indices` shows
+    /// With simplified_indices: every vertex located at rest on the simplified triangles (its closest point;
+    /// a vertex the list keeps is its own), so the fidelity deviation reads a vertex the list leaves out where
+    /// the drawn surface shows that part of the body. Empty otherwise.
+    SurfaceMap simplified_map;
     SkinEdges control_edges;                       ///< mesh levels: the control surface's edges (strain limiting)
     SkinEdges refined_edges;                       ///< Subdivided: the refined surface's edges
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)

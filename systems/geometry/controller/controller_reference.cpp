@@ -75,6 +75,13 @@ void GeometryController::deviation_pairs(const PoseSource& poses, uint32_t chara
     current.assign(shown.begin(), shown.end());
     const std::span<const glm::mat4> pose = poses.joints(character, geometry_->joint_count());
     if (current_at_rest) control_surface(C, pose, *current_at_rest);
+    if (!C.simplified_map.corners.empty()) {  // where the simplified triangles show each vertex's part of the body
+        C.simplified_map.apply(shown, current);
+        if (current_at_rest) {
+            const std::vector<glm::vec3> at_rest = *current_at_rest;
+            C.simplified_map.apply(at_rest, *current_at_rest);
+        }
+    }
     std::vector<glm::vec3> ref_control;
     control_surface(R, pose, ref_control);
     // The reference springs as they moved: the reference level's shown control surface of their slot.

@@ -151,6 +151,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
                                                          : std::span<const glm::vec3>(skin->rest_positions);
             level->simplified_indices = simplify_indices(rest, level->indices, lod.simplify_error).indices;
             level->indices = level->simplified_indices;
+            level->simplified_map = map_surface(rest, level->simplified_indices, rest);
         }
     }
     if (level->mesh_level) {

@@ -273,7 +273,8 @@ public:
     /// strain limit: what the spring dynamics alone did); empty at a level without fat springs.
     [[nodiscard]] std::span<const glm::vec3> fat_spring_ends(uint32_t character) const;
     /// Matched point pairs for fidelity: for every vertex of the character's current control surface
-    /// (the displayed surface, before subdivision) `current` gets the vertex and `reference` the
+    /// (the displayed surface, before subdivision) `current` gets the vertex (on a level drawn with a
+    /// simplified triangle list, the point of that list's surface that shows it: Level::simplified_map) and `reference` the
     /// reference level's control surface (springs at rest) at the same (muscle, theta, phi) (bilinear
     /// on the reference grid), or the same mesh vertex for a real mesh. Both are empty when either
     /// level is not a mesh level or the character has not been updated yet. `current_at_rest`, when
