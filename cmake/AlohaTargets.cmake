@@ -23,6 +23,11 @@ function(aloha_library_defaults target short)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/aloha>)
   target_compile_features(${target} PUBLIC cxx_std_20)
   aloha_warnings(${target})
+  # A build with sanitizers (the asan-ubsan preset's CMAKE_CXX_FLAGS) installs libraries that call their
+  # runtimes: the installed targets carry the link option, so a consumer of the package links them.
+  if(CMAKE_CXX_FLAGS MATCHES "-fsanitize=([a-z,]+)")
+    target_link_options(${target} INTERFACE $<INSTALL_INTERFACE:-fsanitize=${CMAKE_MATCH_1}>)
+  endif()
   install(TARGETS ${target} EXPORT alohaTargets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
