@@ -8,4 +8,5 @@ list(APPEND ALOHA_GEOMETRY_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/blend_binding.cpp
   ${CMAKE_CURRENT_LIST_DIR}/blend_rest.cpp
   ${CMAKE_CURRENT_LIST_DIR}/weight_smoothing.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/surface_map.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/surface_map.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/triangle_grid.cpp)

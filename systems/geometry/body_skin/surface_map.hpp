@@ -4,6 +4,8 @@
 // geomorph between levels whose skins differ and to compare a level with a reference level.
 #pragma once
 
+#include "systems/geometry/body_skin/triangle_grid.hpp"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -21,13 +23,8 @@ struct SurfaceMap {
     void apply(std::span<const glm::vec3> source, std::span<glm::vec3> out) const;
 };
 
-/// Closest point of triangle (a, b, c) to p as barycentric weights of a, b, c (Ericson 5.1.5).
-[[nodiscard]] glm::vec3 closest_barycentric(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c);
-
-/// Maps every target vertex onto the source surface: the closest point among the triangles around the
-/// source vertices within a few hash cells (a uniform grid of the source vertices with cell = the
-/// mean source edge length), falling back to all triangles when none is found. Requires a non-empty
-/// source triangle list.
+/// Maps every target vertex onto the source surface at its closest point (exact: TriangleGrid; ties to the
+/// first triangle the search meets). Requires a non-empty source triangle list.
 [[nodiscard]] SurfaceMap map_surface(std::span<const glm::vec3> source_positions, std::span<const uint32_t> source_indices,
                                      std::span<const glm::vec3> target_positions);
 

@@ -2,6 +2,8 @@
 // strays from the full one, each way, measured at sample points of the triangles.
 #pragma once
 
+#include "systems/geometry/body_skin/triangle_grid.hpp"
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -10,8 +12,8 @@
 
 namespace aloha {
 
-/// Distance from p to the triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5). Degenerate
-/// triangles are allowed (the distance to the segment or point they collapse to).
+/// Distance from p to the triangle (a, b, c): to closest_barycentric's point (Ericson, Real-Time Collision
+/// Detection, 5.1.5). Degenerate triangles are allowed (the distance to the segment or point they collapse to).
 [[nodiscard]] float point_triangle_distance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c);
 
 /// The seven sample points of a triangle the distances below are measured at: its corners, its edges'
@@ -22,11 +24,11 @@ inline constexpr int kTriangleSamples = 7;
 /// surface `to` (both over `positions`). Requires triangle lists whose every index is < positions.size().
 class SurfaceDistance {
 public:
-    /// Indexes `to` (which triangles touch each vertex) for the queries below.
+    /// Indexes `to` (which triangles touch each vertex, and a TriangleGrid) for the queries below.
     SurfaceDistance(std::span<const glm::vec3> positions, std::span<const uint32_t> to);
 
     /// Distance from p to the surface, looking first at the triangles that touch `near_vertices` (the
-    /// vertices p was sampled between): exact, the search over every triangle pruned by the best so far.
+    /// vertices p was sampled between): exact, the grid's search bounded by the best of those.
     [[nodiscard]] float distance(glm::vec3 p, std::span<const uint32_t> near_vertices) const;
 
     /// The largest distance from the samples of `from` to the surface, and for each triangle of `from`
@@ -42,7 +44,7 @@ private:
     std::span<const uint32_t> to_;
     std::vector<uint32_t> first_;      // per vertex: its triangles are touching_[first_[v], first_[v + 1])
     std::vector<uint32_t> touching_;   // triangle numbers of `to`
-    std::vector<float> longest_edge_;  // per triangle of `to`: the search's pruning radius
+    TriangleGrid grid_;                // over `to`
 };
 
 }  // namespace aloha

@@ -133,8 +133,8 @@ TEST(GeometryControllerMorph, SkinnedLevelsOverTheSameVerticesSwitchWithoutAMorp
     EXPECT_GT(test::max_distance(shown_before, ctl.surface(1).positions), 0.01f);  // a morph would have replayed centimetres
 }
 
-// Distance of every point of `points` to the triangle surface (positions, indices): the closest
-// point found by map_surface's search (it can only overestimate the distance).
+// Distance of every point of `points` to the triangle surface (positions, indices): map_surface's
+// closest point (exact: triangle_grid_test.cpp holds it to a search over every triangle).
 std::vector<float> distance_to_surface(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
                                        std::span<const glm::vec3> points) {
     const SurfaceMap map = map_surface(positions, indices, points);
