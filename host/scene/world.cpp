@@ -237,7 +237,8 @@ Status World::spawn_characters() {
     const std::vector<CharacterDesc> chars = expand_characters(scene_, options_.seed_override);
     TypeLoadOptions load;
     load.threads = options_.threads;
-    load.bake_cache = open_bake_cache(options_.bake_cache, options_.bake_cache_dir, options_.bake_cache_max_bytes);
+    bake_cache_ = open_bake_cache(options_.bake_cache, options_.bake_cache_dir, options_.bake_cache_max_bytes);
+    load.bake_cache = bake_cache_;
     auto types = make_character_runtimes(scene_, chars, geom_levels(rules_.table()), options_.keep_refined_surfaces, load);
     if (!types.ok()) return types.error();
     types_ = std::move(types.value());

@@ -194,6 +194,7 @@ public:
         uint32_t width = 0, height = 0; ///< atlas pixels (colour and normal halves)
         double build_ms = 0.0;        ///< bake wall time (posing, reference surfaces, GPU frames, read-back, upload)
         uint64_t texture_bytes = 0;   ///< mipmapped texture memory
+        bool cached = false;          ///< read back from the bake cache (build_ms: posing, the read and the upload)
     };
     /// The atlases baked for the attached renderer.
     [[nodiscard]] std::span<const ImpostorReport> impostor_atlases() const { return impostor_reports_; }
@@ -262,6 +263,7 @@ private:
     RenderLists lists_;
     std::vector<ImpostorReport> impostor_reports_;   ///< atlases baked for renderer_, by type order
     std::vector<uint8_t> impostor_built_;            ///< per type: baked for renderer_
+    std::shared_ptr<const BlobStore> bake_cache_;    ///< the types' bakes and the impostor atlases (none: off)
     CrowdRenderer* renderer_ = nullptr;
     gpu::OffscreenTarget* target_ = nullptr;
     double last_gpu_ms_ = -1.0;

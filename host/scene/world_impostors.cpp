@@ -2,10 +2,13 @@
 // per renderer (systems/frame/impostor_source.hpp, systems/render/impostor_atlas.hpp).
 #include "host/scene/character_runtime.hpp"
 #include "host/scene/world.hpp"
+#include "engine/core/blob_store.hpp"
+#include "engine/gpu/context.hpp"
 #include "systems/frame/impostor_source.hpp"
 #include "systems/motion/kinematic_walk.hpp"
 #include "systems/motion/local_to_model.hpp"
 #include "systems/motion/pose_pool.hpp"
+#include "systems/render/impostor_atlas_cache.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -55,13 +58,21 @@ Status World::build_impostors() {
         const std::vector<std::vector<glm::mat4>> poses = impostor_poses(rt.type, cycle_s);
         ImpostorBakeInput in = impostor_bake_input(draw_types_[t], level, poses, rt.type.name);
         in.directions = kDirections;
-        Result<ImpostorAtlas> atlas = bake_impostor_atlas(renderer_->context(), in);
+        // The bake cache holds atlases by a digest of everything the bake reads and of the device.
+        const std::vector<uint8_t> key = bake_cache_ ? impostor_atlas_key(renderer_->context().properties(), in) : std::vector<uint8_t>{};
+        std::optional<ImpostorAtlas> read;
+        if (bake_cache_)
+            if (const auto bytes = bake_cache_->get(key)) read = read_impostor_atlas(*bytes);
+        if (read) read->image.name = impostor_atlas_image_name(in.name);  // the name is not in the key: types may share
+        const bool cached = read.has_value();
+        Result<ImpostorAtlas> atlas = cached ? Result<ImpostorAtlas>(std::move(*read)) : bake_impostor_atlas(renderer_->context(), in);
         if (!atlas) return atlas.error();
+        if (bake_cache_ && !cached) bake_cache_->put(key, write_impostor_atlas(atlas.value()));
         Result<uint32_t> id = renderer_->register_impostor_atlas(atlas.value().image, atlas.value().layout);
         if (!id) return id.error();
         draws_.set_impostor(static_cast<uint16_t>(t), id.value(), cycle_s);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        impostor_reports_.push_back({rt.type.name, atlas.value().image.width, atlas.value().image.height, ms, atlas.value().texture_bytes});
+        impostor_reports_.push_back({rt.type.name, atlas.value().image.width, atlas.value().image.height, ms, atlas.value().texture_bytes, cached});
     }
     return {};
 }

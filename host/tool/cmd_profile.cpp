@@ -264,7 +264,7 @@ int run_profile(const CliOptions& options) {
     nlohmann::json atlases = nlohmann::json::array();  // impostor atlases baked at load (one per type)
     for (const World::ImpostorReport& a : world.impostor_atlases())
         atlases.push_back({{"type", a.type}, {"width", a.width}, {"height", a.height}, {"build_ms", a.build_ms},
-                           {"texture_bytes", a.texture_bytes}});
+                           {"texture_bytes", a.texture_bytes}, {"cached", a.cached}});
     report["impostor_atlases"] = atlases;
     nlohmann::json per_frame = nlohmann::json::array();
     for (const auto& r : records)
@@ -375,7 +375,7 @@ int run_profile(const CliOptions& options) {
                        << fmt(compare["ratio_mean"].get<double>()) << "x slower than LOD on (target 20x)\n";
     }
     for (const World::ImpostorReport& a : world.impostor_atlases())
-        std::cout << "impostor atlas '" << a.type << "': " << a.width << " x " << a.height << " px, " << fmt(a.build_ms) << " ms to bake, "
+        std::cout << "impostor atlas '" << a.type << "': " << a.width << " x " << a.height << " px, " << fmt(a.build_ms) << (a.cached ? " ms from the bake cache, " : " ms to bake, ")
                   << fmt(double(a.texture_bytes) / 1048576.0) << " MiB with mips\n";
     std::cout << lod_summary(report);
     if (motion) std::cout << motion->table(table);

@@ -60,6 +60,8 @@ glm::mat4 impostor_view_rotation(uint32_t d, uint32_t directions) {
     return glm::rotate(glm::mat4(1.0f), -azimuth, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
+std::string impostor_atlas_image_name(const std::string& type) { return "impostor atlas '" + type + "'"; }
+
 Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeInput& in) {
     const auto t0 = std::chrono::steady_clock::now();
     auto fail = [&](const std::string& what) { return gpu::gpu_error("impostor atlas of '" + in.name + "': " + what); };
@@ -119,7 +121,7 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
     frame.clear_colour = glm::vec4(0.0f);
     frame.ambient = 1.0f;  // white sky and ground (the defaults): the albedo, unlit
     ImpostorAtlas out;
-    out.image.name = "impostor atlas '" + in.name + "'";
+    out.image.name = impostor_atlas_image_name(in.name);
     out.image.width = width;
     out.image.height = 2 * height;
     out.image.rgba.resize(size_t{width} * 2 * height * 4);

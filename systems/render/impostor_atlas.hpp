@@ -50,6 +50,9 @@ struct ImpostorAtlas {
     uint64_t texture_bytes = 0;    ///< GPU memory of the mipmapped texture (packed R32G32_UINT, full chain)
 };
 
+/// The name a bake gives its atlas image (messages): "impostor atlas '<type>'".
+[[nodiscard]] std::string impostor_atlas_image_name(const std::string& type);
+
 /// Bakes `in` on `ctx` (a renderer and target of its own, released before returning). Errors: fewer than
 /// two rows, poses whose sizes differ from the first's, an empty mesh, an atlas wider or taller than
 /// 8192 pixels, Vulkan failures.

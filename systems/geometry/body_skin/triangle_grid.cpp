@@ -93,6 +93,7 @@ TriangleGrid::TriangleGrid(std::span<const glm::vec3> positions, std::span<const
         edge_sum += std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
     }
     const glm::vec3 extent = hi - lo;
+    assert(std::isfinite(extent.x + extent.y + extent.z) && "positions must be finite (loaders reject others)");
     const float largest = std::max({extent.x, extent.y, extent.z});
     // A flat or point-like list still gets a positive cell; the cell never goes below a millionth of the extent.
     cell_ = std::max({static_cast<float>(edge_sum / static_cast<double>(triangles)), largest * 1e-6f, 1e-12f});
@@ -146,6 +147,7 @@ TriangleGrid::Hit TriangleGrid::closest(glm::vec3 p, float bound_sq) const {
     Hit hit;
     hit.distance_sq = bound_sq;
     if (triangles_.empty()) return hit;
+    assert(std::isfinite(p.x + p.y + p.z) && "the query point must be finite");
     const auto consider = [&](uint32_t f) {
         // No point of the triangle is nearer than its bounding box; the margin keeps a triangle whose rounded
         // distance could still come out below the best (its closest point on the box's surface).

@@ -21,7 +21,8 @@ namespace aloha {
 /// The grid. Keeps spans of the positions and indices it was built over: both must outlive it, unchanged.
 class TriangleGrid {
 public:
-    /// Indexes `indices` (triangles over `positions`; every index < positions.size(), size a multiple of 3).
+    /// Indexes `indices` (triangles over `positions`, all finite; every index < positions.size(), size a
+    /// multiple of 3).
     /// Cell edge: the triangles' mean longest edge, widened where the grid would exceed ~16 cells a triangle.
     TriangleGrid(std::span<const glm::vec3> positions, std::span<const uint32_t> indices);
 
@@ -36,7 +37,7 @@ public:
 
     /// The closest point of the triangles to p, among those strictly closer than sqrt(bound_sq) (a distance
     /// already known elsewhere lets the search stop sooner). Ties go to the first triangle met in the search,
-    /// which is deterministic. Thread-safe (const, no scratch).
+    /// which is deterministic. Requires a finite p. Thread-safe (const, no scratch).
     [[nodiscard]] Hit closest(glm::vec3 p, float bound_sq = std::numeric_limits<float>::infinity()) const;
 
     /// The number of triangles indexed.

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <set>
@@ -129,6 +130,33 @@ TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
     std::getline(csv, header);
     EXPECT_NE(header.find(",error_change,error_change_in_switches,reference_change"), std::string::npos) << header;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    fs::remove_all(out);
+}
+
+// Impostor atlases in the bake cache: a first run bakes every type's atlas and saves it, a second run over the same
+// cache directory reads each one back, and the two runs end in the same state and the same picture.
+TEST(Tool, ProfileReadsImpostorAtlasesBackFromTheBakeCache) {
+    const fs::path out = temp_dir("profile_atlas_cache");
+    const std::string common = "profile " + kScenes + "crowd_1k.json --frames 3 --warmup 2 --characters 60 --quiet --validation " +
+                               "--cache-dir " + (out / "cache").string() + " --out ";
+    nlohmann::json reports[2];
+    for (int i = 0; i < 2; ++i) {
+        const RunResult r = run(common + (out / std::to_string(i)).string());
+        ASSERT_EQ(r.code, 0) << r.output;
+        EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(i == 0 ? "ms to bake" : "ms from the bake cache"), std::string::npos) << r.output;
+        std::ifstream in(out / std::to_string(i) / "report.json");
+        reports[i] = nlohmann::json::parse(in);
+        ASSERT_FALSE(reports[i]["impostor_atlases"].empty());
+        for (const auto& atlas : reports[i]["impostor_atlases"]) EXPECT_EQ(atlas["cached"].get<bool>(), i == 1) << atlas.dump();
+    }
+    EXPECT_EQ(reports[0]["impostor_atlases"].size(), reports[1]["impostor_atlases"].size());
+    EXPECT_EQ(reports[0]["state_hash"], reports[1]["state_hash"]);
+    const auto bytes = [](const fs::path& p) {
+        std::ifstream f(p, std::ios::binary);
+        return std::vector<char>(std::istreambuf_iterator<char>(f), {});
+    };
+    EXPECT_EQ(bytes(out / "0" / "last_frame.png"), bytes(out / "1" / "last_frame.png")) << "the same picture from the cached atlases";
     fs::remove_all(out);
 }
 
