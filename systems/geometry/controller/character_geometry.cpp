@@ -287,25 +287,20 @@ const SurfaceMap& CharacterGeometry::surface_map(SkinSurfaceKey from, SkinSurfac
         if (const auto it = surface_maps_.find(key); it != surface_maps_.end()) return *it->second;
     }
     // Built outside the lock (the rest surfaces take it themselves); a racing builder's copy is dropped.
-    // Maps between unrefined generated skins go through the bake cache (refined ones would make the
-    // cache depend on OpenSubdiv's code too).
+    // The bake cache keys a map by the surfaces themselves (skin_bake.hpp), so refined ones are cached too.
+    std::vector<glm::vec3> source, target;
+    std::vector<uint32_t> source_indices, target_indices;
+    rest_surface(from, source, source_indices);
+    rest_surface(to, target, target_indices);
     std::unique_ptr<SurfaceMap> map;
-    const bool cached = bake_cache_ && from.subdivision == 0 && to.subdivision == 0;
-    const std::vector<uint8_t> bake_key =
-        cached ? surface_map_key(bake_inputs_, from.theta_steps, from.phi_steps, to.theta_steps, to.phi_steps) : std::vector<uint8_t>{};
-    if (cached) {
-        const size_t sources = skin_layer(from.theta_steps, from.phi_steps).rest_positions.size();
-        const size_t targets = skin_layer(to.theta_steps, to.phi_steps).rest_positions.size();
+    const std::vector<uint8_t> bake_key = bake_cache_ ? surface_map_key(source, source_indices, target) : std::vector<uint8_t>{};
+    if (bake_cache_)
         if (const auto bytes = bake_cache_->get(bake_key))
-            if (std::optional<SurfaceMap> read = read_surface_map(*bytes, sources, targets)) map = std::make_unique<SurfaceMap>(std::move(*read));
-    }
+            if (std::optional<SurfaceMap> read = read_surface_map(*bytes, source.size(), target.size()))
+                map = std::make_unique<SurfaceMap>(std::move(*read));
     if (!map) {
-        std::vector<glm::vec3> source, target;
-        std::vector<uint32_t> source_indices, target_indices;
-        rest_surface(from, source, source_indices);
-        rest_surface(to, target, target_indices);
         map = std::make_unique<SurfaceMap>(map_surface(source, source_indices, target));
-        if (cached) bake_cache_->put(bake_key, write_surface_map(*map));
+        if (bake_cache_) bake_cache_->put(bake_key, write_surface_map(*map));
     }
     std::lock_guard lock(mutex_);
     auto& slot = surface_maps_[key];

@@ -18,7 +18,7 @@ static_assert(sizeof(glm::u16vec4) == 8 && sizeof(glm::uvec3) == 12 && sizeof(gl
 
 // Kinds of entry (the first bytes of a key); a new layout of a payload gets a new number.
 constexpr uint32_t kSkinLayerKind = 0x534b4c01;  // "SKL" v1
-constexpr uint32_t kSurfaceMapKind = 0x534d5001; // "SMP" v1
+constexpr uint32_t kSurfaceMapKind = 0x534d5002; // "SMP" v2: keyed by content
 
 // A key: the kind, its parameters, then the type's bake inputs.
 std::vector<uint8_t> entry_key(uint32_t kind, std::span<const uint32_t> params, std::span<const uint8_t> inputs) {
@@ -97,10 +97,22 @@ std::vector<uint8_t> skin_layer_key(std::span<const uint8_t> inputs, uint32_t th
     return entry_key(kSkinLayerKind, params, inputs);
 }
 
-std::vector<uint8_t> surface_map_key(std::span<const uint8_t> inputs, uint32_t from_theta, uint32_t from_phi, uint32_t to_theta,
-                                     uint32_t to_phi) {
-    const uint32_t params[] = {from_theta, from_phi, to_theta, to_phi};
-    return entry_key(kSurfaceMapKind, params, inputs);
+std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::span<const uint32_t> source_indices,
+                                     std::span<const glm::vec3> target) {
+    ByteWriter inputs;
+    inputs.put_vector(source);
+    inputs.put_vector(source_indices);
+    inputs.put_vector(target);
+    // A digest (two independently seeded 64-bit hashes and the length): the store keeps a key beside its
+    // payload, and a refined surface is megabytes.
+    const uint64_t words[] = {hash_bytes64(inputs.bytes(), 0x9e3779b97f4a7c15ull), hash_bytes64(inputs.bytes(), 0xc2b2ae3d27d4eb4full),
+                              inputs.bytes().size()};
+    uint32_t params[6];
+    for (size_t i = 0; i < 3; ++i) {
+        params[2 * i] = static_cast<uint32_t>(words[i]);
+        params[2 * i + 1] = static_cast<uint32_t>(words[i] >> 32);
+    }
+    return entry_key(kSurfaceMapKind, params, {});
 }
 
 std::vector<uint8_t> write_skin_layer(const SkinLayer& layer) {

@@ -41,9 +41,11 @@ namespace aloha {
 /// The key of the skin layer at (T, P) of the type whose bake_inputs are `inputs`.
 [[nodiscard]] std::vector<uint8_t> skin_layer_key(std::span<const uint8_t> inputs, uint32_t theta_steps, uint32_t phi_steps);
 
-/// The key of the surface map from the unrefined skin at (T0, P0) to the one at (T1, P1).
-[[nodiscard]] std::vector<uint8_t> surface_map_key(std::span<const uint8_t> inputs, uint32_t from_theta, uint32_t from_phi,
-                                                   uint32_t to_theta, uint32_t to_phi);
+/// The key of the surface map that locates `target` on the triangles (source, source_indices): a 128-bit digest
+/// of exactly what map_surface reads, so any two surfaces (refined or not, generated or imported) that give
+/// the same map share an entry, and nothing else can change it.
+[[nodiscard]] std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::span<const uint32_t> source_indices,
+                                                   std::span<const glm::vec3> target);
 
 /// A skin layer's payload bytes.
 [[nodiscard]] std::vector<uint8_t> write_skin_layer(const SkinLayer& layer);

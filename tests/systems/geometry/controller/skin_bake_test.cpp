@@ -91,7 +91,17 @@ TEST(SkinBake, KeysDifferWithEveryParameterAndInput) {
     const std::vector<uint8_t> a = {1, 2, 3}, b = {1, 2, 4};
     EXPECT_NE(skin_layer_key(a, 8, 6), skin_layer_key(b, 8, 6));
     EXPECT_NE(skin_layer_key(a, 8, 6), skin_layer_key(a, 6, 8));
-    EXPECT_NE(surface_map_key(a, 8, 6, 16, 12), surface_map_key(a, 16, 12, 8, 6));
+    // A surface map's key is the digest of what map_surface reads: the source, its triangles, the targets.
+    const std::vector<glm::vec3> source = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, target = {{0.2f, 0.2f, 0.1f}};
+    const std::vector<uint32_t> triangle = {0, 1, 2}, flipped = {0, 2, 1};
+    const std::vector<uint8_t> key = surface_map_key(source, triangle, target);
+    EXPECT_EQ(surface_map_key(source, triangle, target), key);
+    std::vector<glm::vec3> moved = source;
+    moved[2].y = 1.0000001f;
+    EXPECT_NE(surface_map_key(moved, triangle, target), key);
+    EXPECT_NE(surface_map_key(source, flipped, target), key);
+    EXPECT_NE(surface_map_key(source, triangle, moved), key);
+    EXPECT_NE(surface_map_key(target, triangle, source), key) << "source and target are not interchangeable";
     EXPECT_EQ(skin_layer_key(a, 8, 6), skin_layer_key(a, 8, 6));
     auto version = skin_bake_code_version();
     ASSERT_TRUE(version.ok()) << version.error().to_string();
