@@ -103,6 +103,10 @@ TriangleGrid::TriangleGrid(std::span<const glm::vec3> positions, std::span<const
     };
     for (dims_ = dims_for(cell_); double(dims_.x) * dims_.y * dims_.z > cell_cap; dims_ = dims_for(cell_)) cell_ *= 1.25f;
     origin_ = lo;
+    // Cell faces and a point's cell are rounded at the coordinates' magnitude: a point binned into a cell may sit
+    // that much before its face (a few ulps of the largest coordinate, and a little of the cell).
+    const float magnitude = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
+    face_slack_ = 1e-5f * cell_ + 8.0f * std::numeric_limits<float>::epsilon() * magnitude;
 
     // Counting sort of (cell, triangle) pairs over every cell a triangle's bounding box touches.
     const size_t cells = size_t(dims_.x) * size_t(dims_.y) * size_t(dims_.z);
@@ -138,8 +142,7 @@ float TriangleGrid::outside_box_distance_sq(glm::vec3 p, glm::ivec3 lo, glm::ive
         if (lo[a] > 0) nearest = std::min(nearest, std::max(0.0f, p[a] - (origin_[a] + float(lo[a]) * cell_)));
         if (hi[a] < dims_[a] - 1) nearest = std::min(nearest, std::max(0.0f, origin_[a] + float(hi[a] + 1) * cell_ - p[a]));
     }
-    // The cell edges are rounded: a point binned into a cell may sit a rounding error before its face.
-    nearest = std::max(0.0f, nearest - 1e-5f * cell_);
+    nearest = std::max(0.0f, nearest - face_slack_);
     return nearest * nearest;
 }
 

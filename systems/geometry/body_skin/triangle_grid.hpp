@@ -1,5 +1,6 @@
 // Exact closest-point queries on a triangle list: a uniform grid over the triangles' bounding boxes searched
-// in growing shells of cells around the query, stopped once no unvisited cell can hold a closer point. Load
+// in growing shells of cells around the query, stopped once no unvisited cell can hold a closer point (exact up
+// to the rounding of the coordinates: the same minimum as a search over every triangle). Load
 // time work (surface maps between skin resolutions, the simplifier's distance bound) on meshes of any size:
 // the cost of a query near the surface does not grow with the triangle count.
 #pragma once
@@ -54,6 +55,7 @@ private:
     std::span<const uint32_t> indices_;
     glm::vec3 origin_{0.0f};
     float cell_ = 1.0f;
+    float face_slack_ = 0.0f;  // how far before a cell face a point binned behind it may sit (rounding)
     glm::ivec3 dims_{1, 1, 1};
     std::vector<uint32_t> first_;      // per cell: its triangles are triangles_[first_[c], first_[c + 1])
     std::vector<uint32_t> triangles_;  // triangle numbers, by cell
