@@ -2,6 +2,7 @@
 #include "systems/geometry/controller/character_geometry.hpp"
 
 #include "systems/geometry/body_skin/skin_remesh.hpp"
+#include "systems/geometry/controller/simplified_indices.hpp"
 #include "systems/geometry/controller/skin_bake.hpp"
 #include "systems/geometry/muscle/muscle_shape_job.hpp"
 #include "systems/geometry/muscle/muscle_tessellate_job.hpp"
@@ -139,6 +140,7 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     g->table_cache_ = std::make_unique<SuperEllipsoidTableCache>(g->muscles_);
     g->mesh_ = std::move(desc.mesh);
     if (g->mesh_) g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
+    g->content_cache_ = desc.bake_cache;  // entries keyed by their inputs' content suit any type
     if (desc.bake_cache && !g->mesh_ && g->muscles_.size() > 0) {
         g->bake_cache_ = std::move(desc.bake_cache);
         g->bake_inputs_ = skin_bake_inputs(g->muscles_, g->skeleton_.parents(), g->rest_model_, g->proxy_radii_);
@@ -293,19 +295,39 @@ const SurfaceMap& CharacterGeometry::surface_map(SkinSurfaceKey from, SkinSurfac
     rest_surface(from, source, source_indices);
     rest_surface(to, target, target_indices);
     std::unique_ptr<SurfaceMap> map;
-    const std::vector<uint8_t> bake_key = bake_cache_ ? surface_map_key(source, source_indices, target) : std::vector<uint8_t>{};
-    if (bake_cache_)
-        if (const auto bytes = bake_cache_->get(bake_key))
+    const std::vector<uint8_t> bake_key = content_cache_ ? surface_map_key(source, source_indices, target) : std::vector<uint8_t>{};
+    if (content_cache_)
+        if (const auto bytes = content_cache_->get(bake_key))
             if (std::optional<SurfaceMap> read = read_surface_map(*bytes, source.size(), target.size()))
                 map = std::make_unique<SurfaceMap>(std::move(*read));
     if (!map) {
         map = std::make_unique<SurfaceMap>(map_surface(source, source_indices, target));
-        if (bake_cache_) bake_cache_->put(bake_key, write_surface_map(*map));
+        if (content_cache_) content_cache_->put(bake_key, write_surface_map(*map));
     }
     std::lock_guard lock(mutex_);
     auto& slot = surface_maps_[key];
     if (!slot) slot = std::move(map);
     return *slot;
+}
+
+std::vector<uint32_t> CharacterGeometry::simplified(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                                                   float target_error) const {
+    const std::vector<uint8_t> key = content_cache_ ? simplified_indices_key(positions, indices, target_error) : std::vector<uint8_t>{};
+    if (content_cache_)
+        if (const auto bytes = content_cache_->get(key)) {
+            ByteReader r(*bytes);
+            std::vector<uint32_t> read;
+            const bool valid = r.get_vector(read) && r.done() && read.size() % 3 == 0 &&
+                               std::all_of(read.begin(), read.end(), [&](uint32_t v) { return v < positions.size(); });
+            if (valid) return read;
+        }
+    std::vector<uint32_t> made = simplify_indices(positions, indices, target_error).indices;
+    if (content_cache_) {
+        ByteWriter w;
+        w.put_vector(made);
+        content_cache_->put(key, w.bytes());
+    }
+    return made;
 }
 
 void CharacterGeometry::prepare_surface_maps(std::span<const std::pair<SkinSurfaceKey, SkinSurfaceKey>> pairs) const {

@@ -150,6 +150,11 @@ public:
     /// surface_map.hpp): e.g. a Catmull-Clark refined skin read at a coarser skin's vertices, for
     /// geomorphs into and out of subdivided levels. Built on first use. Thread-safe; stays valid.
     const SurfaceMap& surface_map(SkinSurfaceKey from, SkinSurfaceKey to) const;
+    /// simplify_indices(positions, indices, target_error).indices (simplified_indices.hpp), read from the bake cache
+    /// when an earlier load saved the same inputs' result (keyed by their content). Thread-safe. Requires what
+    /// simplify_indices() does.
+    [[nodiscard]] std::vector<uint32_t> simplified(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                                                   float target_error) const;
     /// Builds surface_map() for every (from, to) pair of `pairs` not built yet, the pairs in parallel,
     /// so a geomorph between those surfaces finds its map ready (no build at a level switch).
     /// Thread-safe. Requires what surface_map() does.
@@ -171,6 +176,7 @@ private:
     std::vector<glm::vec3> mesh_rest_positions_;
     std::shared_ptr<const BlobStore> bake_cache_;  // null: no cache (or a type with a mesh)
     std::vector<uint8_t> bake_inputs_;             // skin_bake_inputs of the type (with a cache)
+    std::shared_ptr<const BlobStore> content_cache_;  // the bake cache for content-keyed entries (any type)
 
     mutable std::mutex mutex_;
     mutable std::unique_ptr<SuperEllipsoidTableCache> table_cache_;

@@ -149,7 +149,7 @@ std::unique_ptr<GeometryController::Level> GeometryController::build_level(const
             // geomorph to or from the full list (same display_key: vertex by vertex) are unchanged.
             const std::span<const glm::vec3> rest = real ? std::span<const glm::vec3>(g.mesh().positions)
                                                          : std::span<const glm::vec3>(skin->rest_positions);
-            level->simplified_indices = simplify_indices(rest, level->indices, lod.simplify_error).indices;
+            level->simplified_indices = g.simplified(rest, level->indices, lod.simplify_error);
             level->indices = level->simplified_indices;
             level->simplified_map = map_surface(rest, level->simplified_indices, rest);
         }

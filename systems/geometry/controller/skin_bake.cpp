@@ -19,6 +19,7 @@ static_assert(sizeof(glm::u16vec4) == 8 && sizeof(glm::uvec3) == 12 && sizeof(gl
 // Kinds of entry (the first bytes of a key); a new layout of a payload gets a new number.
 constexpr uint32_t kSkinLayerKind = 0x534b4c01;  // "SKL" v1
 constexpr uint32_t kSurfaceMapKind = 0x534d5002; // "SMP" v2: keyed by content
+constexpr uint32_t kSimplifiedKind = 0x53494d01; // "SIM" v1: simplified triangle lists, keyed by content
 
 // A key: the kind, its parameters, then the type's bake inputs.
 std::vector<uint8_t> entry_key(uint32_t kind, std::span<const uint32_t> params, std::span<const uint8_t> inputs) {
@@ -97,14 +98,11 @@ std::vector<uint8_t> skin_layer_key(std::span<const uint8_t> inputs, uint32_t th
     return entry_key(kSkinLayerKind, params, inputs);
 }
 
-std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::span<const uint32_t> source_indices,
-                                     std::span<const glm::vec3> target) {
-    ByteWriter inputs;
-    inputs.put_vector(source);
-    inputs.put_vector(source_indices);
-    inputs.put_vector(target);
-    // A digest (two independently seeded 64-bit hashes and the length): the store keeps a key beside its
-    // payload, and a refined surface is megabytes.
+namespace {
+
+// A key of `kind` over a digest of `inputs` (two independently seeded 64-bit hashes and the length): the store
+// keeps a key beside its payload, and the inputs (a refined surface) can be megabytes.
+std::vector<uint8_t> digest_key(uint32_t kind, const ByteWriter& inputs) {
     const uint64_t words[] = {hash_bytes64(inputs.bytes(), 0x9e3779b97f4a7c15ull), hash_bytes64(inputs.bytes(), 0xc2b2ae3d27d4eb4full),
                               inputs.bytes().size()};
     uint32_t params[6];
@@ -112,7 +110,26 @@ std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::spa
         params[2 * i] = static_cast<uint32_t>(words[i]);
         params[2 * i + 1] = static_cast<uint32_t>(words[i] >> 32);
     }
-    return entry_key(kSurfaceMapKind, params, {});
+    return entry_key(kind, params, {});
+}
+
+}  // namespace
+
+std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::span<const uint32_t> source_indices,
+                                     std::span<const glm::vec3> target) {
+    ByteWriter inputs;
+    inputs.put_vector(source);
+    inputs.put_vector(source_indices);
+    inputs.put_vector(target);
+    return digest_key(kSurfaceMapKind, inputs);
+}
+
+std::vector<uint8_t> simplified_indices_key(std::span<const glm::vec3> positions, std::span<const uint32_t> indices, float target_error) {
+    ByteWriter inputs;
+    inputs.put_vector(positions);
+    inputs.put_vector(indices);
+    inputs.put(target_error);
+    return digest_key(kSimplifiedKind, inputs);
 }
 
 std::vector<uint8_t> write_skin_layer(const SkinLayer& layer) {

@@ -47,6 +47,11 @@ namespace aloha {
 [[nodiscard]] std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::span<const uint32_t> source_indices,
                                                    std::span<const glm::vec3> target);
 
+/// The key of simplify_indices' result for these inputs: a 128-bit digest of the positions, the triangles and the
+/// error bound (their bits).
+[[nodiscard]] std::vector<uint8_t> simplified_indices_key(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                                                          float target_error);
+
 /// A skin layer's payload bytes.
 [[nodiscard]] std::vector<uint8_t> write_skin_layer(const SkinLayer& layer);
 /// Reads a skin layer's payload; nothing when the bytes are not one complete, consistent layer

@@ -102,6 +102,13 @@ TEST(SkinBake, KeysDifferWithEveryParameterAndInput) {
     EXPECT_NE(surface_map_key(source, flipped, target), key);
     EXPECT_NE(surface_map_key(source, triangle, moved), key);
     EXPECT_NE(surface_map_key(target, triangle, source), key) << "source and target are not interchangeable";
+    // A simplified list's key: the positions, the triangles and the bound.
+    const std::vector<uint8_t> simple = simplified_indices_key(source, triangle, 0.006f);
+    EXPECT_EQ(simplified_indices_key(source, triangle, 0.006f), simple);
+    EXPECT_NE(simplified_indices_key(source, triangle, 0.012f), simple);
+    EXPECT_NE(simplified_indices_key(moved, triangle, 0.006f), simple);
+    EXPECT_NE(simplified_indices_key(source, flipped, 0.006f), simple);
+    EXPECT_NE(simplified_indices_key(source, triangle, 0.006f), surface_map_key(source, triangle, {})) << "kinds differ";
     EXPECT_EQ(skin_layer_key(a, 8, 6), skin_layer_key(a, 8, 6));
     auto version = skin_bake_code_version();
     ASSERT_TRUE(version.ok()) << version.error().to_string();
