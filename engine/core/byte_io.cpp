@@ -29,4 +29,13 @@ uint64_t hash_bytes64(std::span<const uint8_t> bytes, uint64_t seed) {
     return mix64(h ^ tail ^ (static_cast<uint64_t>(bytes.size() - i) << 56));
 }
 
+std::vector<uint8_t> digest_key(uint32_t kind, std::span<const uint8_t> inputs) {
+    ByteWriter key;
+    key.put(kind);
+    key.put(hash_bytes64(inputs, 0x9e3779b97f4a7c15ull));
+    key.put(hash_bytes64(inputs, 0xc2b2ae3d27d4eb4full));
+    key.put<uint64_t>(inputs.size());
+    return key.take();
+}
+
 }  // namespace aloha

@@ -117,4 +117,9 @@ private:
 /// on every run.
 [[nodiscard]] uint64_t hash_bytes64(std::span<const uint8_t> bytes, uint64_t seed = 0);
 
+/// A content-addressed store key: `kind`, then a 128-bit digest of `inputs` (two independently seeded
+/// hash_bytes64) and their length, 28 bytes whatever the inputs' size (a store keeps each key beside its payload,
+/// and the inputs, a refined surface or an atlas's meshes and textures, can be megabytes).
+[[nodiscard]] std::vector<uint8_t> digest_key(uint32_t kind, std::span<const uint8_t> inputs);
+
 }  // namespace aloha

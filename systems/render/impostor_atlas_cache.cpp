@@ -3,8 +3,6 @@
 
 #include "engine/core/byte_io.hpp"
 
-#include <array>
-#include <cstring>
 
 namespace aloha {
 namespace {
@@ -68,13 +66,7 @@ void layout_fields(Atlas& a, Io&& io) {
 std::vector<uint8_t> impostor_atlas_key(const VkPhysicalDeviceProperties& device, const ImpostorBakeInput& in) {
     ByteWriter inputs;
     write_input(inputs, device, in);
-    // A digest, not the inputs themselves: the store keeps each entry's key beside its payload, and the
-    // inputs (every row's mesh, the textures) can be megabytes. Two independently seeded 64-bit hashes.
-    const std::array<uint64_t, 4> words = {kImpostorAtlasKind, hash_bytes64(inputs.bytes(), 0x9e3779b97f4a7c15ull),
-                                           hash_bytes64(inputs.bytes(), 0xc2b2ae3d27d4eb4full), inputs.bytes().size()};
-    std::vector<uint8_t> key(sizeof words);
-    std::memcpy(key.data(), words.data(), sizeof words);
-    return key;
+    return digest_key(kImpostorAtlasKind, inputs.bytes());
 }
 
 std::vector<uint8_t> write_impostor_atlas(const ImpostorAtlas& atlas) {

@@ -140,11 +140,9 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     g->table_cache_ = std::make_unique<SuperEllipsoidTableCache>(g->muscles_);
     g->mesh_ = std::move(desc.mesh);
     if (g->mesh_) g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
-    g->content_cache_ = desc.bake_cache;  // entries keyed by their inputs' content suit any type
-    if (desc.bake_cache && !g->mesh_ && g->muscles_.size() > 0) {
-        g->bake_cache_ = std::move(desc.bake_cache);
+    g->bake_cache_ = std::move(desc.bake_cache);
+    if (g->bake_cache_ && !g->mesh_ && g->muscles_.size() > 0)
         g->bake_inputs_ = skin_bake_inputs(g->muscles_, g->skeleton_.parents(), g->rest_model_, g->proxy_radii_);
-    }
     return g;
 }
 
@@ -162,8 +160,9 @@ const GeneratedBindMesh& CharacterGeometry::generated_mesh(uint32_t theta_steps,
 }
 
 std::unique_ptr<SkinLayer> CharacterGeometry::cached_skin_layer(uint32_t theta_steps, uint32_t phi_steps) const {
-    if (!bake_cache_) return nullptr;
-    const std::optional<std::vector<uint8_t>> bytes = bake_cache_->get(skin_layer_key(bake_inputs_, theta_steps, phi_steps));
+    const BlobStore* cache = skin_layer_cache();
+    if (!cache) return nullptr;
+    const std::optional<std::vector<uint8_t>> bytes = cache->get(skin_layer_key(bake_inputs_, theta_steps, phi_steps));
     if (!bytes) return nullptr;
     std::optional<SkinLayer> layer = read_skin_layer(*bytes, muscle_count());
     if (!layer || layer->theta_steps != theta_steps || layer->phi_steps != phi_steps) return nullptr;
@@ -171,12 +170,12 @@ std::unique_ptr<SkinLayer> CharacterGeometry::cached_skin_layer(uint32_t theta_s
 }
 
 void CharacterGeometry::save_skin_layer(const SkinLayer& layer) const {
-    if (bake_cache_) bake_cache_->put(skin_layer_key(bake_inputs_, layer.theta_steps, layer.phi_steps), write_skin_layer(layer));
+    if (const BlobStore* cache = skin_layer_cache()) cache->put(skin_layer_key(bake_inputs_, layer.theta_steps, layer.phi_steps), write_skin_layer(layer));
 }
 
 const SkinLayer& CharacterGeometry::skin_layer(uint32_t theta_steps, uint32_t phi_steps) const {
     assert(muscles_.size() > 0);
-    if (bake_cache_) {  // a cached layer needs neither the tables nor the grid mesh
+    if (skin_layer_cache()) {  // a cached layer needs neither the tables nor the grid mesh
         {
             std::lock_guard lock(mutex_);
             if (const auto it = skin_layers_.find({theta_steps, phi_steps}); it != skin_layers_.end() && it->second) return *it->second;
@@ -295,14 +294,14 @@ const SurfaceMap& CharacterGeometry::surface_map(SkinSurfaceKey from, SkinSurfac
     rest_surface(from, source, source_indices);
     rest_surface(to, target, target_indices);
     std::unique_ptr<SurfaceMap> map;
-    const std::vector<uint8_t> bake_key = content_cache_ ? surface_map_key(source, source_indices, target) : std::vector<uint8_t>{};
-    if (content_cache_)
-        if (const auto bytes = content_cache_->get(bake_key))
+    const std::vector<uint8_t> bake_key = bake_cache_ ? surface_map_key(source, source_indices, target) : std::vector<uint8_t>{};
+    if (bake_cache_)
+        if (const auto bytes = bake_cache_->get(bake_key))
             if (std::optional<SurfaceMap> read = read_surface_map(*bytes, source.size(), target.size()))
                 map = std::make_unique<SurfaceMap>(std::move(*read));
     if (!map) {
         map = std::make_unique<SurfaceMap>(map_surface(source, source_indices, target));
-        if (content_cache_) content_cache_->put(bake_key, write_surface_map(*map));
+        if (bake_cache_) bake_cache_->put(bake_key, write_surface_map(*map));
     }
     std::lock_guard lock(mutex_);
     auto& slot = surface_maps_[key];
@@ -312,21 +311,12 @@ const SurfaceMap& CharacterGeometry::surface_map(SkinSurfaceKey from, SkinSurfac
 
 std::vector<uint32_t> CharacterGeometry::simplified(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
                                                    float target_error) const {
-    const std::vector<uint8_t> key = content_cache_ ? simplified_indices_key(positions, indices, target_error) : std::vector<uint8_t>{};
-    if (content_cache_)
-        if (const auto bytes = content_cache_->get(key)) {
-            ByteReader r(*bytes);
-            std::vector<uint32_t> read;
-            const bool valid = r.get_vector(read) && r.done() && read.size() % 3 == 0 &&
-                               std::all_of(read.begin(), read.end(), [&](uint32_t v) { return v < positions.size(); });
-            if (valid) return read;
-        }
+    const std::vector<uint8_t> key = bake_cache_ ? simplified_indices_key(positions, indices, target_error) : std::vector<uint8_t>{};
+    if (bake_cache_)
+        if (const auto bytes = bake_cache_->get(key))
+            if (std::optional<std::vector<uint32_t>> read = read_triangle_list(*bytes, positions.size())) return std::move(*read);
     std::vector<uint32_t> made = simplify_indices(positions, indices, target_error).indices;
-    if (content_cache_) {
-        ByteWriter w;
-        w.put_vector(made);
-        content_cache_->put(key, w.bytes());
-    }
+    if (bake_cache_) bake_cache_->put(key, write_triangle_list(made));
     return made;
 }
 

@@ -162,6 +162,8 @@ public:
 
 private:
     CharacterGeometry() = default;
+    // The store skin layers are cached in: the bake cache for a generated body (keyed by bake_inputs_), else null.
+    [[nodiscard]] const BlobStore* skin_layer_cache() const { return bake_inputs_.empty() ? nullptr : bake_cache_.get(); }
     // The skin layer at (T, P) from the bake cache, or null (no cache, no entry, a rejected entry).
     std::unique_ptr<SkinLayer> cached_skin_layer(uint32_t theta_steps, uint32_t phi_steps) const;
     // Saves a skin layer just built to the bake cache (when there is one).
@@ -174,9 +176,8 @@ private:
     std::vector<float> proxy_radii_;
     std::optional<CharacterMesh> mesh_;
     std::vector<glm::vec3> mesh_rest_positions_;
-    std::shared_ptr<const BlobStore> bake_cache_;  // null: no cache (or a type with a mesh)
-    std::vector<uint8_t> bake_inputs_;             // skin_bake_inputs of the type (with a cache)
-    std::shared_ptr<const BlobStore> content_cache_;  // the bake cache for content-keyed entries (any type)
+    std::shared_ptr<const BlobStore> bake_cache_;  // null: no cache; content-keyed entries suit any type
+    std::vector<uint8_t> bake_inputs_;             // skin_bake_inputs of a generated body (with a cache); empty otherwise
 
     mutable std::mutex mutex_;
     mutable std::unique_ptr<SuperEllipsoidTableCache> table_cache_;

@@ -17,18 +17,9 @@ static_assert(sizeof(GridParam) == 8 && sizeof(GridCell) == 24);
 static_assert(sizeof(glm::u16vec4) == 8 && sizeof(glm::uvec3) == 12 && sizeof(glm::vec3) == 12 && sizeof(glm::mat4) == 64);
 
 // Kinds of entry (the first bytes of a key); a new layout of a payload gets a new number.
-constexpr uint32_t kSkinLayerKind = 0x534b4c01;  // "SKL" v1
+constexpr uint32_t kSkinLayerKind = 0x534b4c02;  // "SKL" v2: keyed by a digest
 constexpr uint32_t kSurfaceMapKind = 0x534d5002; // "SMP" v2: keyed by content
 constexpr uint32_t kSimplifiedKind = 0x53494d01; // "SIM" v1: simplified triangle lists, keyed by content
-
-// A key: the kind, its parameters, then the type's bake inputs.
-std::vector<uint8_t> entry_key(uint32_t kind, std::span<const uint32_t> params, std::span<const uint8_t> inputs) {
-    ByteWriter w;
-    w.put(kind);
-    for (const uint32_t v : params) w.put(v);
-    w.put_vector(inputs);
-    return w.take();
-}
 
 // A skin layer's fields in payload order, handed to `io` one by one (writing and reading alike).
 template <class Layer, class Io>
@@ -94,26 +85,12 @@ std::vector<uint8_t> skin_bake_inputs(const MuscleSet& muscles, std::span<const 
 }
 
 std::vector<uint8_t> skin_layer_key(std::span<const uint8_t> inputs, uint32_t theta_steps, uint32_t phi_steps) {
-    const uint32_t params[] = {theta_steps, phi_steps};
-    return entry_key(kSkinLayerKind, params, inputs);
+    ByteWriter w;
+    w.put(theta_steps);
+    w.put(phi_steps);
+    w.put_vector(inputs);
+    return digest_key(kSkinLayerKind, w.bytes());
 }
-
-namespace {
-
-// A key of `kind` over a digest of `inputs` (two independently seeded 64-bit hashes and the length): the store
-// keeps a key beside its payload, and the inputs (a refined surface) can be megabytes.
-std::vector<uint8_t> digest_key(uint32_t kind, const ByteWriter& inputs) {
-    const uint64_t words[] = {hash_bytes64(inputs.bytes(), 0x9e3779b97f4a7c15ull), hash_bytes64(inputs.bytes(), 0xc2b2ae3d27d4eb4full),
-                              inputs.bytes().size()};
-    uint32_t params[6];
-    for (size_t i = 0; i < 3; ++i) {
-        params[2 * i] = static_cast<uint32_t>(words[i]);
-        params[2 * i + 1] = static_cast<uint32_t>(words[i] >> 32);
-    }
-    return entry_key(kind, params, {});
-}
-
-}  // namespace
 
 std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::span<const uint32_t> source_indices,
                                      std::span<const glm::vec3> target) {
@@ -121,7 +98,7 @@ std::vector<uint8_t> surface_map_key(std::span<const glm::vec3> source, std::spa
     inputs.put_vector(source);
     inputs.put_vector(source_indices);
     inputs.put_vector(target);
-    return digest_key(kSurfaceMapKind, inputs);
+    return digest_key(kSurfaceMapKind, inputs.bytes());
 }
 
 std::vector<uint8_t> simplified_indices_key(std::span<const glm::vec3> positions, std::span<const uint32_t> indices, float target_error) {
@@ -129,7 +106,7 @@ std::vector<uint8_t> simplified_indices_key(std::span<const glm::vec3> positions
     inputs.put_vector(positions);
     inputs.put_vector(indices);
     inputs.put(target_error);
-    return digest_key(kSimplifiedKind, inputs);
+    return digest_key(kSimplifiedKind, inputs.bytes());
 }
 
 std::vector<uint8_t> write_skin_layer(const SkinLayer& layer) {
@@ -173,6 +150,22 @@ std::optional<SurfaceMap> read_surface_map(std::span<const uint8_t> bytes, size_
     for (const glm::uvec3& c : m.corners)
         if (c.x >= source_vertices || c.y >= source_vertices || c.z >= source_vertices) return std::nullopt;
     return m;
+}
+
+std::vector<uint8_t> write_triangle_list(std::span<const uint32_t> indices) {
+    ByteWriter w;
+    w.put_vector(indices);
+    return w.take();
+}
+
+std::optional<std::vector<uint32_t>> read_triangle_list(std::span<const uint8_t> bytes, size_t vertices) {
+    ByteReader r(bytes);
+    std::vector<uint32_t> indices;
+    r.get_vector(indices);
+    if (!r.done() || indices.size() % 3 != 0) return std::nullopt;
+    for (const uint32_t v : indices)
+        if (v >= vertices) return std::nullopt;
+    return indices;
 }
 
 }  // namespace aloha

@@ -52,6 +52,12 @@ namespace aloha {
 [[nodiscard]] std::vector<uint8_t> simplified_indices_key(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
                                                           float target_error);
 
+/// A triangle list's payload bytes (simplified_indices_key's entries).
+[[nodiscard]] std::vector<uint8_t> write_triangle_list(std::span<const uint32_t> indices);
+/// Reads a triangle list's payload; nothing when the bytes are not one complete list of whole triangles over
+/// `vertices` vertices.
+[[nodiscard]] std::optional<std::vector<uint32_t>> read_triangle_list(std::span<const uint8_t> bytes, size_t vertices);
+
 /// A skin layer's payload bytes.
 [[nodiscard]] std::vector<uint8_t> write_skin_layer(const SkinLayer& layer);
 /// Reads a skin layer's payload; nothing when the bytes are not one complete, consistent layer

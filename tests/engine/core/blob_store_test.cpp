@@ -239,6 +239,22 @@ TEST(ByteReader, ReadsBackWhatWasWrittenAndStopsAtTheEnd) {
     EXPECT_FALSE(cut.get(u));
 }
 
+// A content-addressed key: the kind and a digest of the inputs, the same size whatever they hold.
+TEST(DigestKey, SameInputsSameKeyAndEveryByteCounts) {
+    std::vector<uint8_t> inputs(100000);
+    for (size_t i = 0; i < inputs.size(); ++i) inputs[i] = static_cast<uint8_t>(i * 31);
+    const std::vector<uint8_t> key = digest_key(7, inputs);
+    EXPECT_EQ(key.size(), 28u);
+    EXPECT_EQ(digest_key(7, inputs), key);
+    EXPECT_NE(digest_key(8, inputs), key);
+    for (const size_t at : {size_t{0}, size_t{4095}, inputs.size() - 1}) {
+        std::vector<uint8_t> changed = inputs;
+        changed[at] ^= 1;
+        EXPECT_NE(digest_key(7, changed), key) << "byte " << at;
+    }
+    EXPECT_NE(digest_key(7, std::span(inputs).first(inputs.size() - 1)), key);
+}
+
 TEST(BuildId, TheTestProgramHasOne) {
     // Debian's toolchain links with --build-id (sha1: 20 bytes).
     auto id = build_id_of(reinterpret_cast<uintptr_t>(&hash_bytes64));

@@ -87,6 +87,17 @@ TEST(SkinBake, SurfaceMapRoundTripAndChecks) {
     EXPECT_FALSE(read_surface_map(std::span<const uint8_t>(bytes).first(bytes.size() - 4), 3, 2));
 }
 
+TEST(SkinBake, TriangleListRoundTripAndChecks) {
+    const std::vector<uint32_t> list = {0, 1, 2, 2, 1, 3};
+    const std::vector<uint8_t> bytes = write_triangle_list(list);
+    const std::optional<std::vector<uint32_t>> r = read_triangle_list(bytes, 4);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(*r, list);
+    EXPECT_FALSE(read_triangle_list(bytes, 3));  // vertex 3 out of range
+    EXPECT_FALSE(read_triangle_list(write_triangle_list(std::span(list).first(5)), 4));  // not whole triangles
+    EXPECT_FALSE(read_triangle_list(std::span<const uint8_t>(bytes).first(bytes.size() - 4), 4));
+}
+
 TEST(SkinBake, KeysDifferWithEveryParameterAndInput) {
     const std::vector<uint8_t> a = {1, 2, 3}, b = {1, 2, 4};
     EXPECT_NE(skin_layer_key(a, 8, 6), skin_layer_key(b, 8, 6));
