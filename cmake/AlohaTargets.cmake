@@ -68,6 +68,13 @@ function(aloha_test name)
   target_link_libraries(${name} PRIVATE ${T_LIBS} aloha_test_main GTest::gtest)
   aloha_warnings(${name})
   aloha_test_asset_defaults(${name})
+  # GoogleTest's header alone costs ~1.6 s of every test source: the common headers are compiled once per test
+  # program instead (render_tests' 16 sources: 54 -> 16 s of compiler CPU). With them precompiled, GCC 12's
+  # middle-end reports its known false bounds warnings on std::string's operator+ with a temporary (the inlined
+  # char_traits::copy of the SSO buffer: -Warray-bounds, -Wstringop-overflow, -Wstringop-overread), so test
+  # programs built by GCC do without those three; product code keeps them.
+  target_precompile_headers(${name} PRIVATE <gtest/gtest.h> <glm/glm.hpp> <cstdint> <memory> <span> <string> <vector>)
+  target_compile_options(${name} PRIVATE $<$<CXX_COMPILER_ID:GNU>:-Wno-array-bounds -Wno-stringop-overflow -Wno-stringop-overread>)
   include(GoogleTest)
   # One label per test binary: gtest_discover_tests cannot pass a list through PROPERTIES.
   set(label "")
