@@ -6,6 +6,7 @@
 #include "systems/lod/rule_table.hpp"
 #include "systems/motion/motion_metrics.hpp"
 
+#include <nlohmann/json.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>

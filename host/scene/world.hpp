@@ -30,7 +30,7 @@
 #include "systems/lod/tier.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <array>
 #include <memory>

@@ -4,6 +4,7 @@
 #include "host/tool/viewer_rules.hpp"
 
 #include <imgui.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cfloat>

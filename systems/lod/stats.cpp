@@ -2,6 +2,7 @@
 
 #include "systems/lod/frame_budget.hpp"
 
+#include <nlohmann/json.hpp>
 #include <iterator>
 #include <algorithm>
 

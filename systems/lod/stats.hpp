@@ -6,7 +6,7 @@
 #include "components/lod.hpp"
 #include "systems/lod/rule_table.hpp"
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <array>
 #include <cstdint>

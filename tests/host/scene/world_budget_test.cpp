@@ -6,6 +6,7 @@
 #include "tests/host/scene/world_test_util.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <unistd.h>
 

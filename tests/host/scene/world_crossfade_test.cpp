@@ -11,6 +11,7 @@
 #include "systems/lod/resolver.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <string>
