@@ -3,7 +3,6 @@
 
 #include "engine/core/byte_io.hpp"
 
-
 namespace aloha {
 namespace {
 

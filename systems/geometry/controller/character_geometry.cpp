@@ -311,12 +311,12 @@ const SurfaceMap& CharacterGeometry::surface_map(SkinSurfaceKey from, SkinSurfac
 
 std::vector<uint32_t> CharacterGeometry::simplified(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
                                                    float target_error) const {
-    const std::vector<uint8_t> key = bake_cache_ ? simplified_indices_key(positions, indices, target_error) : std::vector<uint8_t>{};
-    if (bake_cache_)
-        if (const auto bytes = bake_cache_->get(key))
-            if (std::optional<std::vector<uint32_t>> read = read_triangle_list(*bytes, positions.size())) return std::move(*read);
+    if (!bake_cache_) return simplify_indices(positions, indices, target_error).indices;
+    const std::vector<uint8_t> key = simplified_indices_key(positions, indices, target_error);
+    if (const auto bytes = bake_cache_->get(key))
+        if (std::optional<std::vector<uint32_t>> read = read_triangle_list(*bytes, positions.size())) return std::move(*read);
     std::vector<uint32_t> made = simplify_indices(positions, indices, target_error).indices;
-    if (bake_cache_) bake_cache_->put(key, write_triangle_list(made));
+    bake_cache_->put(key, write_triangle_list(made));
     return made;
 }
 
