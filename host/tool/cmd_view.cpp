@@ -73,6 +73,7 @@ Status open_gpu(WindowGpu& g, GLFWwindow* window, const CliOptions& options) {
     RendererOptions ro;
     ro.far_layer_below_px = options.far_layer_px;
     ro.far_layer_meshes_below_px = options.far_layer_meshes_px;
+    ro.distant_layer_below_px = options.distant_layer_px.value_or(0.0f);
     ro.colour_format = g.target->colour_format();
     auto renderer = CrowdRenderer::create(*g.context, ro);
     if (!renderer.ok()) return renderer.error();

@@ -174,6 +174,7 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
     bool double_sided = false;
     for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;
     const bool vertex_lighting = drawn_lit_per_vertex(draw.geometry->level(surface.level).method);
+    renderer.declare_passes(pass_names_);  // levels drawn richest (nearest) first, whichever comes first
     auto id = renderer.register_topology(draw.geometry->level_indices(surface.level), static_cast<uint32_t>(surface.positions.size()),
                                          /*cull_back_faces=*/!double_sided, surface_materials,
                                          surface.level < pass_names_.size() ? std::string_view(pass_names_[surface.level]) : "meshes",

@@ -37,6 +37,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
     options_ = options;
     far_layer_below_px_ = options.far_layer_below_px.value_or(far_layer_default(ctx_.is_cpu_device()));
     far_layer_meshes_below_px_ = options.far_layer_meshes_below_px.value_or(far_layer_meshes_default(ctx_.is_cpu_device()));
+    distant_layer_below_px_ = options.distant_layer_below_px;
     options_.frames_in_flight = std::clamp(options.frames_in_flight, 1u, 4u);
     const VkDevice dev = ctx_.device();
     Result<VkRenderPass> pass = gpu::create_render_pass(dev, options_.colour_format,
@@ -71,7 +72,8 @@ Status CrowdRenderer::init(const RendererOptions& options) {
         if (!st) return st;
     }
     growth_events_ = 0;  // initial allocations are not growth
-    for (const char* fixed : {"far meshes", "far layer", "proxies", "impostors", "lines", "composite", "resolve"}) pass_id(fixed);
+    for (const char* fixed : {"far meshes", "far layer", "distant layer", "proxies", "impostors", "lines", "composite", "resolve"})
+        pass_id(fixed);
     return init_materials();
 }
 
@@ -172,6 +174,10 @@ Status CrowdRenderer::ensure_queries(Slot& slot, uint32_t count) {
     return {};
 }
 
+void CrowdRenderer::declare_passes(std::span<const std::string> labels) {
+    for (const std::string& label : labels) pass_id(label);
+}
+
 uint32_t CrowdRenderer::pass_id(std::string_view name) {
     for (uint32_t i = 0; i < pass_names_.size(); ++i)
         if (pass_names_[i] == name) return i;
@@ -251,7 +257,11 @@ Status CrowdRenderer::render(const FrameInput& frame, const gpu::TargetView& tar
     }
     last_upload_bytes_ = upload(frame, slot, target.extent);
     if (far_plan_.far_count > 0) {
-        st = ensure_far_layer(slot, target.extent);
+        st = ensure_layer(slot.far_layer, slot.far_set, target.extent, 2);
+        if (!st) return st;
+    }
+    if (far_plan_.distant_count > 0) {
+        st = ensure_layer(slot.distant_layer, slot.distant_set, target.extent, 4);
         if (!st) return st;
     }
     last_upload_ms_ = ms_since(t0);

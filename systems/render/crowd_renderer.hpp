@@ -138,13 +138,18 @@ struct RendererOptions {
     std::optional<float> far_layer_meshes_below_px;    ///< meshes under this many pixels tall, not cross-fading, likewise;
                                                        ///< 0: every mesh at full resolution; unset:
                                                        ///< far_layer_meshes_default(the context's device)
+    float distant_layer_below_px = 0.0f;               ///< far impostors under this many pixels tall (at 720 lines, as
+                                                       ///< above) are drawn at a quarter of the resolution instead of half
+                                                       ///< (systems/render/far_layer.hpp); 0 (the default): none. On
+                                                       ///< lavapipe 70 saves ~3.5 ms a frame on crowd_10k's close pass, but
+                                                       ///< walkers of 30-70 px turn to blobs (docs/PERFORMANCE.md)
 };
 
 /// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
 /// "far meshes" and "far layer" (the small meshes, then the far impostors, at half resolution, before the frame's
-/// render pass), one per mesh pass label
+/// render pass), "distant layer" (the farthest impostors at a quarter of the resolution), one per mesh pass label
 /// (register_topology's `pass`: all topologies with that label, drawn together), "proxies", "impostors",
-/// "lines", "composite" (the far layer written in with its depth) and "resolve" (end of the render pass: tiles written out,
+/// "lines", "composite" (the far and distant layers written in with their depth) and "resolve" (end of the render pass: tiles written out,
 /// layout transition).
 struct GpuPassTime {
     std::string name;        ///< pass label
@@ -177,6 +182,11 @@ public:
     [[nodiscard]] Result<uint32_t> register_topology(std::span<const uint32_t> indices, uint32_t vertex_count = 0,
                                                      bool cull_back_faces = false, const TopologySurface& surface = {},
                                                      std::string_view pass = "meshes", bool vertex_lighting = false);
+    /// Names mesh pass labels (register_topology's `pass`) in the order their topologies are to be drawn, before
+    /// those topologies are registered; labels already named keep their place. Declaring the levels' names richest
+    /// first draws the nearest characters first (richer levels go to nearer characters), so a software rasteriser
+    /// skips the shading of what they hide, whichever level happened to be registered first.
+    void declare_passes(std::span<const std::string> labels);
     /// Uploads a texture (RGBA8, rows top to bottom, colours as stored: sRGB-encoded) once; returns its id.
     /// Errors: empty or inconsistent image, Vulkan failures.
     [[nodiscard]] Result<uint32_t> register_texture(const TextureImage& image);
@@ -259,6 +269,8 @@ private:
         gpu::Buffer proxy_indices;  // fill_box_batch_indices for proxy_capacity boxes (rewritten on growth)
         gpu::LayerTarget far_layer;  // half the target's size, made at the first frame with a far layer
         VkDescriptorSet far_set = VK_NULL_HANDLE;  // LitPipelines::composite_set sampling far_layer
+        gpu::LayerTarget distant_layer;  // a quarter of the target's size, made at the first frame with a distant layer
+        VkDescriptorSet distant_set = VK_NULL_HANDLE;  // LitPipelines::composite_set sampling distant_layer
         uint32_t proxy_capacity = 0;
         bool pending = false;
         bool set_dirty = true;
@@ -272,8 +284,14 @@ private:
     Status retire(Slot& slot);
     uint64_t upload(const FrameInput& frame, Slot& slot, VkExtent2D extent);
     void plan_far_layer_for(const FrameInput& frame, VkExtent2D extent);
-    Status ensure_far_layer(Slot& slot, VkExtent2D extent);
+    // Makes `layer` 1 / `divisor` of `extent` (rounded up) with its composite set, unless it has that size.
+    Status ensure_layer(gpu::LayerTarget& layer, VkDescriptorSet& set, VkExtent2D extent, uint32_t divisor);
+    // Begins `layer`'s render pass (cleared to transparent) with a viewport 1 / divisor of `extent` and the frame's
+    // descriptor sets bound; returns the viewport's height.
+    float begin_layer_pass(VkCommandBuffer cmd, const Slot& slot, const gpu::LayerTarget& layer, float divisor, VkExtent2D extent);
+    // Records the far layer's pass (far meshes, then far impostors) and the distant layer's, each where it has records.
     uint32_t record_far_layer(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
+    uint32_t record_distant_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
     // The pipeline of a topology's meshes that are not fading.
     [[nodiscard]] VkPipeline whole_pipeline(const Topology& topo) const;
     // Draws instances [first, first + count) of mesh group g (topology g / 2) with `pipeline` and the `dither` mode
@@ -286,8 +304,8 @@ private:
     Status ensure_queries(Slot& slot, uint32_t count);
     uint32_t pass_id(std::string_view name);
     void end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass);
-    // Draws the impostor records of the far layer's runs (far: each run's [split, end), else [first, split)).
-    uint32_t record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height, bool far);
+    // Draws each run's impostor records of `part` (run_part) into a viewport `viewport_height` pixels high.
+    uint32_t record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height, ImpostorPart part);
     uint32_t record_proxies(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
     [[nodiscard]] static uint32_t impostor_base(const FrameInput& frame);
 
@@ -316,6 +334,7 @@ private:
     std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (drawing and the far layer's planning)
     float far_layer_below_px_ = 0.0f;                 // options_.far_layer_below_px resolved for the device
     float far_layer_meshes_below_px_ = 0.0f;          // options_.far_layer_meshes_below_px resolved for the device
+    float distant_layer_below_px_ = 0.0f;             // options_.distant_layer_below_px resolved for the device
     std::vector<FarMeshGroup> far_mesh_groups_;       // per topology t: its whole group 2t's records in order_
     std::vector<FarMeshBound> far_mesh_bounds_;       // per mesh: measured where it may be under the mesh limit
     FarLayerPlan far_plan_;                           // this frame's impostor runs and far layer

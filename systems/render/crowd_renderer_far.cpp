@@ -1,5 +1,6 @@
-// CrowdRenderer far layer: which impostors go to the half-resolution layer, the layer's targets, its pass and
-// the composite that writes it into the frame with its depth (systems/render/far_layer.hpp).
+// CrowdRenderer far and distant layers: which impostors go to the half- and quarter-resolution layers, the layers'
+// targets, their passes and the composite that writes them into the frame with their depth
+// (systems/render/far_layer.hpp).
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
@@ -39,6 +40,7 @@ void CrowdRenderer::plan_far_layer_for(const FrameInput& frame, VkExtent2D exten
     const bool perspective = frame.camera.proj[2][3] != 0.0f;
     in.focal_px = perspective ? 0.5f * float(extent.height) * std::abs(frame.camera.proj[1][1]) : 0.0f;
     in.below_px = far_layer_limit(far_layer_below_px_, float(extent.height));
+    in.distant_below_px = far_layer_limit(distant_layer_below_px_, float(extent.height));
     in.viewport_width = float(std::max(extent.width, 1u));
     in.viewport_height = float(std::max(extent.height, 1u));
     // Whole (not fading) mesh groups, one per topology; a fading mesh's dither pairs pixel for pixel with its
@@ -60,34 +62,39 @@ void CrowdRenderer::plan_far_layer_for(const FrameInput& frame, VkExtent2D exten
     plan_far_layer(in, far_plan_);
 }
 
-Status CrowdRenderer::ensure_far_layer(Slot& slot, VkExtent2D extent) {
-    // Half the target's size, rounded up; drawn with a viewport of exactly half (record_far_layer), so layer texel
-    // (x, y) covers target pixels (2x, 2y) to (2x + 1, 2y + 1).
-    const VkExtent2D want{(extent.width + 1) / 2, (extent.height + 1) / 2};
-    const VkExtent2D have = slot.far_layer.extent();
+Status CrowdRenderer::ensure_layer(gpu::LayerTarget& layer, VkDescriptorSet& set, VkExtent2D extent, uint32_t divisor) {
+    // 1 / divisor of the target's size, rounded up; drawn with a viewport of exactly that fraction (record_far_layer,
+    // record_distant_layer), so layer texel (x, y) covers target pixels (d x, d y) to (d x + d - 1, d y + d - 1).
+    const VkExtent2D want{(extent.width + divisor - 1) / divisor, (extent.height + divisor - 1) / divisor};
+    const VkExtent2D have = layer.extent();
     if (have.width == want.width && have.height == want.height) return {};
     // The slot is retired (render() waited for its fence), so nothing in flight reads its old layer.
-    Result<gpu::LayerTarget> layer = gpu::LayerTarget::create(ctx_, want.width, want.height, options_.colour_format);
-    if (!layer) return layer.error();
-    slot.far_layer = std::move(layer).value();
-    Result<VkDescriptorSet> set = pipes_.composite_set(slot.far_layer.colour_view(), slot.far_layer.sampler(),
-                                                       slot.far_layer.depth_view(), slot.far_layer.depth_sampler(), slot.far_set);
-    if (!set) return set.error();
-    slot.far_set = set.value();
+    Result<gpu::LayerTarget> made = gpu::LayerTarget::create(ctx_, want.width, want.height, options_.colour_format);
+    if (!made) return made.error();
+    layer = std::move(made).value();
+    Result<VkDescriptorSet> written = pipes_.composite_set(layer.colour_view(), layer.sampler(), layer.depth_view(), layer.depth_sampler(), set);
+    if (!written) return written.error();
+    set = written.value();
     return {};
 }
 
-uint32_t CrowdRenderer::record_far_layer(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push,
-                                        VkExtent2D extent) {
-    const gpu::TargetView view = slot.far_layer.view();
+float CrowdRenderer::begin_layer_pass(VkCommandBuffer cmd, const Slot& slot, const gpu::LayerTarget& layer, float divisor,
+                                      VkExtent2D extent) {
+    const gpu::TargetView view = layer.view();
     gpu::begin_render_pass(cmd, view, VkClearColorValue{});  // transparent black: where the layer is empty
-    const float height = 0.5f * float(extent.height);
-    const VkViewport vp{0.0f, 0.0f, 0.5f * float(extent.width), height, 0.0f, 1.0f};
+    const float height = float(extent.height) / divisor;
+    const VkViewport vp{0.0f, 0.0f, float(extent.width) / divisor, height, 0.0f, 1.0f};
     const VkRect2D sc{{0, 0}, view.extent};
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &sc);
     const VkDescriptorSet sets[2] = {slot.set, plain_set_};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 2, sets, 0, nullptr);
+    return height;
+}
+
+uint32_t CrowdRenderer::record_far_layer(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push,
+                                        VkExtent2D extent) {
+    const float height = begin_layer_pass(cmd, slot, slot.far_layer, 2.0f, extent);
     // The far meshes (each whole group's tail, nearest first), then the far impostors behind them.
     uint32_t draws = 0;
     VkPipeline bound = VK_NULL_HANDLE;
@@ -102,21 +109,34 @@ uint32_t CrowdRenderer::record_far_layer(const FrameInput& frame, VkCommandBuffe
         meshes.triangles += uint64_t(topologies_[t].index_count / 3) * (end - split);
     }
     if (meshes.instances > 0) end_pass(cmd, slot, meshes);
-    draws += meshes.draws + record_impostors(cmd, slot, push, height, /*far=*/true);
+    draws += meshes.draws + record_impostors(cmd, slot, push, height, ImpostorPart::Far);
+    vkCmdEndRenderPass(cmd);
+    return draws;
+}
+
+uint32_t CrowdRenderer::record_distant_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent) {
+    const float height = begin_layer_pass(cmd, slot, slot.distant_layer, 4.0f, extent);
+    const uint32_t draws = record_impostors(cmd, slot, push, height, ImpostorPart::Distant);
     vkCmdEndRenderPass(cmd);
     return draws;
 }
 
 uint32_t CrowdRenderer::record_composite(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push) {
-    const VkExtent2D layer = slot.far_layer.extent();
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.composite());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.composite_layout(), 0, 1, &slot.far_set, 0, nullptr);
-    push.camera = glm::vec4(0.5f / float(layer.width), 0.5f / float(layer.height), 0.0f, 0.0f);
-    push.base_colour = far_plan_.ndc_rect;
-    vkCmdPushConstants(cmd, pipes_.composite_layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
-    vkCmdDraw(cmd, 6, 1, 0, 0);
-    end_pass(cmd, slot, {pass_id("composite"), 1, 1, 2});
-    return 1;
+    uint32_t draws = 0;
+    // Each layer over its rectangle; the shader maps a target pixel to layer coordinates by 1 / (divisor * size).
+    auto composite = [&](const gpu::LayerTarget& layer, VkDescriptorSet set, float divisor, const glm::vec4& rect) {
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.composite_layout(), 0, 1, &set, 0, nullptr);
+        push.camera = glm::vec4(1.0f / (divisor * float(layer.extent().width)), 1.0f / (divisor * float(layer.extent().height)), 0.0f, 0.0f);
+        push.base_colour = rect;
+        vkCmdPushConstants(cmd, pipes_.composite_layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
+        vkCmdDraw(cmd, 6, 1, 0, 0);
+        ++draws;
+    };
+    if (far_plan_.far_count > 0) composite(slot.far_layer, slot.far_set, 2.0f, far_plan_.ndc_rect);
+    if (far_plan_.distant_count > 0) composite(slot.distant_layer, slot.distant_set, 4.0f, far_plan_.distant_ndc_rect);
+    end_pass(cmd, slot, {pass_id("composite"), draws, draws, 2ull * draws});
+    return draws;
 }
 
 }  // namespace aloha

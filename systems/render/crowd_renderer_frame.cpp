@@ -144,6 +144,7 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     uint32_t draws = 0;
     // The far layer first, in its own render pass: the frame's pass composites it (record_composite).
     if (far_plan_.far_count > 0) draws += record_far_layer(frame, cmd, slot, push, target.extent);
+    if (far_plan_.distant_count > 0) draws += record_distant_layer(cmd, slot, push, target.extent);
     gpu::begin_render_pass(cmd, target, VkClearColorValue{{frame.clear_colour.r, frame.clear_colour.g, frame.clear_colour.b, frame.clear_colour.a}});
     const VkViewport vp{0.0f, 0.0f, float(target.extent.width), float(target.extent.height), 0.0f, 1.0f};
     const VkRect2D sc{{0, 0}, target.extent};
@@ -192,9 +193,9 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     }
     if (in_pass) end_pass(cmd, slot, pass);
     draws += record_proxies(frame, cmd, slot, push);
-    draws += record_impostors(cmd, slot, push, float(target.extent.height), /*far=*/false);
-    // The far layer, depth-tested against everything above (and the lines below against it).
-    if (far_plan_.far_count > 0) draws += record_composite(cmd, slot, push);
+    draws += record_impostors(cmd, slot, push, float(target.extent.height), ImpostorPart::Near);
+    // The far and distant layers, depth-tested against everything above (and the lines below against them).
+    if (far_plan_.far_count + far_plan_.distant_count > 0) draws += record_composite(cmd, slot, push);
     if (!frame.lines.empty()) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.lines());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 1, &slot.set, 0, nullptr);

@@ -76,16 +76,19 @@ uint32_t CrowdRenderer::impostor_base(const FrameInput& frame) {
     return static_cast<uint32_t>((bytes + sizeof(ImpostorInstance) - 1) / sizeof(ImpostorInstance));
 }
 
-uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height, bool far) {
+uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, float viewport_height, ImpostorPart part) {
     uint64_t count = 0;
-    for (const ImpostorRun& run : far_plan_.runs) count += far ? run.end - run.split : run.split - run.first;
+    for (const ImpostorRun& run : far_plan_.runs) {
+        const auto [first, end] = run_part(run, part);
+        count += end - first;
+    }
     if (count == 0) return 0;
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.impostor());
     const uint32_t base = impostor_base_;
     uint32_t draws = 0;
-    for (const ImpostorRun& run : far_plan_.runs) {  // one draw per run of one atlas (its near or its far part)
-        const uint32_t first = far ? run.split : run.first, end = far ? run.end : run.split;
+    for (const ImpostorRun& run : far_plan_.runs) {  // one draw per run of one atlas (its part in this layer)
+        const auto [first, end] = run_part(run, part);
         if (end == first) continue;
         const ImpostorAtlasLayout& layout = atlas_layouts_[run.atlas];
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[run.atlas].set, 0, nullptr);
@@ -96,7 +99,8 @@ uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::L
         ++draws;
     }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &plain_set_, 0, nullptr);
-    end_pass(cmd, slot, {pass_id(far ? "far layer" : "impostors"), draws, count, 2 * count});
+    const char* label = part == ImpostorPart::Near ? "impostors" : part == ImpostorPart::Far ? "far layer" : "distant layer";
+    end_pass(cmd, slot, {pass_id(label), draws, count, 2 * count});
     return draws;
 }
 

@@ -49,18 +49,20 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
     out.runs.clear();
     out.mesh_splits.clear();
     out.far_count = 0;
+    out.distant_count = 0;
     out.far_meshes = 0;
     const auto n = static_cast<uint32_t>(in.records.size());
     assert(in.order.size() == n);
     const bool enabled = in.focal_px > 0.0f && in.below_px > 0.0f;
     // NDC per unit of view-space x and y at distance 1 (the projection's P00 and P11).
-    ScreenBound bound(in.clip_from_world,
-                      glm::vec2(2.0f * in.focal_px / in.viewport_width, 2.0f * in.focal_px / in.viewport_height));
+    const glm::vec2 ndc_per_unit(2.0f * in.focal_px / in.viewport_width, 2.0f * in.focal_px / in.viewport_height);
+    ScreenBound bound(in.clip_from_world, ndc_per_unit), distant_bound(in.clip_from_world, ndc_per_unit);
+    const bool distant = enabled && in.distant_below_px > 0.0f;
     for (uint32_t first = 0; first < n;) {
         const uint32_t atlas = in.records[first].atlas;
         uint32_t end = first + 1;
         while (end < n && in.records[end].atlas == atlas) ++end;
-        ImpostorRun run{first, end, end, atlas};
+        ImpostorRun run{first, end, end, atlas, end};
         if (enabled) {
             assert(atlas < in.layouts.size());
             const ImpostorAtlasLayout& layout = in.layouts[atlas];
@@ -68,12 +70,21 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
             const auto near = [&](uint32_t i) { return in.depth[i] <= limit || in.records[i].forward_phase.w < 1.0f; };
             const auto split = std::stable_partition(in.order.begin() + first, in.order.begin() + end, near);
             run.split = static_cast<uint32_t>(split - in.order.begin());
+            // The far part is nearest first: its records beyond the distant limit are its tail.
+            if (distant) {
+                const float distant_limit = in.focal_px * layout.height / in.distant_below_px;
+                run.distant = static_cast<uint32_t>(
+                    std::partition_point(split, in.order.begin() + end, [&](uint32_t i) { return in.depth[i] <= distant_limit; }) -
+                    in.order.begin());
+            }
             const float radius = 0.5f * std::sqrt(layout.width * layout.width + layout.height * layout.height);
             for (uint32_t k = run.split; k < end; ++k) {
                 const glm::vec4& ps = in.records[in.order[k]].position_scale;
-                bound.add(glm::vec3(ps) + glm::vec3(0.0f, ps.w * (layout.bottom + 0.5f * layout.height), 0.0f), radius * ps.w);
+                (k < run.distant ? bound : distant_bound)
+                    .add(glm::vec3(ps) + glm::vec3(0.0f, ps.w * (layout.bottom + 0.5f * layout.height), 0.0f), radius * ps.w);
             }
-            out.far_count += end - run.split;
+            out.far_count += run.distant - run.split;
+            out.distant_count += end - run.distant;
         }
         out.runs.push_back(run);
         first = end;
@@ -98,9 +109,11 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
         out.mesh_splits.push_back(split);
     }
     out.far_count += out.far_meshes;
-    if (out.far_count == 0) return;
-    // Two layer texels (four pixels) of padding: the bilinear filter reads one texel beyond the quad's edge.
-    out.ndc_rect = bound.rect(glm::vec2(8.0f / in.viewport_width, 8.0f / in.viewport_height));
+    // Two layer texels (four pixels in the far layer, eight in the distant one) of padding: the bilinear filter
+    // reads one texel beyond the quad's edge.
+    if (out.far_count > 0) out.ndc_rect = bound.rect(glm::vec2(8.0f / in.viewport_width, 8.0f / in.viewport_height));
+    if (out.distant_count > 0)
+        out.distant_ndc_rect = distant_bound.rect(glm::vec2(16.0f / in.viewport_width, 16.0f / in.viewport_height));
 }
 
 }  // namespace aloha

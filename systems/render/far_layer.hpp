@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace aloha {
@@ -57,13 +58,27 @@ struct FarMeshBound {
 };
 
 /// One run of impostor records of one atlas, in draw order: [first, split) are drawn at full resolution,
-/// [split, end) into the far layer.
+/// [split, distant) into the far layer (half resolution), [distant, end) into the distant layer (a quarter).
 struct ImpostorRun {
     uint32_t first = 0;
     uint32_t split = 0;
     uint32_t end = 0;
     uint32_t atlas = 0;
+    uint32_t distant = 0;
 };
+
+/// The layers a frame's impostor records are drawn in: full resolution, the far layer, the distant layer.
+enum class ImpostorPart : uint8_t { Near, Far, Distant };
+
+/// The records [begin, end) of `run` drawn in `part`.
+[[nodiscard]] inline std::pair<uint32_t, uint32_t> run_part(const ImpostorRun& run, ImpostorPart part) {
+    switch (part) {
+        case ImpostorPart::Near: return {run.first, run.split};
+        case ImpostorPart::Far: return {run.split, run.distant};
+        case ImpostorPart::Distant: return {run.distant, run.end};
+    }
+    return {run.first, run.first};
+}
 
 /// What plan_far_layer decided for one frame.
 struct FarLayerPlan {
@@ -71,9 +86,11 @@ struct FarLayerPlan {
     std::vector<uint32_t> mesh_splits;         ///< per FarLayerInput::mesh_groups entry: its records [first, split)
                                                ///< are drawn at full resolution, [split, first + count) in the layer
     uint32_t far_count = 0;                    ///< records and meshes in the far layer (0: no far pass, no composite)
+    uint32_t distant_count = 0;                ///< records in the distant layer (0: no distant pass, no composite)
     uint32_t far_meshes = 0;                   ///< of which meshes
     glm::vec4 ndc_rect{-1.0f, -1.0f, 1.0f, 1.0f};  ///< screen rectangle (Vulkan NDC x0, y0, x1, y1) holding every
                                                ///< far record's quad and the filter's reach: the composite's quad
+    glm::vec4 distant_ndc_rect{-1.0f, -1.0f, 1.0f, 1.0f};  ///< the same for the distant layer's records
 };
 
 /// A frame's impostors and the limit of its far layer.
@@ -88,6 +105,8 @@ struct FarLayerInput {
                                                    ///< * the projection's y scale); <= 0 (orthographic): no far layer
     float below_px = 0.0f;                         ///< a record goes to the far layer where its quad at scale 1 is under
                                                    ///< this many pixels tall; <= 0: no far layer
+    float distant_below_px = 0.0f;                 ///< a far record goes on to the distant layer where its quad is under
+                                                   ///< this many pixels tall; <= 0 (or no far layer): no distant layer
     float viewport_width = 1.0f;                   ///< full-resolution pixels (the rectangle's padding)
     float viewport_height = 1.0f;
     std::span<uint32_t> mesh_order;                ///< mesh draw order: each group's records nearest first; partitioned here
@@ -101,9 +120,10 @@ struct FarLayerInput {
 
 /// Moves each run's far records (quad under below_px tall, i.e. depth > focal_px * layout.height / below_px, and
 /// not cross-fading: its dither pairs pixel for pixel with a mesh's at full resolution) behind its others in
-/// `order`, keeping both parts nearest first, and sets the runs' splits. The rectangle bounds each far record's
-/// bounding sphere on screen, padded by two layer texels (the filter's reach); the whole screen when one lies
-/// at or behind the eye's plane. Likewise each mesh group: its meshes under meshes_below_px
+/// `order`, keeping both parts nearest first, and sets the runs' splits; the far part's records under
+/// distant_below_px tall (its farthest, a suffix of it) go to the distant layer. Each layer's rectangle bounds its
+/// records' bounding spheres on screen, padded by two of its texels (the filter's reach); the whole screen when
+/// one lies at or behind the eye's plane. Likewise each mesh group: its meshes under meshes_below_px
 /// go behind its others, both parts nearest first, and their spheres join the rectangle.
 void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out);
 

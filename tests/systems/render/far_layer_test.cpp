@@ -1,4 +1,5 @@
-// Far layer planning (systems/render/far_layer.hpp): which impostors and meshes go to the half-resolution layer,
+// Far layer planning (systems/render/far_layer.hpp): which impostors and meshes go to the half-resolution layer
+// (and which impostors on to the quarter-resolution distant layer),
 // and the screen rectangle the composite covers.
 #include "engine/gpu/lit_pipeline.hpp"
 #include "systems/render/far_layer.hpp"
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 namespace aloha {
@@ -84,6 +86,45 @@ TEST(FarLayer, EachRunsRecordsUnderTheLimitGoLastNearestFirst) {
     plan_far_layer(in, plan);
     EXPECT_EQ(plan.far_count, 0u);
     EXPECT_EQ(plan.runs[0].split, plan.runs[0].end);
+}
+
+// The distant layer: of each run's far part (nearest first), the records under distant_below_px go last into the
+// quarter-resolution layer; each layer's rectangle holds its own records; 0 turns it off.
+TEST(FarLayer, EachRunsFarRecordsUnderTheDistantLimitGoToTheDistantLayer) {
+    const View v;
+    const std::vector<ImpostorAtlasLayout> layouts = {{16, 9, 1.0f, 0.0f, 1.8f}, {16, 9, 1.0f, 0.0f, 0.9f}};
+    Records r;
+    // A 1.8 m quad is under 70 px beyond 16.0 m and under 30 px beyond 623.5 * 1.8 / 30 = 37.4 m; a 0.9 m one
+    // beyond 8.0 and 18.7 m. The distant records stand 8 m to the right, the far ones at the centre or left of it.
+    for (const float d : {5.0f, 16.2f, 37.0f, 37.8f, 60.0f}) r.add(d, d > 37.4f ? 8.0f : -3.0f, 0);
+    for (const float d : {5.0f, 8.1f, 18.9f}) r.add(d, d > 18.7f ? 8.0f : 0.0f, 1);
+    FarLayerInput in = input_of(v, r, layouts);
+    in.distant_below_px = 30.0f;
+    FarLayerPlan plan;
+    plan_far_layer(in, plan);
+    ASSERT_EQ(plan.runs.size(), 2u);
+    EXPECT_EQ(plan.runs[0].split, 1u);
+    EXPECT_EQ(plan.runs[0].distant, 3u) << "37.8 m is the first 1.8 m record under 30 px";
+    EXPECT_EQ(plan.runs[1].split, 6u);
+    EXPECT_EQ(plan.runs[1].distant, 7u) << "18.9 m is the first 0.9 m record under 30 px";
+    EXPECT_EQ(plan.far_count, 3u);
+    EXPECT_EQ(plan.distant_count, 3u);
+    EXPECT_EQ(run_part(plan.runs[0], ImpostorPart::Near), std::make_pair(0u, 1u));
+    EXPECT_EQ(run_part(plan.runs[0], ImpostorPart::Far), std::make_pair(1u, 3u));
+    EXPECT_EQ(run_part(plan.runs[0], ImpostorPart::Distant), std::make_pair(3u, 5u));
+    // The distant 1.8 m records stand 8 m to the right: their rectangle lies right of the screen's centre.
+    EXPECT_GT(plan.distant_ndc_rect.x, 0.0f);
+    EXPECT_LT(plan.ndc_rect.x, 0.0f) << "the far layer's records stand left of centre";
+
+    in.distant_below_px = 0.0f;  // off: every far record at half resolution
+    plan_far_layer(in, plan);
+    EXPECT_EQ(plan.distant_count, 0u);
+    EXPECT_EQ(plan.far_count, 6u);
+    EXPECT_EQ(plan.runs[0].distant, plan.runs[0].end);
+    in.distant_below_px = 70.0f;  // at the far limit: every far record in the distant layer
+    plan_far_layer(in, plan);
+    EXPECT_EQ(plan.far_count, 0u);
+    EXPECT_EQ(plan.distant_count, 6u);
 }
 
 TEST(FarLayer, RectangleHoldsEveryFarQuadAndIsWholeScreenNearTheEye) {
