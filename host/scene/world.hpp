@@ -212,8 +212,9 @@ private:
     void register_systems();
     void regroup();
     void refresh_type_views();
-    /// Forgets the registered draw topologies and labels each level's GPU pass with its rule-file name.
-    void reset_draws();
+    /// Forgets the registered draw topologies, labels each level's GPU pass with its rule-file name and, with a
+    /// renderer, registers every type's materials and mesh levels again (DrawListBuilder::prepare).
+    Status reset_draws();
     /// Bakes and registers the impostor atlas of every type not baked yet (rules with an impostor level
     /// and a renderer attached; world_impostors.cpp).
     Status build_impostors();

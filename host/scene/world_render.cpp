@@ -11,7 +11,7 @@ Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* tar
     draws_.clear_impostors();
     impostor_reports_.clear();
     impostor_built_.clear();
-    reset_draws();
+    if (Status s = reset_draws(); !s.ok()) return s;
     return build_impostors();
 }
 
@@ -22,11 +22,15 @@ Status World::finish_rendering() {
     return s;
 }
 
-void World::reset_draws() {
+Status World::reset_draws() {
     draws_.reset();
     std::vector<std::string> pass_names;  // each level's name labels its GPU pass
     for (const auto& level : rules_.table().geom_levels) pass_names.push_back(level.name);
     draws_.set_pass_names(std::move(pass_names));
+    if (!renderer_) return {};
+    // Every type's materials and mesh levels registered now, not in the frame where a level first appears.
+    refresh_type_views();
+    return draws_.prepare(*renderer_, draw_types_);
 }
 
 void World::frame_settings(FrameInput& frame) const {

@@ -143,9 +143,25 @@ void DrawListBuilder::overlays(const DrawType& draw, uint32_t id, const glm::mat
         out.lines.push_back({to_world(muscle_scratch_[k]), to_world(skin.positions[k]), glm::vec4(0.2f, 0.9f, 0.9f, 1.0f)});
 }
 
-Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface) {
+Status DrawListBuilder::prepare(CrowdRenderer& renderer, std::span<const DrawType> types) {
+    for (size_t t = 0; t < types.size(); ++t) {
+        if (!types[t].geometry) continue;
+        const GeometryController& gc = *types[t].geometry;
+        for (uint8_t l = 0; l < gc.level_count(); ++l) {
+            const GeomMethod method = gc.level(l).method;
+            const bool mesh = method == GeomMethod::SkinnedMesh || method == GeomMethod::Layered || method == GeomMethod::Subdivided;
+            if (!mesh || gc.level_indices(l).empty() || gc.vertices_per_character(l) == 0) continue;
+            auto id = topology(renderer, static_cast<uint16_t>(t), types[t], l, gc.topology_key(l), gc.vertices_per_character(l));
+            if (!id.ok()) return id.error();
+        }
+    }
+    return {};
+}
+
+Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, uint8_t level,
+                                           uint32_t topology_key, uint32_t vertex_count) {
     for (const auto& [key, id] : topologies_)
-        if (key == surface.topology_key) return id;
+        if (key == topology_key) return id;
     if (materials_.size() <= type) materials_.resize(size_t{type} + 1);
     std::vector<uint32_t>& materials = materials_[type];
     if (materials.empty() && !draw.materials.empty()) {  // the type's textures and materials, once
@@ -167,20 +183,20 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
         }
     }
     TopologySurface surface_materials;
-    surface_materials.uvs = draw.geometry->level_uvs(surface.level);
-    surface_materials.vertex_material = draw.geometry->level_vertex_materials(surface.level);
+    surface_materials.uvs = draw.geometry->level_uvs(level);
+    surface_materials.vertex_material = draw.geometry->level_vertex_materials(level);
     surface_materials.materials = materials;
     // Double-sided materials (glTF doubleSided) need their back faces: no culling for the topology.
     bool double_sided = false;
     for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;
-    const bool vertex_lighting = drawn_lit_per_vertex(draw.geometry->level(surface.level).method);
+    const bool vertex_lighting = drawn_lit_per_vertex(draw.geometry->level(level).method);
     renderer.declare_passes(pass_names_);  // levels drawn richest (nearest) first, whichever comes first
-    auto id = renderer.register_topology(draw.geometry->level_indices(surface.level), static_cast<uint32_t>(surface.positions.size()),
+    auto id = renderer.register_topology(draw.geometry->level_indices(level), vertex_count,
                                          /*cull_back_faces=*/!double_sided, surface_materials,
-                                         surface.level < pass_names_.size() ? std::string_view(pass_names_[surface.level]) : "meshes",
+                                         level < pass_names_.size() ? std::string_view(pass_names_[level]) : "meshes",
                                          vertex_lighting);
     if (!id.ok()) return id.error();
-    topologies_.emplace_back(surface.topology_key, id.value());
+    topologies_.emplace_back(topology_key, id.value());
     return id.value();
 }
 

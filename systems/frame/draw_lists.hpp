@@ -85,9 +85,19 @@ public:
                   std::span<const Transform> transforms, std::span<const LodState> states,
                   std::span<const AnimLod> anims, const DrawSettings& settings, RenderLists& out,
                   std::span<const MotionState> motion = {}, std::span<const LodAttributes> attributes = {});
+    /// Registers every type's materials and every mesh level's topology with `renderer` now (at load), so that the
+    /// frame where a level first appears registers nothing (texture uploads, index lists reordered by material:
+    /// 10-25 ms a type on crowd_10k, measured in render_prepare). Levels drawn as impostors, proxies or nothing, and
+    /// levels without a displayed surface, are skipped. Errors: as topology().
+    Status prepare(CrowdRenderer& renderer, std::span<const DrawType> types);
     /// The renderer id of `surface`'s topology for type `type`, registering it (and the type's
     /// materials) on first use.
-    Result<uint32_t> topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface);
+    Result<uint32_t> topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, const SurfaceView& surface) {
+        return topology(renderer, type, draw, surface.level, surface.topology_key, static_cast<uint32_t>(surface.positions.size()));
+    }
+    /// The same for level `level` of type `type` (GeometryController::topology_key, `vertex_count` displayed vertices).
+    Result<uint32_t> topology(CrowdRenderer& renderer, uint16_t type, const DrawType& draw, uint8_t level, uint32_t topology_key,
+                              uint32_t vertex_count);
     /// True when type `type`'s materials are registered (its meshes are drawn in their colours).
     [[nodiscard]] bool textured(uint16_t type) const { return type < materials_.size() && !materials_[type].empty(); }
 

@@ -197,6 +197,8 @@ public:
     /// Uploads an impostor atlas (image laid out as `layout` says, mipmapped) once; returns its id for
     /// ImpostorInstance::atlas. Errors: empty or inconsistent image or layout, Vulkan failures.
     [[nodiscard]] Result<uint32_t> register_impostor_atlas(const TextureImage& image, const ImpostorAtlasLayout& layout);
+    /// Number of topologies registered so far.
+    [[nodiscard]] size_t topology_count() const { return topologies_.size(); }
     /// Vertex count of a registered topology (0 when unknown).
     [[nodiscard]] uint32_t topology_vertex_count(uint32_t topology) const;
 
