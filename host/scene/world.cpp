@@ -318,6 +318,7 @@ void World::step() {
             for (auto& rt : types_) rt->geometry->set_levels(rt->usable_levels(levels));
             if (Status s = reset_draws(); !s.ok()) render_status_ = s;  // level topologies may have changed: register again
             if (Status s = build_impostors(); !s.ok()) render_status_ = s;  // a new impostor level: bake its atlases
+            if (renderer_ && render_status_.ok()) render_status_ = renderer_->warm_up();
             (void)apply_rule_settings();  // budget and tier too; a tier the new file lacks falls back to its own
         }
     }

@@ -12,7 +12,8 @@ Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* tar
     impostor_reports_.clear();
     impostor_built_.clear();
     if (Status s = reset_draws(); !s.ok()) return s;
-    return build_impostors();
+    if (Status s = build_impostors(); !s.ok()) return s;
+    return renderer_ ? renderer_->warm_up() : Status{};  // shader variants compiled now, not at a level's first draw
 }
 
 Status World::finish_rendering() {

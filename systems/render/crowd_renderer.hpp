@@ -197,6 +197,12 @@ public:
     /// Uploads an impostor atlas (image laid out as `layout` says, mipmapped) once; returns its id for
     /// ImpostorInstance::atlas. Errors: empty or inconsistent image or layout, Vulkan failures.
     [[nodiscard]] Result<uint32_t> register_impostor_atlas(const TextureImage& image, const ImpostorAtlasLayout& layout);
+    /// Draws one triangle of every registered topology (each material, whole and dithered) and one quad of every
+    /// impostor atlas into a small target of the frame's formats, and waits: a software rasteriser (lavapipe)
+    /// compiles each pipeline's shader variant for the textures and target it meets at its first draw (~10 ms
+    /// each), which would otherwise land in the frame where a level is first drawn or cross-faded. Call after
+    /// registering; what is registered later is compiled when first drawn. Errors: Vulkan failures.
+    [[nodiscard]] Status warm_up();
     /// Number of topologies registered so far.
     [[nodiscard]] size_t topology_count() const { return topologies_.size(); }
     /// Vertex count of a registered topology (0 when unknown).
@@ -323,6 +329,7 @@ private:
     gpu::Buffer no_uvs_;                              // one zero vec2: draws without UVs
     VkDescriptorSet plain_set_ = VK_NULL_HANDLE;      // no_uvs_ + white_
     std::vector<Slot> slots_;
+    gpu::LayerTarget warm_target_;                    // warm_up()'s 8 x 8 target, made at its first call
     // Per-frame scratch, reused (capacity only grows): meshes ordered by topology, group offsets. Groups are
     // keyed 2 * topology + 1 for the dithered (fading) meshes of a topology, 2 * topology for the others.
     std::vector<uint32_t> order_;

@@ -1,6 +1,6 @@
 // CrowdRenderer end to end on lavapipe under validation: pixel coverage and exact palette colours of
 // deformable meshes (two topologies, interleaved), instanced proxies and lines; draw batching; GPU timing;
-// the golden image; and validation reporting nothing.
+// the golden image; the warm-up; and validation reporting nothing.
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/png.hpp"
 #include "render_scene.hpp"
@@ -27,7 +27,7 @@ struct Rendered {
 
 // Every mesh at full resolution (the scene's meshes are small: on lavapipe the far layer would take them; its own
 // test is FarLayerMeshes.* in impostor_atlas_test.cpp).
-Rendered render_scene(gpu::Context& ctx, float ambient, bool oblique = false) {
+Rendered render_scene(gpu::Context& ctx, float ambient, bool oblique = false, bool warm = false) {
     Rendered out;
     RendererOptions options;
     options.far_layer_meshes_below_px = 0.0f;
@@ -41,6 +41,10 @@ Rendered render_scene(gpu::Context& ctx, float ambient, bool oblique = false) {
     const uint32_t tri_id = renderer.register_topology(tri).value();  // registered first: ids are not order
     const uint32_t grid_id = renderer.register_topology(grid).value();
     scene.build(grid_id, tri_id, ambient);
+    if (warm) {
+        const Status w = renderer.warm_up();
+        EXPECT_TRUE(w.ok()) << w.error().to_string();
+    }
     if (oblique) {  // perspective from above-right: box sides visible, each face lit differently
         scene.frame.camera.view = glm::lookAt(glm::vec3(2.5f, 2.0f, 5.0f), glm::vec3(0), glm::vec3(0, 1, 0));
         scene.frame.camera.proj = glm::perspective(glm::radians(50.0f), 1.0f, 0.1f, 20.0f);
@@ -121,6 +125,21 @@ TEST(CrowdRenderer, LitSceneMatchesGoldenImage) {
     Status s = check_golden(r.image, std::string(ALOHA_SOURCE_DIR) + "/tests/systems/render/golden/crowd_scene.png",
                             opt);
     EXPECT_TRUE(s.ok()) << s.error().to_string();
+    EXPECT_EQ(ctx->validation_message_count(), 0u)
+        << (ctx->validation_messages().empty() ? "" : ctx->validation_messages().front());
+}
+
+// CrowdRenderer::warm_up draws every registered pipeline once into its own small target: valid under validation, and
+// the frame drawn after it is the same, pixel for pixel, as without it (it writes nothing the frame keeps).
+TEST(CrowdRenderer, WarmUpLeavesTheNextFrameAsItWas) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Rendered cold = render_scene(*ctx, /*ambient=*/0.3f, /*oblique=*/true);
+    const Rendered warm = render_scene(*ctx, /*ambient=*/0.3f, /*oblique=*/true, /*warm=*/true);
+    ASSERT_EQ(cold.image.width, kSceneSize);
+    ASSERT_EQ(warm.image.width, kSceneSize);
+    EXPECT_EQ(cold.image.pixels, warm.image.pixels);
+    EXPECT_EQ(cold.draws, warm.draws);
     EXPECT_EQ(ctx->validation_message_count(), 0u)
         << (ctx->validation_messages().empty() ? "" : ctx->validation_messages().front());
 }
