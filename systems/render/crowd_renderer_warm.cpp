@@ -1,7 +1,6 @@
 // CrowdRenderer warm-up: every registered pipeline, texture and target state drawn once at load, so that a software
 // rasteriser compiles its shader variants then rather than in the frame that first needs them.
 #include "engine/gpu/context.hpp"
-#include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
 #include <cstring>

@@ -85,8 +85,8 @@ struct FarLayerPlan {
     std::vector<ImpostorRun> runs;             ///< every run of the frame's impostor records, in order
     std::vector<uint32_t> mesh_splits;         ///< per FarLayerInput::mesh_groups entry: its records [first, split)
                                                ///< are drawn at full resolution, [split, first + count) in the layer
-    uint32_t far_count = 0;                    ///< records and meshes in the far layer (0: no far pass, no composite)
-    uint32_t distant_count = 0;                ///< records in the distant layer (0: no distant pass, no composite)
+    uint32_t far_count = 0;                    ///< records and meshes in the far layer (0: no far pass)
+    uint32_t distant_count = 0;                ///< records in the distant layer (0: no distant pass; neither: no composite)
     uint32_t far_meshes = 0;                   ///< of which meshes
     glm::vec4 ndc_rect{-1.0f, -1.0f, 1.0f, 1.0f};  ///< screen rectangle (Vulkan NDC x0, y0, x1, y1) holding every
                                                ///< far record's quad and the filter's reach: the composite's quad
