@@ -316,9 +316,8 @@ void World::step() {
             clamp_lod_states(rules_.table(), group.span<LodState>());
             const std::vector<GeomLod> levels = geom_levels(rules_.table());
             for (auto& rt : types_) rt->geometry->set_levels(rt->usable_levels(levels));
-            if (Status s = reset_draws(); !s.ok()) render_status_ = s;  // level topologies may have changed: register again
-            if (Status s = build_impostors(); !s.ok()) render_status_ = s;  // a new impostor level: bake its atlases
-            if (renderer_ && render_status_.ok()) render_status_ = renderer_->warm_up();
+            // Level topologies may have changed, or an impostor level come: register, bake and warm up again.
+            if (Status s = prepare_drawing(); !s.ok()) render_status_ = s;
             (void)apply_rule_settings();  // budget and tier too; a tier the new file lacks falls back to its own
         }
     }

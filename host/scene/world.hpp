@@ -215,6 +215,8 @@ private:
     /// Forgets the registered draw topologies, labels each level's GPU pass with its rule-file name and, with a
     /// renderer, registers every type's materials and mesh levels again (DrawListBuilder::prepare).
     Status reset_draws();
+    /// reset_draws(), build_impostors(), then the renderer's warm-up (attach_renderer and a rules reload).
+    Status prepare_drawing();
     /// Bakes and registers the impostor atlas of every type not baked yet (rules with an impostor level
     /// and a renderer attached; world_impostors.cpp).
     Status build_impostors();

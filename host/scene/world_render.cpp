@@ -11,6 +11,10 @@ Status World::attach_renderer(CrowdRenderer* renderer, gpu::OffscreenTarget* tar
     draws_.clear_impostors();
     impostor_reports_.clear();
     impostor_built_.clear();
+    return prepare_drawing();
+}
+
+Status World::prepare_drawing() {
     if (Status s = reset_draws(); !s.ok()) return s;
     if (Status s = build_impostors(); !s.ok()) return s;
     return renderer_ ? renderer_->warm_up() : Status{};  // shader variants compiled now, not at a level's first draw

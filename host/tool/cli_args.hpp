@@ -53,8 +53,8 @@ struct CliOptions {
     bool constant_fragments = false;   ///< --constant-fragments: unlit constant-colour fragments (profile)
     std::optional<float> far_layer_px;  ///< --far-layer PX: RendererOptions::far_layer_below_px (unset: far_layer_default)
     std::optional<float> far_layer_meshes_px;  ///< --far-layer-meshes PX: RendererOptions::far_layer_meshes_below_px
-    std::optional<float> distant_layer_px;  ///< --distant-layer PX: RendererOptions::distant_layer_below_px
                                                ///< (unset: far_layer_meshes_default)
+    std::optional<float> distant_layer_px;  ///< --distant-layer PX: RendererOptions::distant_layer_below_px (unset: 0)
     GpuOverlap gpu_overlap = GpuOverlap::Auto;  ///< --gpu-overlap on|off|auto: GPU frame overlapped with the next CPU systems (profile)
     std::string joints;                ///< --joints FILE.csv: where export writes joint positions
     /// export --characters LIST: inclusive ranges of spawn indices ("0,5,10-20"); empty = every character

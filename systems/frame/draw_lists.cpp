@@ -148,9 +148,7 @@ Status DrawListBuilder::prepare(CrowdRenderer& renderer, std::span<const DrawTyp
         if (!types[t].geometry) continue;
         const GeometryController& gc = *types[t].geometry;
         for (uint8_t l = 0; l < gc.level_count(); ++l) {
-            const GeomMethod method = gc.level(l).method;
-            const bool mesh = method == GeomMethod::SkinnedMesh || method == GeomMethod::Layered || method == GeomMethod::Subdivided;
-            if (!mesh || gc.level_indices(l).empty() || gc.vertices_per_character(l) == 0) continue;
+            if (!drawn_as_mesh(gc.level(l).method) || gc.level_indices(l).empty() || gc.vertices_per_character(l) == 0) continue;
             auto id = topology(renderer, static_cast<uint16_t>(t), types[t], l, gc.topology_key(l), gc.vertices_per_character(l));
             if (!id.ok()) return id.error();
         }

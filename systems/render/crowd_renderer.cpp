@@ -37,7 +37,6 @@ Status CrowdRenderer::init(const RendererOptions& options) {
     options_ = options;
     far_layer_below_px_ = options.far_layer_below_px.value_or(far_layer_default(ctx_.is_cpu_device()));
     far_layer_meshes_below_px_ = options.far_layer_meshes_below_px.value_or(far_layer_meshes_default(ctx_.is_cpu_device()));
-    distant_layer_below_px_ = options.distant_layer_below_px;
     options_.frames_in_flight = std::clamp(options.frames_in_flight, 1u, 4u);
     const VkDevice dev = ctx_.device();
     Result<VkRenderPass> pass = gpu::create_render_pass(dev, options_.colour_format,
@@ -257,11 +256,11 @@ Status CrowdRenderer::render(const FrameInput& frame, const gpu::TargetView& tar
     }
     last_upload_bytes_ = upload(frame, slot, target.extent);
     if (far_plan_.far_count > 0) {
-        st = ensure_layer(slot.far_layer, slot.far_set, target.extent, 2);
+        st = ensure_layer(slot.far_layer, slot.far_set, target.extent, kFarLayerDivisor);
         if (!st) return st;
     }
     if (far_plan_.distant_count > 0) {
-        st = ensure_layer(slot.distant_layer, slot.distant_set, target.extent, 4);
+        st = ensure_layer(slot.distant_layer, slot.distant_set, target.extent, kDistantLayerDivisor);
         if (!st) return st;
     }
     last_upload_ms_ = ms_since(t0);

@@ -296,7 +296,7 @@ private:
     Status ensure_layer(gpu::LayerTarget& layer, VkDescriptorSet& set, VkExtent2D extent, uint32_t divisor);
     // Begins `layer`'s render pass (cleared to transparent) with a viewport 1 / divisor of `extent` and the frame's
     // descriptor sets bound; returns the viewport's height.
-    float begin_layer_pass(VkCommandBuffer cmd, const Slot& slot, const gpu::LayerTarget& layer, float divisor, VkExtent2D extent);
+    float begin_layer_pass(VkCommandBuffer cmd, const Slot& slot, const gpu::LayerTarget& layer, uint32_t divisor, VkExtent2D extent);
     // Records the far layer's pass (far meshes, then far impostors) and the distant layer's, each where it has records.
     uint32_t record_far_layer(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
     uint32_t record_distant_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent);
@@ -343,7 +343,6 @@ private:
     std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (drawing and the far layer's planning)
     float far_layer_below_px_ = 0.0f;                 // options_.far_layer_below_px resolved for the device
     float far_layer_meshes_below_px_ = 0.0f;          // options_.far_layer_meshes_below_px resolved for the device
-    float distant_layer_below_px_ = 0.0f;             // options_.distant_layer_below_px resolved for the device
     std::vector<FarMeshGroup> far_mesh_groups_;       // per topology t: its whole group 2t's records in order_
     std::vector<FarMeshBound> far_mesh_bounds_;       // per mesh: measured where it may be under the mesh limit
     FarLayerPlan far_plan_;                           // this frame's impostor runs and far layer

@@ -40,7 +40,7 @@ void CrowdRenderer::plan_far_layer_for(const FrameInput& frame, VkExtent2D exten
     const bool perspective = frame.camera.proj[2][3] != 0.0f;
     in.focal_px = perspective ? 0.5f * float(extent.height) * std::abs(frame.camera.proj[1][1]) : 0.0f;
     in.below_px = far_layer_limit(far_layer_below_px_, float(extent.height));
-    in.distant_below_px = far_layer_limit(distant_layer_below_px_, float(extent.height));
+    in.distant_below_px = far_layer_limit(options_.distant_layer_below_px, float(extent.height));
     in.viewport_width = float(std::max(extent.width, 1u));
     in.viewport_height = float(std::max(extent.height, 1u));
     // Whole (not fading) mesh groups, one per topology; a fading mesh's dither pairs pixel for pixel with its
@@ -78,12 +78,12 @@ Status CrowdRenderer::ensure_layer(gpu::LayerTarget& layer, VkDescriptorSet& set
     return {};
 }
 
-float CrowdRenderer::begin_layer_pass(VkCommandBuffer cmd, const Slot& slot, const gpu::LayerTarget& layer, float divisor,
+float CrowdRenderer::begin_layer_pass(VkCommandBuffer cmd, const Slot& slot, const gpu::LayerTarget& layer, uint32_t divisor,
                                       VkExtent2D extent) {
     const gpu::TargetView view = layer.view();
     gpu::begin_render_pass(cmd, view, VkClearColorValue{});  // transparent black: where the layer is empty
-    const float height = float(extent.height) / divisor;
-    const VkViewport vp{0.0f, 0.0f, float(extent.width) / divisor, height, 0.0f, 1.0f};
+    const float height = float(extent.height) / float(divisor);
+    const VkViewport vp{0.0f, 0.0f, float(extent.width) / float(divisor), height, 0.0f, 1.0f};
     const VkRect2D sc{{0, 0}, view.extent};
     vkCmdSetViewport(cmd, 0, 1, &vp);
     vkCmdSetScissor(cmd, 0, 1, &sc);
@@ -94,7 +94,7 @@ float CrowdRenderer::begin_layer_pass(VkCommandBuffer cmd, const Slot& slot, con
 
 uint32_t CrowdRenderer::record_far_layer(const FrameInput& frame, VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push,
                                         VkExtent2D extent) {
-    const float height = begin_layer_pass(cmd, slot, slot.far_layer, 2.0f, extent);
+    const float height = begin_layer_pass(cmd, slot, slot.far_layer, kFarLayerDivisor, extent);
     // The far meshes (each whole group's tail, nearest first), then the far impostors behind them.
     uint32_t draws = 0;
     VkPipeline bound = VK_NULL_HANDLE;
@@ -115,7 +115,7 @@ uint32_t CrowdRenderer::record_far_layer(const FrameInput& frame, VkCommandBuffe
 }
 
 uint32_t CrowdRenderer::record_distant_layer(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push, VkExtent2D extent) {
-    const float height = begin_layer_pass(cmd, slot, slot.distant_layer, 4.0f, extent);
+    const float height = begin_layer_pass(cmd, slot, slot.distant_layer, kDistantLayerDivisor, extent);
     const uint32_t draws = record_impostors(cmd, slot, push, height, ImpostorPart::Distant);
     vkCmdEndRenderPass(cmd);
     return draws;
@@ -125,16 +125,17 @@ uint32_t CrowdRenderer::record_composite(VkCommandBuffer cmd, Slot& slot, gpu::L
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.composite());
     uint32_t draws = 0;
     // Each layer over its rectangle; the shader maps a target pixel to layer coordinates by 1 / (divisor * size).
-    auto composite = [&](const gpu::LayerTarget& layer, VkDescriptorSet set, float divisor, const glm::vec4& rect) {
+    auto composite = [&](const gpu::LayerTarget& layer, VkDescriptorSet set, uint32_t divisor, const glm::vec4& rect) {
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.composite_layout(), 0, 1, &set, 0, nullptr);
-        push.camera = glm::vec4(1.0f / (divisor * float(layer.extent().width)), 1.0f / (divisor * float(layer.extent().height)), 0.0f, 0.0f);
+        const glm::vec2 texels = float(divisor) * glm::vec2(float(layer.extent().width), float(layer.extent().height));
+        push.camera = glm::vec4(1.0f / texels, 0.0f, 0.0f);
         push.base_colour = rect;
         vkCmdPushConstants(cmd, pipes_.composite_layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
         vkCmdDraw(cmd, 6, 1, 0, 0);
         ++draws;
     };
-    if (far_plan_.far_count > 0) composite(slot.far_layer, slot.far_set, 2.0f, far_plan_.ndc_rect);
-    if (far_plan_.distant_count > 0) composite(slot.distant_layer, slot.distant_set, 4.0f, far_plan_.distant_ndc_rect);
+    if (far_plan_.far_count > 0) composite(slot.far_layer, slot.far_set, kFarLayerDivisor, far_plan_.ndc_rect);
+    if (far_plan_.distant_count > 0) composite(slot.distant_layer, slot.distant_set, kDistantLayerDivisor, far_plan_.distant_ndc_rect);
     end_pass(cmd, slot, {pass_id("composite"), draws, draws, 2ull * draws});
     return draws;
 }

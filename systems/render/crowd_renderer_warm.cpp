@@ -3,6 +3,7 @@
 #include "engine/gpu/context.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace aloha {
@@ -21,18 +22,11 @@ Status CrowdRenderer::warm_up() {
     }
     // Record 0 of the instance buffer zeroed: a mesh instance with a zero matrix (every vertex at the origin: nothing
     // drawn), an impostor of phase 0 facing +Z (its cell index in range).
-    std::memset(slot.instances.mapped(), 0, sizeof(ImpostorInstance));
+    std::memset(slot.instances.mapped(), 0, std::max(sizeof(gpu::LitInstance), sizeof(ImpostorInstance)));
     const uint64_t vertex_capacity = slot.positions.size() / sizeof(glm::vec3);
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     return ctx_.submit_once([&](VkCommandBuffer cmd) {
-        const gpu::TargetView view = warm_target_.view();
-        gpu::begin_render_pass(cmd, view, VkClearColorValue{});
-        const VkViewport vp{0.0f, 0.0f, float(view.extent.width), float(view.extent.height), 0.0f, 1.0f};
-        const VkRect2D sc{{0, 0}, view.extent};
-        vkCmdSetViewport(cmd, 0, 1, &vp);
-        vkCmdSetScissor(cmd, 0, 1, &sc);
-        const VkDescriptorSet sets[2] = {slot.set, plain_set_};
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 0, 2, sets, 0, nullptr);
+        const float height = begin_layer_pass(cmd, slot, warm_target_, 1, warm_target_.extent());
         gpu::LitPush push;
         // Each topology's first triangle of each material (or untextured), whole and dithered: the pipelines its
         // meshes are drawn with, with the textures they bind.
@@ -61,7 +55,7 @@ Status CrowdRenderer::warm_up() {
             const ImpostorAtlasLayout& layout = atlas_layouts_[a];
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[a].set, 0, nullptr);
             push.offsets = glm::uvec4(layout.directions, layout.rows, 0u, 0u);
-            push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, float(view.extent.height));
+            push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, height);
             vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
             vkCmdDraw(cmd, 6, 1, 0, 0);
         }

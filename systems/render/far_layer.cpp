@@ -109,11 +109,11 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
         out.mesh_splits.push_back(split);
     }
     out.far_count += out.far_meshes;
-    // Two layer texels (four pixels in the far layer, eight in the distant one) of padding: the bilinear filter
-    // reads one texel beyond the quad's edge.
-    if (out.far_count > 0) out.ndc_rect = bound.rect(glm::vec2(8.0f / in.viewport_width, 8.0f / in.viewport_height));
-    if (out.distant_count > 0)
-        out.distant_ndc_rect = distant_bound.rect(glm::vec2(16.0f / in.viewport_width, 16.0f / in.viewport_height));
+    // Two layer texels of padding (2 * divisor pixels, 4 * divisor / side in NDC): the bilinear filter reads one
+    // texel beyond the quad's edge.
+    const auto pad = [&](uint32_t divisor) { return 4.0f * float(divisor) / glm::vec2(in.viewport_width, in.viewport_height); };
+    if (out.far_count > 0) out.ndc_rect = bound.rect(pad(kFarLayerDivisor));
+    if (out.distant_count > 0) out.distant_ndc_rect = distant_bound.rect(pad(kDistantLayerDivisor));
 }
 
 }  // namespace aloha

@@ -36,6 +36,10 @@ inline constexpr float kDefaultFarLayerMeshesBelowPx = 70.0f;
 /// software rasteriser, 0 on a GPU.
 [[nodiscard]] inline float far_layer_meshes_default(bool cpu_device) { return cpu_device ? kDefaultFarLayerMeshesBelowPx : 0.0f; }
 
+/// How many times coarser than the frame the far layer is (each side), and the distant layer.
+inline constexpr uint32_t kFarLayerDivisor = 2;
+inline constexpr uint32_t kDistantLayerDivisor = 4;
+
 /// The viewport height the far layer's limits are given at: a limit of L px applies as L * height / 720 on a target
 /// `height` pixels high, so the same share of the screen goes to the layer at any resolution (at 480 x 270 a 120 px
 /// limit would take every character of a crowd and soften it; scaled, it takes those under 45 px).

@@ -82,6 +82,11 @@ struct SurfaceView {
 /// (docs/PERFORMANCE.md); the others are lit per pixel. The renderer's topology and the mesh cross-fades use it.
 [[nodiscard]] inline bool drawn_lit_per_vertex(GeomMethod m) { return m == GeomMethod::SkinnedMesh; }
 
+/// True for the methods drawn as a deformed mesh over a registered topology (skinned, layered, subdivided).
+[[nodiscard]] inline bool drawn_as_mesh(GeomMethod m) {
+    return m == GeomMethod::SkinnedMesh || m == GeomMethod::Layered || m == GeomMethod::Subdivided;
+}
+
 /// A cross-fade between two levels, begun by GeometryController::begin_level for a switch of N >= 2 fade frames
 /// either way (apply_level_switches: the longer of the two levels' geomorph_s, so impostor <-> rigid proxy fades
 /// too): between an `impostor` level and a drawn level (rigid proxy or mesh), or between two mesh levels whose

@@ -340,10 +340,7 @@ TEST(WorldDraws, MeshLevelsAreRegisteredWhenTheRendererIsAttachedNotAtFirstUse) 
     World& w = *f.world;
     const GeometryController& gc = *w.runtime(0).geometry;
     size_t mesh_levels = 0;
-    for (uint8_t l = 0; l < gc.level_count(); ++l) {
-        const GeomMethod m = gc.level(l).method;
-        mesh_levels += m == GeomMethod::SkinnedMesh || m == GeomMethod::Layered || m == GeomMethod::Subdivided;
-    }
+    for (uint8_t l = 0; l < gc.level_count(); ++l) mesh_levels += drawn_as_mesh(gc.level(l).method);
     EXPECT_GE(mesh_levels, 4u) << "the default rules: subdivided, two layered and three skinned levels";
     const size_t registered = f.renderer->topology_count();
     EXPECT_EQ(registered, mesh_levels) << "one topology a mesh level of the one type, before any frame";

@@ -254,9 +254,6 @@ TEST(ImpostorAtlas, CellTableHoldsEachCellsCoveredTexels) {
 }
 
 
-// The far layer's bounds against full resolution (derived below): no silhouette pixel more than 3 px from the other
-// render's silhouette, mean difference at most 12 levels, no colour beyond the full render's range within 3 px by
-// more than 2 levels.
 // The bounds of a layer `divisor` times coarser than the target against the full-resolution render (reasons at
 // FarLayerMatchesTheFullResolutionImpostorInDepthOrder): silhouettes within reach = 1.5 divisor px, colours within the
 // full render's range within that reach plus 2 levels, mean difference under 4 levels a pixel over the reach.
