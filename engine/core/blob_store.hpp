@@ -90,6 +90,8 @@ public:
     [[nodiscard]] std::filesystem::path entry_path(std::span<const uint8_t> key) const;
     /// The store's directory.
     [[nodiscard]] const std::filesystem::path& directory() const { return dir_; }
+    /// The code version the store's entries are read and written for (open()'s `code_version`).
+    [[nodiscard]] std::span<const uint8_t> code_version() const { return code_version_; }
     /// Counts of hits, misses, rejections and writes so far.
     [[nodiscard]] BlobStoreCounts counts() const;
 

@@ -100,8 +100,8 @@ Result<std::vector<std::unique_ptr<CharacterRuntime>>> make_character_runtimes(c
                                                                                const TypeLoadOptions& load = {});
 
 /// The bake cache a host asked for: none when `enabled` is false; else the store over `dir` (default:
-/// default_cache_directory()) for this build's code (skin_bake_code_version). When the code has no
-/// build-id, no directory is known, or the directory cannot be made or written: none, after one
+/// default_cache_directory()) for this build's code (skin_bake_code_version). When a shared library the bakes
+/// call has no build-id, no directory is known, or the directory cannot be made or written: none, after one
 /// message on standard error saying why. The store keeps its entries to `max_bytes` (0: no limit;
 /// default: default_cache_limit_bytes(), $ALOHA_CACHE_MAX_MB or 1 GiB), least recently used removed first.
 [[nodiscard]] std::shared_ptr<const BlobStore> open_bake_cache(bool enabled, const std::optional<std::string>& dir,

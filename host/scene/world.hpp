@@ -198,6 +198,8 @@ public:
     };
     /// The atlases baked for the attached renderer.
     [[nodiscard]] std::span<const ImpostorReport> impostor_atlases() const { return impostor_reports_; }
+    /// The bake cache this world reads its types' bakes and atlases from and saves them to (nullptr: off).
+    [[nodiscard]] const BlobStore* bake_cache() const { return bake_cache_.get(); }
     /// Number of character types and each one's data.
     [[nodiscard]] size_t type_count() const { return types_.size(); }
     [[nodiscard]] const CharacterType& type(size_t i) const;

@@ -5,6 +5,7 @@
 #include "host/scene/world_diagnostics.hpp"
 #include "host/tool/fidelity.hpp"
 #include "host/tool/motion_recorder.hpp"
+#include "host/tool/profile_cache.hpp"
 #include "host/tool/profile_gpu.hpp"
 #include "host/tool/profile_lod.hpp"
 #include "host/tool/session.hpp"
@@ -266,6 +267,7 @@ int run_profile(const CliOptions& options) {
         atlases.push_back({{"type", a.type}, {"width", a.width}, {"height", a.height}, {"build_ms", a.build_ms},
                            {"texture_bytes", a.texture_bytes}, {"cached", a.cached}});
     report["impostor_atlases"] = atlases;
+    report["bake_cache"] = bake_cache_report(world);
     nlohmann::json per_frame = nlohmann::json::array();
     for (const auto& r : records)
         per_frame.push_back({{"geometric", r.geom_levels}, {"animation", r.anim_levels},
@@ -377,7 +379,7 @@ int run_profile(const CliOptions& options) {
     for (const World::ImpostorReport& a : world.impostor_atlases())
         std::cout << "impostor atlas '" << a.type << "': " << a.width << " x " << a.height << " px, " << fmt(a.build_ms) << (a.cached ? " ms from the bake cache, " : " ms to bake, ")
                   << fmt(double(a.texture_bytes) / 1048576.0) << " MiB with mips\n";
-    std::cout << lod_summary(report);
+    std::cout << bake_cache_line(world) << lod_summary(report);
     if (motion) std::cout << motion->table(table);
     if (fidelity) std::cout << fidelity_summary(report["fidelity"]);
     std::cout << "state hash " << state_hash(world) << "; reports in " << out << "/\n";

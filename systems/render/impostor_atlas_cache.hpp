@@ -2,8 +2,8 @@
 // rendering it again when nothing the bake reads has changed. The key is a 128-bit digest of everything the bake
 // reads (ImpostorBakeInput: the mesh in every row's pose, its UVs, materials and textures, the directions and
 // cell size) and of the device that renders it (vendor, device, driver version, pipeline-cache UUID: another
-// driver rasterises differently); the store's code version (the program's build-ids) covers the bake code and
-// its shaders, which are compiled into the program.
+// driver rasterises differently); the store's code version (skin_bake_code_version: the digest of the library's
+// sources, shaders and build settings) covers the bake code and its shaders, which are compiled into the library.
 #pragma once
 
 #include "systems/render/impostor_atlas.hpp"

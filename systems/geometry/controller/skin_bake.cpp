@@ -2,6 +2,7 @@
 #include "systems/geometry/controller/skin_bake.hpp"
 
 #include "engine/core/build_id.hpp"
+#include "systems/geometry/controller/bake_code_digest.hpp"
 
 #include <meshoptimizer.h>
 
@@ -50,12 +51,20 @@ Result<std::vector<uint8_t>> skin_bake_code_version() {
     static std::once_flag once;
     static std::optional<Result<std::vector<uint8_t>>> version;
     std::call_once(once, [] {
+        // The shared libraries' build-ids: their code is not in the digest (a static meshoptimizer gives the
+        // program's own id, which only makes the version stricter).
         float (*expf_fn)(float) = &::expf;
         void (*meshopt_fn)(unsigned int*, const unsigned int*, size_t, size_t) = &meshopt_optimizeVertexCache;
-        const uintptr_t code[] = {reinterpret_cast<uintptr_t>(&skin_bake_code_version),
-                                  reinterpret_cast<uintptr_t>(meshopt_fn),
-                                  reinterpret_cast<uintptr_t>(expf_fn)};
-        version.emplace(build_ids_of(code));
+        const uintptr_t code[] = {reinterpret_cast<uintptr_t>(meshopt_fn), reinterpret_cast<uintptr_t>(expf_fn)};
+        Result<std::vector<uint8_t>> ids = build_ids_of(code);
+        if (!ids.ok()) {
+            version.emplace(ids.error());
+            return;
+        }
+        ByteWriter w;
+        w.put_string(kBakeCodeDigest);
+        w.put_vector(ids.value());
+        version.emplace(w.take());
     });
     return *version;
 }

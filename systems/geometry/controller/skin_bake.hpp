@@ -25,13 +25,13 @@
 
 namespace aloha {
 
-/// The code version of the bakes: the GNU build-ids of the objects whose code computes them — the one
-/// holding this module (the bake code and everything statically linked with it), libmeshoptimizer
-/// (vertex-cache order) and libm (exp, pow, trigonometry: not correctly rounded, so a C library update
-/// may change bits). A build-id is a hash of the linked object, so any change to the code, the compiler
-/// or its flags gives a new version and an old entry is never read again (it is conservative: an edit
-/// elsewhere in the same executable also gives a new version). Computed once per process. Errors: an
-/// object without a build-id (the cache is then off).
+/// The code version of the bakes: the digest of the library's sources and of how they were built (kBakeCodeDigest:
+/// compiler, flags, configuration, header libraries), then the GNU build-ids of the shared libraries the bakes call —
+/// libmeshoptimizer (vertex-cache order) and libm (exp, pow, trigonometry: not correctly rounded, so a C library
+/// update may change bits). Every program built from the same sources the same way (a game relinked after an edit of
+/// its own code, the tool, each test program) has the same version and reads the others' bakes; an edit of the
+/// library's code, a new compiler, other flags or another library build gives a new version, and an old entry is
+/// never read again. Computed once per process. Errors: a shared library without a build-id (the cache is then off).
 [[nodiscard]] Result<std::vector<uint8_t>> skin_bake_code_version();
 
 /// The key bytes of everything a generated body's bakes read of its type.

@@ -1,5 +1,7 @@
 // Runs the built `aloha` program end to end (headless, lavapipe) and checks its outputs and errors.
 #include "engine/anim/humanoid_map.hpp"
+#include "systems/geometry/controller/bake_code_digest.hpp"
+#include "systems/geometry/controller/skin_bake.hpp"
 #include "tests/common/rig_fixtures.hpp"
 #include "tests/host/tool/tool_run.hpp"
 
@@ -152,6 +154,25 @@ TEST(Tool, ProfileReadsImpostorAtlasesBackFromTheBakeCache) {
     }
     EXPECT_EQ(reports[0]["impostor_atlases"].size(), reports[1]["impostor_atlases"].size());
     EXPECT_EQ(reports[0]["state_hash"], reports[1]["state_hash"]);
+    // The bake cache's report: the first run wrote what the second read.
+    for (int i = 0; i < 2; ++i) ASSERT_TRUE(reports[i]["bake_cache"].is_object()) << reports[i]["bake_cache"].dump();
+    EXPECT_EQ(reports[0]["bake_cache"]["directory"], (out / "cache").string());
+    EXPECT_GT(reports[0]["bake_cache"]["writes"].get<int>(), 0);
+    EXPECT_GT(reports[1]["bake_cache"]["hits"].get<int>(), 0);
+    EXPECT_EQ(reports[1]["bake_cache"]["writes"].get<int>(), 0) << "nothing baked again";
+    // The version is the library's source digest and shared libraries' ids, not the program's own build-id: this test
+    // program, another executable linked with the same library, reads and writes the same entries.
+    const aloha::Result<std::vector<uint8_t>> version = aloha::skin_bake_code_version();
+    ASSERT_TRUE(version.ok()) << version.error().to_string();
+    std::string hex;
+    for (const uint8_t b : version.value()) {
+        char h[3];
+        std::snprintf(h, sizeof(h), "%02x", b);
+        hex += h;
+    }
+    EXPECT_EQ(reports[1]["bake_cache"]["code_version"].get<std::string>(), hex);
+    const std::string version_bytes(version.value().begin(), version.value().end());
+    EXPECT_NE(version_bytes.find(aloha::kBakeCodeDigest), std::string::npos) << "the digest is part of the version";
     const auto bytes = [](const fs::path& p) {
         std::ifstream f(p, std::ios::binary);
         return std::vector<char>(std::istreambuf_iterator<char>(f), {});
