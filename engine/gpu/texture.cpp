@@ -102,7 +102,8 @@ Result<Texture> Texture::create(const Context& ctx, uint32_t width, uint32_t hei
     if (!up) return up.error();
 
     if (Status st = make_view_and_sampler(t.device_, t.image_, format, t.mips_, desc.nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
-                                          VK_SAMPLER_MIPMAP_MODE_LINEAR, desc.address_u, desc.address_v, &t.view_, &t.sampler_);
+                                          desc.blend_mips ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                          desc.address_u, desc.address_v, &t.view_, &t.sampler_);
         !st)
         return st.error();
     return t;

@@ -18,6 +18,7 @@ struct SamplerDesc {
     VkSamplerAddressMode address_u = VK_SAMPLER_ADDRESS_MODE_REPEAT;  ///< along u
     VkSamplerAddressMode address_v = VK_SAMPLER_ADDRESS_MODE_REPEAT;  ///< along v
     bool nearest = false;  ///< no filtering (magnification and within a mip level)
+    bool blend_mips = true;  ///< the two nearest mip levels blended (trilinear); false: the nearest level only
 };
 
 /// An R8G8B8A8_UNORM image (texels are passed through unconverted), or an R32G32_UINT one (create_rg32ui),

@@ -36,6 +36,7 @@ Result<std::unique_ptr<CrowdRenderer>> CrowdRenderer::create(gpu::Context& ctx, 
 Status CrowdRenderer::init(const RendererOptions& options) {
     options_ = options;
     far_layer_below_px_ = options.far_layer_below_px.value_or(far_layer_default(ctx_.is_cpu_device()));
+    blend_texture_mips_ = options.blend_texture_mips.value_or(blend_texture_mips_default(ctx_.is_cpu_device()));
     far_layer_meshes_below_px_ = options.far_layer_meshes_below_px.value_or(far_layer_meshes_default(ctx_.is_cpu_device()));
     options_.frames_in_flight = std::clamp(options.frames_in_flight, 1u, 4u);
     const VkDevice dev = ctx_.device();

@@ -117,6 +117,12 @@ struct FrameSync {
     VkSemaphore signal = VK_NULL_HANDLE;  ///< signalled when the frame's commands finish (ready to present)
 };
 
+/// Whether material textures blend two mip levels when RendererOptions::blend_texture_mips is unset: not on a
+/// software rasteriser (a CPU device), where the second level's fetches cost ~1 ms a frame of crowd_10k's close pass
+/// and the picture moves by under 1/100 of a level (48 dB PSNR; docs/PERFORMANCE.md, "Nearest mip level on tier
+/// low"); on a GPU, where blending costs nothing, yes.
+[[nodiscard]] inline bool blend_texture_mips_default(bool cpu_device) { return !cpu_device; }
+
 /// Construction options.
 struct RendererOptions {
     VkFormat colour_format = VK_FORMAT_R8G8B8A8_UNORM; ///< format of the targets drawn into
@@ -135,6 +141,9 @@ struct RendererOptions {
                                                        ///< drawn at half resolution and composited with their depth
                                                        ///< (systems/render/far_layer.hpp); 0: every impostor at full
                                                        ///< resolution; unset: far_layer_default(the context's device)
+    std::optional<bool> blend_texture_mips;            ///< material textures read from the two nearest mip levels blended
+                                                       ///< (trilinear) or from the nearest one (bilinear within it);
+                                                       ///< unset: blend_texture_mips_default(the context's device)
     std::optional<float> far_layer_meshes_below_px;    ///< meshes under this many pixels tall, not cross-fading, likewise;
                                                        ///< 0: every mesh at full resolution; unset:
                                                        ///< far_layer_meshes_default(the context's device)
@@ -342,6 +351,7 @@ private:
     std::vector<float> impostor_depth_;               // per impostor: distance ahead of the camera
     std::vector<ImpostorAtlasLayout> atlas_layouts_;  // by atlas id (drawing and the far layer's planning)
     float far_layer_below_px_ = 0.0f;                 // options_.far_layer_below_px resolved for the device
+    bool blend_texture_mips_ = true;                  // options_.blend_texture_mips resolved for the device
     float far_layer_meshes_below_px_ = 0.0f;          // options_.far_layer_meshes_below_px resolved for the device
     std::vector<FarMeshGroup> far_mesh_groups_;       // per topology t: its whole group 2t's records in order_
     std::vector<FarMeshBound> far_mesh_bounds_;       // per mesh: measured where it may be under the mesh limit

@@ -46,7 +46,7 @@ Result<uint32_t> CrowdRenderer::register_texture(const TextureImage& image) {
         return VK_SAMPLER_ADDRESS_MODE_REPEAT;
     };
     Result<gpu::Texture> t = gpu::Texture::create(ctx_, image.width, image.height, image.rgba,
-                                                  gpu::SamplerDesc{mode(image.wrap_u), mode(image.wrap_v), image.nearest});
+                                                  gpu::SamplerDesc{mode(image.wrap_u), mode(image.wrap_v), image.nearest, blend_texture_mips_});
     if (!t) return t.error();
     textures_.push_back(std::move(t).value());
     return static_cast<uint32_t>(textures_.size() - 1);

@@ -80,6 +80,7 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
     options.initial_vertices = static_cast<uint32_t>(in.rows[0].positions.size()) * dirs * rows + 1;
     options.initial_instances = dirs * rows;
     options.frames_in_flight = 1;
+    options.blend_texture_mips = true;  // baked once: the best filtering on every device, the same atlas on every one
     Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(ctx, options);
     if (!made) return made.error();
     CrowdRenderer& renderer = *made.value();

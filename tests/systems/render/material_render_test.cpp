@@ -11,7 +11,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace aloha {
 namespace {
@@ -162,6 +164,57 @@ TEST(MaterialRender, FullTextureAndCharacterLighting) {
         const glm::u8vec4 got = pixel(lit.value(), 8, 8);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c] * 255.0f, 1.0f) << "channel " << c;
     }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
+// A texture of 1-texel black and white columns (128 x 128, bilinear): its mip level 1 averages each pair of columns,
+// so it is one grey. Drawn minified by 2^0.7 texels a pixel both ways (lod 0.7), the nearest level (round(0.7) = 1)
+// is that grey at every pixel, while blending levels 0 and 1 keeps 30% of level 0's columns: pixels far apart. The
+// default on lavapipe (a CPU device) is the nearest level (blend_texture_mips_default).
+TEST(MaterialRender, NearestMipReadsOneLevelAndBlendMixesTwo) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    ASSERT_TRUE(ctx->is_cpu_device());
+    EXPECT_FALSE(blend_texture_mips_default(true));
+    EXPECT_TRUE(blend_texture_mips_default(false));
+    TextureImage stripes;
+    stripes.name = "stripes";
+    stripes.width = stripes.height = 128;
+    stripes.rgba.resize(128 * 128 * 4);
+    for (uint32_t i = 0; i < 128 * 128; ++i) {
+        const uint8_t v = (i % 128) % 2 == 0 ? 0 : 255;
+        stripes.rgba[4 * i + 0] = stripes.rgba[4 * i + 1] = stripes.rgba[4 * i + 2] = v;
+        stripes.rgba[4 * i + 3] = 255;
+    }
+    stripes.wrap_u = stripes.wrap_v = TextureWrap::ClampToEdge;
+    // u and v span s of the texture over the quad's 64 pixels: 128 s / 64 = 2^0.7 texels a pixel.
+    const float s = std::exp2(0.7f) * float(kSize) / 128.0f;
+    auto spread = [&](std::optional<bool> blend) -> int {
+        RendererOptions options;
+        options.blend_texture_mips = blend;
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx, options);
+        if (!made.ok()) return -1;
+        CrowdRenderer& r = *made.value();
+        const uint32_t tex = r.register_texture(stripes).value();
+        const uint32_t mat = r.register_material(SurfaceMaterial{}, static_cast<int>(tex)).value();
+        Quad q;
+        q.uvs = {{0, s}, {0.5f * s, s}, {s, s}, {0, 0}, {0.5f * s, 0}, {s, 0}};
+        const std::vector<uint32_t> ids = {mat};
+        const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}).value();
+        const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+        Result<gpu::Rgba8Image> img = draw(r, *ctx, unlit_frame(meshes), "aloha_material_mips.png");
+        if (!img.ok()) return -1;
+        int lo = 255, hi = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const int g = pixel(img.value(), x, y).g;
+                lo = std::min(lo, g), hi = std::max(hi, g);
+            }
+        return hi - lo;
+    };
+    EXPECT_LE(spread(false), 1) << "the nearest level: one grey (1 LSB for rounding)";
+    EXPECT_LE(spread(std::nullopt), 1) << "the default on a CPU device: the nearest level";
+    EXPECT_GE(spread(true), 30) << "blended: 30% of level 0's black and white columns, bilinearly sampled";
     EXPECT_EQ(ctx->validation_message_count(), 0u);
 }
 
