@@ -118,9 +118,9 @@ struct FrameSync {
 };
 
 /// Whether material textures blend two mip levels when RendererOptions::blend_texture_mips is unset: not on a
-/// software rasteriser (a CPU device), where the second level's fetches cost ~1 ms a frame of crowd_10k's close pass
-/// and the picture moves by under 1/100 of a level (48 dB PSNR; docs/PERFORMANCE.md, "Nearest mip level on tier
-/// low"); on a GPU, where blending costs nothing, yes.
+/// software rasteriser (a CPU device), where the second level's fetches cost ~1 ms of crowd_10k's whole-frame p95
+/// and the picture moves by 0.02 dB of --fidelity PSNR (docs/PERFORMANCE.md, fifteenth session, "Material textures
+/// from the nearest mip level on tier low"); on a GPU, where blending costs nothing, yes.
 [[nodiscard]] inline bool blend_texture_mips_default(bool cpu_device) { return !cpu_device; }
 
 /// Construction options.
