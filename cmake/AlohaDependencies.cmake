@@ -8,6 +8,7 @@ find_package(Vulkan REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PNG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)  # skin vertex-cache order (libmeshoptimizer-dev)
+find_package(draco CONFIG REQUIRED)          # KHR_draco_mesh_compression glTF meshes (libdraco-dev; linked as draco::draco_static)
 find_package(Eigen3 3.3 CONFIG REQUIRED)       # IK and dynamics linear algebra (libeigen3-dev)
 find_package(glfw3 3.3 CONFIG QUIET)  # only the viewer's window library (aloha::gpu_window) needs it
 

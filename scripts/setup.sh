@@ -12,7 +12,9 @@ PACKAGES=(
   libglfw3-dev                                  # the viewer window
   libtinygltf-dev                               # glTF characters
   libosd-dev                                    # OpenSubdiv Catmull-Clark refinement
-  libmeshoptimizer-dev                          # vertex-cache order of the generated body skin
+  libmeshoptimizer-dev                          # vertex-cache order of the generated body skin; EXT_meshopt_compression glTF
+  gltfpack                                      # tests: writes the quantised and compressed glTF files the loader reads
+  libdraco-dev                                  # Draco-compressed glTF meshes (KHR_draco_mesh_compression)
   libeigen3-dev                                 # linear algebra of the IK and dynamics solvers
   libcli11-dev                                  # the aloha tool's command line (subcommands, checks, help)
   nlohmann-json3-dev                            # scene and rule files

@@ -3,6 +3,8 @@
 // weight 1 to the nearest joint at or above their node; then one note per kind of change.
 #include "engine/assets/gltf_detail.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
 
 namespace aloha::gltf_detail {
@@ -88,10 +90,50 @@ void add_notes(const MeshNotes& n, std::vector<std::string>* notes) {
     }
 }
 
+// Rest model matrix of raw joint `j` of `s` (parents need not precede children), memoised in `model`/`done`.
+glm::mat4 rest_model(const RawSkeleton& s, size_t j, std::vector<glm::mat4>& model, std::vector<uint8_t>& done) {
+    if (done[j]) return model[j];
+    glm::mat4 local = glm::translate(glm::mat4(1.0f), s.joints[j].translation) * glm::mat4_cast(s.joints[j].rotation);
+    local = glm::scale(local, s.joints[j].scale);
+    const int parent = s.joints[j].parent;
+    done[j] = 2;  // a cycle (refused by build_skeleton later) stops here
+    model[j] = parent >= 0 && static_cast<size_t>(parent) < s.joints.size() && done[static_cast<size_t>(parent)] != 2
+                   ? rest_model(s, static_cast<size_t>(parent), model, done) * local
+                   : local;
+    done[j] = 1;
+    return model[j];
+}
+
+// The rest of the library takes a mesh's bind space to be the skeleton's model space at rest
+// (inverse(inverse bind) = the joint's rest model matrix). Files may bind in another space: gltfpack's
+// quantised meshes keep integer positions and fold the dequantisation X into every inverse bind matrix.
+// X = rest_model(root) * inverse_bind(root) for skin 0's first root joint; when it is not the identity,
+// vertices become X v and inverse binds inverse_bind * X^-1, which leaves every skinned position
+// unchanged (model * inverse_bind * X^-1 * X v). Returns whether anything moved.
+bool bind_space_to_model_space(GltfCharacter* out, const std::vector<int>& skin0_raw) {
+    const RawSkeleton& s = out->skeleton;
+    int anchor = -1;
+    for (int raw : skin0_raw)
+        if (s.joints[static_cast<size_t>(raw)].parent < 0) {
+            anchor = raw;
+            break;
+        }
+    if (anchor < 0) return false;
+    std::vector<glm::mat4> model(s.joints.size(), glm::mat4(1.0f));
+    std::vector<uint8_t> done(s.joints.size(), 0);
+    const glm::mat4 x = rest_model(s, static_cast<size_t>(anchor), model, done) * out->inverse_bind_matrices[static_cast<size_t>(anchor)];
+    const float det = glm::determinant(glm::mat3(x));
+    if (near_identity(x) || !std::isfinite(det) || !(std::abs(det) > 1e-30f)) return false;
+    const glm::mat4 x_inv = glm::inverse(x);
+    for (GltfSkinnedMesh& m : out->meshes) transform_mesh(m, x, det < 0.0f);
+    for (glm::mat4& ibm : out->inverse_bind_matrices) ibm = ibm * x_inv;
+    return true;
+}
+
 }  // namespace
 
 Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& parents, const SkinSet& skins, const std::vector<int>& runtime_of_raw,
-                     const std::vector<int>& material_texcoord, const std::string& file, GltfCharacter* out) {
+                     const std::vector<MaterialUv>& material_uv, const std::string& file, GltfCharacter* out) {
     const size_t joints = runtime_of_raw.size();
     std::vector<std::vector<int>> runtime_of_skin_joint(skins.raw_of_skin_joint.size());
     for (size_t k = 0; k < runtime_of_skin_joint.size(); ++k)
@@ -111,7 +153,7 @@ Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& paren
         if (node.skin >= 0) {
             const auto k = static_cast<size_t>(node.skin);
             binding.runtime_of_skin_joint = &runtime_of_skin_joint[k];
-            if (Status s = read_mesh(model, static_cast<int>(i), node.mesh, binding, out->materials, material_texcoord, file, &notes, &out->meshes); !s.ok())
+            if (Status s = read_mesh(model, static_cast<int>(i), node.mesh, binding, out->materials, material_uv, file, &notes, &out->meshes); !s.ok())
                 return s;
             std::vector<glm::mat4> d(joints, glm::mat4(1.0f));
             std::vector<uint8_t> identity(joints, 1);
@@ -148,7 +190,7 @@ Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& paren
         Result<glm::mat4> world = node_world(model, parents, static_cast<int>(i), file);
         if (!world.ok()) return world.error();
         binding.rigid_joint = static_cast<uint16_t>(runtime_of_raw[raw]);
-        if (Status s = read_mesh(model, static_cast<int>(i), node.mesh, binding, out->materials, material_texcoord, file, &notes, &out->meshes); !s.ok())
+        if (Status s = read_mesh(model, static_cast<int>(i), node.mesh, binding, out->materials, material_uv, file, &notes, &out->meshes); !s.ok())
             return s;
         // glTF: a negative determinant of the node's global transform means clockwise front faces.
         const bool flip = glm::determinant(glm::mat3(world.value())) < 0.0f;
@@ -168,6 +210,9 @@ Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& paren
         }
         m.material = copy;
     }
+    if (!skins.raw_of_skin_joint.empty() && !out->meshes.empty() && bind_space_to_model_space(out, skins.raw_of_skin_joint[0]))
+        out->notes.push_back("skins[0] binds its meshes in a space other than the skeleton's rest space (quantised or offset vertices); "
+                             "vertices and inverse bind matrices were moved into the rest space, skinning unchanged");
     add_notes(notes, &out->notes);
     return {};
 }

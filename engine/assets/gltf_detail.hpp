@@ -8,6 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +27,33 @@ Result<std::vector<float>> read_floats(const tinygltf::Model& model, int index, 
 Result<std::vector<uint32_t>> read_uints(const tinygltf::Model& model, int index, int type,
                                          const std::vector<int>& allowed, const std::string& file,
                                          const std::string& usage);
+
+/// What tinygltf refuses in compressed files, rewritten so it loads them: it takes a buffer without uri for
+/// the GLB's BIN chunk (or, in a .gltf, for a missing file), so EXT_meshopt_compression's fallback
+/// buffers (no uri, no data, "fallback": true) become one zero byte as a data URI; and it wants a
+/// bufferView on every indices accessor, so a KHR_draco_mesh_compression primitive's indices accessor
+/// without one gets the extension's (compressed) view. Both are replaced by decoded data in
+/// prepare_buffers() before anything is read. Returns the file (GLB when `glb`) rewritten, or nullopt
+/// when nothing needs it or it cannot be parsed (tinygltf then reports it).
+std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned char* bytes, size_t size, bool glb);
+
+/// Extensions a file may list in extensionsRequired and still be read.
+std::vector<std::string> supported_required_extensions();
+
+/// Runs before anything is read: fails (naming the extension and what to do) when the file requires an
+/// extension outside supported_required_extensions(), and decodes every EXT_meshopt_compression buffer
+/// view into a buffer of its own (the view then points at it, uncompressed). Errors name the view.
+Status prepare_buffers(tinygltf::Model* model, const std::string& file);
+
+/// Decodes every mesh primitive carrying KHR_draco_mesh_compression: each attribute the extension
+/// names, and the indices, become plain data in a buffer of their own that the primitive's existing
+/// accessors then point at (bufferView set, byteOffset 0), converted to each accessor's componentType,
+/// type and normalized flag; the extension is then removed from the primitive. Errors name the
+/// primitive ("meshes[0].primitives[1].extensions.KHR_draco_mesh_compression") and what is wrong.
+Status decode_draco_primitives(tinygltf::Model* model, const std::string& file);
+
+/// glTF's name of component type `c` ("UNSIGNED_SHORT"), or "unknown component type <c>".
+std::string component_name(int c);
 
 /// Translation, rotation, scale of a transform.
 struct Trs {
@@ -65,6 +93,13 @@ struct SkinSet {
 Result<SkinSet> read_skins(const tinygltf::Model& model, const std::vector<int>& parents, const std::string& file,
                            GltfCharacter* out);
 
+/// How a material's base colour texture reads a primitive's texture coordinates: the TEXCOORD set
+/// (-1: untextured) and the KHR_texture_transform matrix applied to them (identity without one).
+struct MaterialUv {
+    int texcoord = -1;
+    glm::mat3 transform{1.0f};
+};
+
 /// Counters of things read but changed or left out while converting primitives, turned into one
 /// note each by add_mesh_notes().
 struct MeshNotes {
@@ -89,21 +124,22 @@ struct PrimitiveBinding {
 /// Converts every primitive of mesh `mesh_index` used by node `node_index`; appends one
 /// GltfSkinnedMesh per triangle primitive to `out`. Textured materials need their TEXCOORD set.
 Status read_mesh(const tinygltf::Model& model, int node_index, int mesh_index, const PrimitiveBinding& binding,
-                 const std::vector<SurfaceMaterial>& materials, const std::vector<int>& material_texcoord,
+                 const std::vector<SurfaceMaterial>& materials, const std::vector<MaterialUv>& material_uv,
                  const std::string& file, MeshNotes* notes, std::vector<GltfSkinnedMesh>* out);
 
 /// Attaches every mesh node: skinned ones through their skin (second skins' bind differences
 /// resolved per vertex), rigid ones to the nearest joint at or above them. `runtime_of_raw` maps raw
 /// to runtime joints. Appends to out->meshes and notes.
 Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& parents, const SkinSet& skins,
-                     const std::vector<int>& runtime_of_raw, const std::vector<int>& material_texcoord,
+                     const std::vector<int>& runtime_of_raw, const std::vector<MaterialUv>& material_uv,
                      const std::string& file, GltfCharacter* out);
 
 /// Reads materials (base colour factor, base colour texture) and decodes the images they use into
-/// out->materials / out->textures; `texcoord` gets each material's TEXCOORD set (-1 = no texture).
+/// out->materials / out->textures; `uv` gets each material's TEXCOORD set (-1 = no texture) and texture
+/// transform (KHR_texture_transform: offset, rotation, scale, texCoord; checked finite).
 /// Images that failed to decode (see ImageDecodeLog) leave their materials untextured with a note.
 Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out,
-                      std::vector<int>* texcoord);
+                      std::vector<MaterialUv>* uv);
 
 /// tinygltf image callback state: images that could not be decoded (index -> reason).
 struct ImageDecodeLog {

@@ -32,7 +32,7 @@ Result<GltfCharacter> convert(const tinygltf::Model& model, const std::string& f
 
     for (const auto& [index, reason] : images.failures)
         out.notes.push_back("images[" + std::to_string(index) + "]: " + reason + "; materials using it are drawn untextured");
-    std::vector<int> texcoord;
+    std::vector<MaterialUv> texcoord;
     if (Status s = read_materials(model, file, &out, &texcoord); !s.ok()) return s.error();
     if (Status s = attach_meshes(model, parents, skins.value(), runtime_of_raw, texcoord, file, &out); !s.ok()) return s.error();
 
@@ -101,6 +101,11 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
         if (Status deep = check_json_depth(std::string_view(reinterpret_cast<const char*>(bytes) + begin, length), file); !deep.ok())
             return deep.error();
     }
+    const std::optional<std::vector<unsigned char>> rewritten = rewritten_for_tinygltf(bytes, size, is_glb);
+    if (rewritten) {
+        bytes = rewritten->data();
+        size = rewritten->size();
+    }
     FolderGuard guard;
     {
         std::error_code ec;
@@ -124,6 +129,7 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         return make_error(file, "not a valid glTF file: " + (err.empty() ? std::string("unknown error") : err));
     }
+    if (Status prepared = prepare_buffers(&model, file); !prepared.ok()) return prepared.error();
     return convert(model, file, images);
 }
 

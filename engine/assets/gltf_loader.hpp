@@ -13,7 +13,11 @@
 //   are ignored (one note per channel).
 // - inverse_bind_matrices[i] belongs to raw joint i (identity when its skin has none). Skinning:
 //   v_model = sum_k w_k * model[runtime joint] * inverse_bind_matrices[raw joint] * v. The mesh
-//   node's own transform is ignored, as the spec requires for skinned meshes. Skin 0's matrices are
+//   node's own transform is ignored, as the spec requires for skinned meshes. Meshes are returned in
+//   the skeleton's rest space: when skin 0's root joint binds elsewhere (X = its rest model matrix
+//   times its inverse bind matrix is not the identity: a mesh under a Z-up node, gltfpack's
+//   quantised integer positions, a centimetre mesh), vertices become X v and inverse bind matrices
+//   ibm X^-1, skinning unchanged, with a note. Skin 0's matrices are
 //   kept; a later skin whose matrices of shared joints differ by an offset B (its mesh bound in
 //   another space) has its new joints' matrices and its vertices brought into skin 0's space by B,
 //   which is exact when the vertex's joints agree on B (otherwise the largest weight's joint wins,
@@ -31,8 +35,8 @@
 //   its face normal, as the spec requires; one note). Missing indices become 0..n-1. Morph
 //   targets: the shape at the default weights (node.weights, else mesh.weights, else 0: the base
 //   shape) is kept, one note; `weights` animation channels are skipped with one note per file.
-// - Materials: baseColorFactor and baseColorTexture (with its texCoord set and sampler wrap
-//   modes) per primitive; images are decoded (PNG, JPEG via stb_image) into RGBA8; an image that
+// - Materials: baseColorFactor and baseColorTexture (with its texCoord set, KHR_texture_transform
+//   applied to the texture coordinates, and sampler wrap modes) per primitive; images are decoded (PNG, JPEG via stb_image) into RGBA8; an image that
 //   cannot be decoded leaves its materials untextured with a note. Other material inputs
 //   (metallic-roughness, normal, occlusion, emissive textures) are not drawn.
 // - Clips: tracks indexed by RUNTIME joint. Key times are shifted so the earliest key of the clip
@@ -41,6 +45,9 @@
 //   STEP keys are expanded to hold each value until 1e-4 s (at most a quarter of the gap) before
 //   the next key so linear sampling reproduces the steps; CUBICSPLINE keeps only the value of each
 //   (in-tangent, value, out-tangent) triple, i.e. it is resampled as linear.
+// - Data: sparse accessors (also over an accessor without bufferView: zeros), KHR_mesh_quantization's
+//   integer vertex types and EXT_meshopt_compression's compressed buffer views are read; a file that
+//   requires any other extension is refused, naming it (gltf_buffers.cpp).
 // - Names: unnamed joints are called "node<index>"; a joint name used twice gets "_node<index>"
 //   appended (with a note); any other characters (dots, colons, spaces) are kept as they are.
 #pragma once
@@ -60,7 +67,8 @@
 
 namespace aloha {
 
-/// One skinned triangle mesh (a primitive) in bind space (the space inverse bind matrices map from).
+/// One skinned triangle mesh (a primitive) in bind space (the space inverse bind matrices map from),
+/// which the loader makes the skeleton's rest space (see the conventions above).
 struct GltfSkinnedMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;   ///< unit length, one per position

@@ -1,5 +1,6 @@
 // glTF materials for the character loader: base colour factor, base colour texture (its texCoord
-// set, sampler wrap and filter modes) and the decoding of the images they use (stb_image, RGBA8).
+// set, KHR_texture_transform, sampler wrap and filter modes) and the decoding of the images they use
+// (stb_image, RGBA8).
 #include "engine/assets/gltf_detail.hpp"
 
 #include <stb_image.h>
@@ -18,6 +19,42 @@ TextureWrap wrap_of(int gl) {
         case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::MirroredRepeat;
         default: return TextureWrap::Repeat;
     }
+}
+
+// The KHR_texture_transform object `ext` as the matrix translation * rotation * scale of the extension's
+// specification (rotation counter-clockwise in UV space); its texCoord, when given, replaces `*texcoord`.
+Result<glm::mat3> texture_transform(const tinygltf::Value& ext, const std::string& file, const std::string& where, int* texcoord) {
+    auto fail = [&](const std::string& msg) { return make_error(file, msg, 0, 0, where); };
+    if (!ext.IsObject()) return fail("is not an object");
+    auto pair = [&](const char* key, glm::vec2 fallback) -> Result<glm::vec2> {
+        if (!ext.Has(key)) return fallback;
+        const tinygltf::Value& v = ext.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+            return fail(std::string("'") + key + "' is not an array of two numbers");
+        const glm::vec2 out(static_cast<float>(v.Get(0).GetNumberAsDouble()), static_cast<float>(v.Get(1).GetNumberAsDouble()));
+        if (!std::isfinite(out.x) || !std::isfinite(out.y)) return fail(std::string("'") + key + "' is NaN, infinite or out of float range");
+        return out;
+    };
+    Result<glm::vec2> offset = pair("offset", glm::vec2(0.0f));
+    if (!offset.ok()) return offset.error();
+    Result<glm::vec2> scale = pair("scale", glm::vec2(1.0f));
+    if (!scale.ok()) return scale.error();
+    float rotation = 0.0f;
+    if (ext.Has("rotation")) {
+        if (!ext.Get("rotation").IsNumber()) return fail("'rotation' is not a number");
+        rotation = static_cast<float>(ext.Get("rotation").GetNumberAsDouble());
+        if (!std::isfinite(rotation)) return fail("'rotation' is NaN, infinite or out of float range");
+    }
+    if (ext.Has("texCoord")) {
+        const tinygltf::Value& t = ext.Get("texCoord");
+        if (!t.IsInt() || t.GetNumberAsInt() < 0) return fail("'texCoord' is not a non-negative integer");
+        *texcoord = t.GetNumberAsInt();
+    }
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    const glm::mat3 translate(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, offset.value().x, offset.value().y, 1.0f);
+    const glm::mat3 rotate(c, s, 0.0f, -s, c, 0.0f, 0.0f, 0.0f, 1.0f);
+    const glm::mat3 scaling(scale.value().x, 0.0f, 0.0f, 0.0f, scale.value().y, 0.0f, 0.0f, 0.0f, 1.0f);
+    return translate * rotate * scaling;
 }
 
 }  // namespace
@@ -49,9 +86,9 @@ bool decode_image(tinygltf::Image* image, int index, std::string*, std::string*,
     return true;
 }
 
-Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out, std::vector<int>* texcoord) {
+Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out, std::vector<MaterialUv>* uv) {
     std::vector<int> texture_of_image(model.images.size(), -1);  // index into out->textures, -2 = unusable
-    texcoord->assign(model.materials.size(), -1);
+    uv->assign(model.materials.size(), MaterialUv{});
     for (size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& src = model.materials[i];
         const std::string where = "materials[" + std::to_string(i) + "]";
@@ -73,7 +110,13 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
             if (static_cast<size_t>(info.index) >= model.textures.size())
                 return make_error(file, "texture " + std::to_string(info.index) + " is out of range (the file has " + std::to_string(model.textures.size()) + " textures)", 0, 0, tw);
             if (info.texCoord < 0) return make_error(file, "texCoord " + std::to_string(info.texCoord) + " is negative", 0, 0, tw);
-            if (info.extensions.count("KHR_texture_transform")) out->notes.push_back(tw + ": KHR_texture_transform is not applied");
+            int texcoord = info.texCoord;
+            glm::mat3 transform(1.0f);
+            if (const auto ext = info.extensions.find("KHR_texture_transform"); ext != info.extensions.end()) {
+                Result<glm::mat3> m3 = texture_transform(ext->second, file, tw + ".extensions.KHR_texture_transform", &texcoord);
+                if (!m3.ok()) return m3.error();
+                transform = m3.value();
+            }
             const tinygltf::Texture& tex = model.textures[static_cast<size_t>(info.index)];
             const std::string xw = "textures[" + std::to_string(info.index) + "]";
             if (tex.source < 0 || static_cast<size_t>(tex.source) >= model.images.size()) {
@@ -105,7 +148,7 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
                 }
                 if (texture_of_image[img] >= 0) {
                     m.texture = texture_of_image[img];
-                    (*texcoord)[i] = info.texCoord;
+                    (*uv)[i] = MaterialUv{texcoord, transform};
                 } else {
                     out->notes.push_back(iw + ": image could not be used; " + m.name + " drawn with its base colour only");
                 }

@@ -1,7 +1,7 @@
-// Mesh primitives of the glTF loader: positions, normals (read, or flat as the spec requires),
-// joints (remapped to runtime order, up to 8 influences reduced to 4), normalised weights, texture
-// coordinates, default morph-target weights and triangle indices (lists, strips, fans), every value
-// checked.
+// Mesh primitives of the glTF loader: positions, normals (read, or flat as the spec requires), joints
+// (remapped to runtime order, up to 8 influences reduced to 4), normalised weights, texture coordinates
+// (through the material's texture transform), default morph-target weights and triangle indices (lists,
+// strips, fans), every value checked. Vertex data may be float or KHR_mesh_quantization's integer types.
 #include "engine/assets/gltf_detail.hpp"
 
 #include <algorithm>
@@ -13,6 +13,8 @@ namespace aloha::gltf_detail {
 namespace {
 
 constexpr int kFloat = TINYGLTF_COMPONENT_TYPE_FLOAT;
+constexpr int kByte = TINYGLTF_COMPONENT_TYPE_BYTE;
+constexpr int kShort = TINYGLTF_COMPONENT_TYPE_SHORT;
 constexpr int kUByte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
 constexpr int kUShort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
 constexpr int kUInt = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
@@ -68,10 +70,21 @@ float weight_tolerance(const tinygltf::Model& model, int accessor, int influence
     return step * static_cast<float>(influences);
 }
 
+// Component types of vertex data: the core spec's, widened by KHR_mesh_quantization (positions and texture
+// coordinates of any integer type, normalised or not; normals and morph deltas of signed types).
+const std::vector<int> kPositionTypes{kFloat, kByte, kUByte, kShort, kUShort};
+const std::vector<int> kNormalTypes{kFloat, kByte, kShort};
+const std::vector<int> kTexcoordTypes{kFloat, kByte, kUByte, kShort, kUShort};
+
+bool uses_extension(const tinygltf::Model& model, const std::string& name) {
+    return std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), name) != model.extensionsUsed.end() ||
+           std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), name) != model.extensionsRequired.end();
+}
+
 class PrimitiveReader {
 public:
     PrimitiveReader(const tinygltf::Model& model, const std::string& file, const std::string& where, MeshNotes* notes)
-        : model_(model), file_(file), at_(where + ".attributes."), notes_(notes) {}
+        : model_(model), file_(file), at_(where + ".attributes."), notes_(notes), quantized_(uses_extension(model, "KHR_mesh_quantization")) {}
 
     int attribute(const tinygltf::Primitive& prim, const std::string& name) const {
         const auto it = prim.attributes.find(name);
@@ -160,20 +173,23 @@ public:
         return {};
     }
 
-    // Texture coordinates TEXCOORD_<set>.
-    Status uvs(const tinygltf::Primitive& prim, int set, GltfSkinnedMesh* mesh) const {
-        const std::string name = "TEXCOORD_" + std::to_string(set);
+    // Texture coordinates TEXCOORD_<set>, through the material's texture transform. Integer coordinates are
+    // normalised as the core spec requires them to be, unless the file uses KHR_mesh_quantization, which
+    // allows unnormalised ones (its accessors then say which).
+    Status uvs(const tinygltf::Primitive& prim, const MaterialUv& material, GltfSkinnedMesh* mesh) const {
+        const std::string name = "TEXCOORD_" + std::to_string(material.texcoord);
         const int a = attribute(prim, name);
         if (a == -2) {
             ++notes_->untextured_primitives;
             return {};
         }
-        Result<std::vector<float>> uv = read_floats(model_, a, TINYGLTF_TYPE_VEC2, {kFloat, kUByte, kUShort}, file_, at_ + name, true);
+        Result<std::vector<float>> uv = read_floats(model_, a, TINYGLTF_TYPE_VEC2, quantized_ ? kTexcoordTypes : std::vector<int>{kFloat, kUByte, kUShort},
+                                                    file_, at_ + name, !quantized_);
         if (!uv.ok()) return uv.error();
         if (Status s = count_check(uv.value().size() / 2, mesh->positions.size(), name); !s.ok()) return s;
         mesh->uvs.resize(mesh->positions.size());
         for (size_t v = 0; v < mesh->uvs.size(); ++v) {
-            mesh->uvs[v] = glm::vec2(uv.value()[2 * v], uv.value()[2 * v + 1]);
+            mesh->uvs[v] = glm::vec2(material.transform * glm::vec3(uv.value()[2 * v], uv.value()[2 * v + 1], 1.0f));
             if (!std::isfinite(mesh->uvs[v].x + mesh->uvs[v].y))
                 return make_error(file_, "vertex " + std::to_string(v) + " texture coordinate is NaN or infinite", 0, 0, at_ + name);
         }
@@ -189,7 +205,7 @@ public:
             const auto it = prim.targets[t].find(name);
             if (w == 0.0 || it == prim.targets[t].end()) continue;
             const std::string usage = at_.substr(0, at_.size() - 12) + ".targets[" + std::to_string(t) + "]." + name;
-            Result<std::vector<float>> d = read_floats(model_, it->second, TINYGLTF_TYPE_VEC3, {kFloat}, file_, usage);
+            Result<std::vector<float>> d = read_floats(model_, it->second, TINYGLTF_TYPE_VEC3, kNormalTypes, file_, usage);
             if (!d.ok()) return d.error();
             if (Status s = count_check(d.value().size() / 3, values->size(), usage); !s.ok()) return s;
             for (size_t v = 0; v < values->size(); ++v)
@@ -204,12 +220,13 @@ private:
     const std::string& file_;
     std::string at_;
     MeshNotes* notes_;
+    bool quantized_;
 };
 
 // Reads one primitive; returns false (with a count in `notes`) for points and lines.
 Result<bool> read_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
                             const PrimitiveBinding& binding, const std::vector<SurfaceMaterial>& materials,
-                            const std::vector<int>& material_texcoord, const std::string& file, MeshNotes* notes,
+                            const std::vector<MaterialUv>& material_uv, const std::string& file, MeshNotes* notes,
                             GltfSkinnedMesh* mesh) {
     if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
         ++notes->skipped_primitives;
@@ -220,7 +237,7 @@ Result<bool> read_primitive(const tinygltf::Model& model, const tinygltf::Primit
     PrimitiveReader r(model, file, where, notes);
     const std::string at = where + ".attributes.";
     if (r.attribute(prim, "POSITION") == -2) return make_error(file, "primitive has no POSITION attribute", 0, 0, where);
-    Result<std::vector<float>> pos = read_floats(model, r.attribute(prim, "POSITION"), TINYGLTF_TYPE_VEC3, {kFloat}, file, at + "POSITION");
+    Result<std::vector<float>> pos = read_floats(model, r.attribute(prim, "POSITION"), TINYGLTF_TYPE_VEC3, kPositionTypes, file, at + "POSITION");
     if (!pos.ok()) return pos.error();
     const size_t n = pos.value().size() / 3;
     mesh->positions.resize(n);
@@ -264,11 +281,11 @@ Result<bool> read_primitive(const tinygltf::Model& model, const tinygltf::Primit
         return make_error(file, "material " + std::to_string(prim.material) + " is out of range (the file has " + std::to_string(materials.size()) + " materials)", 0, 0,
                           where + ".material");
     mesh->material = prim.material;
-    if (prim.material >= 0 && material_texcoord[static_cast<size_t>(prim.material)] >= 0)
-        if (Status s = r.uvs(prim, material_texcoord[static_cast<size_t>(prim.material)], mesh); !s.ok()) return s.error();
+    if (prim.material >= 0 && material_uv[static_cast<size_t>(prim.material)].texcoord >= 0)
+        if (Status s = r.uvs(prim, material_uv[static_cast<size_t>(prim.material)], mesh); !s.ok()) return s.error();
 
     if (r.attribute(prim, "NORMAL") != -2) {
-        Result<std::vector<float>> nrm = read_floats(model, r.attribute(prim, "NORMAL"), TINYGLTF_TYPE_VEC3, {kFloat}, file, at + "NORMAL");
+        Result<std::vector<float>> nrm = read_floats(model, r.attribute(prim, "NORMAL"), TINYGLTF_TYPE_VEC3, kNormalTypes, file, at + "NORMAL");
         if (!nrm.ok()) return nrm.error();
         if (Status s = r.count_check(nrm.value().size() / 3, n, "NORMAL"); !s.ok()) return s.error();
         mesh->normals.resize(n);
@@ -292,7 +309,7 @@ Result<bool> read_primitive(const tinygltf::Model& model, const tinygltf::Primit
 }  // namespace
 
 Status read_mesh(const tinygltf::Model& model, int node_index, int mesh_index, const PrimitiveBinding& binding,
-                 const std::vector<SurfaceMaterial>& materials, const std::vector<int>& material_texcoord,
+                 const std::vector<SurfaceMaterial>& materials, const std::vector<MaterialUv>& material_uv,
                  const std::string& file, MeshNotes* notes, std::vector<GltfSkinnedMesh>* out) {
     const std::string where = "meshes[" + std::to_string(mesh_index) + "]";
     if (mesh_index < 0 || static_cast<size_t>(mesh_index) >= model.meshes.size())
@@ -302,7 +319,7 @@ Status read_mesh(const tinygltf::Model& model, int node_index, int mesh_index, c
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         GltfSkinnedMesh m;
         const std::string pw = where + ".primitives[" + std::to_string(p) + "]";
-        Result<bool> read = read_primitive(model, mesh.primitives[p], pw, binding, materials, material_texcoord, file, notes, &m);
+        Result<bool> read = read_primitive(model, mesh.primitives[p], pw, binding, materials, material_uv, file, notes, &m);
         if (!read.ok()) return read.error();
         if (!read.value()) continue;
         m.source = "nodes[" + std::to_string(node_index) + "] " + pw;

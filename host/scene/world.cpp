@@ -1,6 +1,7 @@
 #include "host/scene/world.hpp"
 
 #include "host/scene/character_runtime.hpp"
+#include "host/scene/scene_checks.hpp"
 #include "host/scene/world_diagnostics.hpp"
 #include "systems/lod/resolver.hpp"
 #include "systems/lod/rule_table.hpp"
@@ -108,10 +109,9 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
         const RequestDesc& rd = c.requests[k];
         MotionRequest req = rd.request;
         const std::string where = "character " + std::to_string(index) + " request " + std::to_string(k);
+        if (std::string problem = request_problem(type, rd); !problem.empty()) return make_error(scene.file, where + ": " + problem);
         if (req.kind == RequestKind::PlayClip) {
-            const int clip = find_clip(type, rd.clip);
-            if (clip < 0) return make_error(scene.file, where + ": unknown clip '" + rd.clip + "' for type '" + type.name + "'");
-            req.clip = static_cast<uint16_t>(clip);
+            req.clip = static_cast<uint16_t>(find_clip(type, rd.clip));
         } else if (req.kind == RequestKind::Walk && !rd.route.empty()) {
             // Its own looping route (a crowd's walk_route); ids stop below 0xFFFF, "no path".
             if (motion->path_count() >= 0xFFFF)
@@ -122,20 +122,16 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
             const auto it = std::find(path_names.begin(), path_names.end(), rd.path);
             req.path = static_cast<uint16_t>(it - path_names.begin());
         } else if (req.kind == RequestKind::Reach || req.kind == RequestKind::LookAt) {
-            const int joint = find_joint(type.skeleton, type.map, rd.effector);
-            if (joint < 0) return make_error(scene.file, where + ": unknown effector joint '" + rd.effector + "' for type '" + type.name + "'");
-            req.effector = static_cast<int16_t>(joint);
+            req.effector = static_cast<int16_t>(find_joint(type.skeleton, type.map, rd.effector));
         }
         if (!motion->push_request(id, req))
             return make_error(scene.file, where + ": more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued");
     }
     if (c.overlay) {
         MotionRequest req = c.overlay->request;
-        const int joint = find_joint(type.skeleton, type.map, c.overlay->effector);
-        if (joint < 0)
-            return make_error(scene.file, "character " + std::to_string(index) + " overlay: unknown effector joint '" +
-                                              c.overlay->effector + "' for type '" + type.name + "'");
-        req.effector = static_cast<int16_t>(joint);
+        if (std::string problem = request_problem(type, *c.overlay); !problem.empty())
+            return make_error(scene.file, "character " + std::to_string(index) + " overlay: " + problem);
+        req.effector = static_cast<int16_t>(find_joint(type.skeleton, type.map, c.overlay->effector));
         motion->set_overlay(id, req, c.overlay_weight);
     }
     return {};

@@ -1,12 +1,14 @@
 // `aloha render` and `aloha validate`.
 #include "host/scene/character_report.hpp"
 #include "host/scene/character_type.hpp"
+#include "host/scene/scene_checks.hpp"
 #include "host/scene/scene_loader.hpp"
 #include "host/tool/commands.hpp"
 #include "host/tool/session.hpp"
 #include "systems/lod/rule_table.hpp"
 
 #include <iostream>
+#include <optional>
 
 namespace aloha::tool {
 
@@ -56,8 +58,11 @@ int run_validate(const CliOptions& options) {
     } else {
         for (const Error& w : rules.value().warnings) std::cerr << "warning: " << w.to_string() << "\n";
     }
+    std::vector<std::optional<CharacterType>> loaded;
+    std::vector<const CharacterType*> types;
     for (const CharacterTypeDesc& t : scene.value().types) {
         auto type = load_character_type(t);
+        loaded.emplace_back();
         if (!type.ok()) {
             std::cerr << type.error().to_string() << "\n";
             ++problems;
@@ -65,7 +70,13 @@ int run_validate(const CliOptions& options) {
             std::cout << "character type '" << t.name << "' ("
                       << (t.humanoid.empty() ? (t.bvh.empty() ? t.gltf : t.bvh) : t.humanoid) << "):\n";
             for (const std::string& line : character_report(type.value())) std::cout << "  " << line << "\n";
+            loaded.back() = std::move(type).value();
         }
+    }
+    for (const std::optional<CharacterType>& t : loaded) types.push_back(t ? &*t : nullptr);
+    for (const Error& e : scene_request_problems(scene.value(), types)) {
+        std::cerr << e.to_string() << "\n";
+        ++problems;
     }
     if (problems) {
         std::cerr << options.scene << ": " << problems << " problem(s)\n";

@@ -72,6 +72,24 @@ public:
     /// Triangle indices as unsigned shorts.
     int indices(const std::vector<uint16_t>& v) { return accessor(v, "SCALAR", 5123); }
 
+    /// A buffer view over `bytes` (4-byte aligned; `stride` > 0 sets byteStride); returns its index.
+    int view(const std::vector<unsigned char>& bytes, size_t stride = 0) {
+        while (bin_.size() % 4 != 0) bin_.push_back(0);
+        const size_t offset = bin_.size();
+        bin_.insert(bin_.end(), bytes.begin(), bytes.end());
+        nlohmann::json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes.size()}};
+        if (stride > 0) v["byteStride"] = stride;
+        doc["bufferViews"].push_back(v);
+        return static_cast<int>(doc["bufferViews"].size() - 1);
+    }
+    /// An accessor over buffer view `view_index` (no bytes added); returns its index.
+    int accessor_on(int view_index, size_t count, const std::string& type, int component, bool normalized = false) {
+        nlohmann::json a = {{"bufferView", view_index}, {"componentType", component}, {"count", count}, {"type", type}};
+        if (normalized) a["normalized"] = true;
+        doc["accessors"].push_back(a);
+        return static_cast<int>(doc["accessors"].size() - 1);
+    }
+
     /// Appends a node (a JSON object: name, translation, children...) and returns its index.
     int node(const nlohmann::json& n) {
         doc["nodes"].push_back(n);

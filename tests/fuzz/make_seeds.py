@@ -150,6 +150,17 @@ def chain_character():
 cj, cb = chain_character()
 w('fuzz_gltf', 'chain_skinned.glb', glb(cj, cb))
 w('fuzz_gltf', 'chain_json_short_bin.glb', glb(cj, cb[:1024]))
+# The same character as gltfpack writes it (KHR_mesh_quantization + KHR_texture_transform, and
+# EXT_meshopt_compression with its filters), when gltfpack (Debian package gltfpack) is installed.
+import shutil, subprocess, tempfile
+if shutil.which('gltfpack'):
+    with tempfile.TemporaryDirectory() as tmp:
+        open(f'{tmp}/in.glb', 'wb').write(glb(cj, cb))
+        for flags, name in (([], 'chain_quantised.glb'), (['-c'], 'chain_meshopt.glb')):
+            subprocess.run(['gltfpack', '-i', f'{tmp}/in.glb', '-o', f'{tmp}/{name}'] + flags, check=True, capture_output=True)
+            w('fuzz_gltf', name, open(f'{tmp}/{name}', 'rb').read())
+else:
+    print('make_seeds: gltfpack not found; chain_quantised.glb and chain_meshopt.glb not rewritten', file=sys.stderr)
 
 # ---------- BVH ----------
 # A 12-joint body written here (offsets in centimetres, tab indents, CR LF lines like exported mocap), with
