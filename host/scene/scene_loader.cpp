@@ -172,7 +172,10 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
         }
         t.height = static_cast<float>(r.number("height", 1.75, 0.5, 2.5));
         t.build = static_cast<float>(r.number("build", 0.5, 0.0, 1.0));
-        const int sources = !t.humanoid.empty() + !t.bvh.empty() + !t.gltf.empty();
+        // Counted from the file, not from the resolved paths: a path refused above is one error, not two.
+        const nlohmann::json& raw = (*types)[i];
+        auto given = [&](const char* key) { return raw.is_object() && raw.contains(key) && raw[key].is_string() && !raw[key].get<std::string>().empty(); };
+        const int sources = int{given("humanoid")} + int{given("bvh")} + int{given("gltf")};
         if (sources != 1 && r.is_object()) r.error("", "give exactly one of 'humanoid', 'bvh' or 'gltf'");
         if (t.humanoid.empty() && (r.has("height") || r.has("build")))
             r.error("height", "'height' and 'build' apply to 'humanoid' types only");

@@ -120,6 +120,10 @@ TEST(SceneBadInput, PathsThatEscapeTheSceneFolder) {
     EXPECT_TRUE(refused(with_bvh("../../../etc/passwd"), "S26 ../ escape", "bad.json", {"escapes the scene's folder"}));
     EXPECT_TRUE(refused(with_bvh("sub/../../x.bvh"), "S27 escape through a sub-folder", "bad.json", {"escapes"}));
     EXPECT_TRUE(refused(with_bvh("/etc/passwd"), "S28 absolute path", "bad.json", {"absolute path"}));
+    // One problem, one error: the refused path does not also count as a type with no source.
+    const auto absolute = with_bvh("/etc/passwd");
+    ASSERT_FALSE(absolute.ok());
+    EXPECT_EQ(absolute.error().to_string().find("give exactly one of"), std::string::npos) << absolute.error().to_string();
     EXPECT_TRUE(refused(with_bvh("builtin:../../etc/passwd"), "S29 builtin: with ..", "bad.json", {"unknown built-in"}));
     // A name that merely starts with the folder's name is outside it ("inside" vs "inside_evil").
     dir.write("inside_evil/x.bvh", "HIERARCHY\n");
