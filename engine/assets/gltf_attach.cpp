@@ -90,26 +90,13 @@ void add_notes(const MeshNotes& n, std::vector<std::string>* notes) {
     }
 }
 
-// Rest model matrix of raw joint `j` of `s` (parents need not precede children), memoised in `model`/`done`.
-glm::mat4 rest_model(const RawSkeleton& s, size_t j, std::vector<glm::mat4>& model, std::vector<uint8_t>& done) {
-    if (done[j]) return model[j];
-    glm::mat4 local = glm::translate(glm::mat4(1.0f), s.joints[j].translation) * glm::mat4_cast(s.joints[j].rotation);
-    local = glm::scale(local, s.joints[j].scale);
-    const int parent = s.joints[j].parent;
-    done[j] = 2;  // a cycle (refused by build_skeleton later) stops here
-    model[j] = parent >= 0 && static_cast<size_t>(parent) < s.joints.size() && done[static_cast<size_t>(parent)] != 2
-                   ? rest_model(s, static_cast<size_t>(parent), model, done) * local
-                   : local;
-    done[j] = 1;
-    return model[j];
-}
-
 // The rest of the library takes a mesh's bind space to be the skeleton's model space at rest
 // (inverse(inverse bind) = the joint's rest model matrix). Files may bind in another space: gltfpack's
 // quantised meshes keep integer positions and fold the dequantisation X into every inverse bind matrix.
-// X = rest_model(root) * inverse_bind(root) for skin 0's first root joint; when it is not the identity,
-// vertices become X v and inverse binds inverse_bind * X^-1, which leaves every skinned position
-// unchanged (model * inverse_bind * X^-1 * X v). Returns whether anything moved.
+// X = rest_model(root) * inverse_bind(root) for skin 0's first root joint (its rest transform, which
+// carries the folded nodes above it); when it is not the identity, vertices become X v and inverse binds
+// inverse_bind * X^-1, which leaves every skinned position unchanged (model * inverse_bind * X^-1 * X v),
+// so the triangles keep their winding even when X mirrors. Returns whether anything moved.
 bool bind_space_to_model_space(GltfCharacter* out, const std::vector<int>& skin0_raw) {
     const RawSkeleton& s = out->skeleton;
     int anchor = -1;
@@ -119,13 +106,13 @@ bool bind_space_to_model_space(GltfCharacter* out, const std::vector<int>& skin0
             break;
         }
     if (anchor < 0) return false;
-    std::vector<glm::mat4> model(s.joints.size(), glm::mat4(1.0f));
-    std::vector<uint8_t> done(s.joints.size(), 0);
-    const glm::mat4 x = rest_model(s, static_cast<size_t>(anchor), model, done) * out->inverse_bind_matrices[static_cast<size_t>(anchor)];
+    const RawJoint& root = s.joints[static_cast<size_t>(anchor)];
+    const glm::mat4 rest = glm::scale(glm::translate(glm::mat4(1.0f), root.translation) * glm::mat4_cast(root.rotation), root.scale);
+    const glm::mat4 x = rest * out->inverse_bind_matrices[static_cast<size_t>(anchor)];
     const float det = glm::determinant(glm::mat3(x));
     if (near_identity(x) || !std::isfinite(det) || !(std::abs(det) > 1e-30f)) return false;
     const glm::mat4 x_inv = glm::inverse(x);
-    for (GltfSkinnedMesh& m : out->meshes) transform_mesh(m, x, det < 0.0f);
+    for (GltfSkinnedMesh& m : out->meshes) transform_mesh(m, x, false);
     for (glm::mat4& ibm : out->inverse_bind_matrices) ibm = ibm * x_inv;
     return true;
 }

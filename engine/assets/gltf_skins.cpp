@@ -29,6 +29,12 @@ Result<std::vector<glm::mat4>> read_inverse_binds(const tinygltf::Model& model, 
                 if (!std::isfinite(v)) return make_error(file, "inverse bind matrix " + std::to_string(i) + " has a NaN or infinite value", 0, 0, at);
                 out[i][c][r] = v;
             }
+    // The rest of the library inverts them (a joint's bind pose): a singular one has no bind pose.
+    for (size_t i = 0; i < n; ++i) {
+        const float det = glm::determinant(glm::mat3(out[i]));
+        if (!(std::abs(det) > 1e-24f))
+            return make_error(file, "inverse bind matrix " + std::to_string(i) + " is singular (determinant " + std::to_string(det) + ")", 0, 0, at);
+    }
     return out;
 }
 

@@ -195,5 +195,44 @@ TEST(GltfBindSpace, MeshBoundInAnotherSpaceIsMovedIntoTheRestSpace) {
     EXPECT_TRUE(noted);
 }
 
+// A mirroring bind (file vertices with x negated, bound by matrices that negate x back): the skinned
+// positions are the plain file's, so the moved vertices are too and the triangles keep their winding.
+TEST(GltfBindSpace, MirroringBindKeepsTheWinding) {
+    const SkinnedCylinder c;
+    GltfBuilder plain = test::plain_cylinder(c);
+    Result<GltfCharacter> want = load(plain);
+    ASSERT_TRUE(want.ok()) << want.error().to_string();
+    GltfBuilder b;
+    std::vector<glm::vec3> mirrored, mirrored_normals;
+    for (size_t v = 0; v < c.positions.size(); ++v) {
+        mirrored.emplace_back(-c.positions[v].x, c.positions[v].y, c.positions[v].z);
+        mirrored_normals.emplace_back(-c.normals[v].x, c.normals[v].y, c.normals[v].z);
+    }
+    const json attributes = {{"POSITION", b.vec3(mirrored)}, {"NORMAL", b.vec3(mirrored_normals)}, {"TEXCOORD_0", b.vec2(c.uvs)},
+                             {"JOINTS_0", b.joints(c.joints)}, {"WEIGHTS_0", b.vec4(c.weights)}};
+    test::add_cylinder_character(b, attributes, b.indices(c.indices), json::object(), glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)));
+    Result<GltfCharacter> got = load(b);
+    ASSERT_TRUE(got.ok()) << got.error().to_string();
+    const GltfSkinnedMesh& g = got.value().meshes[0];
+    for (size_t v = 0; v < g.positions.size(); ++v) {
+        EXPECT_NEAR(glm::length(g.positions[v] - c.positions[v]), 0.0f, 1e-6f) << v;
+        EXPECT_NEAR(glm::length(g.normals[v] - c.normals[v]), 0.0f, 1e-6f) << v;
+    }
+    EXPECT_EQ(g.indices, want.value().meshes[0].indices);
+}
+
+// Inverse bind matrices of an accessor without a buffer view read as zeros: singular, so the joints have
+// no bind pose, and the file is refused naming the matrix.
+TEST(GltfBindSpace, SingularInverseBindIsRefused) {
+    const SkinnedCylinder c;
+    GltfBuilder b = test::plain_cylinder(c);
+    const int ibm = b.doc["skins"][0]["inverseBindMatrices"].get<int>();
+    b.doc["accessors"][static_cast<size_t>(ibm)].erase("bufferView");
+    Result<GltfCharacter> r = load(b);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().to_string().find("accessors[" + std::to_string(ibm) + "]: inverse bind matrix 0 is singular"), std::string::npos)
+        << r.error().to_string();
+}
+
 }  // namespace
 }  // namespace aloha
