@@ -164,61 +164,61 @@ TEST(GltfTextureTransform, MalformedTransformIsRefusedNamingIt) {
     }
 }
 
-// A mesh authored in centimetres and bound by inverse bind matrices that scale by 0.01 (file vertices 100
-// times the plain ones): the loader moves it into the rest space, so vertices and inverse bind matrices
-// equal the plain file's (within float rounding of the 0.01 and 100 products, ~1e-7 relative), with a note.
+// The cylinder written with every vertex (and normal) mapped by `file_of` and bound by inverse bind matrices
+// that apply `bind` (the rest inverses times `bind`), loaded: its skinned positions are the plain file's, so
+// the loader's move into the rest space must give back the plain vertices, normals and triangles.
+Result<GltfCharacter> load_bound(const SkinnedCylinder& c, const glm::mat4& file_of, const glm::mat4& bind) {
+    GltfBuilder b;
+    const glm::mat3 normal_of = glm::transpose(glm::inverse(glm::mat3(file_of)));
+    std::vector<glm::vec3> positions, normals;
+    for (size_t v = 0; v < c.positions.size(); ++v) {
+        positions.push_back(glm::vec3(file_of * glm::vec4(c.positions[v], 1.0f)));
+        normals.push_back(glm::normalize(normal_of * c.normals[v]));
+    }
+    const json attributes = {{"POSITION", b.vec3(positions)}, {"NORMAL", b.vec3(normals)}, {"TEXCOORD_0", b.vec2(c.uvs)}, {"JOINTS_0", b.joints(c.joints)},
+                             {"WEIGHTS_0", b.vec4(c.weights)}};
+    test::add_cylinder_character(b, attributes, b.indices(c.indices), json::object(), bind);
+    return load(b);
+}
+
+void expect_plain_mesh(const GltfCharacter& got, const GltfCharacter& want, const SkinnedCylinder& c) {
+    const GltfSkinnedMesh& g = got.meshes[0];
+    for (size_t v = 0; v < g.positions.size(); ++v) {
+        EXPECT_NEAR(glm::length(g.positions[v] - c.positions[v]), 0.0f, 1e-6f) << v;
+        EXPECT_NEAR(glm::length(g.normals[v] - c.normals[v]), 0.0f, 1e-6f) << v;
+    }
+    EXPECT_EQ(g.indices, want.meshes[0].indices);
+    for (size_t j = 0; j < 2; ++j)
+        for (int col = 0; col < 4; ++col)
+            for (int row = 0; row < 4; ++row) EXPECT_NEAR(got.inverse_bind_matrices[j][col][row], want.inverse_bind_matrices[j][col][row], 1e-6f);
+    bool noted = false;
+    for (const std::string& n : got.notes) noted = noted || n.find("moved into the rest space") != std::string::npos;
+    EXPECT_TRUE(noted);
+}
+
+// A mesh authored in centimetres (file vertices 100 times the plain ones) bound by matrices that scale by
+// 0.01: within float rounding of the 0.01 and 100 products (~1e-7 relative).
 TEST(GltfBindSpace, MeshBoundInAnotherSpaceIsMovedIntoTheRestSpace) {
     const SkinnedCylinder c;
     GltfBuilder plain = test::plain_cylinder(c);
     Result<GltfCharacter> want = load(plain);
     ASSERT_TRUE(want.ok()) << want.error().to_string();
-    GltfBuilder b;
-    std::vector<glm::vec3> cm;
-    for (const glm::vec3& p : c.positions) cm.push_back(100.0f * p);
-    const json attributes = {{"POSITION", b.vec3(cm)}, {"NORMAL", b.vec3(c.normals)}, {"TEXCOORD_0", b.vec2(c.uvs)}, {"JOINTS_0", b.joints(c.joints)},
-                             {"WEIGHTS_0", b.vec4(c.weights)}};
-    test::add_cylinder_character(b, attributes, b.indices(c.indices), json::object(), glm::scale(glm::mat4(1.0f), glm::vec3(0.01f)));
-    Result<GltfCharacter> got = load(b);
+    Result<GltfCharacter> got = load_bound(c, glm::scale(glm::mat4(1.0f), glm::vec3(100.0f)), glm::scale(glm::mat4(1.0f), glm::vec3(0.01f)));
     ASSERT_TRUE(got.ok()) << got.error().to_string();
-    const GltfSkinnedMesh& g = got.value().meshes[0];
-    for (size_t v = 0; v < g.positions.size(); ++v) {
-        EXPECT_NEAR(glm::length(g.positions[v] - c.positions[v]), 0.0f, 1e-6f) << v;
-        EXPECT_NEAR(glm::length(g.normals[v] - c.normals[v]), 0.0f, 1e-6f) << v;
-    }
-    EXPECT_EQ(g.indices, want.value().meshes[0].indices);
-    for (size_t j = 0; j < 2; ++j)
-        for (int col = 0; col < 4; ++col)
-            for (int row = 0; row < 4; ++row)
-                EXPECT_NEAR(got.value().inverse_bind_matrices[j][col][row], want.value().inverse_bind_matrices[j][col][row], 1e-6f);
-    bool noted = false;
-    for (const std::string& n : got.value().notes) noted = noted || n.find("moved into the rest space") != std::string::npos;
-    EXPECT_TRUE(noted);
+    expect_plain_mesh(got.value(), want.value(), c);
 }
 
-// A mirroring bind (file vertices with x negated, bound by matrices that negate x back): the skinned
-// positions are the plain file's, so the moved vertices are too and the triangles keep their winding.
+// A mirroring bind (file vertices with x negated, bound by matrices that negate x back): the triangles keep
+// their winding, since the skinned positions do not change.
 TEST(GltfBindSpace, MirroringBindKeepsTheWinding) {
     const SkinnedCylinder c;
     GltfBuilder plain = test::plain_cylinder(c);
     Result<GltfCharacter> want = load(plain);
     ASSERT_TRUE(want.ok()) << want.error().to_string();
-    GltfBuilder b;
-    std::vector<glm::vec3> mirrored, mirrored_normals;
-    for (size_t v = 0; v < c.positions.size(); ++v) {
-        mirrored.emplace_back(-c.positions[v].x, c.positions[v].y, c.positions[v].z);
-        mirrored_normals.emplace_back(-c.normals[v].x, c.normals[v].y, c.normals[v].z);
-    }
-    const json attributes = {{"POSITION", b.vec3(mirrored)}, {"NORMAL", b.vec3(mirrored_normals)}, {"TEXCOORD_0", b.vec2(c.uvs)},
-                             {"JOINTS_0", b.joints(c.joints)}, {"WEIGHTS_0", b.vec4(c.weights)}};
-    test::add_cylinder_character(b, attributes, b.indices(c.indices), json::object(), glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)));
-    Result<GltfCharacter> got = load(b);
+    const glm::mat4 mirror = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+    Result<GltfCharacter> got = load_bound(c, mirror, mirror);
     ASSERT_TRUE(got.ok()) << got.error().to_string();
-    const GltfSkinnedMesh& g = got.value().meshes[0];
-    for (size_t v = 0; v < g.positions.size(); ++v) {
-        EXPECT_NEAR(glm::length(g.positions[v] - c.positions[v]), 0.0f, 1e-6f) << v;
-        EXPECT_NEAR(glm::length(g.normals[v] - c.normals[v]), 0.0f, 1e-6f) << v;
-    }
-    EXPECT_EQ(g.indices, want.value().meshes[0].indices);
+    expect_plain_mesh(got.value(), want.value(), c);
 }
 
 // Inverse bind matrices of an accessor without a buffer view read as zeros: singular, so the joints have
