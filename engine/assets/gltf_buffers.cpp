@@ -172,12 +172,13 @@ std::vector<std::string> supported_required_extensions() {
     return {"KHR_mesh_quantization", std::string(kMeshopt), "KHR_texture_transform", "KHR_materials_unlit", "KHR_draco_mesh_compression"};
 }
 
-Status prepare_buffers(tinygltf::Model* model, const std::string& file) {
+Status prepare_buffers(tinygltf::Model* model, const std::string& file, std::vector<std::string>* notes) {
     const std::vector<std::string> supported = supported_required_extensions();
     for (const std::string& name : model->extensionsRequired)
         if (std::find(supported.begin(), supported.end(), name) == supported.end())
             return make_error(file, "the file requires extension " + name + ": " + unsupported_hint(name), 0, 0, "extensionsRequired");
     const size_t views = model->bufferViews.size();
+    size_t decoded_views = 0;
     for (size_t i = 0; i < views; ++i) {
         const auto it = model->bufferViews[i].extensions.find(std::string(kMeshopt));
         if (it == model->bufferViews[i].extensions.end()) continue;
@@ -198,8 +199,19 @@ Status prepare_buffers(tinygltf::Model* model, const std::string& file) {
         // Vertex data keeps the view's own stride (the spec makes them equal); index data is tightly packed.
         if (view.byteStride == 0 && view.target != TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER && stride % 4 == 0) view.byteStride = stride;
         view.extensions.erase(std::string(kMeshopt));
+        ++decoded_views;
     }
-    return decode_draco_primitives(model, file);
+    if (decoded_views > 0)
+        notes->push_back(std::string(kMeshopt) + ": " + std::to_string(decoded_views) + " buffer view" + (decoded_views == 1 ? "" : "s") +
+                         " decoded (meshoptimizer)");
+    size_t primitives = 0;
+    if (Status s = decode_draco_primitives(model, file, &primitives); !s.ok()) return s;
+    if (primitives > 0)
+        notes->push_back(std::string(kDraco) + ": " + std::to_string(primitives) + " primitive" + (primitives == 1 ? "" : "s") + " decoded (Draco)");
+    const auto& used = model->extensionsUsed;
+    if (std::find(used.begin(), used.end(), "KHR_mesh_quantization") != used.end())
+        notes->push_back("KHR_mesh_quantization: integer vertex data read as its accessors say (normalised or not)");
+    return {};
 }
 
 }  // namespace aloha::gltf_detail

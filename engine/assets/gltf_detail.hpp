@@ -42,15 +42,18 @@ std::vector<std::string> supported_required_extensions();
 
 /// Runs before anything is read: fails (naming the extension and what to do) when the file requires an
 /// extension outside supported_required_extensions(), and decodes every EXT_meshopt_compression buffer
-/// view into a buffer of its own (the view then points at it, uncompressed). Errors name the view.
-Status prepare_buffers(tinygltf::Model* model, const std::string& file);
+/// view into a buffer of its own (the view then points at it, uncompressed), then every Draco primitive
+/// (decode_draco_primitives). Errors name the view. `notes` gets one line per extension it decoded or
+/// read (meshopt views, Draco primitives, KHR_mesh_quantization), for the character's notes.
+Status prepare_buffers(tinygltf::Model* model, const std::string& file, std::vector<std::string>* notes);
 
 /// Decodes every mesh primitive carrying KHR_draco_mesh_compression: each attribute the extension
 /// names, and the indices, become plain data in a buffer of their own that the primitive's existing
 /// accessors then point at (bufferView set, byteOffset 0), converted to each accessor's componentType,
 /// type and normalized flag; the extension is then removed from the primitive. Errors name the
 /// primitive ("meshes[0].primitives[1].extensions.KHR_draco_mesh_compression") and what is wrong.
-Status decode_draco_primitives(tinygltf::Model* model, const std::string& file);
+/// `decoded` counts the primitives decoded.
+Status decode_draco_primitives(tinygltf::Model* model, const std::string& file, size_t* decoded);
 
 /// glTF's name of component type `c` ("UNSIGNED_SHORT"), or "unknown component type <c>".
 std::string component_name(int c);

@@ -213,7 +213,7 @@ private:
 
 }  // namespace
 
-Status decode_draco_primitives(tinygltf::Model* model, const std::string& file) {
+Status decode_draco_primitives(tinygltf::Model* model, const std::string& file, size_t* decoded) {
     std::map<int, std::pair<int64_t, int64_t>> filled;
     for (size_t m = 0; m < model->meshes.size(); ++m)
         for (size_t p = 0; p < model->meshes[m].primitives.size(); ++p) {
@@ -223,6 +223,7 @@ Status decode_draco_primitives(tinygltf::Model* model, const std::string& file) 
             const std::string where = "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "].extensions." + kDraco;
             if (Status s = PrimitiveDecoder(model, file, where, &filled).decode(&prim, it->second); !s.ok()) return s;
             prim.extensions.erase(it);
+            ++*decoded;
         }
     return {};
 }

@@ -129,8 +129,11 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         return make_error(file, "not a valid glTF file: " + (err.empty() ? std::string("unknown error") : err));
     }
-    if (Status prepared = prepare_buffers(&model, file); !prepared.ok()) return prepared.error();
-    return convert(model, file, images);
+    std::vector<std::string> decoded;
+    if (Status prepared = prepare_buffers(&model, file, &decoded); !prepared.ok()) return prepared.error();
+    Result<GltfCharacter> character = convert(model, file, images);
+    if (character.ok()) character.value().notes.insert(character.value().notes.begin(), decoded.begin(), decoded.end());
+    return character;
 }
 
 }  // namespace

@@ -89,6 +89,7 @@ bool decode_image(tinygltf::Image* image, int index, std::string*, std::string*,
 Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out, std::vector<MaterialUv>* uv) {
     std::vector<int> texture_of_image(model.images.size(), -1);  // index into out->textures, -2 = unusable
     uv->assign(model.materials.size(), MaterialUv{});
+    size_t transformed = 0;
     for (size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& src = model.materials[i];
         const std::string where = "materials[" + std::to_string(i) + "]";
@@ -116,6 +117,7 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
                 Result<glm::mat3> m3 = texture_transform(ext->second, file, tw + ".extensions.KHR_texture_transform", &texcoord);
                 if (!m3.ok()) return m3.error();
                 transform = m3.value();
+                ++transformed;
             }
             const tinygltf::Texture& tex = model.textures[static_cast<size_t>(info.index)];
             const std::string xw = "textures[" + std::to_string(info.index) + "]";
@@ -156,6 +158,9 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
         }
         out->materials.push_back(std::move(m));
     }
+    if (transformed > 0)
+        out->notes.push_back("KHR_texture_transform applied to the texture coordinates of " + std::to_string(transformed) + " material" +
+                             (transformed == 1 ? "" : "s"));
     return {};
 }
 

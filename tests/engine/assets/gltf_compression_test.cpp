@@ -104,6 +104,8 @@ TEST(GltfQuantization, QuantisedFileLoadsAsThePlainOne) {
     // coordinates: half a step of 1/65535 of the larger extent (1 in u), plus float rounding.
     expect_same_character(got.value(), want.value(), 0.5f * step + 2e-6f, 1.0f / 127.0f, 0.5f / 65535.0f + 1e-6f, 0.0f);
     EXPECT_TRUE(has_note(got.value(), "binds its meshes in a space other than the skeleton's rest space"));
+    EXPECT_TRUE(has_note(got.value(), "KHR_mesh_quantization: integer vertex data read"));
+    EXPECT_TRUE(has_note(got.value(), "KHR_texture_transform applied to the texture coordinates of 1 material"));
     EXPECT_FALSE(has_note(want.value(), "binds its meshes"));
 }
 
@@ -205,6 +207,8 @@ TEST_F(GltfMeshopt, CompressedFileLoadsAsThePlainOne) {
     // (two signed 8-bit coordinates of the unit octahedron), under 1/127 per component after renormalising,
     // about 2 steps on the sphere at the fold: 2/127.
     expect_same_character(got.value(), want.value(), 0.0f, 2.0f / 127.0f, 0.0f, 0.0f);
+    // Five vertex streams, the indices, the key times and the rotations.
+    EXPECT_TRUE(has_note(got.value(), "EXT_meshopt_compression: 8 buffer views decoded (meshoptimizer)"));
     ASSERT_EQ(got.value().clips.size(), 1u);
     const RawAnimation& clip = got.value().clips[0];
     EXPECT_EQ(clip.name, "bend");

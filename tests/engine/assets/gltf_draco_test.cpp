@@ -127,6 +127,9 @@ TEST(GltfDraco, SkinnedCylinderMatchesThePlainFile) {
     ASSERT_TRUE(want.ok()) << want.error().to_string();
     ASSERT_TRUE(got.ok()) << got.error().to_string();
     expect_same_points(got.value(), want.value(), kNormalTol, kTexcoordTol, kWeightTol);
+    bool noted = false;
+    for (const std::string& n : got.value().notes) noted = noted || n == "KHR_draco_mesh_compression: 1 primitive decoded (Draco)";
+    EXPECT_TRUE(noted);
 }
 
 // The decoded floats and integers converted to the accessors' types: normals to normalized bytes
