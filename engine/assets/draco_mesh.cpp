@@ -25,11 +25,13 @@ std::pair<int, uint64_t> gltf_type(draco::DataType dt) {
     }
 }
 
-// Value `avi` of `att` as unnormalised doubles: the stored numbers themselves for glTF's types.
+// Value `avi` of `att` as unnormalised doubles: the stored numbers themselves for glTF's types, Draco's
+// conversion for the others.
 bool stored_values(const draco::PointAttribute& att, draco::AttributeValueIndex avi, int comps, double* out) {
-    unsigned char raw[4 * 8] = {};
+    if (gltf_type(att.data_type()).first == 0) return att.ConvertValue<double>(avi, static_cast<int8_t>(comps), out);
+    unsigned char raw[4 * 4] = {};
     const size_t size = static_cast<size_t>(draco::DataTypeLength(att.data_type()));
-    if (size == 0 || size > 8 || comps > 4) return false;
+    if (size == 0 || size > 4 || comps > 4) return false;
     att.GetValue(avi, raw);
     for (int c = 0; c < comps; ++c) {
         const unsigned char* p = raw + static_cast<size_t>(c) * size;
@@ -39,12 +41,7 @@ bool stored_values(const draco::PointAttribute& att, draco::AttributeValueIndex 
             case draco::DT_INT16: { int16_t v; std::memcpy(&v, p, 2); out[c] = v; break; }
             case draco::DT_UINT16: { uint16_t v; std::memcpy(&v, p, 2); out[c] = v; break; }
             case draco::DT_UINT32: { uint32_t v; std::memcpy(&v, p, 4); out[c] = v; break; }
-            case draco::DT_FLOAT32: { float v; std::memcpy(&v, p, 4); out[c] = v; break; }
-            default: {
-                double v[4] = {};
-                if (!att.ConvertValue<double>(avi, static_cast<int8_t>(comps), v)) return false;
-                out[c] = v[c];
-            }
+            default: { float v; std::memcpy(&v, p, 4); out[c] = v; break; }  // DT_FLOAT32
         }
     }
     return true;

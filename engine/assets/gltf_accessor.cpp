@@ -109,6 +109,16 @@ Result<AccessorData> accessor_data(const tinygltf::Model& model, int index, int 
         d.has_dense = true;
     } else if (a.byteOffset != 0) {
         return fail("has a byteOffset but no bufferView", where);
+    } else {
+        // Zeros come from no bytes of the file: bound what a small file can make the loader allocate. A real one
+        // (morph deltas, as many as the positions stored in a buffer) needs under 4 bytes a stored byte.
+        size_t stored = 0;
+        for (const tinygltf::Buffer& b : model.buffers) stored += b.data.size();
+        const size_t bytes = a.count * d.comps * sizeof(float), limit = 16 * stored + (size_t{1} << 20);
+        if (bytes > limit)
+            return fail("has no bufferView and " + std::to_string(a.count) + " elements: " + std::to_string(bytes) +
+                            " bytes of zeros, more than the file's buffers can account for (at most " + std::to_string(limit) + ")",
+                        where);
     }
     if (!a.sparse.isSparse) return d;
     const std::string sw = where + ".sparse";

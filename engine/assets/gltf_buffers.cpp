@@ -16,8 +16,8 @@ namespace aloha::gltf_detail {
 
 namespace {
 
-constexpr std::string_view kMeshopt = "EXT_meshopt_compression";
-constexpr std::string_view kDraco = "KHR_draco_mesh_compression";
+constexpr std::string_view kMeshopt = kMeshoptExtension;
+constexpr std::string_view kDraco = kDracoExtension;
 
 // What each unsupported extension a file can require does, and what to do about it.
 std::string unsupported_hint(const std::string& name) {
@@ -30,14 +30,7 @@ std::string unsupported_hint(const std::string& name) {
 }
 
 // A non-negative integer member `key` of a JSON object value, or -1 when missing or not one.
-int64_t int_member(const tinygltf::Value& object, const char* key) {
-    if (!object.Has(key)) return -1;
-    const tinygltf::Value& v = object.Get(key);
-    if (!v.IsNumber() && !v.IsInt()) return -1;
-    const double d = v.GetNumberAsDouble();
-    if (!(d >= 0.0) || d > 9.0e15 || d != static_cast<double>(static_cast<int64_t>(d))) return -1;
-    return static_cast<int64_t>(d);
-}
+int64_t int_member(const tinygltf::Value& object, const char* key) { return object.Has(key) ? non_negative_integer(object.Get(key)) : -1; }
 
 std::string string_member(const tinygltf::Value& object, const char* key, const std::string& fallback) {
     if (!object.Has(key)) return fallback;
@@ -45,9 +38,17 @@ std::string string_member(const tinygltf::Value& object, const char* key, const 
     return v.IsString() ? v.Get<std::string>() : std::string("(not a string)");
 }
 
-// Decodes buffer view `index` (which carries the extension object `ext`) into `out`.
+// The most bytes meshoptimizer's codecs decode from `length` compressed bytes: the vertex codec spends at least
+// 2 header bits on each 16-byte group of a byte column (64:1, what an all-zero buffer reaches; the index codecs
+// reach 12:1 and 4:1), plus a margin for the codec's fixed header and tail. It bounds the allocation a
+// hostile count and byteStride could ask for.
+size_t meshopt_decoded_limit(size_t length) { return 64 * length + 4096; }
+
+// Decodes buffer view `index` (which carries the extension object `ext`) into `out`; `vertex_stride` gets the
+// byteStride of mode ATTRIBUTES (vertex data, whose stride the view keeps), 0 for indices. Everything is checked
+// before the output is allocated.
 Status decode_meshopt_view(const tinygltf::Model& model, size_t index, const tinygltf::Value& ext, const std::string& file,
-                           std::vector<unsigned char>* out, size_t* stride_out) {
+                           std::vector<unsigned char>* out, size_t* vertex_stride) {
     const std::string where = "bufferViews[" + std::to_string(index) + "].extensions." + std::string(kMeshopt);
     auto fail = [&](const std::string& msg) { return make_error(file, msg, 0, 0, where); };
     if (!ext.IsObject()) return fail("is not an object");
@@ -68,39 +69,50 @@ Status decode_meshopt_view(const tinygltf::Model& model, size_t index, const tin
                     std::to_string(src.size()) + " bytes");
     const std::string mode = string_member(ext, "mode", "(missing)");
     const std::string filter = string_member(ext, "filter", "NONE");
-    const unsigned char* data = src.data() + offset;
     const auto n = static_cast<size_t>(count), s = static_cast<size_t>(stride);
-    out->assign(n * s, 0);
-    int rc = 0;
-    if (mode == "ATTRIBUTES") {
+    const bool attributes = mode == "ATTRIBUTES";
+    *vertex_stride = attributes ? s : 0;
+    if (attributes) {
         if (s % 4 != 0 || s > 256) return fail("byteStride " + std::to_string(s) + " must be a multiple of 4 up to 256 for mode ATTRIBUTES");
-        rc = meshopt_decodeVertexBuffer(out->data(), n, s, data, static_cast<size_t>(length));
     } else if (mode == "TRIANGLES" || mode == "INDICES") {
         if (s != 2 && s != 4) return fail("byteStride " + std::to_string(s) + " must be 2 or 4 for mode " + mode);
         if (mode == "TRIANGLES" && n % 3 != 0) return fail("count " + std::to_string(n) + " is not a multiple of 3 for mode TRIANGLES");
-        rc = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(out->data(), n, s, data, static_cast<size_t>(length))
-                                 : meshopt_decodeIndexSequence(out->data(), n, s, data, static_cast<size_t>(length));
     } else {
         return fail("mode '" + mode + "' is not ATTRIBUTES, TRIANGLES or INDICES");
     }
-    if (rc != 0) return fail("the compressed data does not decode as mode " + mode + " (meshoptimizer error " + std::to_string(rc) + ")");
-    if (filter == "OCTAHEDRAL") {
-        if (mode != "ATTRIBUTES" || (s != 4 && s != 8)) return fail("filter OCTAHEDRAL needs mode ATTRIBUTES and byteStride 4 or 8");
-        meshopt_decodeFilterOct(out->data(), n, s);
-    } else if (filter == "QUATERNION") {
-        if (mode != "ATTRIBUTES" || s != 8) return fail("filter QUATERNION needs mode ATTRIBUTES and byteStride 8");
-        meshopt_decodeFilterQuat(out->data(), n, s);
-    } else if (filter == "EXPONENTIAL") {
-        if (mode != "ATTRIBUTES") return fail("filter EXPONENTIAL needs mode ATTRIBUTES");
-        meshopt_decodeFilterExp(out->data(), n, s);
-    } else if (filter != "NONE") {
+    const bool filter_fits = filter == "NONE" || (filter == "OCTAHEDRAL" && attributes && (s == 4 || s == 8)) ||
+                             (filter == "QUATERNION" && attributes && s == 8) || (filter == "EXPONENTIAL" && attributes);
+    if (filter != "NONE" && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL")
         return fail("filter '" + filter + "' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
-    }
-    *stride_out = s;
+    if (!filter_fits)
+        return fail("filter " + filter + " needs mode ATTRIBUTES and byteStride " +
+                    (filter == "OCTAHEDRAL" ? "4 or 8" : filter == "QUATERNION" ? "8" : "a multiple of 4"));
+    const tinygltf::BufferView& view = model.bufferViews[index];
+    if (view.byteLength != n * s)
+        return fail("count x byteStride = " + std::to_string(n * s) + " bytes, but the buffer view's byteLength is " + std::to_string(view.byteLength));
+    if (n * s > meshopt_decoded_limit(static_cast<size_t>(length)))
+        return fail(std::to_string(n * s) + " bytes cannot decode from " + std::to_string(length) + " compressed bytes (at most " +
+                    std::to_string(meshopt_decoded_limit(static_cast<size_t>(length))) + ")");
+    const unsigned char* data = src.data() + offset;
+    out->assign(n * s, 0);
+    const int rc = attributes           ? meshopt_decodeVertexBuffer(out->data(), n, s, data, static_cast<size_t>(length))
+                   : mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(out->data(), n, s, data, static_cast<size_t>(length))
+                                         : meshopt_decodeIndexSequence(out->data(), n, s, data, static_cast<size_t>(length));
+    if (rc != 0) return fail("the compressed data does not decode as mode " + mode + " (meshoptimizer error " + std::to_string(rc) + ")");
+    if (filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out->data(), n, s);
+    if (filter == "QUATERNION") meshopt_decodeFilterQuat(out->data(), n, s);
+    if (filter == "EXPONENTIAL") meshopt_decodeFilterExp(out->data(), n, s);
     return {};
 }
 
 }  // namespace
+
+int64_t non_negative_integer(const tinygltf::Value& v) {
+    if (!v.IsNumber()) return -1;
+    const double d = v.GetNumberAsDouble();
+    if (!(d >= 0.0) || d > 9.0e15 || d != static_cast<double>(static_cast<int64_t>(d))) return -1;
+    return static_cast<int64_t>(d);
+}
 
 std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned char* bytes, size_t size, bool glb) {
     size_t begin = 0, length = size;
@@ -149,13 +161,12 @@ std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned 
     }
     if (!changed) return std::nullopt;
     std::string json_text = doc.dump();
-    std::vector<unsigned char> out;
     if (!glb) return std::vector<unsigned char>(json_text.begin(), json_text.end());
     while (json_text.size() % 4 != 0) json_text.push_back(' ');
     const size_t rest = size - 20 - length;  // the BIN chunk and anything after it, copied as it is
     const size_t total = 20 + json_text.size() + rest;
     if (total > 0xFFFFFFFFu) return std::nullopt;
-    out.resize(total);
+    std::vector<unsigned char> out(total);
     std::memcpy(out.data(), bytes, 12);
     auto put32 = [&](size_t at, size_t v) {
         for (int k = 0; k < 4; ++k) out[at + static_cast<size_t>(k)] = static_cast<unsigned char>(v >> (8 * k));
@@ -169,7 +180,7 @@ std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned 
 }
 
 std::vector<std::string> supported_required_extensions() {
-    return {"KHR_mesh_quantization", std::string(kMeshopt), "KHR_texture_transform", "KHR_materials_unlit", "KHR_draco_mesh_compression"};
+    return {"KHR_mesh_quantization", std::string(kMeshopt), "KHR_texture_transform", std::string(kDraco)};
 }
 
 Status prepare_buffers(tinygltf::Model* model, const std::string& file, std::vector<std::string>* notes) {
@@ -183,21 +194,17 @@ Status prepare_buffers(tinygltf::Model* model, const std::string& file, std::vec
         const auto it = model->bufferViews[i].extensions.find(std::string(kMeshopt));
         if (it == model->bufferViews[i].extensions.end()) continue;
         std::vector<unsigned char> decoded;
-        size_t stride = 0;
-        if (Status s = decode_meshopt_view(*model, i, it->second, file, &decoded, &stride); !s.ok()) return s;
+        size_t vertex_stride = 0;
+        if (Status s = decode_meshopt_view(*model, i, it->second, file, &decoded, &vertex_stride); !s.ok()) return s;
         tinygltf::BufferView& view = model->bufferViews[i];
-        if (view.byteLength != decoded.size())
-            return make_error(file, "byteLength " + std::to_string(view.byteLength) + " differs from the decoded " + std::to_string(decoded.size()) +
-                                        " bytes (count x byteStride of " + std::string(kMeshopt) + ")",
-                              0, 0, "bufferViews[" + std::to_string(i) + "]");
         tinygltf::Buffer buffer;
         buffer.name = "decoded bufferViews[" + std::to_string(i) + "]";
         buffer.data = std::move(decoded);
         model->buffers.push_back(std::move(buffer));
         view.buffer = static_cast<int>(model->buffers.size() - 1);
         view.byteOffset = 0;
-        // Vertex data keeps the view's own stride (the spec makes them equal); index data is tightly packed.
-        if (view.byteStride == 0 && view.target != TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER && stride % 4 == 0) view.byteStride = stride;
+        // Vertex data keeps the extension's stride (the spec makes the view's equal to it); index data is tightly packed.
+        if (vertex_stride > 0 && view.byteStride == 0) view.byteStride = vertex_stride;
         view.extensions.erase(std::string(kMeshopt));
         ++decoded_views;
     }

@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -36,6 +37,14 @@ Result<std::vector<uint32_t>> read_uints(const tinygltf::Model& model, int index
 /// prepare_buffers() before anything is read. Returns the file (GLB when `glb`) rewritten, or nullopt
 /// when nothing needs it or it cannot be parsed (tinygltf then reports it).
 std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned char* bytes, size_t size, bool glb);
+
+/// The compression extensions' names.
+inline constexpr std::string_view kMeshoptExtension = "EXT_meshopt_compression";
+inline constexpr std::string_view kDracoExtension = "KHR_draco_mesh_compression";
+
+/// A JSON value (an extension's member) as a non-negative integer, or -1 when it is not one (a fraction, a
+/// negative number, a string, more than 9e15).
+int64_t non_negative_integer(const tinygltf::Value& v);
 
 /// Extensions a file may list in extensionsRequired and still be read.
 std::vector<std::string> supported_required_extensions();

@@ -17,15 +17,7 @@ namespace aloha::gltf_detail {
 
 namespace {
 
-const std::string kDraco = "KHR_draco_mesh_compression";
-
-// A non-negative integer JSON value, or -1 when it is not one.
-int64_t non_negative(const tinygltf::Value& v) {
-    if (!v.IsNumber() && !v.IsInt()) return -1;
-    const double d = v.GetNumberAsDouble();
-    if (!(d >= 0.0) || d > 9.0e15 || d != static_cast<double>(static_cast<int64_t>(d))) return -1;
-    return static_cast<int64_t>(d);
-}
+const std::string kDraco(kDracoExtension);
 
 template <class T>
 void store(unsigned char* out, T v) { std::memcpy(out, &v, sizeof(T)); }
@@ -93,7 +85,7 @@ public:
         if (!ext.IsObject()) return fail("is not an object");
         if (prim->mode != -1 && prim->mode != TINYGLTF_MODE_TRIANGLES)
             return fail("the primitive's mode is " + std::to_string(prim->mode) + "; Draco data is read as TRIANGLES (4) only");
-        view_ = ext.Has("bufferView") ? non_negative(ext.Get("bufferView")) : -1;
+        view_ = ext.Has("bufferView") ? non_negative_integer(ext.Get("bufferView")) : -1;
         if (view_ < 0) return fail("'bufferView' is missing or not a non-negative integer");
         if (static_cast<size_t>(view_) >= model_->bufferViews.size())
             return fail("bufferView " + std::to_string(view_) + " is out of range (the file has " + std::to_string(model_->bufferViews.size()) + " bufferViews)");
@@ -112,7 +104,7 @@ public:
         points_ = mesh_.points;
         const tinygltf::Value& attributes = ext.Get("attributes");
         for (const std::string& name : attributes.Keys()) {
-            const int64_t id = non_negative(attributes.Get(name));
+            const int64_t id = non_negative_integer(attributes.Get(name));
             if (id < 0 || id > int64_t{UINT32_MAX}) return fail("attributes." + name + " is not a non-negative integer Draco attribute id");
             const auto it = prim->attributes.find(name);
             if (it == prim->attributes.end()) continue;  // no accessor to fill (the spec forbids it, but Khronos' own Box sample has one)

@@ -46,9 +46,9 @@ Result<glm::mat3> texture_transform(const tinygltf::Value& ext, const std::strin
         if (!std::isfinite(rotation)) return fail("'rotation' is NaN, infinite or out of float range");
     }
     if (ext.Has("texCoord")) {
-        const tinygltf::Value& t = ext.Get("texCoord");
-        if (!t.IsInt() || t.GetNumberAsInt() < 0) return fail("'texCoord' is not a non-negative integer");
-        *texcoord = t.GetNumberAsInt();
+        const int64_t t = non_negative_integer(ext.Get("texCoord"));
+        if (t < 0 || t > 1000) return fail("'texCoord' is not a non-negative integer up to 1000");
+        *texcoord = static_cast<int>(t);
     }
     const float c = std::cos(rotation), s = std::sin(rotation);
     const glm::mat3 translate(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, offset.value().x, offset.value().y, 1.0f);

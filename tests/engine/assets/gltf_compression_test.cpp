@@ -219,11 +219,12 @@ TEST_F(GltfMeshopt, CompressedFileLoadsAsThePlainOne) {
         ASSERT_EQ(t.rotations.times.size(), 3u);
         for (size_t k = 0; k < 3; ++k) {
             // 24-bit mantissas: exact for these times. 12-bit quaternion components: within 1/2047 each
-            // (sqrt(2) scale of the three stored ones), plus renormalisation.
+            // (sqrt(2) scale of the three stored ones), so |dq| < 2/2047 and, for unit quaternions,
+            // 1 - dot = |dq|^2 / 2 < 4.8e-7.
             EXPECT_FLOAT_EQ(t.rotations.times[k], kTimes[k]);
             const glm::quat q = t.rotations.values[k];
             const float dot = std::abs(q.x * kRotations[k].x + q.y * kRotations[k].y + q.z * kRotations[k].z + q.w * kRotations[k].w);
-            EXPECT_GT(dot, 1.0f - 1e-5f) << "key " << k;
+            EXPECT_GT(dot, 1.0f - 1e-6f) << "key " << k;
         }
     }
     EXPECT_EQ(tracks, 1u);
@@ -233,25 +234,29 @@ TEST_F(GltfMeshopt, CorruptOrMalformedDataIsRefusedNamingTheView) {
     const SkinnedCylinder c;
     struct Case {
         const char* what;
-        std::function<void(json&)> edit;
+        std::function<void(json& ext, json& view)> edit;
         const char* expect;
     };
     const std::vector<Case> cases{
-        {"header byte", [](json& ext) { ext["byteOffset"] = ext["byteOffset"].get<size_t>() + 1; }, "does not decode as mode ATTRIBUTES"},
-        {"truncated", [](json& ext) { ext["byteLength"] = 8; }, "does not decode as mode ATTRIBUTES"},
-        {"mode", [](json& ext) { ext["mode"] = "POINTS"; }, "mode 'POINTS' is not ATTRIBUTES, TRIANGLES or INDICES"},
-        {"filter", [](json& ext) { ext["filter"] = "WAVELET"; }, "filter 'WAVELET' is not NONE"},
-        {"count", [](json& ext) { ext["count"] = 70000000; }, "count 70000000 exceeds the limit"},
-        {"count type", [](json& ext) { ext["count"] = -3; }, "'count' is missing or not a positive integer"},
-        {"range", [](json& ext) { ext["byteLength"] = size_t{1} << 30; }, "exceeds buffers[0]"},
-        {"stride", [](json& ext) { ext["byteStride"] = 6; }, "must be a multiple of 4"},
-        {"missing buffer", [](json& ext) { ext.erase("buffer"); }, "'buffer' is missing"},
+        {"header byte", [](json& ext, json&) { ext["byteOffset"] = ext["byteOffset"].get<size_t>() + 1; }, "does not decode as mode ATTRIBUTES"},
+        {"truncated", [](json& ext, json&) { ext["byteLength"] = 8; }, "does not decode as mode ATTRIBUTES"},
+        {"mode", [](json& ext, json&) { ext["mode"] = "POINTS"; }, "mode 'POINTS' is not ATTRIBUTES, TRIANGLES or INDICES"},
+        {"filter", [](json& ext, json&) { ext["filter"] = "WAVELET"; }, "filter 'WAVELET' is not NONE"},
+        {"count", [](json& ext, json&) { ext["count"] = 70000000; }, "count 70000000 exceeds the limit"},
+        {"count type", [](json& ext, json&) { ext["count"] = -3; }, "'count' is missing or not a positive integer"},
+        {"range", [](json& ext, json&) { ext["byteLength"] = size_t{1} << 30; }, "exceeds buffers[0]"},
+        {"stride", [](json& ext, json&) { ext["byteStride"] = 6; }, "must be a multiple of 4"},
+        {"missing buffer", [](json& ext, json&) { ext.erase("buffer"); }, "'buffer' is missing"},
+        {"view length", [](json& ext, json&) { ext["count"] = 55; }, "count x byteStride = 660 bytes, but the buffer view's byteLength is 648"},
+        // A count whose output no compressed size can hold (64 decoded bytes a compressed byte at most), refused
+        // before anything is allocated.
+        {"ratio", [](json& ext, json& view) { ext["count"] = 1000000; view["byteLength"] = 12000000; }, "12000000 bytes cannot decode from"},
     };
     for (const Case& k : cases) {
         GltfBuilder b = compressed(c);
         // The first compressed view is POSITION's fallback, bufferViews[1].
-        json& ext = b.doc["bufferViews"][1]["extensions"]["EXT_meshopt_compression"];
-        k.edit(ext);
+        json& view = b.doc["bufferViews"][1];
+        k.edit(view["extensions"]["EXT_meshopt_compression"], view);
         Result<GltfCharacter> r = load(b);
         ASSERT_FALSE(r.ok()) << k.what;
         const std::string e = r.error().to_string();

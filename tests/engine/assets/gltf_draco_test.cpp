@@ -21,14 +21,14 @@ const std::string kDraco = "KHR_draco_mesh_compression";
 const std::string kWhere = "meshes[0].primitives[0].extensions.KHR_draco_mesh_compression";
 
 // Quantisation of the encoded cylinder. Draco quantises each attribute over the largest extent of its
-// bounding box, so the step is extent / (2^bits - 1) and the rounding error half that; the tolerances are
-// 1.5 steps of 2^-bits (the loader's normal renormalisation and weight renormalisation move values by
-// less than one more half step). Measured with Draco 1.5.5: positions 4.9e-5, normals 1.4e-3, texture
-// coordinates 1.2e-4, weights 3.9e-4.
+// bounding box, so the step is extent / (2^bits - 1) and the rounding error h is half that per component
+// (plus 1e-6 of float rounding). Weights: two influences t and 1 - t, each off by at most h, renormalised by
+// their sum: t' - t = e1 (1 - t) - t e2 to first order, so still within h (1e-5 covers the second order).
+// Measured with Draco 1.5.5: positions 4.9e-5, normals 1.4e-3, texture coordinates 1.2e-4, weights 3.9e-4.
 constexpr int kPositionBits = 14, kNormalBits = 10, kTexcoordBits = 12, kWeightBits = 10;
-const float kPositionTol = 1.5f * 2.0f / 16384.0f;  // extent 2 m (the cylinder's height)
-const float kTexcoordTol = 1.5f / 4096.0f;          // extent 1 (u from 0 to 1)
-const float kWeightTol = 1.5f * 2.0f / 1024.0f;     // extent 1, two influences renormalised
+const float kPositionTol = 0.5f * 2.0f / 16383.0f + 1e-6f;  // extent 2 m (the cylinder's height)
+const float kTexcoordTol = 0.5f / 4095.0f + 1e-6f;          // extent 1 (u from 0 to 1)
+const float kWeightTol = 0.5f / 1023.0f + 1e-5f;            // extent 1
 // Octahedral normals: a 10-bit grid over [-1, 1]^2 is 2 / 1023 per step; the octahedron-to-sphere map
 // stretches a step by up to about 2 on the unit sphere, so two steps.
 const float kNormalTol = 2.0f * 2.0f / 1024.0f;
