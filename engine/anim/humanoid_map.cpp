@@ -231,8 +231,22 @@ int HumanoidMap::canonical_of(int j) const {
     return -1;
 }
 
+namespace {
+
+// Puts skeleton joint `j` at canonical joint `c`, taking it from any other canonical joint.
+void assign(HumanoidMap& map, size_t c, int j) {
+    for (size_t other = 0; other < map.joint.size(); ++other)
+        if (map.joint[other] == j && other != c) {
+            map.joint[other] = -1;
+            map.from_declared[other] = false;
+        }
+    map.joint[c] = j;
+}
+
+}  // namespace
+
 Result<HumanoidMap> map_humanoid(const Skeleton& skeleton, const std::map<std::string, std::string>& explicit_map,
-                                 const std::string& source, const std::string& where) {
+                                 const std::string& source, const std::string& where, const DeclaredHumanoid& declared) {
     HumanoidMap map;
     map.joint.assign(kCanonical.size(), -1);
     int best = 0;
@@ -246,6 +260,19 @@ Result<HumanoidMap> map_humanoid(const Skeleton& skeleton, const std::map<std::s
         }
     }
     map.from_explicit.assign(kCanonical.size(), false);
+    map.from_declared.assign(kCanonical.size(), false);
+    for (const auto& [canonical, file_name] : declared.joints) {
+        const int c = canonical_index(canonical);
+        const int j = skeleton.find(file_name);
+        if (c < 0 || j < 0) continue;
+        assign(map, static_cast<size_t>(c), j);
+        map.from_declared[static_cast<size_t>(c)] = true;
+    }
+    if (!declared.joints.empty()) {
+        bool by_name = false;
+        for (size_t c = 0; c < kCanonical.size(); ++c) by_name |= map.joint[c] >= 0 && !map.from_declared[c];
+        map.convention = declared.origin + (by_name && !map.convention.empty() ? " + " + map.convention + " names" : "");
+    }
     for (const auto& [canonical, file_name] : explicit_map) {
         const std::string at = where + "/" + canonical;
         const int c = canonical_index(canonical);
@@ -253,19 +280,36 @@ Result<HumanoidMap> map_humanoid(const Skeleton& skeleton, const std::map<std::s
         const int j = skeleton.find(file_name);
         if (j < 0) return make_error(source, "joint '" + file_name + "' is not in the skeleton", 0, 0, at);
         for (size_t other = 0; other < map.joint.size(); ++other)
-            if (map.joint[other] == j && static_cast<int>(other) != c) {
-                if (map.from_explicit[other])
-                    return make_error(source, "joint '" + file_name + "' is already given for '" + kCanonical[other].name + "'", 0, 0, at);
-                map.joint[other] = -1;  // the explicit entry wins over the convention's guess
-            }
-        map.joint[static_cast<size_t>(c)] = j;
+            if (map.joint[other] == j && static_cast<int>(other) != c && map.from_explicit[other])
+                return make_error(source, "joint '" + file_name + "' is already given for '" + kCanonical[other].name + "'", 0, 0, at);
+        assign(map, static_cast<size_t>(c), j);  // the explicit entry wins over the convention's or file's
         map.from_explicit[static_cast<size_t>(c)] = true;
+        map.from_declared[static_cast<size_t>(c)] = false;
     }
     if (!explicit_map.empty()) map.convention = map.convention.empty() ? "explicit humanoid_map" : map.convention + " + humanoid_map";
     for (size_t c = 0; c < kCanonical.size(); ++c)
         if (kCanonical[c].required && map.joint[c] < 0) map.missing.push_back(kCanonical[c].name);
     map.humanoid = map.missing.empty();
     return map;
+}
+
+std::string canonical_of_humanoid_bone(std::string_view bone, bool vrm1) {
+    const std::string key = key_of(bone);
+    for (int side = 0; side < 2; ++side) {
+        const std::string word = side == 0 ? "left" : "right";
+        if (key.size() <= word.size() || key.compare(0, word.size(), word) != 0) continue;
+        const std::string rest = key.substr(word.size());
+        // VRM 1.0 renamed the thumb: Metacarpal, Proximal, Distal (VRM 0.x: Proximal, Intermediate, Distal).
+        if (rest == (vrm1 ? "thumbmetacarpal" : "thumbproximal")) return kCanonical[static_cast<size_t>(canonical_index("LThumb") + side)].name;
+        if (rest.rfind("thumb", 0) == 0) return "";
+        for (const Row& row : unity_rows("", ""))
+            if (kCanonical[static_cast<size_t>(canonical_index(row.canonical))].side == 0 && row.keys.front() == rest)
+                return kCanonical[static_cast<size_t>(canonical_index(row.canonical) + side)].name;
+        return "";
+    }
+    for (const Row& row : unity_rows("", ""))
+        if (kCanonical[static_cast<size_t>(canonical_index(row.canonical))].side < 0 && row.keys.front() == key) return row.canonical;
+    return "";
 }
 
 std::vector<std::string> unmapped_joints(const Skeleton& skeleton, const HumanoidMap& map) {

@@ -43,6 +43,7 @@ struct HumanoidMap {
     std::string convention;              ///< naming convention matched ("" when none matched)
     std::vector<int> joint;              ///< per canonical joint: skeleton joint index or -1
     std::vector<bool> from_explicit;     ///< per canonical joint: set by the explicit humanoid_map
+    std::vector<bool> from_declared;     ///< per canonical joint: set by the file's own declaration (VRM)
     std::vector<std::string> missing;    ///< required canonical joints not found
     bool humanoid = false;               ///< every required canonical joint is mapped
 
@@ -54,13 +55,29 @@ struct HumanoidMap {
     [[nodiscard]] int canonical_of(int j) const;
 };
 
-/// Maps `skeleton` to the canonical humanoid: the convention matching most joints, then the
-/// entries of `explicit_map` (canonical name -> skeleton joint name) on top. Errors (naming
-/// `source` and `where` + "/<canonical name>"): an unknown canonical name, a file name that is not
-/// a joint, one joint given for two canonical joints. A skeleton matching no convention gives an
-/// empty map (not a humanoid), never an error.
+/// A humanoid map the character file itself declares (VRM's humanoid bones): canonical joint
+/// name -> skeleton joint name. The loader guarantees canonical names, existing joints and one
+/// canonical joint per skeleton joint.
+struct DeclaredHumanoid {
+    std::string origin;                          ///< who declared it, for reports ("VRM 1.0 humanoid")
+    std::map<std::string, std::string> joints;   ///< canonical name -> joint name
+};
+
+/// Maps `skeleton` to the canonical humanoid: the convention matching most joints, then the file's
+/// `declared` map, then the entries of `explicit_map` (canonical name -> skeleton joint name) on
+/// top; a later layer's joint replaces an earlier layer's use of it. Errors (naming `source` and
+/// `where` + "/<canonical name>"): an unknown canonical name, a file name that is not a joint, one
+/// joint given for two canonical joints in `explicit_map`. A skeleton matching no convention gives
+/// an empty map (not a humanoid), never an error; a declared entry naming no joint is skipped.
 Result<HumanoidMap> map_humanoid(const Skeleton& skeleton, const std::map<std::string, std::string>& explicit_map = {},
-                                 const std::string& source = "", const std::string& where = "");
+                                 const std::string& source = "", const std::string& where = "",
+                                 const DeclaredHumanoid& declared = {});
+
+/// Canonical joint name of a humanoid bone named in Unity's / VRM's bone vocabulary ("hips",
+/// "leftUpperLeg", "rightLowerArm", "leftMiddleProximal"; any case), or "" for bones the canonical
+/// humanoid does not have (eyes, jaw, most finger bones). `vrm1` selects VRM 1.0's thumb names
+/// (thumbMetacarpal is the thumb's first bone; in VRM 0.x and Unity it is thumbProximal).
+[[nodiscard]] std::string canonical_of_humanoid_bone(std::string_view bone, bool vrm1);
 
 /// Names of the skeleton joints no canonical joint maps to (carried along, ignored by the layers).
 [[nodiscard]] std::vector<std::string> unmapped_joints(const Skeleton& skeleton, const HumanoidMap& map);

@@ -29,6 +29,7 @@ Result<GltfCharacter> convert(const tinygltf::Model& model, const std::string& f
     Result<Skeleton> skeleton = build_skeleton(out.skeleton, file);
     if (!skeleton.ok()) return skeleton.error();
     const std::vector<int> runtime_of_raw = runtime_index_of_raw(skeleton.value());
+    if (Status s = read_declared_humanoid(model, skins.value(), file, &out); !s.ok()) return s.error();
 
     for (const auto& [index, reason] : images.failures)
         out.notes.push_back("images[" + std::to_string(index) + "]: " + reason + "; materials using it are drawn untextured");

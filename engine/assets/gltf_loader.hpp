@@ -48,10 +48,15 @@
 // - Data: sparse accessors (also over an accessor without bufferView: zeros), KHR_mesh_quantization's
 //   integer vertex types and EXT_meshopt_compression's compressed buffer views are read; a file that
 //   requires any other extension is refused, naming it (gltf_buffers.cpp).
+// - Humanoid: a VRM file's humanoid bones (VRMC_vrm 1.0 or VRM 0.x: humanoid.humanBones, bone name
+//   -> node) become `humanoid` (canonical joint -> joint name, engine/anim/humanoid_map.hpp), so a
+//   VRM character maps whatever its nodes are called; bones that are no canonical joint (fingers,
+//   eyes) or no skin joint are noted; a malformed declaration is an error naming its JSON path.
 // - Names: unnamed joints are called "node<index>"; a joint name used twice gets "_node<index>"
 //   appended (with a note); any other characters (dots, colons, spaces) are kept as they are.
 #pragma once
 
+#include "engine/anim/humanoid_map.hpp"
 #include "engine/anim/raw_animation.hpp"
 #include "engine/anim/raw_skeleton.hpp"
 #include "engine/assets/surface_material.hpp"
@@ -89,6 +94,7 @@ struct GltfCharacter {
     std::vector<TextureImage> textures;             ///< referenced by SurfaceMaterial::texture
     std::vector<RawAnimation> clips;                ///< tracks in runtime joint order
     std::vector<std::string> clip_names;            ///< clips[i].name, "" in the file -> "clip<i>"
+    DeclaredHumanoid humanoid;                      ///< the file's own humanoid bones (VRM), empty without
     std::vector<std::string> notes;                 ///< things read but deliberately ignored
 };
 

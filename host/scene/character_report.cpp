@@ -42,6 +42,7 @@ std::vector<std::string> character_report(const CharacterType& type) {
         ++mapped;
         mapping += (mapping.empty() ? "" : ", ") + std::string(canon[c].name) + " <- " + type.skeleton.names()[static_cast<size_t>(j)];
         if (c < type.map.from_explicit.size() && type.map.from_explicit[c]) mapping += " (humanoid_map)";
+        if (c < type.map.from_declared.size() && type.map.from_declared[c]) mapping += " (file)";
     }
     out.push_back("mapping (canonical <- file, " + std::to_string(mapped) + " of " + std::to_string(canon.size()) +
                   "): " + (mapping.empty() ? "none" : mapping));

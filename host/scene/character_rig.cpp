@@ -12,9 +12,9 @@
 namespace aloha {
 
 Result<NormalisedRig> normalise_file_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format,
-                                         const std::string& file) {
+                                         const std::string& file, const DeclaredHumanoid& declared) {
     NormalisedRig rig;
-    auto map = map_humanoid(original, desc.humanoid_map, desc.scene_file, desc.pointer + "/humanoid_map");
+    auto map = map_humanoid(original, desc.humanoid_map, desc.scene_file, desc.pointer + "/humanoid_map", declared);
     if (!map.ok()) return map.error();
     rig.map = std::move(map.value());
     auto frame = detect_rig_frame(original, rig.map, format, desc.scale, file);

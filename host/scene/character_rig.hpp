@@ -19,11 +19,11 @@ struct NormalisedRig {
     RigNormalisation change; ///< what was done to the file's skeleton (apply to clips and meshes)
 };
 
-/// Maps `original` (the file's runtime skeleton) with desc.humanoid_map, detects its frame
-/// (desc.scale overrides the units) and normalises it. Errors name the file or, for the explicit
-/// map, the scene file and JSON pointer.
+/// Maps `original` (the file's runtime skeleton) with the file's `declared` humanoid (VRM) and
+/// desc.humanoid_map over it, detects its frame (desc.scale overrides the units) and normalises it.
+/// Errors name the file or, for the explicit map, the scene file and JSON pointer.
 Result<NormalisedRig> normalise_file_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format,
-                                         const std::string& file);
+                                         const std::string& file, const DeclaredHumanoid& declared = {});
 
 /// Moves a mesh skinned to the file's skeleton onto the normalised one: v' = G v, n' = A n,
 /// inverse bind C_j^-1 IB_j G^-1.

@@ -76,8 +76,8 @@ void add_walk_loop(CharacterType& type, const RawAnimation& take, const std::str
 
 // The file's skeleton mapped and normalised into `type`; `change` says how (for its clips and mesh).
 Status adopt_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format, const std::string& file,
-                 CharacterType& type, RigNormalisation& change) {
-    auto rig = normalise_file_rig(original, desc, format, file);
+                 CharacterType& type, RigNormalisation& change, const DeclaredHumanoid& declared = {}) {
+    auto rig = normalise_file_rig(original, desc, format, file, declared);
     if (!rig.ok()) return rig.error();
     type.skeleton = std::move(rig.value().skeleton);
     type.map = std::move(rig.value().map);
@@ -113,7 +113,7 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
     auto original = build_skeleton(g.skeleton, desc.gltf);
     if (!original.ok()) return original.error();
     RigNormalisation change;
-    if (Status s = adopt_rig(original.value(), desc, RigFormat::Gltf, desc.gltf, type, change); !s.ok()) return s;
+    if (Status s = adopt_rig(original.value(), desc, RigFormat::Gltf, desc.gltf, type, change, g.humanoid); !s.ok()) return s;
     type.notes = g.notes;
     for (size_t i = 0; i < g.clips.size(); ++i) {
         RawAnimation clip = g.clips[i];

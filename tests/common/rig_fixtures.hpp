@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -414,6 +415,40 @@ inline std::map<std::string, std::string> odd_names() {
                  {{"LeftHip", "leg_%_1"}, {"LeftKnee", "leg_%_2"}, {"LeftAnkle", "leg_%_3"}, {"LeftToe", "leg_%_5"},
                   {"LeftShoulder", "arm_%_4"}, {"LeftElbow", "arm_%_3"}, {"LeftWrist", "arm_%_2"}},
                  "L", "R");
+}
+
+/// The canonical joints of `vrm_names()` named "Bone.000", "Bone.001", ... (names no convention
+/// reads), for fixtures that map only through a VRM humanoid declaration.
+inline std::map<std::string, std::string> numbered_names() {
+    std::map<std::string, std::string> out;
+    char buf[16];
+    int k = 0;
+    for (const auto& [canonical, bone] : vrm_names()) {
+        std::snprintf(buf, sizeof buf, "Bone.%03d", k++);
+        out[canonical] = buf;
+    }
+    return out;
+}
+
+/// Adds a VRM humanoid declaration to glTF `j` (written by gltf_text(raw, ...), node k = joint k):
+/// every canonical joint of `names` (canonical -> joint name in `raw`) declared as its VRM bone
+/// (vrm_names()), in VRM 1.0's form (VRMC_vrm, bone -> {node}) or VRM 0.x's (VRM, [{bone, node}]).
+/// VRM 1.0's thumb is "thumbMetacarpal".
+inline void add_vrm_humanoid(nlohmann::json& j, const RawSkeleton& raw, const std::map<std::string, std::string>& names, bool vrm1) {
+    nlohmann::json bones = vrm1 ? nlohmann::json::object() : nlohmann::json::array();
+    const auto vrm = vrm_names();
+    for (const auto& [canonical, joint] : names) {
+        int node = -1;
+        for (size_t k = 0; k < raw.joints.size(); ++k)
+            if (raw.joints[k].name == joint) node = static_cast<int>(k);
+        std::string bone = vrm.at(canonical);
+        if (vrm1 && bone.find("ThumbProximal") != std::string::npos) bone.replace(bone.find("Proximal"), 8, "Metacarpal");
+        if (vrm1) bones[bone] = {{"node", node}};
+        else bones.push_back({{"bone", bone}, {"node", node}});
+    }
+    const char* name = vrm1 ? "VRMC_vrm" : "VRM";
+    j["extensionsUsed"] = {name};
+    j["extensions"][name]["humanoid"]["humanBones"] = bones;
 }
 
 }  // namespace aloha::test

@@ -150,6 +150,18 @@ def chain_character():
 cj, cb = chain_character()
 w('fuzz_gltf', 'chain_skinned.glb', glb(cj, cb))
 w('fuzz_gltf', 'chain_json_short_bin.glb', glb(cj, cb[:1024]))
+# The same character declaring a VRM humanoid (VRM 1.0's object form and VRM 0.x's array form), with a bone
+# that is no canonical joint (a finger) and one on a node outside the skin (an eye on the Armature node).
+import copy
+vrm_bones = {'hips': 3, 'spine': 4, 'chest': 5, 'neck': 6, 'head': 7, 'leftIndexProximal': 8, 'leftEye': 1}
+vj = copy.deepcopy(cj)
+vj['extensionsUsed'] = ['VRMC_vrm']
+vj['extensions'] = {'VRMC_vrm': {'specVersion': '1.0', 'humanoid': {'humanBones': {b: {'node': n} for b, n in vrm_bones.items()}}}}
+w('fuzz_gltf', 'chain_vrm1.glb', glb(vj, cb))
+vj = copy.deepcopy(cj)
+vj['extensionsUsed'] = ['VRM']
+vj['extensions'] = {'VRM': {'humanoid': {'humanBones': [{'bone': b, 'node': n} for b, n in vrm_bones.items()]}}}
+w('fuzz_gltf', 'chain_vrm0.glb', glb(vj, cb))
 # The same character as gltfpack writes it (KHR_mesh_quantization + KHR_texture_transform, and
 # EXT_meshopt_compression with its filters), when gltfpack (Debian package gltfpack) is installed.
 import shutil, subprocess, tempfile

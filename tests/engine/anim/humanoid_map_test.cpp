@@ -146,6 +146,66 @@ TEST(HumanoidMap, ExplicitMapErrorsNameTheSceneAndPointer) {
     EXPECT_NE(twice.error().message.find("already given for"), std::string::npos);
 }
 
+TEST(HumanoidMap, DeclaredMapMapsNamesNoConventionReads) {
+    // A VRM file's humanoid declaration over joints named "Bone.000"...: the declaration alone maps it.
+    const auto names = test::numbered_names();
+    const Skeleton sk = build_skeleton(test::renamed_humanoid(names), "fixture").value();
+    ASSERT_FALSE(map_humanoid(sk).value().humanoid);
+    auto map = map_humanoid(sk, {}, "", "", DeclaredHumanoid{"VRM 1.0 humanoid", names});
+    ASSERT_TRUE(map.ok()) << map.error().to_string();
+    EXPECT_TRUE(map.value().humanoid);
+    EXPECT_EQ(map.value().convention, "VRM 1.0 humanoid");
+    for (const CanonicalJoint& c : canonical_humanoid()) {
+        const auto it = names.find(c.name);
+        EXPECT_EQ(map.value().find(c.name), it == names.end() ? -1 : sk.find(it->second)) << c.name;
+        EXPECT_EQ(map.value().from_declared[static_cast<size_t>(canonical_index(c.name))], it != names.end()) << c.name;
+    }
+}
+
+TEST(HumanoidMap, DeclaredMapOverridesConventionsAndTheSceneOverridesIt) {
+    // Mixamo names the convention reads whole; the file declares the left knee elsewhere (a twist
+    // joint it added), which the convention's guess gives up; the scene's humanoid_map wins over both.
+    const auto names = test::mixamo_names();
+    RawSkeleton raw = test::renamed_humanoid(names);
+    test::insert_between(raw, "mixamorig:LeftFoot", "LeftKneeTwist", 0.2f);
+    const Skeleton sk = build_skeleton(raw, "fixture").value();
+    const DeclaredHumanoid declared{"VRM 0.x humanoid", {{"LeftKnee", "LeftKneeTwist"}, {"LeftAnkle", "mixamorig:LeftLeg"}}};
+    auto map = map_humanoid(sk, {}, "", "", declared);
+    ASSERT_TRUE(map.ok()) << map.error().to_string();
+    EXPECT_EQ(map.value().convention, "VRM 0.x humanoid + Mixamo / HumanIK names");
+    EXPECT_EQ(map.value().find("LeftKnee"), sk.find("LeftKneeTwist"));
+    EXPECT_EQ(map.value().find("LeftAnkle"), sk.find("mixamorig:LeftLeg"));  // taken from the convention's LeftKnee
+    EXPECT_EQ(map.value().canonical_of(sk.find("mixamorig:LeftFoot")), -1);   // the convention's LeftAnkle, given up
+    EXPECT_EQ(map.value().find("RightKnee"), sk.find("mixamorig:RightLeg"));  // the convention fills the rest
+    auto scene = map_humanoid(sk, {{"LeftAnkle", "mixamorig:LeftFoot"}, {"LeftKnee", "mixamorig:LeftLeg"}}, "s.json", "/m", declared);
+    ASSERT_TRUE(scene.ok()) << scene.error().to_string();
+    EXPECT_EQ(scene.value().convention, "VRM 0.x humanoid + Mixamo / HumanIK names + humanoid_map");
+    const auto knee = static_cast<size_t>(canonical_index("LeftKnee"));
+    EXPECT_EQ(scene.value().find("LeftKnee"), sk.find("mixamorig:LeftLeg"));
+    EXPECT_EQ(scene.value().find("LeftAnkle"), sk.find("mixamorig:LeftFoot"));
+    EXPECT_TRUE(scene.value().from_explicit[knee]);
+    EXPECT_FALSE(scene.value().from_declared[knee]);
+    EXPECT_EQ(scene.value().canonical_of(sk.find("LeftKneeTwist")), -1);
+}
+
+TEST(HumanoidMap, HumanoidBoneNamesOfUnityAndVrm) {
+    const std::pair<const char*, const char*> bones[] = {
+        {"hips", "Hips"}, {"spine", "lowerback"}, {"chest", "Chest"}, {"upperChest", "Chest2"}, {"neck", "lowerneck"},
+        {"head", "Head"}, {"leftUpperLeg", "LeftHip"}, {"rightLowerLeg", "RightKnee"}, {"leftFoot", "LeftAnkle"},
+        {"rightToes", "RightToe"}, {"leftShoulder", "LeftCollar"}, {"rightUpperArm", "RightShoulder"},
+        {"leftLowerArm", "LeftElbow"}, {"RightHand", "RightWrist"}, {"leftMiddleProximal", "LFingers"},
+        {"leftEye", ""}, {"jaw", ""}, {"leftIndexProximal", ""}, {"rightThumbDistal", ""}, {"tail", ""}, {"left", ""}};
+    for (const auto& [bone, canonical] : bones) {
+        EXPECT_EQ(canonical_of_humanoid_bone(bone, false), canonical) << bone;
+        EXPECT_EQ(canonical_of_humanoid_bone(bone, true), canonical) << bone;
+    }
+    // The thumb's first bone: thumbProximal in VRM 0.x and Unity, thumbMetacarpal in VRM 1.0.
+    EXPECT_EQ(canonical_of_humanoid_bone("leftThumbProximal", false), "LThumb");
+    EXPECT_EQ(canonical_of_humanoid_bone("rightThumbMetacarpal", true), "RThumb");
+    EXPECT_EQ(canonical_of_humanoid_bone("leftThumbProximal", true), "");
+    EXPECT_EQ(canonical_of_humanoid_bone("leftThumbIntermediate", false), "");
+}
+
 TEST(HumanoidMap, NamesAreMatchedWithoutCaseOrSeparators) {
     EXPECT_EQ(joint_name_key("mixamorig:Left_Up.Leg"), "leftupleg");
     EXPECT_EQ(joint_name_key("Armature|DEF-thigh.L"), "thighl");

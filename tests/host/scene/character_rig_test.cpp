@@ -282,6 +282,38 @@ TEST(CharacterRig, ArmatureNodeAboveTheJointsIsFoldedThenNormalised) {
     fs::remove_all(dir);
 }
 
+TEST(CharacterRig, VrmFileMapsThroughItsOwnHumanoidDeclaration) {
+    // A VRM 1.0 export whose nodes are named "Bone.000"... (no naming convention reads them), with
+    // bone-aligned rest frames: the file's VRMC_vrm humanoid declaration maps it, and it gets every
+    // layer like a conventionally named rig. The same file as VRM 0.x maps the same way.
+    const fs::path dir = temp_dir("vrm");
+    test::RigStyle style;
+    style.bone_frames = true;
+    const auto names = test::numbered_names();
+    const RawSkeleton raw = test::styled(test::renamed_humanoid(names), style);
+    for (const bool vrm1 : {true, false}) {
+        nlohmann::json j = nlohmann::json::parse(test::gltf_text(raw, 1, 0.3f));
+        test::add_vrm_humanoid(j, raw, names, vrm1);
+        const fs::path file = dir / (vrm1 ? "vrm1.gltf" : "vrm0.vrm");  // read by content, whatever the suffix
+        test::write_text(file.string(), j.dump(1));
+        const CharacterType t = load_or_fail(desc_for("vrm", file.string()));
+        expect_layers(t, vrm1 ? "VRM 1.0 humanoid" : "VRM 0.x humanoid", names.at("LeftKnee"));
+        const std::vector<std::string> report = character_report(t);
+        bool declared = false;
+        for (const std::string& line : report) declared |= line.find("LeftKnee <- " + names.at("LeftKnee") + " (file)") != std::string::npos;
+        EXPECT_TRUE(declared) << "aloha validate says which joints the file declared";
+        if (!vrm1) continue;
+        expect_walks(t);
+        expect_dynamic_walks(t);
+        expect_reaches(t);
+    }
+    // Without the declaration the same skeleton is no humanoid.
+    nlohmann::json bare = nlohmann::json::parse(test::gltf_text(raw, 1, 0.3f));
+    test::write_text((dir / "bare.gltf").string(), bare.dump(1));
+    EXPECT_FALSE(load_or_fail(desc_for("bare", (dir / "bare.gltf").string())).map.humanoid);
+    fs::remove_all(dir);
+}
+
 TEST(CharacterRig, UnrealRigWithARootJointOnTheGroundWalksAndReaches) {
     // The Unreal mannequin's layout: a "root" joint on the ground above the pelvis, IK helper
     // joints (ik_foot_root, ik_foot_l/r) under it, centimetres, Z-up facing +X.
