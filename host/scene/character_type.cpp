@@ -234,15 +234,6 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     auto rig = resolve_walk_rig(type.skeleton, type.map, file);
     if (rig.ok()) type.rig = std::move(rig.value());
     else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
-    if (type.rig && type.skeleton.parents()[static_cast<size_t>(type.rig->root)] >= 0) {
-        // The dynamic walk simulates from the skeleton's root joint: a joint above the pelvis (an
-        // Unreal "root" on the ground) becomes its root body, and the pelvis tracks its gait looser.
-        int top = type.rig->root;
-        while (type.skeleton.parents()[static_cast<size_t>(top)] >= 0) top = type.skeleton.parents()[static_cast<size_t>(top)];
-        type.notes.push_back("dynamic walk approximate: the skeleton's root '" + type.skeleton.names()[static_cast<size_t>(top)] +
-                             "' is above the pelvis '" + type.skeleton.names()[static_cast<size_t>(type.rig->root)] +
-                             "' and is simulated as the root body: the pelvis follows the gait more loosely (docs/CHARACTERS.md)");
-    }
     if (type.muscles.size() == 0 && type.mesh && type.map.humanoid) {
         std::vector<glm::mat4> bind_model;
         for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));

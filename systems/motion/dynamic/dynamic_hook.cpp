@@ -16,6 +16,16 @@ glm::mat4 rigid_frame(const Transform& t) {
     return m;
 }
 
+// Model matrix (character frame) of joint `j` in `pose` from its local transforms; allocates nothing.
+glm::mat4 chain_model(const Skeleton& sk, const PoseView& pose, int j) {
+    glm::mat4 m(1.0f);
+    for (int k = j; k >= 0; k = sk.parents()[static_cast<size_t>(k)]) {
+        const auto u = static_cast<size_t>(k);
+        m = trs_matrix(pose.translations[u], pose.rotations[u], pose.scales[u]) * m;
+    }
+    return m;
+}
+
 // After a hand-back: the kinematic pose in `pose` plus the decaying offset from the last simulated pose.
 void apply_fallback(const DynamicHookContext& cx, DynamicCharacter& dc, float dt, const PoseView& pose) {
     dc.fallback_elapsed += dt;
@@ -75,11 +85,15 @@ void dynamic_hook(void* user, MethodContext& m) {
     }
     std::copy(m.pose.rotations.begin(), m.pose.rotations.end(), dc.target.begin());
     std::copy(m.pose.translations.begin(), m.pose.translations.end(), dc.kinematic_translations.begin());
-    const glm::quat pelvis_target = glm::normalize(glm::quat_cast(glm::mat3(frame)) * m.pose.rotations[0]);
+    // The root body's joint (the pelvis, also under an Unreal "root" joint) as the kinematic pose has it.
+    const glm::mat4 root_model = chain_model(sk, m.pose, dc.state.root_joint);
+    const glm::mat3 root_axes(glm::normalize(glm::vec3(root_model[0])), glm::normalize(glm::vec3(root_model[1])),
+                              glm::normalize(glm::vec3(root_model[2])));
+    const glm::quat pelvis_target = glm::normalize(glm::quat_cast(glm::mat3(frame)) * glm::quat_cast(root_axes));
     // Targets and output are expressed in the character's current frame; the bodies live in the
     // world, so moving the frame each step is only a change of coordinates.
     dc.state.root_world = frame;
-    const glm::vec3 root_now = glm::vec3(frame * glm::vec4(m.pose.translations[0], 1.0f));
+    const glm::vec3 root_now = glm::vec3(frame * root_model[3]);
     const glm::vec3 root_before = dc.state.has_prev_target ? dc.state.prev_target_root : root_now;
     const glm::mat4 to_frame = glm::inverse(frame);
     const int steps = std::clamp(static_cast<int>(std::ceil(m.dt / cx.max_step - 1e-4f)), 1, 8);
@@ -149,6 +163,8 @@ void register_dynamic_walk_hook(MotionController& controller, DynamicHookContext
     context.characters.resize(controller.capacity());
     if (context.settings.contact_points.empty() && controller.walk_rig())
         context.settings.contact_points = dynamic_sole_contacts(controller.skeleton(), *controller.walk_rig());
+    // The pelvis is the root body, also when the skeleton's root is a joint above it (Unreal's "root").
+    if (context.settings.root_joint < 0 && controller.walk_rig()) context.settings.root_joint = controller.walk_rig()->root;
     controller.set_method_hook(MethodSlot::DynamicWalk, &dynamic_hook, &context, &dynamic_release);
 }
 

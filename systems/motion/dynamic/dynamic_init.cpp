@@ -65,8 +65,19 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView pose, const glm
     if (settings.substeps < 1 || !(settings.constraint_frequency > 0.0f) || !(settings.motor_frequency > 0.0f))
         return make_error(src, "settings need substeps >= 1 and positive frequencies");
 
+    const int root = settings.root_joint < 0 ? 0 : settings.root_joint;
+    if (static_cast<size_t>(root) >= n)
+        return make_error(src, "root joint " + std::to_string(settings.root_joint) + " is not a joint of the " + std::to_string(n) +
+                                   "-joint skeleton");
+    // Simulated: the root joint and its descendants (parents come before their children).
+    std::vector<uint8_t> simulated(n, 0);
+    for (size_t j = static_cast<size_t>(root); j < n; ++j)
+        simulated[j] = j == static_cast<size_t>(root) ||
+                       (skeleton.parents()[j] >= 0 && simulated[static_cast<size_t>(skeleton.parents()[j])]);
+
     DynamicWalkState s;
     s.settings = settings;
+    s.root_joint = root;
     s.root_world = root_world;
     s.translations.assign(pose.translations.begin(), pose.translations.end());
     s.scales.assign(pose.scales.begin(), pose.scales.end());
@@ -87,13 +98,15 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView pose, const glm
     // A joint owns a body unless it is (nearly) at its parent's position or is a leaf: then it
     // is welded to its parent's body at its start-pose local rotation.
     for (size_t j = 0; j < n; ++j) {
+        if (!simulated[j]) continue;
         const int p = skeleton.parents()[j];
-        const bool own = p < 0 || (glm::length(wp[j] - wp[static_cast<size_t>(p)]) >= settings.min_bone_length &&
-                                   child_count[j] > 0);
+        const bool is_root = j == static_cast<size_t>(root);
+        const bool own = is_root || (glm::length(wp[j] - wp[static_cast<size_t>(p)]) >= settings.min_bone_length &&
+                                     child_count[j] > 0);
         if (own) {
             DynamicBody b;
             b.joint = static_cast<int>(j);
-            b.parent = p < 0 ? -1 : s.owner[static_cast<size_t>(p)];
+            b.parent = is_root ? -1 : s.owner[static_cast<size_t>(p)];
             s.owner[j] = static_cast<int>(s.bodies.size());
             s.bodies.push_back(b);
         } else {
@@ -104,7 +117,7 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView pose, const glm
     std::vector<MassSum> sums(s.bodies.size());
     for (size_t c = 0; c < n; ++c) {
         const int m = skeleton.parents()[c];
-        if (m < 0) continue;
+        if (m < 0 || !simulated[c] || !simulated[static_cast<size_t>(m)]) continue;
         const auto bi = static_cast<size_t>(s.owner[static_cast<size_t>(m)]);
         const DynamicBody& b = s.bodies[bi];
         const auto bj = static_cast<size_t>(b.joint);
@@ -143,13 +156,17 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView pose, const glm
             return make_error(src, "contact point on joint " + std::to_string(c.joint) + " is not a joint of the " +
                                        std::to_string(n) + "-joint skeleton or has a non-finite offset");
         const auto j = static_cast<size_t>(c.joint);
+        if (!simulated[j])
+            return make_error(src, "contact point on joint " + std::to_string(c.joint) + " '" + skeleton.names()[j] +
+                                       "' is outside the simulated subtree of root joint '" + skeleton.names()[static_cast<size_t>(root)] + "'");
         add_contact(j, wp[j] + wr[j] * c.offset);
     }
     if (settings.contact_points.empty()) {
-        float lowest = wp[0].y;
-        for (const glm::vec3& p : wp) lowest = std::min(lowest, p.y);
+        float lowest = wp[static_cast<size_t>(root)].y;
         for (size_t j = 0; j < n; ++j)
-            if (wp[j].y <= lowest + settings.contact_height) add_contact(j, wp[j]);
+            if (simulated[j]) lowest = std::min(lowest, wp[j].y);
+        for (size_t j = 0; j < n; ++j)
+            if (simulated[j] && wp[j].y <= lowest + settings.contact_height) add_contact(j, wp[j]);
     }
     // Motor gains, k = I w^2 and c = 2 z w I, from the composite inertia I about each joint of the
     // bodies it moves: its subtree; for the legs (the joints between the pelvis and a body that touches

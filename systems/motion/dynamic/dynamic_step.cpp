@@ -290,7 +290,8 @@ void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> targ
     const glm::quat root_rot = glm::normalize(glm::quat_cast(glm::mat3(s.root_world)));
     for (size_t j = 0; j < n; ++j) {
         const int p = skeleton.parents()[j];
-        const bool owns = s.bodies[static_cast<size_t>(s.owner[j])].joint == static_cast<int>(j);
+        // Joints outside the simulated subtree and joints owning a body follow the target; welded ones keep theirs.
+        const bool owns = s.owner[j] < 0 || s.bodies[static_cast<size_t>(s.owner[j])].joint == static_cast<int>(j);
         const glm::quat local = glm::normalize(owns ? target_local_rotations[j] : s.welded_local[j]);
         s.target_world[j] = p < 0 ? root_rot * local : s.target_world[static_cast<size_t>(p)] * local;
     }
@@ -324,22 +325,25 @@ void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> targ
     }
     // Output pose in the character frame.
     const glm::mat4 inv_root = glm::inverse(s.root_world);
-    const glm::quat inv_root_rot = glm::inverse(root_rot);
     glm::quat world_rot_parent{1, 0, 0, 0};
     for (size_t j = 0; j < n; ++j) {
         const int p = skeleton.parents()[j];
-        const DynamicBody& b = s.bodies[static_cast<size_t>(s.owner[j])];
-        const bool owns = b.joint == static_cast<int>(j);
         world_rot_parent = p < 0 ? root_rot : s.target_world[static_cast<size_t>(p)];
-        // target_world is reused below as the simulated world rotation of each joint.
-        const glm::quat wj = owns ? b.q : world_rot_parent * s.welded_local[j];
-        s.target_world[j] = wj;
-        out.rotations[j] = glm::normalize(glm::inverse(world_rot_parent) * wj);
         out.translations[j] = s.translations[j];
         out.scales[j] = s.scales[j];
-        if (p < 0) {
-            out.rotations[j] = glm::normalize(inv_root_rot * wj);
-            out.translations[j] = glm::vec3(inv_root * glm::vec4(body_joint_position(b), 1.0f));
+        if (s.owner[j] < 0) {  // above the simulated subtree: the target's rotation (target_world[j] already holds it)
+            out.rotations[j] = glm::normalize(target_local_rotations[j]);
+        } else {
+            const DynamicBody& b = s.bodies[static_cast<size_t>(s.owner[j])];
+            const bool owns = b.joint == static_cast<int>(j);
+            // target_world is reused below as the simulated world rotation of each joint.
+            const glm::quat wj = owns ? b.q : world_rot_parent * s.welded_local[j];
+            s.target_world[j] = wj;
+            out.rotations[j] = glm::normalize(glm::inverse(world_rot_parent) * wj);
+            if (static_cast<int>(j) == s.root_joint) {  // placed where the simulation put it, under its parent if any
+                const glm::vec3 at = glm::vec3(inv_root * glm::vec4(body_joint_position(b), 1.0f));
+                out.translations[j] = p < 0 ? at : glm::vec3(glm::inverse(out.model[static_cast<size_t>(p)]) * glm::vec4(at, 1.0f));
+            }
         }
         const glm::mat4 local = trs_matrix(out.translations[j], out.rotations[j], out.scales[j]);
         out.model[j] = p < 0 ? local : out.model[static_cast<size_t>(p)] * local;

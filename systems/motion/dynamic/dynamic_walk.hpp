@@ -42,6 +42,11 @@ struct DynamicWalkSettings {
     float min_bone_length = 0.02f;           ///< joints closer than this to their parent are merged (welded)
     float density = 1000.0f;                 ///< kg/m^3 of the capsule links
     float contact_height = 0.12f;            ///< without contact_points: joints this close to the lowest start joint touch the ground
+    /// The joint simulated as the root body (the pelvis); -1: the skeleton's root. Joints outside its
+    /// subtree (an Unreal "root" joint on the ground and the IK helpers under it) are not simulated: they
+    /// keep the target's local rotations and the start pose's translations, and the root body hangs under
+    /// them wherever the simulation puts it.
+    int root_joint = -1;
     /// The feet's sole points (dynamic_sole_contacts: heel and ball under the ankle and toe, toe tip),
     /// so the simulated feet stand on the ground where the kinematic gait puts its soles. Empty: the
     /// joints near the lowest start-pose joint (which stand the body lower than the gait by the sole's
@@ -77,7 +82,8 @@ struct DynamicWalkState {
     DynamicWalkSettings settings;
     std::vector<DynamicBody> bodies;
     std::vector<DynamicContact> contacts;
-    std::vector<int> owner;                  ///< per joint: index of the body it belongs to
+    std::vector<int> owner;                  ///< per joint: index of the body it belongs to, -1 outside the simulated subtree
+    int root_joint = 0;                      ///< the joint of bodies[0] (settings.root_joint resolved)
     std::vector<glm::quat> welded_local;     ///< per joint: local rotation used when welded (start pose)
     std::vector<glm::vec3> translations;     ///< per joint: local translations for the output pose
     std::vector<glm::vec3> scales;           ///< per joint: local scales for the output pose
@@ -109,7 +115,7 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView start_pose, con
                          DynamicWalkState& state, const DynamicWalkSettings& settings = {});
 
 /// Advances the simulation by dt toward the kinematic target (local rotations per joint and the
-/// root joint's translation, both in the character frame) and writes the simulated pose
+/// position of the root body's joint, state.root_joint, both in the character frame) and writes the simulated pose
 /// (translations, rotations, scales, model matrices in the character frame). `out_root_world`
 /// (optional) receives the character frame, which stays where init placed it. A substep whose
 /// constraint matrix cannot be factorised applies no impulses and counts in

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace aloha {
 namespace {
@@ -63,6 +64,85 @@ TEST(DynamicWalk, InitRejectsBadInput) {
     const Status st = init_dynamic_walk(skel, pose.cview(), glm::mat4(1.0f), state);
     ASSERT_FALSE(st.ok());
     EXPECT_NE(st.error().message.find("LeftHip"), std::string::npos);
+}
+
+// The humanoid under a "root" joint on the ground (Unreal's layout) with an IK helper leaf beside
+// the pelvis: the same joints, one level down.
+Skeleton rooted_humanoid() {
+    const Skeleton h = test::make_humanoid(true);
+    RawSkeleton raw;
+    raw.joints.push_back(RawJoint{"root", -1, glm::vec3(0.0f), glm::quat(1, 0, 0, 0), glm::vec3(1.0f)});
+    for (int j = 0; j < h.joint_count(); ++j) {
+        const auto u = static_cast<size_t>(j);
+        raw.joints.push_back(RawJoint{h.names()[u], h.parents()[u] + 1, h.rest_translations()[u], h.rest_rotations()[u], glm::vec3(1.0f)});
+    }
+    raw.joints.push_back(RawJoint{"ik_foot_root", 0, glm::vec3(0.1f, 0.0f, 0.0f), glm::quat(1, 0, 0, 0), glm::vec3(1.0f)});
+    return build_skeleton(raw, "rooted").value();
+}
+
+TEST(DynamicWalk, AJointAboveThePelvisAtTheOriginChangesNothing) {
+    // With the pelvis as the root body, "root" (at the identity) and the helper are not simulated: the
+    // bodies, contacts and targets are the pelvis-rooted humanoid's, so every step computes the same
+    // numbers and the simulated pelvis and feet agree with the plain simulation's to float rounding
+    // (1e-5 m: the only new operations are products with the identity and its inverse).
+    Sim plain;
+    const Skeleton skel = rooted_humanoid();
+    const int hips = skel.find("Hips"), root = skel.find("root"), helper = skel.find("ik_foot_root");
+    PoseBuffers out = test::rest_pose(skel);
+    std::vector<glm::quat> target(out.r.size());
+    auto targets = [&](float t) {
+        // The plain fixture's targets, moved one joint down; root and helper at rest.
+        const glm::vec3 pelvis = test::walk_target(plain.skel, t, plain.walk, plain.target);
+        for (int j = 0; j < plain.skel.joint_count(); ++j) target[static_cast<size_t>(skel.find(plain.skel.names()[static_cast<size_t>(j)]))] = plain.target[static_cast<size_t>(j)];
+        target[static_cast<size_t>(root)] = target[static_cast<size_t>(helper)] = glm::quat(1, 0, 0, 0);
+        return pelvis;
+    };
+    const glm::vec3 start = targets(0.0f);
+    out.r = target;
+    out.t[static_cast<size_t>(hips)] = start;
+    test::compute_model(skel, out);
+    DynamicWalkSettings settings;
+    settings.root_joint = hips;
+    DynamicWalkState state;
+    ASSERT_TRUE(init_dynamic_walk(skel, out.cview(), glm::mat4(1.0f), state, settings).ok());
+    ASSERT_EQ(state.bodies.size(), plain.state.bodies.size());
+    EXPECT_EQ(state.bodies[0].joint, hips);
+    EXPECT_EQ(state.owner[static_cast<size_t>(root)], -1);
+    EXPECT_EQ(state.owner[static_cast<size_t>(helper)], -1);
+    EXPECT_EQ(state.contacts.size(), plain.state.contacts.size());
+    const int foot = skel.find("LeftAnkle"), plain_foot = plain.skel.find("LeftAnkle");
+    float worst = 0.0f;
+    for (int i = 1; i <= 120; ++i) {
+        plain.step(1.0f / 60.0f);
+        const glm::vec3 pelvis = targets(static_cast<float>(i) / 60.0f);
+        step_dynamic_walk(skel, target, pelvis, 1.0f / 60.0f, state, out.view(), nullptr);
+        for (const auto& [a, b] : {std::pair{hips, 0}, std::pair{foot, plain_foot}})
+            worst = std::max(worst, glm::length(glm::vec3(out.m[static_cast<size_t>(a)][3]) - glm::vec3(plain.out.m[static_cast<size_t>(b)][3])));
+        // The joints above and beside the pelvis keep their target.
+        EXPECT_LT(glm::length(out.t[static_cast<size_t>(root)]), 1e-6f);
+        EXPECT_GT(std::abs(out.r[static_cast<size_t>(root)].w), 1.0f - 1e-6f);
+        EXPECT_LT(glm::length(glm::vec3(out.m[static_cast<size_t>(helper)][3]) - glm::vec3(0.1f, 0.0f, 0.0f)), 1e-6f);
+    }
+    std::printf("[figure] rooted humanoid: pelvis and left ankle within %.2e m of the pelvis-rooted simulation over 2 s\n", static_cast<double>(worst));
+    EXPECT_LT(worst, 1e-5f) << "pelvis and left ankle against the pelvis-rooted simulation";
+    EXPECT_LT(max_constraint_error(state), 1e-3f);
+}
+
+TEST(DynamicWalk, RootJointAndContactsMustBeInTheSkeletonsSimulatedPart) {
+    const Skeleton skel = rooted_humanoid();
+    PoseBuffers pose = test::rest_pose(skel);
+    DynamicWalkState state;
+    DynamicWalkSettings settings;
+    settings.root_joint = 999;
+    const Status far = init_dynamic_walk(skel, pose.cview(), glm::mat4(1.0f), state, settings);
+    ASSERT_FALSE(far.ok());
+    EXPECT_NE(far.error().message.find("root joint 999 is not a joint"), std::string::npos) << far.error().to_string();
+    settings.root_joint = skel.find("Hips");
+    settings.contact_points = {DynamicContactPoint{skel.find("ik_foot_root"), glm::vec3(0.0f)}};
+    const Status outside = init_dynamic_walk(skel, pose.cview(), glm::mat4(1.0f), state, settings);
+    ASSERT_FALSE(outside.ok());
+    EXPECT_NE(outside.error().message.find("'ik_foot_root' is outside the simulated subtree of root joint 'Hips'"), std::string::npos)
+        << outside.error().to_string();
 }
 
 }  // namespace
