@@ -6,6 +6,7 @@
 #include "engine/assets/file_io.hpp"
 #include "engine/assets/text_scan.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -83,7 +84,7 @@ Result<BvhData> parse_bvh(std::string_view text, const std::string& source_name,
     const int frames_line = number;
     const std::optional<int64_t> frames = parse_int(frames_tok->text);
     if (!frames) return make_error(source_name, "Frames count '" + std::string(frames_tok->text) + "' is not an integer", number, frames_tok->column);
-    if (*frames < 1) return make_error(source_name, "Frames count must be at least 1, got " + std::to_string(*frames), number, frames_tok->column);
+    if (*frames < 0) return make_error(source_name, "Frames count must be at least 0, got " + std::to_string(*frames), number, frames_tok->column);
     if (*frames > kMaxBvhFrames)
         return make_error(source_name, "Frames count " + std::to_string(*frames) + " exceeds the limit of " + std::to_string(kMaxBvhFrames), number, frames_tok->column);
     if (!next_tokens(cursor, &toks, &number)) return make_error(source_name, "missing 'Frame Time:' (truncated file?)", number);
@@ -91,7 +92,8 @@ Result<BvhData> parse_bvh(std::string_view text, const std::string& source_name,
     if (!time_tok) return make_error(source_name, "expected 'Frame Time: <seconds>'", number);
     const std::optional<float> frame_time = parse_float(time_tok->text);
     if (!frame_time) return make_error(source_name, "Frame Time '" + std::string(time_tok->text) + "' is not a number", number, time_tok->column);
-    if (!std::isfinite(*frame_time) || *frame_time <= 0.0f || *frame_time > 10.0f)
+    // A skeleton-only file (Frames: 0) may say "Frame Time: 0": it has no frames to time.
+    if (!std::isfinite(*frame_time) || *frame_time < 0.0f || (*frame_time == 0.0f && *frames > 0) || *frame_time > 10.0f)
         return make_error(source_name, "Frame Time must be in (0, 10] seconds, got '" + std::string(time_tok->text) + "'", number, time_tok->column);
 
     // Count the motion rows before allocating anything sized by Frames.
@@ -176,7 +178,12 @@ Result<BvhData> parse_bvh(std::string_view text, const std::string& source_name,
         }
     }
 
-    std::vector<float> times(frame_count);
+    if (frame_count == 0)  // a skeleton-only file: its clip is one key of the rest pose (the OFFSETs, no rotation)
+        for (size_t j = 0; j < joint_count; ++j) {
+            if (has_pos[j]) raw.tracks[j].translations.values.push_back(h.skeleton.joints[j].translation);
+            if (has_rot[j]) raw.tracks[j].rotations.values.push_back(glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+        }
+    std::vector<float> times(std::max<size_t>(frame_count, 1), 0.0f);
     for (size_t f = 0; f < frame_count; ++f) times[f] = static_cast<float>(static_cast<double>(f) * static_cast<double>(*frame_time));
     for (size_t j = 0; j < joint_count; ++j) {
         if (has_pos[j]) raw.tracks[j].translations.times = times;
@@ -191,6 +198,7 @@ Result<BvhData> parse_bvh(std::string_view text, const std::string& source_name,
     out.skeleton = std::move(h.skeleton);
     out.frame_time = *frame_time;
     out.frame_count = static_cast<int>(frame_count);
+    if (frame_count == 0) out.notes.push_back("the file has no frames (Frames: 0): its clip holds the rest pose");
     return out;
 }
 

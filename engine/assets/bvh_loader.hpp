@@ -9,6 +9,8 @@
 //   axes without a position channel keep the OFFSET value. Joints with a position channel get a
 //   translation track; every joint with a rotation channel gets a rotation track; no scale tracks.
 // - Key k is at time k * frame_time; duration = (frame_count - 1) * frame_time; start_offset = 0.
+//   A skeleton-only file ("Frames: 0", whose Frame Time may be 0) gets one key at 0 holding the rest
+//   pose, with a note.
 // - Tracks are in RUNTIME order (see animation_remap.hpp); for BVH, raw and runtime order coincide
 //   because the file lists joints depth-first with parents first.
 // - End Sites are not joints unless keep_end_sites; kept ones are named "<parent>_End".
@@ -20,6 +22,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace aloha {
 
@@ -34,7 +37,8 @@ struct BvhData {
     RawSkeleton skeleton;    ///< joints in file order (parents first)
     RawAnimation animation;  ///< one clip named after the file stem; tracks in runtime joint order
     float frame_time = 0.0f; ///< seconds per frame ("Frame Time")
-    int frame_count = 0;     ///< number of frames ("Frames")
+    int frame_count = 0;     ///< number of frames ("Frames"); 0 for a skeleton-only file (its clip: one rest-pose key)
+    std::vector<std::string> notes;  ///< what was read differently from a take (a skeleton-only file)
 };
 
 /// Most frames a BVH may declare; larger "Frames" values are refused before allocating.

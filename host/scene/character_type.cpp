@@ -95,6 +95,7 @@ Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
     if (!original.ok()) return original.error();
     RigNormalisation change;
     if (Status s = adopt_rig(original.value(), desc, RigFormat::Bvh, desc.bvh, type, change); !s.ok()) return s;
+    for (const std::string& note : bvh.value().notes) type.notes.push_back(note);
     RawAnimation mocap = bvh.value().animation;
     normalise_clip(mocap, original.value(), change);
     mocap.name = desc.name + ".mocap";

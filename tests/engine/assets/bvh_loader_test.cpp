@@ -185,6 +185,33 @@ TEST(BvhParse, LineEndingsTabsAndPartialPositionChannels) {
     EXPECT_NEAR(std::abs(glm::dot(d.animation.tracks[0].rotations.values[1], expect)), 1.0f, 1e-6f);
 }
 
+TEST(BvhParse, SkeletonOnlyFileHasARestPoseClip) {
+    // "Frames: 0" (tools write skeleton-only files, some with "Frame Time: 0"): one key at 0 holding the
+    // rest pose, the OFFSETs (not the zero a position channel would read) and no rotation; a note says so.
+    for (const char* frame_time : {"0.0333333", "0"}) {
+        const std::string text = std::string("HIERARCHY\nROOT Hips\n{\n OFFSET 1 90 2\n CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+                                             " JOINT Knee\n {\n  OFFSET 0 -40 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n"
+                                             "  End Site\n  {\n   OFFSET 0 -40 0\n  }\n }\n}\nMOTION\nFrames: 0\nFrame Time: ") +
+                                 frame_time + "\n";
+        BvhOptions o;
+        o.unit_scale = 0.01f;
+        Result<BvhData> r = parse_bvh(text, "skeleton.bvh", o);
+        ASSERT_TRUE(r.ok()) << r.error().to_string();
+        const BvhData& d = r.value();
+        EXPECT_EQ(d.frame_count, 0);
+        EXPECT_EQ(d.animation.duration, 0.0f);
+        ASSERT_EQ(d.animation.tracks[0].translations.values.size(), 1u);
+        EXPECT_EQ(d.animation.tracks[0].translations.values[0], d.skeleton.joints[0].translation);
+        EXPECT_EQ(d.animation.tracks[0].translations.times[0], 0.0f);
+        for (const auto& track : d.animation.tracks) {
+            ASSERT_EQ(track.rotations.values.size(), 1u);
+            EXPECT_EQ(track.rotations.values[0], glm::quat(1, 0, 0, 0));
+        }
+        ASSERT_EQ(d.notes.size(), 1u);
+        EXPECT_NE(d.notes[0].find("Frames: 0"), std::string::npos);
+    }
+}
+
 TEST(BvhLoad, MissingFileNamesIt) {
     Result<BvhData> r = load_bvh("/nonexistent/dir/walk.bvh");
     ASSERT_FALSE(r.ok());
