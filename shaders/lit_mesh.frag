@@ -8,7 +8,8 @@
 // Built again with DITHER (the dithered pipelines, gpu::LitPipelines): a screen-door fade keeps only the
 // pixels whose 4x4 Bayer value is below (offsets.w >> 8) & 31 (0..16, gpu::lit_dither_bits), the complement of an
 // impostor faded at -m (shaders/impostor.frag) for the same m, or with bit 13 the complement of those (the left
-// mesh of a mesh <-> mesh cross-fade); the pipelines without it never discard.
+// mesh of a mesh <-> mesh cross-fade); the pipelines without it never discard. The DITHER build also alpha-tests
+// (bit 14 of offsets.w, the cutoff in bits 16..31: gpu::lit_alpha_bits), for materials drawn with alpha masks.
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -45,6 +46,10 @@ void main() {
     if (dot(n, pc.camera.xyz - world) < 0.0) n = -n;
     vec4 albedo = v_colour;
     if ((pc.offsets.w & 2u) != 0u) albedo *= texture(base_colour_texture, vec2(v_normal_u.w, v_world_v.w));
+#ifdef DITHER
+    // Alpha test (gpu::lit_alpha_bits): bit 14 on, the cutoff in bits 16..31.
+    if ((pc.offsets.w & 0x4000u) != 0u && albedo.a < float(pc.offsets.w >> 16) / 65535.0) discard;
+#endif
     if ((pc.offsets.w & 4u) != 0u) {  // normal output (impostor bakes): 0.5 + 0.5 N, the draw's coverage in alpha
         out_colour = vec4(0.5 + 0.5 * n, albedo.a);
         return;

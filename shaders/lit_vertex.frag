@@ -32,5 +32,9 @@ void main() {
 #endif
     vec4 lit = v_lit;
     if ((pc.offsets.w & 2u) != 0u) lit *= texture(base_colour_texture, v_uv);
+#ifdef DITHER
+    // Alpha test (gpu::lit_alpha_bits), as shaders/lit_mesh.frag.
+    if ((pc.offsets.w & 0x4000u) != 0u && lit.a < float(pc.offsets.w >> 16) / 65535.0) discard;
+#endif
     out_colour = vec4(clamp(lit.rgb, 0.0, 1.0), lit.a);
 }

@@ -5,6 +5,7 @@
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace aloha::gltf_detail {
@@ -103,8 +104,17 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
                 return make_error(file, "baseColorFactor values must be in [0, 1]", 0, 0, where + ".pbrMetallicRoughness.baseColorFactor");
             m.base_colour[c] = static_cast<float>(f[static_cast<size_t>(c)]);
         }
-        if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty())
-            out->notes.push_back(where + ": alphaMode " + src.alphaMode + " is drawn opaque");
+        if (src.alphaMode == "MASK") {
+            if (!std::isfinite(src.alphaCutoff) || src.alphaCutoff < 0.0)
+                return make_error(file, "alphaCutoff must be a number of at least 0", 0, 0, where + ".alphaCutoff");
+            m.alpha_cutoff = static_cast<float>(std::min(src.alphaCutoff, 1.0));
+            if (src.alphaCutoff > 1.0) out->notes.push_back(where + ": alphaCutoff above 1: no fragment of the material is drawn");
+        } else if (src.alphaMode == "BLEND") {
+            m.alpha_cutoff = 0.5f;
+            out->notes.push_back(where + ": alphaMode BLEND is drawn alpha-tested at 0.5 (a crowd is not sorted back to front)");
+        } else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty()) {
+            return make_error(file, "alphaMode '" + src.alphaMode + "' is none of OPAQUE, MASK, BLEND", 0, 0, where + ".alphaMode");
+        }
         const tinygltf::TextureInfo& info = src.pbrMetallicRoughness.baseColorTexture;
         if (info.index >= 0) {
             const std::string tw = where + ".pbrMetallicRoughness.baseColorTexture";

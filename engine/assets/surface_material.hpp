@@ -33,6 +33,10 @@ struct SurfaceMaterial {
     glm::vec4 base_colour{1.0f};       ///< glTF baseColorFactor: LINEAR RGB and alpha, each in [0, 1]
     int texture = -1;                  ///< index into the owner's TextureImage list, -1 = none
     bool double_sided = false;         ///< glTF doubleSided: back faces are shown
+    /// Alpha test: < 0 draws every fragment (opaque); otherwise fragments whose alpha (base colour alpha x
+    /// texture alpha) is below it are not drawn (glTF alphaMode MASK with its alphaCutoff; BLEND is drawn
+    /// as MASK at 0.5, since a crowd is not sorted back to front).
+    float alpha_cutoff = -1.0f;
 };
 
 }  // namespace aloha

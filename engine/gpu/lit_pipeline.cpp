@@ -18,6 +18,8 @@
 #include "shaders/lit_vertex_dither_frag.h"
 #include "shaders/lit_vertex_frag.h"
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 #include <utility>
 
@@ -130,6 +132,12 @@ uint32_t lit_dither_bits(float share) {
     uint32_t kept = 0;  // Bayer values b (0..15) whose threshold (b + 0.5) / 16 is below the share
     for (uint32_t b = 0; b < 16; ++b) kept += (static_cast<float>(b) + 0.5f) / 16.0f < s ? 1u : 0u;
     return kept << 8 | (share < 0.0f ? kLitDitherComplement : 0u);
+}
+
+uint32_t lit_alpha_bits(float cutoff) {
+    if (!(cutoff >= 0.0f)) return 0u;
+    const auto q = static_cast<uint32_t>(std::lround(std::min(cutoff, 1.0f) * 65535.0f));
+    return kLitAlphaTest | q << 16;
 }
 
 glm::mat4 vulkan_clip_from_gl() {

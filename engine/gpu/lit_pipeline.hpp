@@ -33,6 +33,12 @@ enum LitMode : uint32_t {
 [[nodiscard]] uint32_t lit_dither_bits(float share);
 /// Bit of LitPush::offsets.w that turns the dithered pipelines' kept pixels into their complement.
 inline constexpr uint32_t kLitDitherComplement = 1u << 13;
+/// Bit of LitPush::offsets.w that turns on the dithered pipelines' alpha test (lit_alpha_bits).
+inline constexpr uint32_t kLitAlphaTest = 1u << 14;
+/// Offsets.w bits of an alpha test at `cutoff` in [0, 1] for the dithered pipelines: kLitAlphaTest and the
+/// cutoff in bits 16..31 (cutoff x 65535 rounded); fragments whose albedo alpha is below it are discarded.
+/// A negative cutoff (no alpha test) gives 0.
+[[nodiscard]] uint32_t lit_alpha_bits(float cutoff);
 
 /// Push constants shared by both pipelines (128 bytes, std430 layout of shaders/lit_mesh.vert).
 struct LitPush {

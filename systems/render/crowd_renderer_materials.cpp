@@ -63,6 +63,9 @@ Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& materia
     Material m;
     m.colour = glm::vec4(std::pow(f.r, 1.0f / 2.2f), std::pow(f.g, 1.0f / 2.2f), std::pow(f.b, 1.0f / 2.2f), f.a);
     m.texture = texture;
+    if (!(material.alpha_cutoff <= 1.0f))
+        return gpu::gpu_error("register_material: '" + material.name + "' alpha cutoff must be at most 1 (negative: opaque)");
+    m.alpha_bits = gpu::lit_alpha_bits(material.alpha_cutoff);
     materials_.push_back(m);
     return static_cast<uint32_t>(materials_.size() - 1);
 }

@@ -440,6 +440,49 @@ TEST(GltfMaterials, UnusableTexturesAreNoted) {
     EXPECT_EQ(c.materials[static_cast<size_t>(c.meshes[1].material)].texture, -1);
 }
 
+// alphaMode: MASK keeps its alphaCutoff (default 0.5), BLEND is alpha-tested at 0.5 with a note, OPAQUE
+// and no mode draw every fragment; a cutoff above 1 is noted (nothing drawn), a negative one or an
+// unknown mode is an error naming the material.
+TEST(GltfMaterials, AlphaModes) {
+    auto with = [](const json& materials) {
+        GltfBuilder b;
+        b.doc["materials"] = materials;
+        json prims = json::array();
+        for (size_t k = 0; k < materials.size(); ++k) {
+            json p = triangle(b)[0];
+            p["material"] = k;
+            prims.push_back(p);
+        }
+        const int j = b.node({{"name", "j"}, {"mesh", b.mesh(prims)}});
+        b.root(j);
+        b.skin({j}, {});
+        return load(b);
+    };
+    Result<GltfCharacter> r = with(json::array({{{"alphaMode", "MASK"}, {"alphaCutoff", 0.25}}, {{"alphaMode", "MASK"}},
+                                                {{"alphaMode", "BLEND"}}, {{"alphaMode", "OPAQUE"}, {"alphaCutoff", 0.7}},
+                                                json::object(), {{"alphaMode", "MASK"}, {"alphaCutoff", 2.0}}}));
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const std::vector<SurfaceMaterial>& m = r.value().materials;
+    ASSERT_EQ(m.size(), 6u);
+    EXPECT_EQ(m[0].alpha_cutoff, 0.25f);
+    EXPECT_EQ(m[1].alpha_cutoff, 0.5f);
+    EXPECT_EQ(m[2].alpha_cutoff, 0.5f);
+    EXPECT_LT(m[3].alpha_cutoff, 0.0f);
+    EXPECT_LT(m[4].alpha_cutoff, 0.0f);
+    EXPECT_EQ(m[5].alpha_cutoff, 1.0f);
+    EXPECT_TRUE(has_note(r.value(), "materials[2]: alphaMode BLEND is drawn alpha-tested at 0.5"));
+    EXPECT_TRUE(has_note(r.value(), "materials[5]: alphaCutoff above 1: no fragment of the material is drawn"));
+    for (const std::string& n : r.value().notes) EXPECT_EQ(n.find("drawn opaque"), std::string::npos) << n;
+
+    Result<GltfCharacter> negative = with(json::array({{{"alphaMode", "MASK"}, {"alphaCutoff", -0.1}}}));
+    ASSERT_FALSE(negative.ok());
+    EXPECT_EQ(negative.error().path, "materials[0].alphaCutoff");
+    Result<GltfCharacter> unknown = with(json::array({{{"alphaMode", "CUTOUT"}}}));
+    ASSERT_FALSE(unknown.ok());
+    EXPECT_EQ(unknown.error().path, "materials[0].alphaMode");
+    EXPECT_NE(unknown.error().message.find("'CUTOUT' is none of OPAQUE, MASK, BLEND"), std::string::npos) << unknown.error().to_string();
+}
+
 // Duplicate, dotted and prefixed names: kept as they are, a repeated name made unique with a note.
 TEST(GltfNames, DuplicateAndDottedNames) {
     GltfBuilder b;

@@ -167,6 +167,53 @@ TEST(MaterialRender, FullTextureAndCharacterLighting) {
     EXPECT_EQ(ctx->validation_message_count(), 0u);
 }
 
+// Alpha masks (glTF MASK): the texture's four texels carry alpha 255, 0, 100 and 200; a material drawn with
+// cutoff c shows exactly the texels whose alpha / 255 >= c and the clear colour elsewhere (each texel a
+// whole 32 x 32 block, nearest sampling: no partial coverage). Opaque (no cutoff) shows all four; the
+// per-vertex-lit pipelines test the same way.
+TEST(MaterialRender, AlphaMaskDrawsTexelsAtOrAboveTheCutoff) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+        ASSERT_TRUE(made.ok());
+        CrowdRenderer& r = *made.value();
+        TextureImage t = quad_texture();
+        const uint8_t alpha[4] = {255, 0, 100, 200};
+        for (int k = 0; k < 4; ++k) t.rgba[static_cast<size_t>(4 * k + 3)] = alpha[k];
+        const uint32_t tex = r.register_texture(t).value();
+        const glm::u8vec4 texel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
+        struct Case {
+            float cutoff;
+            bool vertex_lit;
+        };
+        for (const Case c : {Case{-1.0f, false}, Case{0.5f, false}, Case{0.3f, false}, Case{0.79f, false}, Case{0.5f, true}}) {
+            SurfaceMaterial m;
+            m.alpha_cutoff = c.cutoff;
+            const uint32_t mat = r.register_material(m, static_cast<int>(tex)).value();
+            const Quad q;
+            const std::vector<uint32_t> ids = {mat};
+            const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}, "meshes", c.vertex_lit).value();
+            const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+            Result<gpu::Rgba8Image> img = draw(r, *ctx, unlit_frame(meshes), "aloha_material_alpha.png");
+            ASSERT_TRUE(img.ok()) << img.error().to_string();
+            for (uint32_t k = 0; k < 4; ++k) {
+                const bool shown = c.cutoff < 0.0f || static_cast<float>(alpha[k]) / 255.0f >= c.cutoff;
+                int n = 0;
+                for (uint32_t y = (k / 2) * 32; y < (k / 2) * 32 + 32; ++y)
+                    for (uint32_t x = (k % 2) * 32; x < (k % 2) * 32 + 32; ++x)
+                        n += near(pixel(img.value(), x, y), shown ? texel[k] : glm::u8vec4(0, 0, 0, 255), 1);
+                EXPECT_EQ(n, 32 * 32) << "cutoff " << c.cutoff << (c.vertex_lit ? " vertex-lit" : "") << ", texel " << k
+                                      << (shown ? " shown" : " discarded");
+            }
+        }
+        SurfaceMaterial above;
+        above.alpha_cutoff = 1.5f;
+        EXPECT_FALSE(r.register_material(above, -1).ok());
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
 // A texture of 1-texel black and white columns (128 x 128, bilinear): its mip level 1 averages each pair of columns,
 // so it is one grey. Drawn minified by 2^0.7 texels a pixel both ways (lod 0.7), the nearest level (round(0.7) = 1)
 // is that grey at every pixel (exactly: equal texels), while blending levels 0 and 1 keeps 30% of level 0's columns: pixels far apart. The
