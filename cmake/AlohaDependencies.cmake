@@ -10,6 +10,8 @@ find_package(PNG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)  # skin vertex-cache order (libmeshoptimizer-dev)
 find_package(draco CONFIG REQUIRED)          # KHR_draco_mesh_compression glTF meshes (libdraco-dev; linked as draco::draco_static)
 find_package(Eigen3 3.3 CONFIG REQUIRED)       # IK and dynamics linear algebra (libeigen3-dev)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(ALOHA_WEBP REQUIRED IMPORTED_TARGET GLOBAL libwebp)  # EXT_texture_webp glTF textures (libwebp-dev)
 find_package(glfw3 3.3 CONFIG QUIET)  # only the viewer's window library (aloha::gpu_window) needs it
 
 # OpenSubdiv 3.5 on Debian: its CMake config names a static libosdCPU.a the package lacks,

@@ -22,6 +22,7 @@ PACKAGES=(
   libimgui-dev                                  # viewer overlay
   libpng-dev                                    # PNG output
   libstb-dev                                    # stb_image: glTF base colour textures
+  libwebp-dev                                   # WebP glTF textures (EXT_texture_webp)
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   xvfb xauth                                    # viewer tests under a virtual X server
   clang libclang-rt-14-dev                      # libFuzzer targets

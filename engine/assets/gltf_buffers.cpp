@@ -21,8 +21,8 @@ constexpr std::string_view kDraco = kDracoExtension;
 
 // What each unsupported extension a file can require does, and what to do about it.
 std::string unsupported_hint(const std::string& name) {
-    if (name == "KHR_texture_basisu" || name == "EXT_texture_webp" || name == "EXT_texture_avif")
-        return "only PNG and JPEG images are decoded; export the textures as PNG or JPEG";
+    if (name == "KHR_texture_basisu" || name == "EXT_texture_avif")
+        return "only PNG, JPEG and WebP images are decoded; export the textures as PNG, JPEG or WebP";
     if (name == "KHR_meshopt_compression")
         return "only its earlier form EXT_meshopt_compression is decoded (the Debian meshoptimizer 0.18 has no newer codec); re-pack with "
                "`gltfpack -c`";
@@ -180,7 +180,7 @@ std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned 
 }
 
 std::vector<std::string> supported_required_extensions() {
-    return {"KHR_mesh_quantization", std::string(kMeshopt), "KHR_texture_transform", std::string(kDraco)};
+    return {"KHR_mesh_quantization", std::string(kMeshopt), "KHR_texture_transform", std::string(kDraco), std::string(kWebpExtension)};
 }
 
 Status prepare_buffers(tinygltf::Model* model, const std::string& file, std::vector<std::string>* notes) {

@@ -41,6 +41,8 @@ std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned 
 /// The compression extensions' names.
 inline constexpr std::string_view kMeshoptExtension = "EXT_meshopt_compression";
 inline constexpr std::string_view kDracoExtension = "KHR_draco_mesh_compression";
+/// The WebP texture extension's name (a texture's image source in WebP, gltf_material.cpp).
+inline constexpr std::string_view kWebpExtension = "EXT_texture_webp";
 
 /// A JSON value (an extension's member) as a non-negative integer, or -1 when it is not one (a fraction, a
 /// negative number, a string, more than 9e15).

@@ -1,9 +1,10 @@
-// glTF materials for the character loader: base colour factor, base colour texture (its texCoord
-// set, KHR_texture_transform, sampler wrap and filter modes) and the decoding of the images they use
-// (stb_image, RGBA8).
+// glTF materials for the character loader: base colour factor, alpha mode, base colour texture (its
+// texCoord set, KHR_texture_transform, sampler wrap and filter modes, EXT_texture_webp's source) and the
+// decoding of the images they use (stb_image for PNG and JPEG, libwebp for WebP; RGBA8).
 #include "engine/assets/gltf_detail.hpp"
 
 #include <stb_image.h>
+#include <webp/decode.h>
 
 #include <algorithm>
 #include <cmath>
@@ -58,13 +59,61 @@ Result<glm::mat3> texture_transform(const tinygltf::Value& ext, const std::strin
     return translate * rotate * scaling;
 }
 
+// True when `bytes` hold a WebP file (a RIFF container of form type WEBP).
+bool is_webp(const unsigned char* bytes, int size) {
+    return size >= 12 && std::equal(bytes, bytes + 4, "RIFF") && std::equal(bytes + 8, bytes + 12, "WEBP");
+}
+
+// Decodes a WebP image with libwebp into `image` (RGBA8); false with a reason in `log` otherwise.
+bool decode_webp(tinygltf::Image* image, int index, const unsigned char* bytes, int size, ImageDecodeLog* log) {
+    int w = 0, h = 0;
+    if (!WebPGetInfo(bytes, static_cast<size_t>(size), &w, &h)) {
+        log->failures.emplace_back(index, "not a WebP image libwebp can read (bad header)");
+        return false;
+    }
+    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide) {
+        log->failures.emplace_back(index, std::to_string(w) + " x " + std::to_string(h) + " pixels exceeds the limit of " + std::to_string(kMaxImageSide) +
+                                              " x " + std::to_string(kMaxImageSide));
+        return false;
+    }
+    image->image.resize(static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
+    if (!WebPDecodeRGBAInto(bytes, static_cast<size_t>(size), image->image.data(), image->image.size(), w * 4)) {
+        image->image.clear();
+        log->failures.emplace_back(index, "WebP decoding failed (corrupt data)");
+        return false;
+    }
+    image->width = w;
+    image->height = h;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    return true;
+}
+
+// The image a texture draws: its EXT_texture_webp source when it has one (the extension's fallback `source`
+// is for readers without WebP), else its `source`; -1 when it has neither. Errors name a malformed extension.
+Result<int> texture_image(const tinygltf::Texture& tex, const std::string& file, const std::string& where, size_t* webp) {
+    const auto ext = tex.extensions.find(std::string(kWebpExtension));
+    if (ext == tex.extensions.end()) return tex.source;
+    const std::string at = where + ".extensions." + std::string(kWebpExtension) + ".source";
+    if (!ext->second.IsObject() || !ext->second.Has("source")) return make_error(file, "has no 'source' image index", 0, 0, at);
+    const int64_t source = non_negative_integer(ext->second.Get("source"));
+    if (source < 0 || source > INT32_MAX) return make_error(file, "expected an image index", 0, 0, at);
+    ++*webp;
+    return static_cast<int>(source);
+}
+
 }  // namespace
 
 bool decode_image(tinygltf::Image* image, int index, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void* user) {
     auto* log = static_cast<ImageDecodeLog*>(user);
+    if (is_webp(bytes, size)) {
+        decode_webp(image, index, bytes, size, log);
+        return true;  // a failure is noted; the materials using the image are drawn untextured
+    }
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) {
-        log->failures.emplace_back(index, std::string("not a PNG or JPEG image stb_image can read (") + stbi_failure_reason() + ")");
+        log->failures.emplace_back(index, std::string("not a PNG, JPEG or WebP image (") + stbi_failure_reason() + ")");
         return true;
     }
     if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide) {
@@ -90,7 +139,7 @@ bool decode_image(tinygltf::Image* image, int index, std::string*, std::string*,
 Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out, std::vector<MaterialUv>* uv) {
     std::vector<int> texture_of_image(model.images.size(), -1);  // index into out->textures, -2 = unusable
     uv->assign(model.materials.size(), MaterialUv{});
-    size_t transformed = 0;
+    size_t transformed = 0, webp = 0;
     for (size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& src = model.materials[i];
         const std::string where = "materials[" + std::to_string(i) + "]";
@@ -131,12 +180,14 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
             }
             const tinygltf::Texture& tex = model.textures[static_cast<size_t>(info.index)];
             const std::string xw = "textures[" + std::to_string(info.index) + "]";
-            if (tex.source < 0 || static_cast<size_t>(tex.source) >= model.images.size()) {
-                out->notes.push_back(xw + ": no usable image source (" + std::to_string(tex.source) + "); " + m.name + " drawn untextured");
+            Result<int> source = texture_image(tex, file, xw, &webp);
+            if (!source.ok()) return source.error();
+            if (source.value() < 0 || static_cast<size_t>(source.value()) >= model.images.size()) {
+                out->notes.push_back(xw + ": no usable image source (" + std::to_string(source.value()) + "); " + m.name + " drawn untextured");
             } else if (tex.sampler >= static_cast<int>(model.samplers.size())) {
                 return make_error(file, "sampler " + std::to_string(tex.sampler) + " is out of range", 0, 0, xw);
             } else {
-                const auto img = static_cast<size_t>(tex.source);
+                const auto img = static_cast<size_t>(source.value());
                 const tinygltf::Image& image = model.images[img];
                 const std::string iw = "images[" + std::to_string(img) + "]";
                 if (texture_of_image[img] == -1) {
@@ -168,6 +219,9 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
         }
         out->materials.push_back(std::move(m));
     }
+    if (webp > 0)
+        out->notes.push_back(std::string(kWebpExtension) + ": " + std::to_string(webp) + " material texture" + (webp == 1 ? "" : "s") +
+                             " drawn from WebP images (libwebp)");
     if (transformed > 0)
         out->notes.push_back("KHR_texture_transform applied to the texture coordinates of " + std::to_string(transformed) + " material" +
                              (transformed == 1 ? "" : "s"));

@@ -274,7 +274,7 @@ TEST(GltfExtensions, UnsupportedRequiredExtensionIsNamed) {
     b.doc["extensionsRequired"] = {"KHR_texture_transform", "KHR_texture_basisu"};
     Result<GltfCharacter> r = load(b);
     ASSERT_FALSE(r.ok());
-    EXPECT_NE(r.error().to_string().find("requires extension KHR_texture_basisu: only PNG and JPEG images are decoded"), std::string::npos)
+    EXPECT_NE(r.error().to_string().find("requires extension KHR_texture_basisu: only PNG, JPEG and WebP images are decoded"), std::string::npos)
         << r.error().to_string();
     b.doc["extensionsRequired"] = {"EXT_made_up_thing"};
     r = load(b);

@@ -434,7 +434,7 @@ TEST(GltfMaterials, UnusableTexturesAreNoted) {
     ASSERT_TRUE(r.ok()) << r.error().to_string();
     const GltfCharacter& c = r.value();
     EXPECT_EQ(c.materials[0].texture, -1);
-    EXPECT_TRUE(has_note(c, "images[0]: not a PNG or JPEG image"));
+    EXPECT_TRUE(has_note(c, "images[0]: not a PNG, JPEG or WebP image"));
     EXPECT_TRUE(has_note(c, "1 primitive using a textured material without its TEXCOORD set"));
     ASSERT_EQ(c.meshes.size(), 2u);
     EXPECT_EQ(c.materials[static_cast<size_t>(c.meshes[1].material)].texture, -1);
