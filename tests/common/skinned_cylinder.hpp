@@ -4,9 +4,9 @@
 #pragma once
 
 #include "tests/common/gltf_builder.hpp"
+#include "tests/common/png_bytes.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
-#include <stb_image_write.h>
 
 #include <cmath>
 #include <cstdint>
@@ -51,15 +51,7 @@ struct SkinnedCylinder {
 
 /// A 2 x 2 RGBA8 PNG (red, green, blue, white) written with stb_image_write.
 inline std::vector<unsigned char> checker_png() {
-    const uint8_t rgba[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
-    std::vector<unsigned char> out;
-    stbi_write_png_to_func(
-        [](void* ctx, void* data, int size) {
-            auto* o = static_cast<std::vector<unsigned char>*>(ctx);
-            o->insert(o->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-        },
-        &out, 2, 2, 4, rgba, 8);
-    return out;
+    return png_bytes({255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255}, 2, 2);
 }
 
 /// The skeleton, skin, textured material and a mesh node of the cylinder in `b`, with the primitive's

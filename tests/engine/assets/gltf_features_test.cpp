@@ -6,9 +6,9 @@
 #include "engine/anim/skeleton.hpp"
 #include "engine/assets/gltf_loader.hpp"
 #include "tests/common/gltf_builder.hpp"
+#include "tests/common/png_bytes.hpp"
 
 #include <gtest/gtest.h>
-#include <stb_image_write.h>
 
 #include <cmath>
 
@@ -364,14 +364,7 @@ TEST(GltfMorphTargets, BaseShapeKeptOrDefaultWeightsApplied) {
 }
 
 // Writes a w x h RGBA8 PNG into memory with stb_image_write.
-std::vector<unsigned char> png(int w, int h, const std::vector<uint8_t>& rgba) {
-    std::vector<unsigned char> out;
-    stbi_write_png_to_func([](void* ctx, void* data, int size) {
-        auto* o = static_cast<std::vector<unsigned char>*>(ctx);
-        o->insert(o->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-    }, &out, w, h, 4, rgba.data(), w * 4);
-    return out;
-}
+std::vector<unsigned char> png(int w, int h, const std::vector<uint8_t>& rgba) { return test::png_bytes(rgba, w, h); }
 
 // One mesh, three primitives: a red factor material, a textured one (2x1 PNG, TEXCOORD_1, clamp)
 // and none (default). Each primitive keeps its material, UVs come from the texCoord set named by

@@ -4,9 +4,9 @@
 // encoded in the test with libwebp's lossless encoder, so decoded texels must equal the input exactly.
 #include "engine/assets/gltf_loader.hpp"
 #include "tests/common/gltf_builder.hpp"
+#include "tests/common/png_bytes.hpp"
 
 #include <gtest/gtest.h>
-#include <stb_image_write.h>
 #include <webp/encode.h>
 
 namespace aloha {
@@ -25,15 +25,6 @@ std::vector<unsigned char> webp(const std::vector<uint8_t>& rgba, int w, int h) 
     std::vector<unsigned char> bytes(out, out + size);
     WebPFree(out);
     return bytes;
-}
-
-std::vector<unsigned char> png(const std::vector<uint8_t>& rgba, int w, int h) {
-    std::vector<unsigned char> out;
-    stbi_write_png_to_func([](void* ctx, void* data, int size) {
-        auto* o = static_cast<std::vector<unsigned char>*>(ctx);
-        o->insert(o->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-    }, &out, w, h, 4, rgba.data(), w * 4);
-    return out;
 }
 
 // A textured triangle on one joint whose material's base colour texture is `texture` (a textures[] entry).
@@ -59,7 +50,7 @@ bool has_note(const GltfCharacter& c, const std::string& part) {
 TEST(GltfWebp, WebpSourceIsPreferredOverThePngFallback) {
     GltfBuilder b;
     std::vector<uint8_t> other(kTexels.size(), 7);  // the fallback PNG differs from the WebP image
-    const int fallback = b.image(png(other, 2, 2));
+    const int fallback = b.image(test::png_bytes(other, 2, 2));
     const int image = b.image(webp(kTexels, 2, 2), "image/webp");
     b.doc["extensionsUsed"] = {"EXT_texture_webp"};
     Result<GltfCharacter> r = load_with(b, {{"source", fallback}, {"extensions", {{"EXT_texture_webp", {{"source", image}}}}}});
