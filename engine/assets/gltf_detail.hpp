@@ -110,8 +110,9 @@ Result<SkinSet> read_skins(const tinygltf::Model& model, const std::vector<int>&
 /// Reads the humanoid the file declares (VRM 1.0's VRMC_vrm or VRM 0.x's VRM extension:
 /// humanoid.humanBones) into out->humanoid, canonical joint -> joint name, with notes for bones that
 /// are not canonical joints (fingers, eyes, jaw) or not skin joints. No extension: nothing. Errors
-/// (naming the JSON path under extensions/): a malformed humanBones, a node index out of range, a
-/// bone declared twice, one node for two bones. Requires read_skins' `skins` and out->skeleton.
+/// (naming the JSON path under extensions.): a malformed humanBones, a node index out of range (-1: the
+/// bone is ignored with a note), a bone declared twice, one node for two bones. Requires read_skins'
+/// `skins` and out->skeleton.
 Status read_declared_humanoid(const tinygltf::Model& model, const SkinSet& skins, const std::string& file, GltfCharacter* out);
 
 /// How a material's base colour texture reads a primitive's texture coordinates: the TEXCOORD set

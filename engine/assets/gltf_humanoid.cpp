@@ -14,9 +14,14 @@ namespace {
 // One declared bone: its VRM name, its node, and where it sits in the file (for errors).
 struct DeclaredBone {
     std::string bone;
-    int64_t node = -1;
+    int64_t node = -1;      // -1 also for a node that is no index (an error unless `unassigned`)
+    bool unassigned = false;  // "node": -1, as Unity-based exporters write a bone the avatar lacks
     std::string at;
 };
+
+DeclaredBone declared(const std::string& bone, const tinygltf::Value& node, const std::string& at) {
+    return {bone, non_negative_integer(node), node.IsNumber() && node.GetNumberAsDouble() == -1.0, at};
+}
 
 // The VRM 1.0 form: humanoid.humanBones is an object of bone name -> {"node": index}.
 Status read_vrm1(const tinygltf::Value& bones, const std::string& at, const std::string& file, std::vector<DeclaredBone>* out) {
@@ -26,7 +31,7 @@ Status read_vrm1(const tinygltf::Value& bones, const std::string& at, const std:
         const std::string here = at + "." + name;
         if (!entry.IsObject() || !entry.Has("node"))
             return make_error(file, "expected an object with a 'node' index", 0, 0, here);
-        out->push_back({name, non_negative_integer(entry.Get("node")), here + ".node"});
+        out->push_back(declared(name, entry.Get("node"), here + ".node"));
     }
     return {};
 }
@@ -39,7 +44,7 @@ Status read_vrm0(const tinygltf::Value& bones, const std::string& at, const std:
         const std::string here = at + "[" + std::to_string(i) + "]";
         if (!entry.IsObject() || !entry.Has("bone") || !entry.Get("bone").IsString() || !entry.Has("node"))
             return make_error(file, "expected an object with a 'bone' name and a 'node' index", 0, 0, here);
-        out->push_back({entry.Get("bone").Get<std::string>(), non_negative_integer(entry.Get("node")), here + ".node"});
+        out->push_back(declared(entry.Get("bone").Get<std::string>(), entry.Get("node"), here + ".node"));
     }
     return {};
 }
@@ -71,8 +76,12 @@ Status read_declared_humanoid(const tinygltf::Model& model, const SkinSet& skins
     std::map<std::string, std::string> joints;     // canonical -> joint name
     std::map<int64_t, std::string> bone_of_node;   // one bone per node, as VRM requires
     std::set<std::string> seen;
-    std::vector<std::string> not_joints, not_canonical;
+    std::vector<std::string> not_joints, not_canonical, unassigned;
     for (const DeclaredBone& b : bones) {
+        if (b.unassigned) {
+            unassigned.push_back(b.bone);
+            continue;
+        }
         if (b.node < 0 || b.node >= static_cast<int64_t>(model.nodes.size()))
             return make_error(file, "bone '" + b.bone + "': expected a node index 0-" + std::to_string(model.nodes.size() - 1), 0, 0, b.at);
         if (!seen.insert(b.bone).second) return make_error(file, "bone '" + b.bone + "' is declared twice", 0, 0, b.at);
@@ -98,6 +107,7 @@ Status read_declared_humanoid(const tinygltf::Model& model, const SkinSet& skins
                          (not_canonical.empty() ? "" : " (not canonical, carried along: " + joined(not_canonical) + ")"));
     if (!not_joints.empty())
         out->notes.push_back(origin + ": bones on nodes that are no skin's joints, left to the naming conventions: " + joined(not_joints));
+    if (!unassigned.empty()) out->notes.push_back(origin + ": bones declared without a node (-1), ignored: " + joined(unassigned));
     return {};
 }
 

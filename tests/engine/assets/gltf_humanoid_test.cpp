@@ -80,6 +80,11 @@ TEST(GltfHumanoid, BonesTheLayersDoNotUseAreNotedNotMapped) {
     EXPECT_EQ(g.value().humanoid.joints.at("Hips"), f.names.at("Hips"));
     EXPECT_TRUE(has_note(g.value(), "not canonical, carried along: leftEye, leftIndexProximal"));
     EXPECT_TRUE(has_note(g.value(), "no skin's joints, left to the naming conventions: spine (nodes[" + std::to_string(spine_node) + "])"));
+    // "node": -1, as Unity-based exporters write a bone the avatar lacks: ignored with a note, not an error.
+    f.gltf["extensions"]["VRMC_vrm"]["humanoid"]["humanBones"]["jaw"] = {{"node", -1}};
+    auto unassigned = parse(f.gltf);
+    ASSERT_TRUE(unassigned.ok()) << unassigned.error().to_string();
+    EXPECT_TRUE(has_note(unassigned.value(), "bones declared without a node (-1), ignored: jaw"));
 }
 
 // Each malformed declaration: the error names the file and the JSON path and says what is wrong.
@@ -100,7 +105,7 @@ TEST(GltfHumanoid, MalformedDeclarationsAreRefusedNamingThePath) {
          "extensions.VRMC_vrm.humanoid.humanBones.hips", "expected an object with a 'node' index"},
         {"node out of range", true, [](nlohmann::json& j) { j["extensions"]["VRMC_vrm"]["humanoid"]["humanBones"]["hips"]["node"] = 9999; },
          "extensions.VRMC_vrm.humanoid.humanBones.hips.node", "bone 'hips': expected a node index 0-"},
-        {"negative node", true, [](nlohmann::json& j) { j["extensions"]["VRMC_vrm"]["humanoid"]["humanBones"]["hips"]["node"] = -1; },
+        {"negative node", true, [](nlohmann::json& j) { j["extensions"]["VRMC_vrm"]["humanoid"]["humanBones"]["hips"]["node"] = -2; },
          "extensions.VRMC_vrm.humanoid.humanBones.hips.node", "expected a node index"},
         {"fractional node", true, [](nlohmann::json& j) { j["extensions"]["VRMC_vrm"]["humanoid"]["humanBones"]["hips"]["node"] = 1.5; },
          "extensions.VRMC_vrm.humanoid.humanBones.hips.node", "expected a node index"},
