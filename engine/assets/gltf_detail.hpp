@@ -91,6 +91,7 @@ struct JointBinding {
     int node = -1;
     glm::mat4 fold{1.0f};
     bool folded = false;
+    std::vector<int> chain;  ///< the folded non-joint ancestor nodes, top-most first (fold = their product)
 };
 
 /// The character's joints gathered from every skin (see gltf_loader.hpp for the order).

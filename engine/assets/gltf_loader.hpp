@@ -9,8 +9,10 @@
 //   and its joint parent (or above a root joint: a scale-100 armature, CesiumMan's Z_UP and
 //   Armature `matrix` nodes) are folded into that joint's rest transform and into its animation
 //   keys, so model space equals the glTF scene's world space (Y up). Folding keys is exact when the
-//   folded transform has uniform scale (otherwise a note is added). Animations of non-joint nodes
-//   are ignored (one note per channel).
+//   folded transform has uniform scale (otherwise a note is added). An animated node among those
+//   (an armature object moved instead of its root bone) is folded key by key: the joints below it get
+//   keys at the union of its and their key times, each the product of the sampled transforms (one
+//   note per clip). Animations of other non-joint nodes are ignored (one note per channel).
 // - inverse_bind_matrices[i] belongs to raw joint i (identity when its skin has none). Skinning:
 //   v_model = sum_k w_k * model[runtime joint] * inverse_bind_matrices[raw joint] * v. The mesh
 //   node's own transform is ignored, as the spec requires for skinned meshes. Meshes are returned in

@@ -113,6 +113,7 @@ Result<SkinSet> read_skins(const tinygltf::Model& model, const std::vector<int>&
             if (!pm.ok()) return pm.error();
             b.fold = pm.value() * b.fold;
             b.folded = true;
+            b.chain.insert(b.chain.begin(), p);
             p = parents[static_cast<size_t>(p)];
         }
         if (b.folded) {

@@ -8,6 +8,8 @@
 #include "tests/common/gltf_builder.hpp"
 #include "tests/common/png_bytes.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -195,6 +197,50 @@ TEST(GltfArmatureTransforms, MatrixAndRotationAbove) {
     Result<Skeleton> s = build_skeleton(r.value().skeleton, "fixture");
     ASSERT_TRUE(s.ok());
     expect_near(glm::vec3(rest_model(s.value())[0][3]), glm::vec3(1, 1, 0));
+}
+
+// An animated node above the joints (an "Armature" object moved and turned in Blender, not its root bone):
+// its keys are folded into the root joint's. Armature: translation (0,0,0) -> (0,0,2) over 0..1 s and a
+// rotation about y 0 -> 90 degrees over 0..1 s; the joint "hips" at rest (0,1,0) with its own rotation
+// about x 0 -> 60 degrees over 0..0.5 s; its child "spine" at (0,0.5,0) is not re-keyed. The root joint's
+// keys fall at the union of the times (0, 0.5, 1) and equal Armature(t) * hips(t) there, each factor
+// sampled as glTF's LINEAR (slerp) prescribes; float rounding of two chained products: 1e-5.
+TEST(GltfArmatureTransforms, AnimatedNodeAboveTheJointsMovesThem) {
+    GltfBuilder b;
+    const int spine = b.node({{"name", "spine"}, {"translation", {0, 0.5, 0}}});
+    const int hips = b.node({{"name", "hips"}, {"translation", {0, 1, 0}}, {"children", {spine}}});
+    const int armature = b.node({{"name", "Armature"}, {"children", {hips}}});
+    b.root(armature);
+    b.skin({hips, spine}, {});
+    const glm::quat y90 = glm::angleAxis(1.5707963f, glm::vec3(0, 1, 0)), x60 = glm::angleAxis(1.0471976f, glm::vec3(1, 0, 0));
+    auto quat4 = [](glm::quat q) { return glm::vec4(q.x, q.y, q.z, q.w); };
+    const int t01 = b.scalars({0.0f, 1.0f}), t05 = b.scalars({0.0f, 0.5f});
+    const int arm_t = b.vec3({{0, 0, 0}, {0, 0, 2}}), arm_r = b.vec4({quat4(glm::quat(1, 0, 0, 0)), quat4(y90)});
+    const int hip_r = b.vec4({quat4(glm::quat(1, 0, 0, 0)), quat4(x60)});
+    b.doc["animations"] = json::array({{{"name", "move"},
+        {"samplers", json::array({{{"input", t01}, {"output", arm_t}}, {{"input", t01}, {"output", arm_r}}, {{"input", t05}, {"output", hip_r}}})},
+        {"channels", json::array({{{"sampler", 0}, {"target", {{"node", armature}, {"path", "translation"}}}},
+                                  {{"sampler", 1}, {"target", {{"node", armature}, {"path", "rotation"}}}},
+                                  {{"sampler", 2}, {"target", {{"node", hips}, {"path", "rotation"}}}}})}}});
+    Result<GltfCharacter> r = load(b);
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const GltfCharacter& c = r.value();
+    ASSERT_EQ(c.clips.size(), 1u);
+    const RawJointTracks& root = c.clips[0].tracks[0];
+    ASSERT_EQ(root.translations.times, (std::vector<float>{0.0f, 0.5f, 1.0f}));
+    ASSERT_EQ(root.rotations.times.size(), 3u);
+    for (size_t k = 0; k < 3; ++k) {
+        const float t = root.translations.times[k];
+        const glm::mat4 arm = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 2 * t)) * glm::mat4_cast(glm::slerp(glm::quat(1, 0, 0, 0), y90, t));
+        const glm::mat4 hip = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0)) * glm::mat4_cast(glm::slerp(glm::quat(1, 0, 0, 0), x60, std::min(2 * t, 1.0f)));
+        const glm::mat4 want = arm * hip;
+        expect_near(root.translations.values[k], glm::vec3(want[3]));
+        const glm::mat3 got = glm::mat3_cast(root.rotations.values[k]);
+        for (int col = 0; col < 3; ++col) expect_near(got[col], glm::vec3(want[col]));
+        expect_near(root.scales.values[k], glm::vec3(1.0f));
+    }
+    EXPECT_TRUE(c.clips[0].tracks[1].translations.values.empty()) << "the child joint keeps its own (no) keys";
+    EXPECT_TRUE(has_note(c, "animations[0]: the animation of nodes[2] (above the joints, not joints) is folded into the keys of the 1 joint below"));
 }
 
 // Two skins share joint `a`: skin 0 = {root, a}, skin 1 = {a, b}. Skin 1 binds its mesh in a space
