@@ -190,8 +190,10 @@ std::unique_ptr<CLI::App> make_app(Bindings& b) {
     exp->add_flag("--force", b.o.force, "allow overwriting the output");
     add_common(*exp, b, true);
 
-    command("validate", "aloha validate SCENE",
-            "Checks the scene, its rule file and every asset it names; exits 1 and prints every problem found.");
+    command("validate", "aloha validate SCENE | CHARACTER_FILE",
+            "Checks the scene, its rule file and every asset it names; exits 1 and prints every problem found. Given a "
+            "character file (.glb, .gltf, .vrm, .bvh), loads it alone and prints what ALOHA makes of it (mapping, units, "
+            "levels, notes).");
     return app;
 }
 

@@ -257,6 +257,36 @@ TEST(Tool, ValidatePrintsTheHumanoidMapping) {
     fs::remove_all(out);
 }
 
+// `aloha validate` on a character file alone (no scene): the same report a scene's type gets, the humanoid
+// found through a VRM declaration or a naming convention; a broken file fails naming it.
+TEST(Tool, ValidateACharacterFileAlone) {
+    const fs::path out = temp_dir("validate_file");
+    const auto numbered = aloha::test::numbered_names();
+    const aloha::RawSkeleton raw = aloha::test::renamed_humanoid(numbered);
+    nlohmann::json j = nlohmann::json::parse(aloha::test::gltf_text(raw, 1, 0.3f));
+    aloha::test::add_vrm_humanoid(j, raw, numbered, true);
+    aloha::test::write_text((out / "avatar.vrm").string(), j.dump());
+    const RunResult vrm = run("validate " + (out / "avatar.vrm").string());
+    EXPECT_EQ(vrm.code, 0) << vrm.output;
+    for (const char* line : {"character type 'avatar'", "  convention VRM 1.0 humanoid: humanoid", "LeftKnee <- Bone.", " (file)",
+                             "avatar.vrm: ok (a character file"})
+        EXPECT_NE(vrm.output.find(line), std::string::npos) << line << "\n" << vrm.output;
+    aloha::test::RigStyle cm;
+    cm.units_per_metre = 100.0f;
+    const aloha::RawSkeleton poser = aloha::test::styled(aloha::test::renamed_humanoid(aloha::test::poser_names()), cm);
+    aloha::test::write_text((out / "walk.BVH").string(), aloha::test::bvh_text(poser, 20, glm::vec3(0, 0, 1), 4.0f));
+    const RunResult bvh = run("validate " + (out / "walk.BVH").string());
+    EXPECT_EQ(bvh.code, 0) << bvh.output;
+    EXPECT_NE(bvh.output.find("  convention Poser / DAZ: humanoid"), std::string::npos) << bvh.output;
+    EXPECT_NE(bvh.output.find("  units: centimetres"), std::string::npos) << bvh.output;
+    aloha::test::write_text((out / "broken.glb").string(), "glTF but not really");
+    const RunResult broken = run("validate " + (out / "broken.glb").string());
+    EXPECT_EQ(broken.code, 1) << broken.output;
+    EXPECT_NE(broken.output.find("broken.glb: "), std::string::npos) << broken.output;
+    EXPECT_NE(broken.output.find("broken.glb: 1 problem(s)"), std::string::npos) << broken.output;
+    fs::remove_all(out);
+}
+
 // One file per naming convention, written as that convention's tools write them (units, up and
 // facing axes, rest frames), and a quadruped: `aloha validate` prints for each the convention and
 // mapping it found, the units and axes it assumed and the levels it can use.
