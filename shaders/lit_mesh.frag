@@ -4,7 +4,8 @@
 // base colour (* the base colour texture at the vertex UVs in textured mode, offsets.w & 2). N is turned
 // to face the camera (two-sided lighting, so meshes with either winding light the same). In box mode (offsets.w & 1)
 // N is the flat face normal from screen-space derivatives of the world position. With offsets.w & 4 the
-// world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes).
+// world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes). With offsets.w bit 15 (an unlit
+// material) the albedo is written as it is.
 // Built again with DITHER (the dithered pipelines, gpu::LitPipelines): a screen-door fade keeps only the
 // pixels whose 4x4 Bayer value is below (offsets.w >> 8) & 31 (0..16, gpu::lit_dither_bits), the complement of an
 // impostor faded at -m (shaders/impostor.frag) for the same m, or with bit 13 the complement of those (the left
@@ -52,6 +53,10 @@ void main() {
 #endif
     if ((pc.offsets.w & 4u) != 0u) {  // normal output (impostor bakes): 0.5 + 0.5 N, the draw's coverage in alpha
         out_colour = vec4(0.5 + 0.5 * n, albedo.a);
+        return;
+    }
+    if ((pc.offsets.w & 0x8000u) != 0u) {  // an unlit material (gpu::kLitUnlit, KHR_materials_unlit): its albedo as it is
+        out_colour = vec4(clamp(albedo.rgb, 0.0, 1.0), albedo.a);
         return;
     }
     float ambient = pc.light.w;

@@ -77,6 +77,7 @@ void main() {
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * nn.y);
     float diffuse = max(dot(nn, pc.light.xyz), 0.0);
     v_lit = vec4(colour.rgb * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse), colour.a);
+    if ((pc.offsets.w & 0x8000u) != 0u) v_lit = colour;  // an unlit material (gpu::kLitUnlit): its albedo as it is
     v_uv = uv;
 #else
     v_normal_u = vec4(cof * n, uv.x);

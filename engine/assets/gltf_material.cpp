@@ -139,13 +139,15 @@ bool decode_image(tinygltf::Image* image, int index, std::string*, std::string*,
 Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out, std::vector<MaterialUv>* uv) {
     std::vector<int> texture_of_image(model.images.size(), -1);  // index into out->textures, -2 = unusable
     uv->assign(model.materials.size(), MaterialUv{});
-    size_t transformed = 0, webp = 0;
+    size_t transformed = 0, webp = 0, unlit = 0;
     for (size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& src = model.materials[i];
         const std::string where = "materials[" + std::to_string(i) + "]";
         SurfaceMaterial m;
         m.name = src.name.empty() ? "material" + std::to_string(i) : src.name;
         m.double_sided = src.doubleSided;
+        m.unlit = src.extensions.count("KHR_materials_unlit") > 0;
+        unlit += m.unlit ? 1 : 0;
         const std::vector<double>& f = src.pbrMetallicRoughness.baseColorFactor;
         if (f.size() != 4) return make_error(file, "baseColorFactor has " + std::to_string(f.size()) + " values, expected 4", 0, 0, where + ".pbrMetallicRoughness");
         for (int c = 0; c < 4; ++c) {
@@ -219,6 +221,9 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
         }
         out->materials.push_back(std::move(m));
     }
+    if (unlit > 0)
+        out->notes.push_back("KHR_materials_unlit: " + std::to_string(unlit) + " material" + (unlit == 1 ? "" : "s") +
+                             " drawn without lighting (their impostors, relit from baked normals, are lit)");
     if (webp > 0)
         out->notes.push_back(std::string(kWebpExtension) + ": " + std::to_string(webp) + " material texture" + (webp == 1 ? "" : "s") +
                              " drawn from WebP images (libwebp)");

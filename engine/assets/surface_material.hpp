@@ -37,6 +37,7 @@ struct SurfaceMaterial {
     /// texture alpha) is below it are not drawn (glTF alphaMode MASK with its alphaCutoff; BLEND is drawn
     /// as MASK at 0.5, since a crowd is not sorted back to front).
     float alpha_cutoff = -1.0f;
+    bool unlit = false;                ///< glTF KHR_materials_unlit: drawn with its base colour, without lighting
 };
 
 }  // namespace aloha

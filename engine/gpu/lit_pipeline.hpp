@@ -33,6 +33,9 @@ enum LitMode : uint32_t {
 [[nodiscard]] uint32_t lit_dither_bits(float share);
 /// Bit of LitPush::offsets.w that turns the dithered pipelines' kept pixels into their complement.
 inline constexpr uint32_t kLitDitherComplement = 1u << 13;
+/// Bit of LitPush::offsets.w for an unlit material (glTF KHR_materials_unlit): every mesh pipeline writes the
+/// albedo without the key light and hemisphere.
+inline constexpr uint32_t kLitUnlit = 1u << 15;
 /// Bit of LitPush::offsets.w that turns on the dithered pipelines' alpha test (lit_alpha_bits).
 inline constexpr uint32_t kLitAlphaTest = 1u << 14;
 /// Offsets.w bits of an alpha test at `cutoff` in [0, 1] for the dithered pipelines: kLitAlphaTest and the

@@ -42,6 +42,7 @@ void write_input(ByteWriter& w, const VkPhysicalDeviceProperties& device, const 
         w.put<int32_t>(m.texture);
         w.put<uint8_t>(m.double_sided ? 1 : 0);
         w.put(m.alpha_cutoff);
+        w.put<uint8_t>(m.unlit ? 1 : 0);
     }
     w.put<uint64_t>(in.textures.size());
     for (const TextureImage& t : in.textures) write_texture(w, t);

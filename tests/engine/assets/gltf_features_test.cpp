@@ -522,6 +522,26 @@ TEST(GltfMaterials, AlphaModes) {
     EXPECT_NE(unknown.error().message.find("'CUTOUT' is none of OPAQUE, MASK, BLEND"), std::string::npos) << unknown.error().to_string();
 }
 
+// KHR_materials_unlit: the material is drawn without lighting; a file requiring the extension loads.
+TEST(GltfMaterials, UnlitMaterials) {
+    GltfBuilder b;
+    b.doc["extensionsUsed"] = {"KHR_materials_unlit"};
+    b.doc["extensionsRequired"] = {"KHR_materials_unlit"};
+    b.doc["materials"] = json::array({{{"extensions", {{"KHR_materials_unlit", json::object()}}}}, json::object()});
+    json p0 = triangle(b)[0], p1 = triangle(b)[0];
+    p0["material"] = 0;
+    p1["material"] = 1;
+    const int j = b.node({{"name", "j"}, {"mesh", b.mesh(json::array({p0, p1}))}});
+    b.root(j);
+    b.skin({j}, {});
+    Result<GltfCharacter> r = load(b);
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    ASSERT_EQ(r.value().materials.size(), 2u);
+    EXPECT_TRUE(r.value().materials[0].unlit);
+    EXPECT_FALSE(r.value().materials[1].unlit);
+    EXPECT_TRUE(has_note(r.value(), "KHR_materials_unlit: 1 material drawn without lighting"));
+}
+
 // Duplicate, dotted and prefixed names: kept as they are, a repeated name made unique with a note.
 TEST(GltfNames, DuplicateAndDottedNames) {
     GltfBuilder b;

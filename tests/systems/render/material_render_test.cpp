@@ -214,6 +214,41 @@ TEST(MaterialRender, AlphaMaskDrawsTexelsAtOrAboveTheCutoff) {
     EXPECT_EQ(ctx->validation_message_count(), 0u);
 }
 
+// An unlit material (KHR_materials_unlit) under the characters' key light and hemisphere: every pixel is its
+// texel as it is (1 LSB of rounding), per-pixel and per-vertex lit alike, where the same material lit differs.
+TEST(MaterialRender, UnlitMaterialShowsItsAlbedo) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+        ASSERT_TRUE(made.ok());
+        CrowdRenderer& r = *made.value();
+        const uint32_t tex = r.register_texture(quad_texture()).value();
+        const glm::u8vec4 texel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
+        for (const bool vertex_lit : {false, true})
+            for (const bool unlit : {true, false}) {
+                SurfaceMaterial m;
+                m.unlit = unlit;
+                const uint32_t mat = r.register_material(m, static_cast<int>(tex)).value();
+                const Quad q;
+                const std::vector<uint32_t> ids = {mat};
+                const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}, "meshes", vertex_lit).value();
+                const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+                FrameInput frame = unlit_frame(meshes);
+                set_character_lighting(frame);
+                Result<gpu::Rgba8Image> img = draw(r, *ctx, frame, "aloha_material_unlit.png");
+                ASSERT_TRUE(img.ok()) << img.error().to_string();
+                int exact = 0;
+                for (uint32_t k = 0; k < 4; ++k)
+                    for (uint32_t y = (k / 2) * 32; y < (k / 2) * 32 + 32; ++y)
+                        for (uint32_t x = (k % 2) * 32; x < (k % 2) * 32 + 32; ++x) exact += near(pixel(img.value(), x, y), texel[k], 1);
+                if (unlit) EXPECT_EQ(exact, 64 * 64) << (vertex_lit ? "vertex-lit" : "per-pixel");
+                else EXPECT_LT(exact, 64 * 64 / 4) << "the lit material is shaded" << (vertex_lit ? " (vertex-lit)" : "");
+            }
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
 // A texture of 1-texel black and white columns (128 x 128, bilinear): its mip level 1 averages each pair of columns,
 // so it is one grey. Drawn minified by 2^0.7 texels a pixel both ways (lod 0.7), the nearest level (round(0.7) = 1)
 // is that grey at every pixel (exactly: equal texels), while blending levels 0 and 1 keeps 30% of level 0's columns: pixels far apart. The
