@@ -40,6 +40,14 @@ bool near(glm::u8vec4 a, glm::u8vec4 b, int lsb) {
     return std::abs(a.r - b.r) <= lsb && std::abs(a.g - b.g) <= lsb && std::abs(a.b - b.b) <= lsb;
 }
 
+// Pixels of the 32 x 32 block k (0 top left, 1 top right, 2 bottom left, 3 bottom right) within 1 LSB of `want`.
+int block_matches(const gpu::Rgba8Image& img, uint32_t k, glm::u8vec4 want) {
+    int n = 0;
+    for (uint32_t y = (k / 2) * 32; y < (k / 2) * 32 + 32; ++y)
+        for (uint32_t x = (k % 2) * 32; x < (k % 2) * 32 + 32; ++x) n += near(pixel(img, x, y), want, 1);
+    return n;
+}
+
 // A square [-1, 1]^2 in z = 0 filling an orthographic 64 x 64 view, split into a left and a right half
 // (6 vertices: x = -1, 0, 1 at y = -1 and 1), UVs spanning the texture (v = 0 at the top).
 struct Quad {
@@ -147,10 +155,7 @@ TEST(MaterialRender, FullTextureAndCharacterLighting) {
         ASSERT_TRUE(img.ok());
         const glm::u8vec4 texel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
         for (uint32_t k = 0; k < 4; ++k) {
-            int n = 0;
-            for (uint32_t y = (k / 2) * 32; y < (k / 2) * 32 + 32; ++y)
-                for (uint32_t x = (k % 2) * 32; x < (k % 2) * 32 + 32; ++x) n += near(pixel(img.value(), x, y), texel[k], 1);
-            EXPECT_EQ(n, 32 * 32) << "texel " << k;
+            EXPECT_EQ(block_matches(img.value(), k, texel[k]), 32 * 32) << "texel " << k;
         }
         set_character_lighting(frame);
         Result<gpu::Rgba8Image> lit = draw(r, *ctx, frame, "aloha_material_lit.png");
@@ -199,11 +204,7 @@ TEST(MaterialRender, AlphaMaskDrawsTexelsAtOrAboveTheCutoff) {
             ASSERT_TRUE(img.ok()) << img.error().to_string();
             for (uint32_t k = 0; k < 4; ++k) {
                 const bool shown = c.cutoff < 0.0f || static_cast<float>(alpha[k]) / 255.0f >= c.cutoff;
-                int n = 0;
-                for (uint32_t y = (k / 2) * 32; y < (k / 2) * 32 + 32; ++y)
-                    for (uint32_t x = (k % 2) * 32; x < (k % 2) * 32 + 32; ++x)
-                        n += near(pixel(img.value(), x, y), shown ? texel[k] : glm::u8vec4(0, 0, 0, 255), 1);
-                EXPECT_EQ(n, 32 * 32) << "cutoff " << c.cutoff << (c.vertex_lit ? " vertex-lit" : "") << ", texel " << k
+                EXPECT_EQ(block_matches(img.value(), k, shown ? texel[k] : glm::u8vec4(0, 0, 0, 255)), 32 * 32) << "cutoff " << c.cutoff << (c.vertex_lit ? " vertex-lit" : "") << ", texel " << k
                                       << (shown ? " shown" : " discarded");
             }
         }
@@ -239,9 +240,7 @@ TEST(MaterialRender, UnlitMaterialShowsItsAlbedo) {
                 Result<gpu::Rgba8Image> img = draw(r, *ctx, frame, "aloha_material_unlit.png");
                 ASSERT_TRUE(img.ok()) << img.error().to_string();
                 int exact = 0;
-                for (uint32_t k = 0; k < 4; ++k)
-                    for (uint32_t y = (k / 2) * 32; y < (k / 2) * 32 + 32; ++y)
-                        for (uint32_t x = (k % 2) * 32; x < (k % 2) * 32 + 32; ++x) exact += near(pixel(img.value(), x, y), texel[k], 1);
+                for (uint32_t k = 0; k < 4; ++k) exact += block_matches(img.value(), k, texel[k]);
                 if (unlit) EXPECT_EQ(exact, 64 * 64) << (vertex_lit ? "vertex-lit" : "per-pixel");
                 else EXPECT_LT(exact, 64 * 64 / 4) << "the lit material is shaded" << (vertex_lit ? " (vertex-lit)" : "");
             }
