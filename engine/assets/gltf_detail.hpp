@@ -102,6 +102,13 @@ struct SkinSet {
     std::vector<std::vector<glm::mat4>> skin_ibm;     ///< per skin: inverse bind of skins[k].joints[i] as in the file
 };
 
+/// A file without skins whose nodes carry meshes gets one skin over every node of its displayed scene
+/// (parents first), bound at the rest pose (inverse bind matrices: the nodes' inverted rest world
+/// matrices, in a buffer of their own), so each mesh is a rigid part of its node and node animations
+/// are clips; one note. Files with skins, or without meshes, are left as they are. Errors: a scene
+/// node out of range, a singular rest transform, more than 32767 nodes.
+Status add_node_skin(tinygltf::Model* model, const std::vector<int>& parents, const std::string& file, std::vector<std::string>* notes);
+
 /// Reads every skin: fills out->skeleton (rest transforms with folded ancestors, unique names),
 /// out->inverse_bind_matrices (per raw joint: skin 0's, then later skins' new joints brought into
 /// skin 0's bind space through a shared joint) and notes.

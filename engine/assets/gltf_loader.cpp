@@ -150,6 +150,11 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
     }
     std::vector<std::string> decoded;
     if (Status prepared = prepare_buffers(&model, file, &decoded); !prepared.ok()) return prepared.error();
+    if (model.skins.empty()) {
+        Result<std::vector<int>> parents = node_parents(model, file);
+        if (!parents.ok()) return parents.error();
+        if (Status s = add_node_skin(&model, parents.value(), file, &decoded); !s.ok()) return s.error();
+    }
     Result<GltfCharacter> character = convert(model, file, images);
     if (character.ok()) character.value().notes.insert(character.value().notes.begin(), decoded.begin(), decoded.end());
     return character;

@@ -3,6 +3,8 @@
 // their base colour textures, and all animation clips.
 //
 // Conventions (each checked against the glTF 2.0 specification):
+// - A file without skins whose nodes carry meshes is read as if it had one skin over every node of
+//   its displayed scene, bound at the rest pose (a rigid robot: each mesh a rigid part of its node).
 // - Joints are the union of all skins' joints: skins[0].joints in order, then the joints of
 //   skins[1] not already listed, and so on (several skins may share joints). Raw joint i's parent is
 //   the nearest ancestor node that is also a joint. Transforms of non-joint nodes between a joint

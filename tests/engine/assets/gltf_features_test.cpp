@@ -243,6 +243,43 @@ TEST(GltfArmatureTransforms, AnimatedNodeAboveTheJointsMovesThem) {
     EXPECT_TRUE(has_note(c, "animations[0]: the animation of nodes[2] (above the joints, not joints) is folded into the keys of the 1 joint below"));
 }
 
+// A file without skins (a rigid robot: meshes on an animated node hierarchy): every node of the scene becomes a
+// joint bound at its rest pose, each mesh a rigid part of its node, the node animations a clip. body (0,1,0)
+// carries a triangle and an arm node (0.5,0,0) turned 90 degrees about z with its own triangle; the arm's
+// rotation is animated. Skinned at rest, every vertex lands where its node's world transform puts it.
+TEST(GltfNodeSkin, RigidHierarchyWithoutSkinIsTheSkeleton) {
+    GltfBuilder b;
+    const int arm = b.node({{"name", "arm"}, {"translation", {0.5, 0, 0}}, {"rotation", {0, 0, kS45, kS45}}, {"mesh", b.mesh(triangle(b))}});
+    const int body = b.node({{"name", "body"}, {"translation", {0, 1, 0}}, {"children", {arm}}, {"mesh", b.mesh(triangle(b))}});
+    b.root(body);
+    const int times = b.scalars({0.0f, 1.0f});
+    const int rots = b.vec4({{0, 0, kS45, kS45}, {0, 0, 0, 1}});
+    b.doc["animations"] = json::array({{{"name", "wave"}, {"samplers", json::array({{{"input", times}, {"output", rots}}})},
+                                        {"channels", json::array({{{"sampler", 0}, {"target", {{"node", arm}, {"path", "rotation"}}}}})}}});
+    Result<GltfCharacter> r = load(b);
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const GltfCharacter& c = r.value();
+    ASSERT_EQ(c.skeleton.joints.size(), 2u);
+    EXPECT_EQ(c.skeleton.joints[0].name, "body");
+    EXPECT_EQ(c.skeleton.joints[1].name, "arm");
+    EXPECT_TRUE(has_note(c, "no skin: the 2 nodes of the scene are the skeleton, each mesh a rigid part of its node"));
+    Result<Skeleton> s = build_skeleton(c.skeleton, "fixture");
+    ASSERT_TRUE(s.ok());
+    const std::vector<glm::mat4> model = rest_model(s.value());
+    ASSERT_EQ(c.meshes.size(), 2u);
+    const GltfSkinnedMesh* arm_mesh = mesh_from(c, "nodes[0]");
+    const GltfSkinnedMesh* body_mesh = mesh_from(c, "nodes[1]");
+    ASSERT_TRUE(arm_mesh && body_mesh);
+    // Body vertices: (0,1,0) + v; arm vertices: (0.5,1,0) + Rz(90) v, Rz(90) taking (x, y) to (-y, x).
+    expect_near(skin(c, s.value(), model, *body_mesh, 1), glm::vec3(1, 1, 0));
+    expect_near(skin(c, s.value(), model, *arm_mesh, 1), glm::vec3(0.5f, 2, 0));
+    expect_near(skin(c, s.value(), model, *arm_mesh, 2), glm::vec3(-0.5f, 1, 0));
+    ASSERT_EQ(c.clips.size(), 1u);
+    const int arm_joint = s.value().find("arm");
+    ASSERT_GE(arm_joint, 0);
+    EXPECT_EQ(c.clips[0].tracks[static_cast<size_t>(arm_joint)].rotations.values.size(), 2u);
+}
+
 // Two skins share joint `a`: skin 0 = {root, a}, skin 1 = {a, b}. Skin 1 binds its mesh in a space
 // shifted by (1,0,0): its inverse binds are inverse(world bind) * T(1,0,0). A skin-1 vertex at v
 // weighted half a, half b must skin exactly as the spec's formula with skin 1's own matrices.
