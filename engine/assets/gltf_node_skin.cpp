@@ -25,7 +25,7 @@ Status scene_nodes(const tinygltf::Model& model, const std::vector<int>& parents
     }
     std::vector<int> stack(roots.rbegin(), roots.rend());
     std::vector<glm::mat4> world_of(model.nodes.size(), glm::mat4(1.0f));
-    std::vector<uint8_t> seen(model.nodes.size(), 0);
+    std::vector<uint8_t> seen(model.nodes.size(), 0), known(model.nodes.size(), 0);
     while (!stack.empty()) {
         const int n = stack.back();
         stack.pop_back();
@@ -34,10 +34,17 @@ Status scene_nodes(const tinygltf::Model& model, const std::vector<int>& parents
                               "scenes[" + std::to_string(scene) + "].nodes");
         if (seen[static_cast<size_t>(n)]) continue;  // listed twice: node_parents() reports real cycles
         seen[static_cast<size_t>(n)] = 1;
-        Result<glm::mat4> local = node_local_matrix(model, n, file);
-        if (!local.ok()) return local.error();
-        const int p = parents[static_cast<size_t>(n)];
-        world_of[static_cast<size_t>(n)] = (p >= 0 ? world_of[static_cast<size_t>(p)] : glm::mat4(1.0f)) * local.value();
+        // The world matrix through every ancestor (a scene may list a node that has a parent): up to the nearest
+        // ancestor already known, then down; each node is computed once.
+        std::vector<int> chain;
+        for (int a = n; a >= 0 && !known[static_cast<size_t>(a)]; a = parents[static_cast<size_t>(a)]) chain.push_back(a);
+        for (auto a = chain.rbegin(); a != chain.rend(); ++a) {
+            Result<glm::mat4> local = node_local_matrix(model, *a, file);
+            if (!local.ok()) return local.error();
+            const int p = parents[static_cast<size_t>(*a)];
+            world_of[static_cast<size_t>(*a)] = (p >= 0 ? world_of[static_cast<size_t>(p)] : glm::mat4(1.0f)) * local.value();
+            known[static_cast<size_t>(*a)] = 1;
+        }
         nodes->push_back(n);
         world->push_back(world_of[static_cast<size_t>(n)]);
         const std::vector<int>& children = model.nodes[static_cast<size_t>(n)].children;

@@ -278,6 +278,16 @@ TEST(GltfNodeSkin, RigidHierarchyWithoutSkinIsTheSkeleton) {
     const int arm_joint = s.value().find("arm");
     ASSERT_GE(arm_joint, 0);
     EXPECT_EQ(c.clips[0].tracks[static_cast<size_t>(arm_joint)].rotations.values.size(), 2u);
+    // A scene listing the child before its parent (not a root, against the specification): the same skeleton and
+    // binding, the child's rest transform taken through its parent.
+    b.doc["scenes"][0]["nodes"] = {arm, body};
+    Result<GltfCharacter> again = load(b);
+    ASSERT_TRUE(again.ok()) << again.error().to_string();
+    Result<Skeleton> s2 = build_skeleton(again.value().skeleton, "fixture");
+    ASSERT_TRUE(s2.ok());
+    const GltfSkinnedMesh* arm_again = mesh_from(again.value(), "nodes[0]");
+    ASSERT_TRUE(arm_again);
+    expect_near(skin(again.value(), s2.value(), rest_model(s2.value()), *arm_again, 1), glm::vec3(0.5f, 2, 0));
 }
 
 // Two skins share joint `a`: skin 0 = {root, a}, skin 1 = {a, b}. Skin 1 binds its mesh in a space
