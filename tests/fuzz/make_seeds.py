@@ -162,6 +162,11 @@ vj = copy.deepcopy(cj)
 vj['extensionsUsed'] = ['VRM']
 vj['extensions'] = {'VRM': {'humanoid': {'humanBones': [{'bone': b, 'node': n} for b, n in vrm_bones.items()]}}}
 w('fuzz_gltf', 'chain_vrm0.glb', glb(vj, cb))
+# The same character without its skin (a rigid figure): the loader makes the scene's nodes its skeleton.
+vj = copy.deepcopy(cj)
+del vj['skins']
+del vj['nodes'][2]['skin']
+w('fuzz_gltf', 'chain_rigid.glb', glb(vj, cb))
 # The same character as gltfpack writes it (KHR_mesh_quantization + KHR_texture_transform, and
 # EXT_meshopt_compression with its filters), when gltfpack (Debian package gltfpack) is installed.
 import shutil, subprocess, tempfile
