@@ -189,33 +189,42 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
             } else if (tex.sampler >= static_cast<int>(model.samplers.size())) {
                 return make_error(file, "sampler " + std::to_string(tex.sampler) + " is out of range", 0, 0, xw);
             } else {
-                const auto img = static_cast<size_t>(source.value());
-                const tinygltf::Image& image = model.images[img];
-                const std::string iw = "images[" + std::to_string(img) + "]";
-                if (texture_of_image[img] == -1) {
-                    if (image.image.empty() || image.width <= 0 || image.height <= 0 || image.component != 4 || image.bits != 8) {
-                        texture_of_image[img] = -2;
-                    } else {
-                        TextureImage t;
-                        t.name = iw + (image.name.empty() ? image.uri.empty() ? "" : " '" + image.uri + "'" : " '" + image.name + "'");
-                        t.width = static_cast<uint32_t>(image.width);
-                        t.height = static_cast<uint32_t>(image.height);
-                        t.rgba = image.image;
-                        if (tex.sampler >= 0) {
-                            const tinygltf::Sampler& s = model.samplers[static_cast<size_t>(tex.sampler)];
-                            t.wrap_u = wrap_of(s.wrapS);
-                            t.wrap_v = wrap_of(s.wrapT);
-                            t.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
-                        }
-                        texture_of_image[img] = static_cast<int>(out->textures.size());
-                        out->textures.push_back(std::move(t));
+                // The image as a texture of the type (decoded once per image), or -2 when it cannot be used.
+                auto texture_of = [&](size_t img) {
+                    const tinygltf::Image& image = model.images[img];
+                    if (texture_of_image[img] != -1) return texture_of_image[img];
+                    if (image.image.empty() || image.width <= 0 || image.height <= 0 || image.component != 4 || image.bits != 8)
+                        return texture_of_image[img] = -2;
+                    TextureImage t;
+                    const std::string iw = "images[" + std::to_string(img) + "]";
+                    t.name = iw + (image.name.empty() ? image.uri.empty() ? "" : " '" + image.uri + "'" : " '" + image.name + "'");
+                    t.width = static_cast<uint32_t>(image.width);
+                    t.height = static_cast<uint32_t>(image.height);
+                    t.rgba = image.image;
+                    if (tex.sampler >= 0) {
+                        const tinygltf::Sampler& sm = model.samplers[static_cast<size_t>(tex.sampler)];
+                        t.wrap_u = wrap_of(sm.wrapS);
+                        t.wrap_v = wrap_of(sm.wrapT);
+                        t.nearest = sm.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
                     }
+                    texture_of_image[img] = static_cast<int>(out->textures.size());
+                    out->textures.push_back(std::move(t));
+                    return texture_of_image[img];
+                };
+                const auto img = static_cast<size_t>(source.value());
+                int texture = texture_of(img);
+                // An unusable WebP source with a usable fallback `source`: the fallback is drawn.
+                if (texture < 0 && source.value() != tex.source && tex.source >= 0 && static_cast<size_t>(tex.source) < model.images.size()) {
+                    texture = texture_of(static_cast<size_t>(tex.source));
+                    if (texture >= 0)
+                        out->notes.push_back(xw + ": its WebP images[" + std::to_string(img) + "] could not be used; the fallback images[" +
+                                             std::to_string(tex.source) + "] is drawn");
                 }
-                if (texture_of_image[img] >= 0) {
-                    m.texture = texture_of_image[img];
+                if (texture >= 0) {
+                    m.texture = texture;
                     (*uv)[i] = MaterialUv{texcoord, transform};
                 } else {
-                    out->notes.push_back(iw + ": image could not be used; " + m.name + " drawn with its base colour only");
+                    out->notes.push_back("images[" + std::to_string(img) + "]: image could not be used; " + m.name + " drawn with its base colour only");
                 }
             }
         }

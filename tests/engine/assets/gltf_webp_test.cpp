@@ -86,6 +86,20 @@ TEST(GltfWebp, BrokenWebpIsNotedAndTheMaterialDrawnUntextured) {
     EXPECT_TRUE(has_note(r.value(), "images[0]: WebP decoding failed")) << "or a bad header";
 }
 
+TEST(GltfWebp, BrokenWebpFallsBackToItsPngSource) {
+    GltfBuilder b;
+    const int fallback = b.image(test::png_bytes(kTexels, 2, 2));
+    std::vector<unsigned char> bytes = webp(kTexels, 2, 2);
+    bytes.resize(bytes.size() / 2);
+    const int image = b.image(bytes, "image/webp");
+    Result<GltfCharacter> r = load_with(b, {{"source", fallback}, {"extensions", {{"EXT_texture_webp", {{"source", image}}}}}});
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    ASSERT_EQ(r.value().textures.size(), 1u);
+    EXPECT_EQ(r.value().textures[0].rgba, kTexels);
+    EXPECT_EQ(r.value().materials[0].texture, 0);
+    EXPECT_TRUE(has_note(r.value(), "textures[0]: its WebP images[1] could not be used; the fallback images[0] is drawn"));
+}
+
 TEST(GltfWebp, MalformedExtensionIsAnErrorNamingIt) {
     for (const json& ext : {json{{"source", -1}}, json{{"index", 0}}, json{{"source", "a.webp"}}}) {
         GltfBuilder b;
