@@ -106,7 +106,7 @@ void dynamic_hook(void* user, MethodContext& m) {
         // A push under way acts for whole steps while it lasts (its impulse is force x time).
         dc.state.pelvis_force = dc.push_left > 0.5f * h ? dc.push_force : glm::vec3(0.0f);
         dc.push_left = std::max(0.0f, dc.push_left - h);
-        step_dynamic_walk(sk, dc.target, root_local, h, dc.state, m.pose, nullptr);
+        step_dynamic_walk(sk, dc.target, root_local, h, dc.state, m.pose, nullptr, dc.kinematic_translations);
         ++dc.steps;
         if (dynamic_walk_diverged(dc.state, pelvis_target, cx.guard)) {
             hand_back(cx, dc, m.pose);

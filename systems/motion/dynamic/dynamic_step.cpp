@@ -284,7 +284,7 @@ void post_stabilise(DynamicWalkState& s, size_t n, size_t nb) {
 
 void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> target_local_rotations,
                        const glm::vec3& target_root_position, float dt, DynamicWalkState& s, PoseView out,
-                       glm::mat4* out_root_world) {
+                       glm::mat4* out_root_world, std::span<const glm::vec3> target_local_translations) {
     const auto n = static_cast<size_t>(skeleton.joint_count());
     // Target world rotations (welded joints keep their start-pose local rotation).
     const glm::quat root_rot = glm::normalize(glm::quat_cast(glm::mat3(s.root_world)));
@@ -331,8 +331,9 @@ void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> targ
         world_rot_parent = p < 0 ? root_rot : s.target_world[static_cast<size_t>(p)];
         out.translations[j] = s.translations[j];
         out.scales[j] = s.scales[j];
-        if (s.owner[j] < 0) {  // above the simulated subtree: the target's rotation (target_world[j] already holds it)
+        if (s.owner[j] < 0) {  // outside the simulated subtree: the target's rotation (target_world[j] already holds it)
             out.rotations[j] = glm::normalize(target_local_rotations[j]);
+            if (!target_local_translations.empty()) out.translations[j] = target_local_translations[j];
         } else {
             const DynamicBody& b = s.bodies[static_cast<size_t>(s.owner[j])];
             const bool owns = b.joint == static_cast<int>(j);

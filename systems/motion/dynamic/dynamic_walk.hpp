@@ -44,8 +44,8 @@ struct DynamicWalkSettings {
     float contact_height = 0.12f;            ///< without contact_points: joints this close to the lowest start joint touch the ground
     /// The joint simulated as the root body (the pelvis); -1: the skeleton's root. Joints outside its
     /// subtree (an Unreal "root" joint on the ground and the IK helpers under it) are not simulated: they
-    /// keep the target's local rotations and the start pose's translations, and the root body hangs under
-    /// them wherever the simulation puts it.
+    /// take the target's local rotations and translations (step_dynamic_walk), and the root body hangs
+    /// under them wherever the simulation puts it.
     int root_joint = -1;
     /// The feet's sole points (dynamic_sole_contacts: heel and ball under the ankle and toe, toe tip),
     /// so the simulated feet stand on the ground where the kinematic gait puts its soles. Empty: the
@@ -120,10 +120,12 @@ Status init_dynamic_walk(const Skeleton& skeleton, ConstPoseView start_pose, con
 /// (optional) receives the character frame, which stays where init placed it. A substep whose
 /// constraint matrix cannot be factorised applies no impulses and counts in
 /// state.failed_factorisations (the divergence guard hands such a character back).
+/// `target_local_translations` (empty, or one per joint): the target's local translations, which the joints
+/// outside the simulated subtree take (an Unreal "root" carrying root motion); empty: their start-pose ones.
 /// Requires init_dynamic_walk on the same skeleton, spans of the joint count, dt > 0.
 void step_dynamic_walk(const Skeleton& skeleton, std::span<const glm::quat> target_local_rotations,
                        const glm::vec3& target_root_position, float dt, DynamicWalkState& state, PoseView out_pose,
-                       glm::mat4* out_root_world);
+                       glm::mat4* out_root_world, std::span<const glm::vec3> target_local_translations = {});
 
 /// Largest separation (metres) between the two sides of any point constraint (the drift).
 [[nodiscard]] float max_constraint_error(const DynamicWalkState& state);

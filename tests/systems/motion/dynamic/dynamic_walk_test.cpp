@@ -80,11 +80,12 @@ Skeleton rooted_humanoid() {
     return build_skeleton(raw, "rooted").value();
 }
 
-TEST(DynamicWalk, AJointAboveThePelvisAtTheOriginChangesNothing) {
-    // With the pelvis as the root body, "root" (at the identity) and the helper are not simulated: the
-    // bodies, contacts and targets are the pelvis-rooted humanoid's, so every step computes the same
-    // numbers and the simulated pelvis and feet agree with the plain simulation's to float rounding
-    // (1e-5 m: the only new operations are products with the identity and its inverse).
+TEST(DynamicWalk, AJointAboveThePelvisChangesNothingOfTheSimulation) {
+    // With the pelvis as the root body, "root" and the helper are not simulated: the bodies, contacts and
+    // targets are the pelvis-rooted humanoid's, so every step computes the same numbers and the simulated
+    // pelvis and feet agree with the plain simulation's to float rounding (1e-5 m: the only new operations
+    // are products with root's transform and its inverse). root moves on its own target translation (root
+    // motion carried by the root joint): it takes that translation, and the pelvis stays where it was simulated.
     Sim plain;
     const Skeleton skel = rooted_humanoid();
     const int hips = skel.find("Hips"), root = skel.find("root"), helper = skel.find("ik_foot_root");
@@ -110,18 +111,23 @@ TEST(DynamicWalk, AJointAboveThePelvisAtTheOriginChangesNothing) {
     EXPECT_EQ(state.owner[static_cast<size_t>(root)], -1);
     EXPECT_EQ(state.owner[static_cast<size_t>(helper)], -1);
     EXPECT_EQ(state.contacts.size(), plain.state.contacts.size());
+    std::vector<glm::vec3> translations(out.t.size());
     const int foot = skel.find("LeftAnkle"), plain_foot = plain.skel.find("LeftAnkle");
     float worst = 0.0f;
     for (int i = 1; i <= 120; ++i) {
         plain.step(1.0f / 60.0f);
-        const glm::vec3 pelvis = targets(static_cast<float>(i) / 60.0f);
-        step_dynamic_walk(skel, target, pelvis, 1.0f / 60.0f, state, out.view(), nullptr);
+        const float t = static_cast<float>(i) / 60.0f;
+        const glm::vec3 pelvis = targets(t);
+        translations = out.t;
+        translations[static_cast<size_t>(root)] = glm::vec3(0.1f * std::sin(3.0f * t), 0.0f, 0.05f * t);
+        step_dynamic_walk(skel, target, pelvis, 1.0f / 60.0f, state, out.view(), nullptr, translations);
         for (const auto& [a, b] : {std::pair{hips, 0}, std::pair{foot, plain_foot}})
             worst = std::max(worst, glm::length(glm::vec3(out.m[static_cast<size_t>(a)][3]) - glm::vec3(plain.out.m[static_cast<size_t>(b)][3])));
-        // The joints above and beside the pelvis keep their target.
-        EXPECT_LT(glm::length(out.t[static_cast<size_t>(root)]), 1e-6f);
+        // The joints above and beside the pelvis take their target; the helper rides on root.
+        EXPECT_EQ(out.t[static_cast<size_t>(root)], translations[static_cast<size_t>(root)]);
         EXPECT_GT(std::abs(out.r[static_cast<size_t>(root)].w), 1.0f - 1e-6f);
-        EXPECT_LT(glm::length(glm::vec3(out.m[static_cast<size_t>(helper)][3]) - glm::vec3(0.1f, 0.0f, 0.0f)), 1e-6f);
+        EXPECT_LT(glm::length(glm::vec3(out.m[static_cast<size_t>(helper)][3]) - translations[static_cast<size_t>(root)] - glm::vec3(0.1f, 0.0f, 0.0f)),
+                  1e-6f);
     }
     std::printf("[figure] rooted humanoid: pelvis and left ankle within %.2e m of the pelvis-rooted simulation over 2 s\n", static_cast<double>(worst));
     EXPECT_LT(worst, 1e-5f) << "pelvis and left ankle against the pelvis-rooted simulation";
