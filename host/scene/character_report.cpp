@@ -6,7 +6,16 @@ namespace aloha {
 
 std::vector<std::string> character_capabilities(const CharacterType& type) {
     std::vector<std::string> out;
-    out.push_back("clip playback: yes (" + std::to_string(type.clips.size()) + " clips)");
+    // The clips by name and length, as scene requests name them ("play", "clip"); the first 12.
+    std::string names;
+    for (size_t i = 0; i < type.clips.size() && i < 12; ++i) {
+        const AnimationClip* clip = type.clips.find(static_cast<ClipId>(i));
+        char buf[32];
+        std::snprintf(buf, sizeof buf, " %.2f s", static_cast<double>(clip->duration()));
+        names += (names.empty() ? "" : ", ") + clip->name() + buf;
+    }
+    if (type.clips.size() > 12) names += ", and " + std::to_string(type.clips.size() - 12) + " more";
+    out.push_back("clip playback: yes (" + std::to_string(type.clips.size()) + " clips" + (names.empty() ? "" : ": " + names) + ")");
     out.push_back(type.rig ? "kinematic and dynamic walk: yes" : "kinematic and dynamic walk: no (no two-legged walk rig)");
     const bool arms = type.map.find("RightWrist") >= 0 && type.map.find("LeftWrist") >= 0;
     out.push_back(arms ? "reach: yes (canonical wrists, hands, ankles, toes)" : "reach: only by file joint name (no canonical wrists)");
