@@ -87,8 +87,8 @@ Result<Keys> read_sampler(const tinygltf::Model& model, const tinygltf::Animatio
     return keys;
 }
 
-// Value of `keys` at time t: linear between keys (normalised linear blend of quaternions on the shorter arc,
-// which equals slerp to first order, for rotations), held before the first key and after the last.
+// Value of `keys` at time t: linear between keys (slerp on the shorter arc for rotations, as glTF's LINEAR
+// interpolation of rotations prescribes), held before the first key and after the last.
 glm::vec4 sample(const Keys& keys, float t, bool rotation) {
     const std::vector<float>& ts = keys.times;
     if (t <= ts.front()) return keys.values.front();

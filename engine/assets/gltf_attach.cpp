@@ -1,9 +1,8 @@
 // Places every mesh node of a glTF character on its skeleton: skinned meshes through their skin
 // (a second skin's differing inverse bind matrices resolved per vertex), rigid parts bound with
 // weight 1 to the nearest joint at or above their node; then one note per kind of change.
+#include "engine/anim/pose.hpp"
 #include "engine/assets/gltf_detail.hpp"
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 
@@ -107,8 +106,7 @@ bool bind_space_to_model_space(GltfCharacter* out, const std::vector<int>& skin0
         }
     if (anchor < 0) return false;
     const RawJoint& root = s.joints[static_cast<size_t>(anchor)];
-    const glm::mat4 rest = glm::scale(glm::translate(glm::mat4(1.0f), root.translation) * glm::mat4_cast(root.rotation), root.scale);
-    const glm::mat4 x = rest * out->inverse_bind_matrices[static_cast<size_t>(anchor)];
+    const glm::mat4 x = trs_matrix(root.translation, root.rotation, root.scale) * out->inverse_bind_matrices[static_cast<size_t>(anchor)];
     const float det = glm::determinant(glm::mat3(x));
     if (near_identity(x) || !std::isfinite(det) || !(std::abs(det) > 1e-30f)) return false;
     const glm::mat4 x_inv = glm::inverse(x);

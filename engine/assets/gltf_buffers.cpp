@@ -118,11 +118,10 @@ std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned 
     size_t begin = 0, length = size;
     if (glb) {
         if (size < 20) return std::nullopt;
-        length = size_t{bytes[12]} | size_t{bytes[13]} << 8 | size_t{bytes[14]} << 16 | size_t{bytes[15]} << 24;
-        const size_t declared = size_t{bytes[8]} | size_t{bytes[9]} << 8 | size_t{bytes[10]} << 16 | size_t{bytes[11]} << 24;
+        length = glb_u32(bytes + 12);
         begin = 20;
         // tinygltf reports the broken chunk or header; a rewrite would write a consistent total over it.
-        if (length > size - 20 || declared != size) return std::nullopt;
+        if (length > size - 20 || glb_u32(bytes + 8) != size) return std::nullopt;
     }
     const std::string_view text(reinterpret_cast<const char*>(bytes) + begin, length);
     const bool meshopt = text.find(kMeshopt) != std::string_view::npos && text.find("fallback") != std::string_view::npos;

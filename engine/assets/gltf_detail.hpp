@@ -44,6 +44,11 @@ inline constexpr std::string_view kDracoExtension = "KHR_draco_mesh_compression"
 /// The WebP texture extension's name (a texture's image source in WebP, gltf_material.cpp).
 inline constexpr std::string_view kWebpExtension = "EXT_texture_webp";
 
+/// The little-endian 32-bit value at `p` (GLB header and chunk fields).
+inline uint32_t glb_u32(const unsigned char* p) {
+    return uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
+}
+
 /// A JSON value (an extension's member) as a non-negative integer, or -1 when it is not one (a fraction, a
 /// negative number, a string, more than 9e15).
 int64_t non_negative_integer(const tinygltf::Value& v);

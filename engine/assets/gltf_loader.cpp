@@ -87,16 +87,14 @@ bool refuse_write(std::string* err, const std::string&, const std::vector<unsign
     return false;
 }
 
-uint32_t read32(const unsigned char* p) { return uint32_t{p[0]} | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24; }
-
 // A GLB's BIN chunk must fit the file with its 8-byte header: tinygltf 2.8 checks its length without that header
 // and reads up to 8 bytes past the end of the data (found by fuzz_gltf). Other layout errors are left to tinygltf.
 Status check_glb_bin_chunk(const unsigned char* bytes, size_t size, const std::string& file) {
     if (size < 20) return {};
-    const uint64_t declared = read32(bytes + 8), json_end = 20ull + read32(bytes + 12);
+    const uint64_t declared = glb_u32(bytes + 8), json_end = 20ull + glb_u32(bytes + 12);
     const uint64_t end = std::min<uint64_t>(declared, size);
     if (json_end + 8 > end) return {};  // no BIN chunk (or a broken JSON chunk, which tinygltf reports)
-    const uint64_t bin = read32(bytes + json_end);
+    const uint64_t bin = glb_u32(bytes + json_end);
     if (json_end + 8 + bin > end)
         return make_error(file, "not a valid glTF file: the BIN chunk says " + std::to_string(bin) + " bytes, but " +
                                     std::to_string(end - json_end - 8) + " follow its header");
@@ -114,7 +112,7 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
         size_t begin = 0, length = size;
         if (is_glb) {
             begin = 20;
-            length = size >= 20 ? (size_t{bytes[12]} | size_t{bytes[13]} << 8 | size_t{bytes[14]} << 16 | size_t{bytes[15]} << 24) : 0;
+            length = size >= 20 ? glb_u32(bytes + 12) : 0;
             length = std::min(length, size >= 20 ? size - 20 : 0);
         }
         if (Status deep = check_json_depth(std::string_view(reinterpret_cast<const char*>(bytes) + begin, length), file); !deep.ok())

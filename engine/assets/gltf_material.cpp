@@ -59,47 +59,51 @@ Result<glm::mat3> texture_transform(const tinygltf::Value& ext, const std::strin
     return translate * rotate * scaling;
 }
 
+// Whether a w x h image may be decoded (each side 1..kMaxImageSide); when not, the reason goes to `log`.
+bool image_size_ok(int w, int h, int index, ImageDecodeLog* log) {
+    if (w > 0 && h > 0 && w <= kMaxImageSide && h <= kMaxImageSide) return true;
+    log->failures.emplace_back(index, std::to_string(w) + " x " + std::to_string(h) + " pixels exceeds the limit of " + std::to_string(kMaxImageSide) +
+                                          " x " + std::to_string(kMaxImageSide));
+    return false;
+}
+
 // True when `bytes` hold a WebP file (a RIFF container of form type WEBP).
 bool is_webp(const unsigned char* bytes, int size) {
     return size >= 12 && std::equal(bytes, bytes + 4, "RIFF") && std::equal(bytes + 8, bytes + 12, "WEBP");
 }
 
-// Decodes a WebP image with libwebp into `image` (RGBA8); false with a reason in `log` otherwise.
-bool decode_webp(tinygltf::Image* image, int index, const unsigned char* bytes, int size, ImageDecodeLog* log) {
+// Decodes a WebP image with libwebp into `image` (RGBA8); when it cannot, `image` stays empty and `log` says why.
+void decode_webp(tinygltf::Image* image, int index, const unsigned char* bytes, int size, ImageDecodeLog* log) {
     int w = 0, h = 0;
     if (!WebPGetInfo(bytes, static_cast<size_t>(size), &w, &h)) {
         log->failures.emplace_back(index, "not a WebP image libwebp can read (bad header)");
-        return false;
+        return;
     }
-    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide) {
-        log->failures.emplace_back(index, std::to_string(w) + " x " + std::to_string(h) + " pixels exceeds the limit of " + std::to_string(kMaxImageSide) +
-                                              " x " + std::to_string(kMaxImageSide));
-        return false;
-    }
+    if (!image_size_ok(w, h, index, log)) return;
     image->image.resize(static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
     if (!WebPDecodeRGBAInto(bytes, static_cast<size_t>(size), image->image.data(), image->image.size(), w * 4)) {
         image->image.clear();
         log->failures.emplace_back(index, "WebP decoding failed (corrupt data)");
-        return false;
+        return;
     }
     image->width = w;
     image->height = h;
     image->component = 4;
     image->bits = 8;
     image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    return true;
 }
 
 // The image a texture draws: its EXT_texture_webp source when it has one (the extension's fallback `source`
-// is for readers without WebP), else its `source`; -1 when it has neither. Errors name a malformed extension.
-Result<int> texture_image(const tinygltf::Texture& tex, const std::string& file, const std::string& where, size_t* webp) {
+// is for readers without WebP), else its `source`; -1 when it has neither. `from_webp` says which. Errors name a
+// malformed extension.
+Result<int> texture_image(const tinygltf::Texture& tex, const std::string& file, const std::string& where, bool* from_webp) {
     const auto ext = tex.extensions.find(std::string(kWebpExtension));
-    if (ext == tex.extensions.end()) return tex.source;
+    *from_webp = ext != tex.extensions.end();
+    if (!*from_webp) return tex.source;
     const std::string at = where + ".extensions." + std::string(kWebpExtension) + ".source";
     if (!ext->second.IsObject() || !ext->second.Has("source")) return make_error(file, "has no 'source' image index", 0, 0, at);
     const int64_t source = non_negative_integer(ext->second.Get("source"));
     if (source < 0 || source > INT32_MAX) return make_error(file, "expected an image index", 0, 0, at);
-    ++*webp;
     return static_cast<int>(source);
 }
 
@@ -116,11 +120,7 @@ bool decode_image(tinygltf::Image* image, int index, std::string*, std::string*,
         log->failures.emplace_back(index, std::string("not a PNG, JPEG or WebP image (") + stbi_failure_reason() + ")");
         return true;
     }
-    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide) {
-        log->failures.emplace_back(index, std::to_string(w) + " x " + std::to_string(h) + " pixels exceeds the limit of " + std::to_string(kMaxImageSide) +
-                                              " x " + std::to_string(kMaxImageSide));
-        return true;
-    }
+    if (!image_size_ok(w, h, index, log)) return true;
     unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
     if (!pixels) {
         log->failures.emplace_back(index, std::string("decoding failed (") + stbi_failure_reason() + ")");
@@ -182,7 +182,8 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
             }
             const tinygltf::Texture& tex = model.textures[static_cast<size_t>(info.index)];
             const std::string xw = "textures[" + std::to_string(info.index) + "]";
-            Result<int> source = texture_image(tex, file, xw, &webp);
+            bool from_webp = false;
+            Result<int> source = texture_image(tex, file, xw, &from_webp);
             if (!source.ok()) return source.error();
             if (source.value() < 0 || static_cast<size_t>(source.value()) >= model.images.size()) {
                 out->notes.push_back(xw + ": no usable image source (" + std::to_string(source.value()) + "); " + m.name + " drawn untextured");
@@ -213,8 +214,9 @@ Status read_materials(const tinygltf::Model& model, const std::string& file, Glt
                 };
                 const auto img = static_cast<size_t>(source.value());
                 int texture = texture_of(img);
+                webp += texture >= 0 && from_webp ? 1 : 0;
                 // An unusable WebP source with a usable fallback `source`: the fallback is drawn.
-                if (texture < 0 && source.value() != tex.source && tex.source >= 0 && static_cast<size_t>(tex.source) < model.images.size()) {
+                if (texture < 0 && from_webp && source.value() != tex.source && tex.source >= 0 && static_cast<size_t>(tex.source) < model.images.size()) {
                     texture = texture_of(static_cast<size_t>(tex.source));
                     if (texture >= 0)
                         out->notes.push_back(xw + ": its WebP images[" + std::to_string(img) + "] could not be used; the fallback images[" +

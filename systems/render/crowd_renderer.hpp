@@ -270,8 +270,7 @@ private:
     struct Material {
         glm::vec4 colour{1.0f};       // display-space base colour
         int texture = -1;
-        uint32_t alpha_bits = 0;      // gpu::lit_alpha_bits of its alpha cutoff (0: opaque)
-        bool unlit = false;           // drawn without lighting (gpu::kLitUnlit)
+        uint32_t mode_bits = 0;       // its LitPush::offsets.w bits: gpu::lit_alpha_bits of its cutoff, gpu::kLitUnlit
     };
     struct Atlas {  // its layout is atlas_layouts_[id]
         gpu::Buffer cells;                     // impostor_cell_table: the texel grid, then each cell's bounds

@@ -242,16 +242,16 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
         const Material& m = materials_[r.material];
         // An alpha-tested material is drawn with the dithered pipeline (the one that may discard), keeping
         // every pixel unless the group is fading; the others keep the pipeline without discard.
-        const VkPipeline wanted = m.alpha_bits != 0 ? pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces) : pipeline;
-        const uint32_t range_dither = m.alpha_bits != 0 && dither == 0 ? gpu::lit_dither_bits(1.0f) : dither;
+        const bool alpha_test = (m.mode_bits & gpu::kLitAlphaTest) != 0;
+        const VkPipeline wanted = alpha_test ? pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces) : pipeline;
+        const uint32_t range_dither = alpha_test && dither == 0 ? gpu::lit_dither_bits(1.0f) : dither;
         if (wanted != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wanted);
             bound = wanted;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
         const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
-        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, textured | normals | range_dither | m.alpha_bits |
-                                                                                 (m.unlit ? gpu::kLitUnlit : 0u));
+        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, textured | normals | range_dither | m.mode_bits);
         push.base_colour = m.colour;
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDrawIndexed(cmd, r.index_count, count, r.first_index, 0, 0);

@@ -65,8 +65,7 @@ Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& materia
     m.texture = texture;
     if (!(material.alpha_cutoff <= 1.0f))
         return gpu::gpu_error("register_material: '" + material.name + "' alpha cutoff must be at most 1 (negative: opaque)");
-    m.alpha_bits = gpu::lit_alpha_bits(material.alpha_cutoff);
-    m.unlit = material.unlit;
+    m.mode_bits = gpu::lit_alpha_bits(material.alpha_cutoff) | (material.unlit ? gpu::kLitUnlit : 0u);
     materials_.push_back(m);
     return static_cast<uint32_t>(materials_.size() - 1);
 }

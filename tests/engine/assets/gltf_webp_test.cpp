@@ -98,6 +98,7 @@ TEST(GltfWebp, BrokenWebpFallsBackToItsPngSource) {
     EXPECT_EQ(r.value().textures[0].rgba, kTexels);
     EXPECT_EQ(r.value().materials[0].texture, 0);
     EXPECT_TRUE(has_note(r.value(), "textures[0]: its WebP images[1] could not be used; the fallback images[0] is drawn"));
+    EXPECT_FALSE(has_note(r.value(), "drawn from WebP images")) << "no texture is drawn from WebP";
 }
 
 TEST(GltfWebp, MalformedExtensionIsAnErrorNamingIt) {

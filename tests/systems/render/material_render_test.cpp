@@ -31,6 +31,9 @@ TextureImage quad_texture() {
     return t;
 }
 
+// quad_texture()'s texels as drawn opaque: top left, top right, bottom left, bottom right.
+const glm::u8vec4 kTexel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
+
 glm::u8vec4 pixel(const gpu::Rgba8Image& img, uint32_t x, uint32_t y) {
     const uint8_t* p = &img.pixels[(y * kSize + x) * 4];
     return {p[0], p[1], p[2], p[3]};
@@ -56,6 +59,14 @@ struct Quad {
     std::vector<glm::vec2> uvs = {{0, 1}, {0.5f, 1}, {1, 1}, {0, 0}, {0.5f, 0}, {1, 0}};
     std::vector<uint32_t> indices = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4};
 };
+
+// The quad (the whole texture over it) with one material on a topology of its own, per-vertex lit or not.
+std::vector<DeformableMesh> quad_meshes(CrowdRenderer& r, uint32_t material, bool vertex_lit) {
+    static const Quad q;
+    const std::vector<uint32_t> ids = {material};
+    const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}, "meshes", vertex_lit).value();
+    return {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+}
 
 FrameInput unlit_frame(const std::vector<DeformableMesh>& meshes) {
     FrameInput f;
@@ -145,18 +156,11 @@ TEST(MaterialRender, FullTextureAndCharacterLighting) {
         CrowdRenderer& r = *made.value();
         const uint32_t tex = r.register_texture(quad_texture()).value();
         const uint32_t mat = r.register_material(SurfaceMaterial{}, static_cast<int>(tex)).value();
-        Quad q;
-        q.uvs = {{0, 1}, {0.5f, 1}, {1, 1}, {0, 0}, {0.5f, 0}, {1, 0}};
-        const std::vector<uint32_t> ids = {mat};
-        const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}).value();
-        const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+        const std::vector<DeformableMesh> meshes = quad_meshes(r, mat, false);  // the frame keeps a span of them
         FrameInput frame = unlit_frame(meshes);
         Result<gpu::Rgba8Image> img = draw(r, *ctx, frame, "aloha_material_full.png");
         ASSERT_TRUE(img.ok());
-        const glm::u8vec4 texel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
-        for (uint32_t k = 0; k < 4; ++k) {
-            EXPECT_EQ(block_matches(img.value(), k, texel[k]), 32 * 32) << "texel " << k;
-        }
+        for (uint32_t k = 0; k < 4; ++k) EXPECT_EQ(block_matches(img.value(), k, kTexel[k]), 32 * 32) << "texel " << k;
         set_character_lighting(frame);
         Result<gpu::Rgba8Image> lit = draw(r, *ctx, frame, "aloha_material_lit.png");
         ASSERT_TRUE(lit.ok());
@@ -164,7 +168,7 @@ TEST(MaterialRender, FullTextureAndCharacterLighting) {
         lighting.sky = glm::vec4(frame.sky_colour, 1);
         lighting.ground = glm::vec4(frame.ground_colour, 1);
         lighting.key = glm::vec4(frame.key_colour, 1);
-        const glm::vec3 want = gpu::lit_colour(glm::vec3(texel[0]) / 255.0f, {0, 0, 1},
+        const glm::vec3 want = gpu::lit_colour(glm::vec3(kTexel[0]) / 255.0f, {0, 0, 1},
                                                glm::vec4(glm::normalize(frame.light_direction), frame.ambient), lighting);
         const glm::u8vec4 got = pixel(lit.value(), 8, 8);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c] * 255.0f, 1.0f) << "channel " << c;
@@ -187,7 +191,6 @@ TEST(MaterialRender, AlphaMaskDrawsTexelsAtOrAboveTheCutoff) {
         const uint8_t alpha[4] = {255, 0, 100, 200};
         for (int k = 0; k < 4; ++k) t.rgba[static_cast<size_t>(4 * k + 3)] = alpha[k];
         const uint32_t tex = r.register_texture(t).value();
-        const glm::u8vec4 texel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
         struct Case {
             float cutoff;
             bool vertex_lit;
@@ -196,15 +199,12 @@ TEST(MaterialRender, AlphaMaskDrawsTexelsAtOrAboveTheCutoff) {
             SurfaceMaterial m;
             m.alpha_cutoff = c.cutoff;
             const uint32_t mat = r.register_material(m, static_cast<int>(tex)).value();
-            const Quad q;
-            const std::vector<uint32_t> ids = {mat};
-            const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}, "meshes", c.vertex_lit).value();
-            const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+            const std::vector<DeformableMesh> meshes = quad_meshes(r, mat, c.vertex_lit);  // the frame keeps a span of them
             Result<gpu::Rgba8Image> img = draw(r, *ctx, unlit_frame(meshes), "aloha_material_alpha.png");
             ASSERT_TRUE(img.ok()) << img.error().to_string();
             for (uint32_t k = 0; k < 4; ++k) {
                 const bool shown = c.cutoff < 0.0f || static_cast<float>(alpha[k]) / 255.0f >= c.cutoff;
-                EXPECT_EQ(block_matches(img.value(), k, shown ? texel[k] : glm::u8vec4(0, 0, 0, 255)), 32 * 32) << "cutoff " << c.cutoff << (c.vertex_lit ? " vertex-lit" : "") << ", texel " << k
+                EXPECT_EQ(block_matches(img.value(), k, shown ? kTexel[k] : glm::u8vec4(0, 0, 0, 255)), 32 * 32) << "cutoff " << c.cutoff << (c.vertex_lit ? " vertex-lit" : "") << ", texel " << k
                                       << (shown ? " shown" : " discarded");
             }
         }
@@ -225,22 +225,18 @@ TEST(MaterialRender, UnlitMaterialShowsItsAlbedo) {
         ASSERT_TRUE(made.ok());
         CrowdRenderer& r = *made.value();
         const uint32_t tex = r.register_texture(quad_texture()).value();
-        const glm::u8vec4 texel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
         for (const bool vertex_lit : {false, true})
             for (const bool unlit : {true, false}) {
                 SurfaceMaterial m;
                 m.unlit = unlit;
                 const uint32_t mat = r.register_material(m, static_cast<int>(tex)).value();
-                const Quad q;
-                const std::vector<uint32_t> ids = {mat};
-                const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}, "meshes", vertex_lit).value();
-                const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+                const std::vector<DeformableMesh> meshes = quad_meshes(r, mat, vertex_lit);  // the frame keeps a span of them
                 FrameInput frame = unlit_frame(meshes);
                 set_character_lighting(frame);
                 Result<gpu::Rgba8Image> img = draw(r, *ctx, frame, "aloha_material_unlit.png");
                 ASSERT_TRUE(img.ok()) << img.error().to_string();
                 int exact = 0;
-                for (uint32_t k = 0; k < 4; ++k) exact += block_matches(img.value(), k, texel[k]);
+                for (uint32_t k = 0; k < 4; ++k) exact += block_matches(img.value(), k, kTexel[k]);
                 if (unlit) EXPECT_EQ(exact, 64 * 64) << (vertex_lit ? "vertex-lit" : "per-pixel");
                 else EXPECT_LT(exact, 64 * 64 / 4) << "the lit material is shaded" << (vertex_lit ? " (vertex-lit)" : "");
             }
