@@ -48,6 +48,9 @@ struct GeomLod {
     uint16_t phi_steps = 6;      ///< steps from pole to pole (phi)
     float geomorph_s = 0.0f;     ///< seconds to morph from the previous surface when this level is entered
     float simplify_error = 0.0f; ///< SkinnedMesh: triangle list simplified within this fraction of the height (0: not)
+    /// SkinnedMesh standing in for a layered or subdivided level (a character type without muscles): lit per
+    /// pixel as the level it stands in for, so close characters keep their normal maps and smooth light.
+    bool lit_per_pixel = false;
 };
 
 /// How cyclic locomotion is produced at an animation level (from cheapest to richest).

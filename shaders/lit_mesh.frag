@@ -1,11 +1,16 @@
 #version 450
-// Lit mesh fragment shader: albedo * (ambient * hemisphere(N) + (1 - ambient) * key * max(dot(N, L), 0)), where
-// hemisphere(N) = mix(ground, sky, 0.5 + 0.5 N.y) (set 0 binding 4) and albedo = instance colour * material
-// base colour (* the base colour texture at the vertex UVs in textured mode, offsets.w & 2). N is turned
+// Lit mesh fragment shader: albedo * (ambient * occlusion * hemisphere(N) + (1 - ambient) * key * max(dot(N, L), 0))
+// + emissive, where hemisphere(N) = mix(ground, sky, 0.5 + 0.5 N.y) (set 0 binding 4) and albedo = instance colour *
+// material base colour (* the base colour texture at the vertex UVs in textured mode, offsets.w & 2). N is turned
 // to face the camera (two-sided lighting, so meshes with either winding light the same). In box mode (offsets.w & 1)
 // N is the flat face normal from screen-space derivatives of the world position. With offsets.w & 4 the
 // world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes). With offsets.w bit 15 (an unlit
 // material) the albedo is written as it is.
+// Material maps (gpu::LitMode, set 1 bindings 2..4, read at the vertex UVs): with offsets.w & 8 N is turned by the
+// normal map, a glTF tangent-space normal (x along +u, y towards v = 0, z along N) in the tangent frame of the
+// screen-space derivatives of the world position and the UVs (so any deformation of the skin keeps its frame;
+// mirrored UVs flip the frame's handedness, as MikkTSpace's sign does); with & 16 the ambient term is scaled by the
+// occlusion map's red channel; with & 32 the emissive texture is added (at UV (0, 0) when untextured: one texel).
 // Built again with DITHER (the dithered pipelines, gpu::LitPipelines): a screen-door fade keeps only the
 // pixels whose 4x4 Bayer value is below (offsets.w >> 8) & 31 (0..16, gpu::lit_dither_bits), the complement of an
 // impostor faded at -m (shaders/impostor.frag) for the same m, or with bit 13 the complement of those (the left
@@ -26,6 +31,9 @@ layout(std430, set = 0, binding = 4) readonly buffer Lighting {
     vec4 key;
 } lighting;
 layout(set = 1, binding = 1) uniform sampler2D base_colour_texture;
+layout(set = 1, binding = 2) uniform sampler2D normal_texture;
+layout(set = 1, binding = 3) uniform sampler2D occlusion_texture;
+layout(set = 1, binding = 4) uniform sampler2D emissive_texture;
 
 layout(location = 0) in vec4 v_normal_u;   // xyz: normal, w: texture u
 layout(location = 1) in vec4 v_world_v;    // xyz: world position, w: texture v
@@ -43,10 +51,30 @@ void main() {
     if ((kBayer[q.y * 4 + q.x] < ((pc.offsets.w >> 8) & 31u)) == ((pc.offsets.w & 0x2000u) != 0u)) discard;
 #endif
     const vec3 world = v_world_v.xyz;
+    const vec2 uv = vec2(v_normal_u.w, v_world_v.w);
     vec3 n = (pc.offsets.w & 1u) != 0u ? normalize(cross(dFdx(world), dFdy(world))) : normalize(v_normal_u.xyz);
     if (dot(n, pc.camera.xyz - world) < 0.0) n = -n;
+    if ((pc.offsets.w & 8u) != 0u) {  // normal map (gpu::kLitNormalMap)
+        // dp = T du + B dv over the pixel's footprint: T = dp/du, B = dp/dv from the two screen derivatives.
+        const vec3 dpx = dFdx(world), dpy = dFdy(world);
+        const vec2 dux = dFdx(uv), duy = dFdy(uv);
+        const float det = dux.x * duy.y - duy.x * dux.y;
+        if (abs(det) > 1e-20) {
+            const vec3 t_raw = (duy.y * dpx - dux.y * dpy) / det;
+            const vec3 b_raw = (dux.x * dpy - duy.x * dpx) / det;
+            const vec3 t = t_raw - n * dot(n, t_raw);
+            if (dot(t, t) > 1e-20) {
+                const vec3 tn = normalize(t);
+                // The map's +y points towards v = 0, against dp/dv; its sign gives the frame's handedness.
+                const vec3 b = cross(n, tn) * (dot(cross(n, tn), b_raw) > 0.0 ? -1.0 : 1.0);
+                const vec3 m = texture(normal_texture, uv).xyz * 2.0 - 1.0;
+                const vec3 mapped = mat3(tn, b, n) * m;
+                if (dot(mapped, mapped) > 1e-12) n = normalize(mapped);
+            }
+        }
+    }
     vec4 albedo = v_colour;
-    if ((pc.offsets.w & 2u) != 0u) albedo *= texture(base_colour_texture, vec2(v_normal_u.w, v_world_v.w));
+    if ((pc.offsets.w & 2u) != 0u) albedo *= texture(base_colour_texture, uv);
 #ifdef DITHER
     // Alpha test (gpu::lit_alpha_bits): bit 14 on, the cutoff in bits 16..31.
     if ((pc.offsets.w & 0x4000u) != 0u && albedo.a < float(pc.offsets.w >> 16) / 65535.0) discard;
@@ -60,8 +88,10 @@ void main() {
         return;
     }
     float ambient = pc.light.w;
+    if ((pc.offsets.w & 16u) != 0u) ambient *= texture(occlusion_texture, uv).r;  // occlusion map (gpu::kLitOcclusion)
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
     float diffuse = max(dot(n, pc.light.xyz), 0.0);
-    vec3 lit = albedo.rgb * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse);
+    vec3 lit = albedo.rgb * (ambient * hemi + (1.0 - pc.light.w) * lighting.key.rgb * diffuse);
+    if ((pc.offsets.w & 32u) != 0u) lit += texture(emissive_texture, uv).rgb;  // emissive (gpu::kLitEmissive)
     out_colour = vec4(clamp(lit, 0.0, 1.0), albedo.a);
 }

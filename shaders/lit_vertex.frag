@@ -4,7 +4,8 @@
 // shaders/lit_mesh.frag does. Two interpolants instead of three and no lighting per pixel: for characters
 // small on screen, where lavapipe's cost per triangle dominates (docs/PERFORMANCE.md). Built again with
 // DITHER: the screen-door fade of shaders/lit_mesh.frag (pixels whose 4x4 Bayer value is below offsets.w >> 8,
-// or with bit 13 the others).
+// or with bit 13 the others). Of the material maps only the emissive one is drawn here (offsets.w & 32, added after
+// the light); normal and occlusion maps need the per-pixel normal and ambient term.
 
 layout(push_constant) uniform Push {
     mat4 view_proj;
@@ -15,6 +16,7 @@ layout(push_constant) uniform Push {
 } pc;
 
 layout(set = 1, binding = 1) uniform sampler2D base_colour_texture;
+layout(set = 1, binding = 4) uniform sampler2D emissive_texture;
 
 layout(location = 0) in vec4 v_lit;
 layout(location = 1) in vec2 v_uv;
@@ -36,5 +38,6 @@ void main() {
     // Alpha test (gpu::lit_alpha_bits), as shaders/lit_mesh.frag.
     if ((pc.offsets.w & 0x4000u) != 0u && lit.a < float(pc.offsets.w >> 16) / 65535.0) discard;
 #endif
+    if ((pc.offsets.w & 32u) != 0u) lit.rgb += texture(emissive_texture, v_uv).rgb;  // emissive (gpu::kLitEmissive)
     out_colour = vec4(clamp(lit.rgb, 0.0, 1.0), lit.a);
 }

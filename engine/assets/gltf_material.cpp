@@ -1,19 +1,22 @@
-// glTF materials for the character loader: base colour factor, alpha mode, base colour texture (its
-// texCoord set, KHR_texture_transform, sampler wrap and filter modes, EXT_texture_webp's source) and the
-// decoding of the images they use (stb_image for PNG and JPEG, libwebp for WebP; RGBA8).
+// glTF materials for the character loader: base colour factor, alpha mode, KHR_materials_unlit, and the four
+// textures the crowd renderer draws: base colour, normal (with its scale), occlusion (with its strength) and
+// emissive (emissiveFactor, KHR_materials_emissive_strength). Each texture has its texCoord set,
+// KHR_texture_transform, sampler wrap and filter modes and EXT_texture_webp's source. A factor that scales a
+// texture is baked into a copy of its image (gltf_texture_bake.cpp), so the renderer reads every input as
+// it is. A primitive has one UV set: a texture on another set than its material's first one is left out
+// with a note.
 #include "engine/assets/gltf_detail.hpp"
-
-#include <stb_image.h>
-#include <webp/decode.h>
+#include "engine/assets/gltf_texture_bake.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
 
 namespace aloha::gltf_detail {
 
 namespace {
-
-constexpr int kMaxImageSide = 8192;
 
 TextureWrap wrap_of(int gl) {
     switch (gl) {
@@ -59,40 +62,6 @@ Result<glm::mat3> texture_transform(const tinygltf::Value& ext, const std::strin
     return translate * rotate * scaling;
 }
 
-// Whether a w x h image may be decoded (each side 1..kMaxImageSide); when not, the reason goes to `log`.
-bool image_size_ok(int w, int h, int index, ImageDecodeLog* log) {
-    if (w > 0 && h > 0 && w <= kMaxImageSide && h <= kMaxImageSide) return true;
-    log->failures.emplace_back(index, std::to_string(w) + " x " + std::to_string(h) + " pixels exceeds the limit of " + std::to_string(kMaxImageSide) +
-                                          " x " + std::to_string(kMaxImageSide));
-    return false;
-}
-
-// True when `bytes` hold a WebP file (a RIFF container of form type WEBP).
-bool is_webp(const unsigned char* bytes, int size) {
-    return size >= 12 && std::equal(bytes, bytes + 4, "RIFF") && std::equal(bytes + 8, bytes + 12, "WEBP");
-}
-
-// Decodes a WebP image with libwebp into `image` (RGBA8); when it cannot, `image` stays empty and `log` says why.
-void decode_webp(tinygltf::Image* image, int index, const unsigned char* bytes, int size, ImageDecodeLog* log) {
-    int w = 0, h = 0;
-    if (!WebPGetInfo(bytes, static_cast<size_t>(size), &w, &h)) {
-        log->failures.emplace_back(index, "not a WebP image libwebp can read (bad header)");
-        return;
-    }
-    if (!image_size_ok(w, h, index, log)) return;
-    image->image.resize(static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
-    if (!WebPDecodeRGBAInto(bytes, static_cast<size_t>(size), image->image.data(), image->image.size(), w * 4)) {
-        image->image.clear();
-        log->failures.emplace_back(index, "WebP decoding failed (corrupt data)");
-        return;
-    }
-    image->width = w;
-    image->height = h;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-}
-
 // The image a texture draws: its EXT_texture_webp source when it has one (the extension's fallback `source`
 // is for readers without WebP), else its `source`; -1 when it has neither. `from_webp` says which. Errors name a
 // malformed extension.
@@ -107,141 +76,262 @@ Result<int> texture_image(const tinygltf::Texture& tex, const std::string& file,
     return static_cast<int>(source);
 }
 
-}  // namespace
+// A material's texture reference (glTF textureInfo, normalTextureInfo, occlusionTextureInfo).
+struct TextureRef {
+    int index = -1;
+    int texcoord = 0;
+    const tinygltf::ExtensionMap* extensions = nullptr;
+};
 
-bool decode_image(tinygltf::Image* image, int index, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void* user) {
-    auto* log = static_cast<ImageDecodeLog*>(user);
-    if (is_webp(bytes, size)) {
-        decode_webp(image, index, bytes, size, log);
-        return true;  // a failure is noted; the materials using the image are drawn untextured
-    }
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) {
-        log->failures.emplace_back(index, std::string("not a PNG, JPEG or WebP image (") + stbi_failure_reason() + ")");
-        return true;
-    }
-    if (!image_size_ok(w, h, index, log)) return true;
-    unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
-    if (!pixels) {
-        log->failures.emplace_back(index, std::string("decoding failed (") + stbi_failure_reason() + ")");
-        return true;
-    }
-    image->width = w;
-    image->height = h;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image.assign(pixels, pixels + static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
-    stbi_image_free(pixels);
-    return true;
-}
+// A texture reference resolved: the decoded image it draws, its sampler and its UV set.
+struct ResolvedTexture {
+    size_t image = 0;
+    int sampler = -1;
+    MaterialUv uv;
+};
 
-Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out, std::vector<MaterialUv>* uv) {
-    std::vector<int> texture_of_image(model.images.size(), -1);  // index into out->textures, -2 = unusable
-    uv->assign(model.materials.size(), MaterialUv{});
-    size_t transformed = 0, webp = 0, unlit = 0;
-    for (size_t i = 0; i < model.materials.size(); ++i) {
-        const tinygltf::Material& src = model.materials[i];
+// Reads the materials of one file into a GltfCharacter, decoding (baking) each texture once.
+class MaterialReader {
+public:
+    MaterialReader(const tinygltf::Model& model, const std::string& file, GltfCharacter* out) : model_(model), file_(file), out_(out) {}
+
+    // Reads every material; `uv` gets each one's UV set (see read_materials).
+    Status read(std::vector<MaterialUv>* uv) {
+        uv->assign(model_.materials.size(), MaterialUv{});
+        for (size_t i = 0; i < model_.materials.size(); ++i) {
+            Result<SurfaceMaterial> m = material(i, &(*uv)[i]);
+            if (!m.ok()) return m.error();
+            out_->materials.push_back(std::move(m).value());
+        }
+        add_notes();
+        return {};
+    }
+
+private:
+    // Material `i`; its UV set (that of its first drawn texture) goes to `uv`.
+    Result<SurfaceMaterial> material(size_t i, MaterialUv* uv) {
+        const tinygltf::Material& src = model_.materials[i];
         const std::string where = "materials[" + std::to_string(i) + "]";
         SurfaceMaterial m;
         m.name = src.name.empty() ? "material" + std::to_string(i) : src.name;
         m.double_sided = src.doubleSided;
         m.unlit = src.extensions.count("KHR_materials_unlit") > 0;
-        unlit += m.unlit ? 1 : 0;
-        const std::vector<double>& f = src.pbrMetallicRoughness.baseColorFactor;
-        if (f.size() != 4) return make_error(file, "baseColorFactor has " + std::to_string(f.size()) + " values, expected 4", 0, 0, where + ".pbrMetallicRoughness");
-        for (int c = 0; c < 4; ++c) {
-            if (!std::isfinite(f[static_cast<size_t>(c)]) || f[static_cast<size_t>(c)] < 0.0 || f[static_cast<size_t>(c)] > 1.0)
-                return make_error(file, "baseColorFactor values must be in [0, 1]", 0, 0, where + ".pbrMetallicRoughness.baseColorFactor");
-            m.base_colour[c] = static_cast<float>(f[static_cast<size_t>(c)]);
-        }
-        if (src.alphaMode == "MASK") {
-            if (!std::isfinite(src.alphaCutoff) || src.alphaCutoff < 0.0)
-                return make_error(file, "alphaCutoff must be a number of at least 0", 0, 0, where + ".alphaCutoff");
-            m.alpha_cutoff = static_cast<float>(std::min(src.alphaCutoff, 1.0));
-            if (src.alphaCutoff > 1.0) out->notes.push_back(where + ": alphaCutoff above 1: no fragment of the material is drawn");
-        } else if (src.alphaMode == "BLEND") {
-            m.alpha_cutoff = 0.5f;
-            out->notes.push_back(where + ": alphaMode BLEND is drawn alpha-tested at 0.5 (a crowd is not sorted back to front)");
-        } else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty()) {
-            return make_error(file, "alphaMode '" + src.alphaMode + "' is none of OPAQUE, MASK, BLEND", 0, 0, where + ".alphaMode");
-        }
-        const tinygltf::TextureInfo& info = src.pbrMetallicRoughness.baseColorTexture;
-        if (info.index >= 0) {
-            const std::string tw = where + ".pbrMetallicRoughness.baseColorTexture";
-            if (static_cast<size_t>(info.index) >= model.textures.size())
-                return make_error(file, "texture " + std::to_string(info.index) + " is out of range (the file has " + std::to_string(model.textures.size()) + " textures)", 0, 0, tw);
-            if (info.texCoord < 0) return make_error(file, "texCoord " + std::to_string(info.texCoord) + " is negative", 0, 0, tw);
-            int texcoord = info.texCoord;
-            glm::mat3 transform(1.0f);
-            if (const auto ext = info.extensions.find("KHR_texture_transform"); ext != info.extensions.end()) {
-                Result<glm::mat3> m3 = texture_transform(ext->second, file, tw + ".extensions.KHR_texture_transform", &texcoord);
-                if (!m3.ok()) return m3.error();
-                transform = m3.value();
-                ++transformed;
+        unlit_ += m.unlit ? 1 : 0;
+        Result<glm::vec4> base = factors<4>(src.pbrMetallicRoughness.baseColorFactor, where + ".pbrMetallicRoughness.baseColorFactor");
+        if (!base.ok()) return base.error();
+        m.base_colour = base.value();
+        if (Status s = alpha(src, where, &m); !s.ok()) return s.error();
+        metallic_roughness_ += src.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ? 1 : 0;
+
+        const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+        const struct {
+            TextureRole role;
+            TextureRef ref;
+            std::string at;
+            int* slot;
+        } slots[] = {
+            {TextureRole::BaseColour, {pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, &pbr.baseColorTexture.extensions},
+             where + ".pbrMetallicRoughness.baseColorTexture", &m.texture},
+            {TextureRole::Normal, {src.normalTexture.index, src.normalTexture.texCoord, &src.normalTexture.extensions}, where + ".normalTexture", &m.normal_texture},
+            {TextureRole::Occlusion, {src.occlusionTexture.index, src.occlusionTexture.texCoord, &src.occlusionTexture.extensions},
+             where + ".occlusionTexture", &m.occlusion_texture},
+            {TextureRole::Emissive, {src.emissiveTexture.index, src.emissiveTexture.texCoord, &src.emissiveTexture.extensions},
+             where + ".emissiveTexture", &m.emissive_texture},
+        };
+        Result<TextureBake> bake = bake_of(src, where);
+        if (!bake.ok()) return bake.error();
+        for (const auto& s : slots) {
+            if (s.ref.index < 0) continue;
+            Result<std::optional<ResolvedTexture>> r = resolve(s.ref, s.at, m.name);
+            if (!r.ok()) return r.error();
+            if (!r.value()) continue;
+            const ResolvedTexture& t = *r.value();
+            if (uv->texcoord < 0) {
+                *uv = t.uv;
+            } else if (uv->texcoord != t.uv.texcoord || uv->transform != t.uv.transform) {
+                out_->notes.push_back(s.at + ": on TEXCOORD_" + std::to_string(t.uv.texcoord) + " where the material's first texture is on TEXCOORD_" +
+                                      std::to_string(uv->texcoord) + (uv->transform != t.uv.transform ? " (or another KHR_texture_transform)" : "") +
+                                      "; a primitive carries one UV set, so " + m.name + " is drawn without it");
+                continue;
             }
-            const tinygltf::Texture& tex = model.textures[static_cast<size_t>(info.index)];
-            const std::string xw = "textures[" + std::to_string(info.index) + "]";
-            bool from_webp = false;
-            Result<int> source = texture_image(tex, file, xw, &from_webp);
-            if (!source.ok()) return source.error();
-            if (source.value() < 0 || static_cast<size_t>(source.value()) >= model.images.size()) {
-                out->notes.push_back(xw + ": no usable image source (" + std::to_string(source.value()) + "); " + m.name + " drawn untextured");
-            } else if (tex.sampler >= static_cast<int>(model.samplers.size())) {
-                return make_error(file, "sampler " + std::to_string(tex.sampler) + " is out of range", 0, 0, xw);
-            } else {
-                // The image as a texture of the type (decoded once per image), or -2 when it cannot be used.
-                auto texture_of = [&](size_t img) {
-                    const tinygltf::Image& image = model.images[img];
-                    if (texture_of_image[img] != -1) return texture_of_image[img];
-                    if (image.image.empty() || image.width <= 0 || image.height <= 0 || image.component != 4 || image.bits != 8)
-                        return texture_of_image[img] = -2;
-                    TextureImage t;
-                    const std::string iw = "images[" + std::to_string(img) + "]";
-                    t.name = iw + (image.name.empty() ? image.uri.empty() ? "" : " '" + image.uri + "'" : " '" + image.name + "'");
-                    t.width = static_cast<uint32_t>(image.width);
-                    t.height = static_cast<uint32_t>(image.height);
-                    t.rgba = image.image;
-                    if (tex.sampler >= 0) {
-                        const tinygltf::Sampler& sm = model.samplers[static_cast<size_t>(tex.sampler)];
-                        t.wrap_u = wrap_of(sm.wrapS);
-                        t.wrap_v = wrap_of(sm.wrapT);
-                        t.nearest = sm.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
-                    }
-                    texture_of_image[img] = static_cast<int>(out->textures.size());
-                    out->textures.push_back(std::move(t));
-                    return texture_of_image[img];
-                };
-                const auto img = static_cast<size_t>(source.value());
-                int texture = texture_of(img);
-                webp += texture >= 0 && from_webp ? 1 : 0;
-                // An unusable WebP source with a usable fallback `source`: the fallback is drawn.
-                if (texture < 0 && from_webp && source.value() != tex.source && tex.source >= 0 && static_cast<size_t>(tex.source) < model.images.size()) {
-                    texture = texture_of(static_cast<size_t>(tex.source));
-                    if (texture >= 0)
-                        out->notes.push_back(xw + ": its WebP images[" + std::to_string(img) + "] could not be used; the fallback images[" +
-                                             std::to_string(tex.source) + "] is drawn");
-                }
-                if (texture >= 0) {
-                    m.texture = texture;
-                    (*uv)[i] = MaterialUv{texcoord, transform};
-                } else {
-                    out->notes.push_back("images[" + std::to_string(img) + "]: image could not be used; " + m.name + " drawn with its base colour only");
-                }
-            }
+            *s.slot = texture(t, s.role, bake.value());
+            drawn_[static_cast<size_t>(s.role)] += 1;
         }
-        out->materials.push_back(std::move(m));
+        // An emissive factor without a texture: a one-texel emissive texture of that colour.
+        if (m.emissive_texture < 0 && bake.value().emissive != glm::vec3(0.0f)) {
+            m.emissive_texture = static_cast<int>(out_->textures.size());
+            out_->textures.push_back(constant_emissive(bake.value().emissive, where + ".emissiveFactor"));
+            drawn_[static_cast<size_t>(TextureRole::Emissive)] += 1;
+        }
+        return m;
     }
-    if (unlit > 0)
-        out->notes.push_back("KHR_materials_unlit: " + std::to_string(unlit) + " material" + (unlit == 1 ? "" : "s") +
-                             " drawn without lighting (their impostors, relit from baked normals, are lit)");
-    if (webp > 0)
-        out->notes.push_back(std::string(kWebpExtension) + ": " + std::to_string(webp) + " material texture" + (webp == 1 ? "" : "s") +
-                             " drawn from WebP images (libwebp)");
-    if (transformed > 0)
-        out->notes.push_back("KHR_texture_transform applied to the texture coordinates of " + std::to_string(transformed) + " material" +
-                             (transformed == 1 ? "" : "s"));
-    return {};
+
+    // `n` factors from `v` (glTF's baseColorFactor, emissiveFactor), each in [0, 1].
+    template <int n>
+    Result<glm::vec<n, float>> factors(const std::vector<double>& v, const std::string& where) const {
+        if (v.size() != n) return make_error(file_, "has " + std::to_string(v.size()) + " values, expected " + std::to_string(n), 0, 0, where);
+        glm::vec<n, float> out(0.0f);
+        for (size_t c = 0; c < v.size(); ++c) {
+            if (!std::isfinite(v[c]) || v[c] < 0.0 || v[c] > 1.0) return make_error(file_, "values must be in [0, 1]", 0, 0, where);
+            out[static_cast<int>(c)] = static_cast<float>(v[c]);
+        }
+        return out;
+    }
+
+    // The alpha mode: MASK at its cutoff, BLEND alpha-tested at 0.5, OPAQUE (or none) drawn opaque.
+    Status alpha(const tinygltf::Material& src, const std::string& where, SurfaceMaterial* m) {
+        if (src.alphaMode == "MASK") {
+            if (!std::isfinite(src.alphaCutoff) || src.alphaCutoff < 0.0) return make_error(file_, "alphaCutoff must be a number of at least 0", 0, 0, where + ".alphaCutoff");
+            m->alpha_cutoff = static_cast<float>(std::min(src.alphaCutoff, 1.0));
+            if (src.alphaCutoff > 1.0) out_->notes.push_back(where + ": alphaCutoff above 1: no fragment of the material is drawn");
+        } else if (src.alphaMode == "BLEND") {
+            m->alpha_cutoff = 0.5f;
+            out_->notes.push_back(where + ": alphaMode BLEND is drawn alpha-tested at 0.5 (a crowd is not sorted back to front)");
+        } else if (src.alphaMode != "OPAQUE" && !src.alphaMode.empty()) {
+            return make_error(file_, "alphaMode '" + src.alphaMode + "' is none of OPAQUE, MASK, BLEND", 0, 0, where + ".alphaMode");
+        }
+        return {};
+    }
+
+    // The factors baked into the material's normal, occlusion and emissive textures, checked.
+    Result<TextureBake> bake_of(const tinygltf::Material& src, const std::string& where) const {
+        TextureBake b;
+        b.normal_scale = static_cast<float>(src.normalTexture.scale);
+        if (!std::isfinite(src.normalTexture.scale) || !std::isfinite(b.normal_scale))
+            return make_error(file_, "scale is NaN, infinite or out of float range", 0, 0, where + ".normalTexture.scale");
+        if (!std::isfinite(src.occlusionTexture.strength) || src.occlusionTexture.strength < 0.0 || src.occlusionTexture.strength > 1.0)
+            return make_error(file_, "strength must be in [0, 1]", 0, 0, where + ".occlusionTexture.strength");
+        b.occlusion_strength = static_cast<float>(src.occlusionTexture.strength);
+        Result<glm::vec3> emissive = factors<3>(src.emissiveFactor, where + ".emissiveFactor");
+        if (!emissive.ok()) return emissive.error();
+        b.emissive = emissive.value();
+        if (const auto ext = src.extensions.find("KHR_materials_emissive_strength"); ext != src.extensions.end()) {
+            const std::string at = where + ".extensions.KHR_materials_emissive_strength.emissiveStrength";
+            if (!ext->second.IsObject()) return make_error(file_, "is not an object", 0, 0, where + ".extensions.KHR_materials_emissive_strength");
+            if (ext->second.Has("emissiveStrength")) {
+                const tinygltf::Value& v = ext->second.Get("emissiveStrength");
+                const double s = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+                if (!std::isfinite(s) || s < 0.0 || s > 1e6) return make_error(file_, "must be a number in [0, 1e6]", 0, 0, at);
+                b.emissive *= static_cast<float>(s);
+                if (std::max({b.emissive.r, b.emissive.g, b.emissive.b}) > 1.0f) clipped_emissive_ += 1;
+            }
+        }
+        return b;
+    }
+
+    // Whether image `img` was decoded into RGBA8 (decode_image).
+    bool usable(int img) const {
+        if (img < 0 || static_cast<size_t>(img) >= model_.images.size()) return false;
+        const tinygltf::Image& image = model_.images[static_cast<size_t>(img)];
+        return !image.image.empty() && image.width > 0 && image.height > 0 && image.component == 4 && image.bits == 8;
+    }
+
+    // Resolves a material's texture reference at `where`: errors for malformed references, nullopt with a note
+    // when its image cannot be drawn (the material is then drawn without it).
+    Result<std::optional<ResolvedTexture>> resolve(const TextureRef& ref, const std::string& where, const std::string& material) {
+        if (static_cast<size_t>(ref.index) >= model_.textures.size())
+            return make_error(file_, "texture " + std::to_string(ref.index) + " is out of range (the file has " + std::to_string(model_.textures.size()) + " textures)",
+                              0, 0, where);
+        if (ref.texcoord < 0) return make_error(file_, "texCoord " + std::to_string(ref.texcoord) + " is negative", 0, 0, where);
+        ResolvedTexture out;
+        out.uv.texcoord = ref.texcoord;
+        if (const auto ext = ref.extensions->find("KHR_texture_transform"); ext != ref.extensions->end()) {
+            Result<glm::mat3> m3 = texture_transform(ext->second, file_, where + ".extensions.KHR_texture_transform", &out.uv.texcoord);
+            if (!m3.ok()) return m3.error();
+            out.uv.transform = m3.value();
+            ++transformed_;
+        }
+        const tinygltf::Texture& tex = model_.textures[static_cast<size_t>(ref.index)];
+        const std::string xw = "textures[" + std::to_string(ref.index) + "]";
+        bool from_webp = false;
+        Result<int> source = texture_image(tex, file_, xw, &from_webp);
+        if (!source.ok()) return source.error();
+        if (source.value() < 0 || static_cast<size_t>(source.value()) >= model_.images.size()) {
+            out_->notes.push_back(xw + ": no usable image source (" + std::to_string(source.value()) + "); " + material + " drawn without it");
+            return std::optional<ResolvedTexture>();
+        }
+        if (tex.sampler >= static_cast<int>(model_.samplers.size())) return make_error(file_, "sampler " + std::to_string(tex.sampler) + " is out of range", 0, 0, xw);
+        out.sampler = tex.sampler;
+        int img = source.value();
+        if (!usable(img) && from_webp && img != tex.source && usable(tex.source)) {
+            // An unusable WebP source with a usable fallback `source`: the fallback is drawn.
+            if (fallback_noted_.insert(ref.index).second)
+                out_->notes.push_back(xw + ": its WebP images[" + std::to_string(img) + "] could not be used; the fallback images[" + std::to_string(tex.source) +
+                                      "] is drawn");
+            img = tex.source;
+        } else if (!usable(img)) {
+            out_->notes.push_back("images[" + std::to_string(img) + "]: image could not be used; " + material + " drawn without it (" + where + ")");
+            return std::optional<ResolvedTexture>();
+        } else {
+            webp_ += from_webp ? 1 : 0;
+        }
+        out.image = static_cast<size_t>(img);
+        return std::optional<ResolvedTexture>(out);
+    }
+
+    // The texture drawing `t` in role `role` with `bake`'s factor for that role baked in: made once per image,
+    // sampler, role and factor; its index in out_->textures.
+    int texture(const ResolvedTexture& t, TextureRole role, const TextureBake& bake) {
+        const glm::vec3 f = role == TextureRole::Normal ? glm::vec3(bake.normal_scale) : role == TextureRole::Occlusion ? glm::vec3(bake.occlusion_strength)
+                            : role == TextureRole::Emissive ? bake.emissive : glm::vec3(1.0f);
+        const auto key = std::make_tuple(t.image, t.sampler, static_cast<int>(role), f.x, f.y, f.z);
+        if (const auto it = made_.find(key); it != made_.end()) return it->second;
+        const tinygltf::Image& image = model_.images[t.image];
+        TextureImage out;
+        const std::string iw = "images[" + std::to_string(t.image) + "]";
+        out.name = iw + (image.name.empty() ? image.uri.empty() ? "" : " '" + image.uri + "'" : " '" + image.name + "'");
+        out.width = static_cast<uint32_t>(image.width);
+        out.height = static_cast<uint32_t>(image.height);
+        out.rgba = image.image;
+        if (t.sampler >= 0) {
+            const tinygltf::Sampler& sm = model_.samplers[static_cast<size_t>(t.sampler)];
+            out.wrap_u = wrap_of(sm.wrapS);
+            out.wrap_v = wrap_of(sm.wrapT);
+            out.nearest = sm.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        }
+        bake_texture(role, bake, &out);
+        const int id = static_cast<int>(out_->textures.size());
+        out_->textures.push_back(std::move(out));
+        made_.emplace(key, id);
+        return id;
+    }
+
+    // The file's notes on materials, one per kind.
+    void add_notes() {
+        auto plural = [](size_t n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); };
+        if (unlit_ > 0)
+            out_->notes.push_back("KHR_materials_unlit: " + plural(unlit_, "material") + " drawn without lighting (their impostors, relit from baked normals, are lit)");
+        if (webp_ > 0) out_->notes.push_back(std::string(kWebpExtension) + ": " + plural(webp_, "material texture") + " drawn from WebP images (libwebp)");
+        if (transformed_ > 0) out_->notes.push_back("KHR_texture_transform applied to the texture coordinates of " + plural(transformed_, "material texture"));
+        const size_t normal = drawn_[static_cast<size_t>(TextureRole::Normal)], occlusion = drawn_[static_cast<size_t>(TextureRole::Occlusion)],
+                     emissive = drawn_[static_cast<size_t>(TextureRole::Emissive)];
+        std::string maps;
+        for (const auto& [n, what] : {std::pair{normal, "normal map"}, std::pair{occlusion, "occlusion map"}, std::pair{emissive, "emissive input"}})
+            if (n > 0) maps += (maps.empty() ? "" : ", ") + plural(n, what);
+        if (!maps.empty())
+            out_->notes.push_back("material inputs drawn besides base colour: " + maps +
+                                  (normal + occlusion > 0 ? " (normal and occlusion maps by the levels lit per pixel; impostors bake them in)" : ""));
+        if (clipped_emissive_ > 0)
+            out_->notes.push_back("KHR_materials_emissive_strength: " + plural(clipped_emissive_, "material") +
+                                  " brighter than 1 drawn clipped to the display's white (no HDR target)");
+        if (metallic_roughness_ > 0)
+            out_->notes.push_back(plural(metallic_roughness_, "material") + "' metallicRoughnessTexture not drawn: characters are lit diffusely");
+    }
+
+    const tinygltf::Model& model_;
+    const std::string& file_;
+    GltfCharacter* out_;
+    std::map<std::tuple<size_t, int, int, float, float, float>, int> made_;  // (image, sampler, role, factor) -> texture
+    std::set<int> fallback_noted_;
+    size_t drawn_[4] = {0, 0, 0, 0};
+    size_t unlit_ = 0, webp_ = 0, transformed_ = 0, metallic_roughness_ = 0;
+    mutable size_t clipped_emissive_ = 0;
+};
+
+}  // namespace
+
+Status read_materials(const tinygltf::Model& model, const std::string& file, GltfCharacter* out, std::vector<MaterialUv>* uv) {
+    return MaterialReader(model, file, out).read(uv);
 }
 
 }  // namespace aloha::gltf_detail

@@ -164,16 +164,18 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     sli.bindingCount = 5;
     sli.pBindings = b;
     ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.set_layout_));
-    VkDescriptorSetLayoutBinding mb[2]{};
+    VkDescriptorSetLayoutBinding mb[1 + kMaterialTextures]{};
     mb[0].binding = 0;
     mb[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     mb[0].descriptorCount = 1;
     mb[0].stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
-    mb[1].binding = 1;
-    mb[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    mb[1].descriptorCount = 1;
-    mb[1].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
-    sli.bindingCount = 2;
+    for (uint32_t i = 1; i <= kMaterialTextures; ++i) {
+        mb[i].binding = i;
+        mb[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        mb[i].descriptorCount = 1;
+        mb[i].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+    }
+    sli.bindingCount = 1 + kMaterialTextures;
     sli.pBindings = mb;
     ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.material_layout_));
     const VkDescriptorSetLayout layouts[2] = {lp.set_layout_, lp.material_layout_};

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,14 @@ enum LitMode : uint32_t {
     kLitBoxes = 1,         ///< arithmetic unit boxes (proxies), flat normals
     kLitTexturedMesh = 2,  ///< mesh whose albedo is also multiplied by texture(set 1) at the vertex UVs
     kLitNormals = 4,       ///< per-pixel pipelines write 0.5 + 0.5 * the world normal instead of the lit colour
+    /// The per-pixel pipelines turn the normal by the material's normal map (set 1 binding 2) at the vertex UVs,
+    /// in a tangent frame from screen-space derivatives of the world position and UVs (with kLitTexturedMesh).
+    kLitNormalMap = 8,
+    /// The per-pixel pipelines scale the ambient light by the red channel of set 1 binding 3 (occlusion map).
+    kLitOcclusion = 16,
+    /// Every mesh pipeline adds set 1 binding 4 (emissive colour) to the lit colour, read at the vertex UVs (at
+    /// (0, 0) without kLitTexturedMesh: a one-texel emissive texture).
+    kLitEmissive = 32,
 };
 
 /// Bits 8..13 of LitPush::offsets.w for the dithered pipelines (LitPipelines::dithered): a mesh faded to
@@ -42,6 +51,16 @@ inline constexpr uint32_t kLitAlphaTest = 1u << 14;
 /// cutoff in bits 16..31 (cutoff x 65535 rounded); fragments whose albedo alpha is below it are discarded.
 /// A negative cutoff (no alpha test) gives 0.
 [[nodiscard]] uint32_t lit_alpha_bits(float cutoff);
+
+/// Textures a material set binds (set 1 bindings 1..4, in this order): base colour, normal map, occlusion, emissive.
+inline constexpr uint32_t kMaterialTextures = 4;
+/// A texture as a material set binds it (in SHADER_READ_ONLY_OPTIMAL layout).
+struct MaterialImage {
+    VkImageView view = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+};
+/// The textures of a material set, in binding order (see kMaterialTextures).
+using MaterialImages = std::array<MaterialImage, kMaterialTextures>;
 
 /// Push constants shared by both pipelines (128 bytes, std430 layout of shaders/lit_mesh.vert).
 struct LitPush {
@@ -146,7 +165,9 @@ public:
     void write_set(VkDescriptorSet set, const Buffer& positions, const Buffer& normals, const Buffer& instances,
                    const Buffer& lines, const Buffer& lighting) const;
     /// Allocates a material set (set 1) pointing at `uvs` (a non-empty storage buffer of vec2) and the
-    /// texture `view` / `sampler` (in SHADER_READ_ONLY_OPTIMAL layout). Sets live as long as the pipelines.
+    /// material's textures (`images`, in binding order). Sets live as long as the pipelines.
+    [[nodiscard]] Result<VkDescriptorSet> material_set(const Buffer& uvs, const MaterialImages& images);
+    /// material_set with one texture, `view` / `sampler`, at every texture binding (impostor atlases, tests).
     [[nodiscard]] Result<VkDescriptorSet> material_set(const Buffer& uvs, VkImageView view, VkSampler sampler);
     /// Releases everything now (also done by the destructor).
     void destroy();

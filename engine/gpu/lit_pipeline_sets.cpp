@@ -66,6 +66,12 @@ Result<VkDescriptorSet> LitPipelines::composite_set(VkImageView colour, VkSample
 }
 
 Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, VkImageView view, VkSampler sampler) {
+    MaterialImages images;
+    images.fill(MaterialImage{view, sampler});
+    return material_set(uvs, images);
+}
+
+Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, const MaterialImages& images) {
     VkDescriptorSet set = VK_NULL_HANDLE;
     VkDescriptorSetAllocateInfo ai{};
     ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -78,7 +84,8 @@ Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, VkImageVie
     }
     if (r == VK_ERROR_OUT_OF_POOL_MEMORY || r == VK_ERROR_FRAGMENTED_POOL) {
         constexpr uint32_t kSets = 256;
-        const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSets}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kSets}};
+        const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSets},
+                                               {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaterialTextures * kSets}};
         VkDescriptorPoolCreateInfo dpi{};
         dpi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
         dpi.maxSets = kSets;
@@ -92,9 +99,14 @@ Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, VkImageVie
     }
     if (r != VK_SUCCESS) return vk_error("vkAllocateDescriptorSets (material)", r);
     const VkDescriptorBufferInfo buffer{uvs.handle(), 0, VK_WHOLE_SIZE};
-    const VkDescriptorImageInfo image{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    const VkWriteDescriptorSet w[2] = {descriptor_write(set, 0, &buffer), descriptor_write(set, 1, nullptr, &image)};
-    vkUpdateDescriptorSets(device_, 2, w, 0, nullptr);
+    VkDescriptorImageInfo image[kMaterialTextures]{};
+    VkWriteDescriptorSet w[1 + kMaterialTextures]{};
+    w[0] = descriptor_write(set, 0, &buffer);
+    for (uint32_t i = 0; i < kMaterialTextures; ++i) {
+        image[i] = {images[i].sampler, images[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+        w[1 + i] = descriptor_write(set, 1 + i, nullptr, &image[i]);
+    }
+    vkUpdateDescriptorSets(device_, 1 + kMaterialTextures, w, 0, nullptr);
     return set;
 }
 

@@ -42,8 +42,9 @@ public:
     Status init_geometry(uint16_t type_index, std::span<const GeomLod> levels, bool keep_refined_surfaces,
                          std::shared_ptr<const BlobStore> bake_cache = nullptr);
     /// `levels` as this type can draw them: a type without muscles (a non-humanoid) draws every
-    /// skinned-mesh, layered and subdivided level with its own skinned mesh, or as rigid proxies
-    /// when it has none (its impostor levels too: there is no surface to bake).
+    /// skinned-mesh, layered and subdivided level with its own skinned mesh (lit per pixel where it stands
+    /// in for a layered or subdivided level: GeomLod::lit_per_pixel), or as rigid proxies when it has none
+    /// (its impostor levels too: there is no surface to bake).
     [[nodiscard]] std::vector<GeomLod> usable_levels(std::span<const GeomLod> levels) const;
     /// Where this type's pose matrices live, for GeometryController::update.
     [[nodiscard]] PoseSource poses() const;

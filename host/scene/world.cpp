@@ -48,6 +48,7 @@ std::vector<GeomLod> CharacterRuntime::usable_levels(std::span<const GeomLod> le
     for (GeomLod& l : out) {
         if (l.method == GeomMethod::Hidden || l.method == GeomMethod::RigidProxy) continue;
         if (l.method == GeomMethod::Impostor && type.mesh) continue;  // baked from the skinned mesh
+        l.lit_per_pixel = type.mesh && (l.method == GeomMethod::Layered || l.method == GeomMethod::Subdivided);
         l.method = type.mesh ? GeomMethod::SkinnedMesh : GeomMethod::RigidProxy;
         l.layers = type.mesh ? kLayerSkeleton | kLayerSkin : kLayerSkeleton;
     }

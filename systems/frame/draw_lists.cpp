@@ -170,9 +170,7 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
             textures.push_back(tex.value());
         }
         for (const SurfaceMaterial& m : draw.materials) {
-            const int texture = m.texture >= 0 && static_cast<size_t>(m.texture) < textures.size()
-                                    ? static_cast<int>(textures[static_cast<size_t>(m.texture)]) : -1;
-            auto mat = renderer.register_material(m, texture);
+            auto mat = renderer.register_material(m, textures);
             if (!mat.ok()) {
                 materials.clear();
                 return mat.error();
@@ -187,7 +185,7 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
     // Double-sided materials (glTF doubleSided) need their back faces: no culling for the topology.
     bool double_sided = false;
     for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;
-    const bool vertex_lighting = drawn_lit_per_vertex(draw.geometry->level(level).method);
+    const bool vertex_lighting = drawn_lit_per_vertex(draw.geometry->level(level));
     renderer.declare_passes(pass_names_);  // levels drawn richest (nearest) first, whichever comes first
     auto id = renderer.register_topology(draw.geometry->level_indices(level), vertex_count,
                                          /*cull_back_faces=*/!double_sided, surface_materials,

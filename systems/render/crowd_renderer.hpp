@@ -201,8 +201,12 @@ public:
     [[nodiscard]] Result<uint32_t> register_texture(const TextureImage& image);
     /// Registers a material: `material.base_colour` is a LINEAR factor (glTF) and is drawn encoded as
     /// pow(rgb, 1/2.2), the display space the renderer shades in, so that factor x texel matches the
-    /// sRGB encoding of their linear product; `texture` is an id from register_texture or -1.
-    [[nodiscard]] Result<uint32_t> register_material(const SurfaceMaterial& material, int texture);
+    /// sRGB encoding of their linear product. Its textures (texture, normal_texture, occlusion_texture,
+    /// emissive_texture; -1 = none) index `texture_ids`, ids from register_texture. Normal and occlusion maps
+    /// are drawn by the levels lit per pixel; every level adds the emissive colour. Textures are read at the
+    /// topology's UVs (a one-texel emissive texture also without UVs). Errors: an index outside `texture_ids`,
+    /// an id not registered, factors out of range.
+    [[nodiscard]] Result<uint32_t> register_material(const SurfaceMaterial& material, std::span<const uint32_t> texture_ids = {});
     /// Uploads an impostor atlas (image laid out as `layout` says, mipmapped) once; returns its id for
     /// ImpostorInstance::atlas. Errors: empty or inconsistent image or layout, Vulkan failures.
     [[nodiscard]] Result<uint32_t> register_impostor_atlas(const TextureImage& image, const ImpostorAtlasLayout& layout);
@@ -269,7 +273,8 @@ private:
     };
     struct Material {
         glm::vec4 colour{1.0f};       // display-space base colour
-        int texture = -1;
+        int textures[gpu::kMaterialTextures] = {-1, -1, -1, -1};  // ids: base colour, normal, occlusion, emissive
+        bool texel_emissive = false;  // its emissive texture is one texel: drawn without UVs too
         uint32_t mode_bits = 0;       // its LitPush::offsets.w bits: gpu::lit_alpha_bits of its cutoff, gpu::kLitUnlit
     };
     struct Atlas {  // its layout is atlas_layouts_[id]
@@ -319,6 +324,9 @@ private:
     uint32_t record_composite(VkCommandBuffer cmd, Slot& slot, gpu::LitPush& push);
     Status record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot);
     Status init_materials();
+    // The LitPush::offsets.w bits of drawing `m` on a topology with UVs (`uvs`) or without: its mode_bits and
+    // one texture bit per texture it can sample there.
+    [[nodiscard]] static uint32_t material_mode(const Material& m, bool uvs);
     Status ensure_queries(Slot& slot, uint32_t count);
     uint32_t pass_id(std::string_view name);
     void end_pass(VkCommandBuffer cmd, Slot& slot, PassRecord pass);
@@ -336,6 +344,7 @@ private:
     std::vector<Material> materials_;
     std::vector<Atlas> atlases_;
     gpu::Texture white_;                              // 1x1 white: untextured draws
+    std::vector<bool> texel_textures_;                // per registered texture: 1 x 1 texel
     gpu::Buffer no_uvs_;                              // one zero vec2: draws without UVs
     VkDescriptorSet plain_set_ = VK_NULL_HANDLE;      // no_uvs_ + white_
     std::vector<Slot> slots_;

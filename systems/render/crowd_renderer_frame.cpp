@@ -250,8 +250,7 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
             bound = wanted;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
-        const uint32_t textured = m.texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitTexturedMesh} : 0u;
-        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, textured | normals | range_dither | m.mode_bits);
+        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, material_mode(m, topo.uvs.handle() != VK_NULL_HANDLE) | normals | range_dither);
         push.base_colour = m.colour;
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDrawIndexed(cmd, r.index_count, count, r.first_index, 0, 0);

@@ -49,25 +49,45 @@ Result<uint32_t> CrowdRenderer::register_texture(const TextureImage& image) {
                                                   gpu::SamplerDesc{mode(image.wrap_u), mode(image.wrap_v), image.nearest, blend_texture_mips_});
     if (!t) return t.error();
     textures_.push_back(std::move(t).value());
+    texel_textures_.push_back(image.width == 1 && image.height == 1);
     return static_cast<uint32_t>(textures_.size() - 1);
 }
 
-Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& material, int texture) {
-    if (texture >= static_cast<int>(textures_.size()) || texture < -1)
-        return gpu::gpu_error("register_material: '" + material.name + "' uses texture " + std::to_string(texture) + " (" +
-                              std::to_string(textures_.size()) + " registered)");
+Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& material, std::span<const uint32_t> texture_ids) {
+    const int used[gpu::kMaterialTextures] = {material.texture, material.normal_texture, material.occlusion_texture, material.emissive_texture};
+    const char* what[gpu::kMaterialTextures] = {"texture", "normal texture", "occlusion texture", "emissive texture"};
+    Material m;
+    for (uint32_t k = 0; k < gpu::kMaterialTextures; ++k) {
+        if (used[k] < 0) continue;
+        if (static_cast<size_t>(used[k]) >= texture_ids.size() || texture_ids[static_cast<size_t>(used[k])] >= textures_.size())
+            return gpu::gpu_error("register_material: '" + material.name + "' uses " + what[k] + " " + std::to_string(used[k]) + " of " +
+                                  std::to_string(texture_ids.size()) + " (" + std::to_string(textures_.size()) + " registered)");
+        m.textures[k] = static_cast<int>(texture_ids[static_cast<size_t>(used[k])]);
+    }
     const glm::vec4 f = material.base_colour;
     for (int c = 0; c < 4; ++c)
         if (!(f[c] >= 0.0f && f[c] <= 1.0f))
             return gpu::gpu_error("register_material: '" + material.name + "' base colour values must be in [0, 1]");
-    Material m;
     m.colour = glm::vec4(std::pow(f.r, 1.0f / 2.2f), std::pow(f.g, 1.0f / 2.2f), std::pow(f.b, 1.0f / 2.2f), f.a);
-    m.texture = texture;
+    m.texel_emissive = m.textures[3] >= 0 && texel_textures_[static_cast<size_t>(m.textures[3])];
     if (!(material.alpha_cutoff <= 1.0f))
         return gpu::gpu_error("register_material: '" + material.name + "' alpha cutoff must be at most 1 (negative: opaque)");
     m.mode_bits = gpu::lit_alpha_bits(material.alpha_cutoff) | (material.unlit ? gpu::kLitUnlit : 0u);
     materials_.push_back(m);
     return static_cast<uint32_t>(materials_.size() - 1);
+}
+
+uint32_t CrowdRenderer::material_mode(const Material& m, bool uvs) {
+    uint32_t bits = m.mode_bits;
+    if (uvs) {
+        // The textured mode passes the UVs on, which every map reads (a base colour texture left out is white).
+        const bool any = m.textures[0] >= 0 || m.textures[1] >= 0 || m.textures[2] >= 0 || m.textures[3] >= 0;
+        if (any) bits |= gpu::kLitTexturedMesh;
+        if (m.textures[1] >= 0) bits |= gpu::kLitNormalMap;
+        if (m.textures[2] >= 0) bits |= gpu::kLitOcclusion;
+    }
+    if ((uvs || m.texel_emissive) && m.textures[3] >= 0) bits |= gpu::kLitEmissive;
+    return bits;
 }
 
 Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indices, uint32_t vertex_count, bool cull_back_faces,
@@ -119,8 +139,14 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
             r.index_count = static_cast<uint32_t>((end - k) * 3);
             r.material = surface.materials[local];
             const Material& m = materials_[r.material];
-            const gpu::Texture& tex = m.texture >= 0 && t.uvs.handle() != VK_NULL_HANDLE ? textures_[static_cast<size_t>(m.texture)] : white_;
-            Result<VkDescriptorSet> set = pipes_.material_set(t.uvs.handle() != VK_NULL_HANDLE ? t.uvs : no_uvs_, tex.view(), tex.sampler());
+            const bool uvs = t.uvs.handle() != VK_NULL_HANDLE;
+            gpu::MaterialImages images;
+            for (uint32_t slot = 0; slot < gpu::kMaterialTextures; ++slot) {
+                const bool drawn = m.textures[slot] >= 0 && (uvs || (slot == 3 && m.texel_emissive));
+                const gpu::Texture& tex = drawn ? textures_[static_cast<size_t>(m.textures[slot])] : white_;
+                images[slot] = {tex.view(), tex.sampler()};
+            }
+            Result<VkDescriptorSet> set = pipes_.material_set(uvs ? t.uvs : no_uvs_, images);
             if (!set) return set.error();
             r.set = set.value();
             t.ranges.push_back(r);

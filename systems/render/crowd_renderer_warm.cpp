@@ -44,8 +44,7 @@ Status CrowdRenderer::warm_up() {
                 };
                 draw(plain_set_, gpu::kLitMesh, 0);
                 for (const Range& r : topo.ranges) {
-                    const bool textured = materials_[r.material].texture >= 0 && topo.uvs.handle() != VK_NULL_HANDLE;
-                    draw(r.set, textured ? uint32_t{gpu::kLitTexturedMesh} : 0u, r.first_index);
+                    draw(r.set, material_mode(materials_[r.material], topo.uvs.handle() != VK_NULL_HANDLE), r.first_index);
                 }
             }
         }

@@ -94,8 +94,7 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
         textures.push_back(id.value());
     }
     for (const SurfaceMaterial& m : in.materials) {
-        const int tex = m.texture >= 0 && static_cast<size_t>(m.texture) < textures.size() ? static_cast<int>(textures[static_cast<size_t>(m.texture)]) : -1;
-        Result<uint32_t> id = renderer.register_material(m, tex);
+        Result<uint32_t> id = renderer.register_material(m, textures);
         if (!id) return id.error();
         materials.push_back(id.value());
     }

@@ -40,6 +40,9 @@ void write_input(ByteWriter& w, const VkPhysicalDeviceProperties& device, const 
     for (const SurfaceMaterial& m : in.materials) {
         w.put(m.base_colour);
         w.put<int32_t>(m.texture);
+        w.put<int32_t>(m.normal_texture);
+        w.put<int32_t>(m.occlusion_texture);
+        w.put<int32_t>(m.emissive_texture);
         w.put<uint8_t>(m.double_sided ? 1 : 0);
         w.put(m.alpha_cutoff);
         w.put<uint8_t>(m.unlit ? 1 : 0);

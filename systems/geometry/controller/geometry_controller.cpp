@@ -21,7 +21,8 @@ bool same_level_shape(const GeomLod& a, const GeomLod& b) {
         case GeomMethod::Impostor:
             return true;
         case GeomMethod::SkinnedMesh:
-            return a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps && a.simplify_error == b.simplify_error;
+            return a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps && a.simplify_error == b.simplify_error &&
+                   a.lit_per_pixel == b.lit_per_pixel;
         case GeomMethod::Layered:
             return a.theta_steps == b.theta_steps && a.phi_steps == b.phi_steps;
         case GeomMethod::Subdivided:

@@ -78,9 +78,10 @@ struct SurfaceView {
     std::span<const glm::vec3> normals;   ///< unit normals, same size
 };
 
-/// Whether a level of method `m` is drawn lit per vertex: the skinned level, for characters small on screen
-/// (docs/PERFORMANCE.md); the others are lit per pixel. The renderer's topology and the mesh cross-fades use it.
-[[nodiscard]] inline bool drawn_lit_per_vertex(GeomMethod m) { return m == GeomMethod::SkinnedMesh; }
+/// Whether level `lod` is drawn lit per vertex: the skinned level, for characters small on screen
+/// (docs/PERFORMANCE.md), unless it stands in for a richer level (GeomLod::lit_per_pixel); the others are lit per
+/// pixel. The renderer's topology and the mesh cross-fades use it.
+[[nodiscard]] inline bool drawn_lit_per_vertex(const GeomLod& lod) { return lod.method == GeomMethod::SkinnedMesh && !lod.lit_per_pixel; }
 
 /// True for the methods drawn as a deformed mesh over a registered topology (skinned, layered, subdivided).
 [[nodiscard]] inline bool drawn_as_mesh(GeomMethod m) {

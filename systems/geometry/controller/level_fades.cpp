@@ -28,7 +28,7 @@ bool GeometryController::mesh_crossfades(uint8_t from, uint8_t to) const {
     const Level& a = *levels_[from];
     const Level& b = *levels_[to];
     return a.mesh_level && b.mesh_level &&
-           (!(a.display_key == b.display_key) || drawn_lit_per_vertex(a.lod.method) != drawn_lit_per_vertex(b.lod.method));
+           (!(a.display_key == b.display_key) || drawn_lit_per_vertex(a.lod) != drawn_lit_per_vertex(b.lod));
 }
 
 void GeometryController::begin_fade(uint32_t character, uint8_t from, uint32_t old_slot, uint16_t frames, bool between_meshes) {

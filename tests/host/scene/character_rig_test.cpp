@@ -6,6 +6,7 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/offscreen_target.hpp"
 #include "host/scene/character_report.hpp"
+#include "host/scene/character_runtime.hpp"
 #include "host/scene/character_rig.hpp"
 #include "host/scene/scene_loader.hpp"
 #include "host/scene/world.hpp"
@@ -230,6 +231,19 @@ TEST(CharacterRig, QuadrupedGltfIsDrawnWithItsMesh) {
     int refusals = 0;
     for (const std::string& n : t.notes) refusals += n.find("layered levels refused") != std::string::npos;
     EXPECT_EQ(refusals, 1);
+    // The skinned mesh standing in for layered and subdivided levels is lit per pixel as they are (normal maps
+    // drawn close up); a skinned level of the rules stays lit per vertex, and rigid proxies stay proxies.
+    const CharacterRuntime runtime(t, 1);
+    GeomLod layered, subdivided, skinned, proxy;
+    layered.method = GeomMethod::Layered;
+    subdivided.method = GeomMethod::Subdivided;
+    skinned.method = GeomMethod::SkinnedMesh;
+    const std::vector<GeomLod> usable = runtime.usable_levels(std::vector<GeomLod>{layered, subdivided, skinned, proxy});
+    for (size_t l = 0; l < 3; ++l) EXPECT_EQ(usable[l].method, GeomMethod::SkinnedMesh) << l;
+    EXPECT_EQ(usable[3].method, GeomMethod::RigidProxy);
+    EXPECT_FALSE(drawn_lit_per_vertex(usable[0]));
+    EXPECT_FALSE(drawn_lit_per_vertex(usable[1]));
+    EXPECT_TRUE(drawn_lit_per_vertex(usable[2]));
     const std::vector<std::string> report = character_report(t);
     bool with_mesh = false;
     for (const std::string& line : report)

@@ -31,6 +31,13 @@ TextureImage quad_texture() {
     return t;
 }
 
+// Registers `m` with texture `tex` (an id from register_texture) as its base colour texture.
+Result<uint32_t> with_texture(CrowdRenderer& r, SurfaceMaterial m, uint32_t tex) {
+    m.texture = 0;
+    const uint32_t ids[1] = {tex};
+    return r.register_material(m, ids);
+}
+
 // quad_texture()'s texels as drawn opaque: top left, top right, bottom left, bottom right.
 const glm::u8vec4 kTexel[4] = {{200, 30, 40, 255}, {20, 180, 60, 255}, {30, 50, 210, 255}, {128, 128, 128, 255}};
 
@@ -100,10 +107,10 @@ TEST(MaterialRender, TexturedQuadShowsTextureColoursAndFactor) {
         Result<uint32_t> tex = r.register_texture(quad_texture());
         ASSERT_TRUE(tex.ok()) << tex.error().to_string();
         SurfaceMaterial textured;
-        Result<uint32_t> a = r.register_material(textured, static_cast<int>(tex.value()));
+        Result<uint32_t> a = with_texture(r, textured, tex.value());
         SurfaceMaterial tinted;
         tinted.base_colour = {0.5f, 0.25f, 1.0f, 1.0f};
-        Result<uint32_t> b = r.register_material(tinted, -1);
+        Result<uint32_t> b = r.register_material(tinted);
         ASSERT_TRUE(a.ok() && b.ok());
         const Quad q;
         const std::vector<uint16_t> vertex_material = {0, 1, 1, 0, 1, 1};  // triangles take their first vertex's
@@ -155,7 +162,7 @@ TEST(MaterialRender, FullTextureAndCharacterLighting) {
         ASSERT_TRUE(made.ok());
         CrowdRenderer& r = *made.value();
         const uint32_t tex = r.register_texture(quad_texture()).value();
-        const uint32_t mat = r.register_material(SurfaceMaterial{}, static_cast<int>(tex)).value();
+        const uint32_t mat = with_texture(r, SurfaceMaterial{}, tex).value();
         const std::vector<DeformableMesh> meshes = quad_meshes(r, mat, false);  // the frame keeps a span of them
         FrameInput frame = unlit_frame(meshes);
         Result<gpu::Rgba8Image> img = draw(r, *ctx, frame, "aloha_material_full.png");
@@ -198,7 +205,7 @@ TEST(MaterialRender, AlphaMaskDrawsTexelsAtOrAboveTheCutoff) {
         for (const Case c : {Case{-1.0f, false}, Case{0.5f, false}, Case{0.3f, false}, Case{0.79f, false}, Case{0.5f, true}}) {
             SurfaceMaterial m;
             m.alpha_cutoff = c.cutoff;
-            const uint32_t mat = r.register_material(m, static_cast<int>(tex)).value();
+            const uint32_t mat = with_texture(r, m, tex).value();
             const std::vector<DeformableMesh> meshes = quad_meshes(r, mat, c.vertex_lit);  // the frame keeps a span of them
             Result<gpu::Rgba8Image> img = draw(r, *ctx, unlit_frame(meshes), "aloha_material_alpha.png");
             ASSERT_TRUE(img.ok()) << img.error().to_string();
@@ -210,7 +217,7 @@ TEST(MaterialRender, AlphaMaskDrawsTexelsAtOrAboveTheCutoff) {
         }
         SurfaceMaterial above;
         above.alpha_cutoff = 1.5f;
-        EXPECT_FALSE(r.register_material(above, -1).ok());
+        EXPECT_FALSE(r.register_material(above).ok());
     }
     EXPECT_EQ(ctx->validation_message_count(), 0u);
 }
@@ -229,7 +236,7 @@ TEST(MaterialRender, UnlitMaterialShowsItsAlbedo) {
             for (const bool unlit : {true, false}) {
                 SurfaceMaterial m;
                 m.unlit = unlit;
-                const uint32_t mat = r.register_material(m, static_cast<int>(tex)).value();
+                const uint32_t mat = with_texture(r, m, tex).value();
                 const std::vector<DeformableMesh> meshes = quad_meshes(r, mat, vertex_lit);  // the frame keeps a span of them
                 FrameInput frame = unlit_frame(meshes);
                 set_character_lighting(frame);
@@ -273,7 +280,7 @@ TEST(MaterialRender, NearestMipReadsOneLevelAndBlendMixesTwo) {
         if (!made.ok()) return -1;
         CrowdRenderer& r = *made.value();
         const uint32_t tex = r.register_texture(stripes).value();
-        const uint32_t mat = r.register_material(SurfaceMaterial{}, static_cast<int>(tex)).value();
+        const uint32_t mat = with_texture(r, SurfaceMaterial{}, tex).value();
         Quad q;
         q.uvs = {{0, s}, {0.5f * s, s}, {s, s}, {0, 0}, {0.5f * s, 0}, {s, 0}};
         const std::vector<uint32_t> ids = {mat};
@@ -307,10 +314,13 @@ TEST(MaterialRender, RegistrationErrors) {
         TextureImage bad = quad_texture();
         bad.rgba.pop_back();
         EXPECT_FALSE(r.register_texture(bad).ok());
-        EXPECT_FALSE(r.register_material(SurfaceMaterial{}, 3).ok());
+        SurfaceMaterial beyond;  // texture 3 of none given, then an id never registered
+        beyond.normal_texture = 3;
+        EXPECT_FALSE(r.register_material(beyond).ok());
+        EXPECT_FALSE(with_texture(r, SurfaceMaterial{}, 7).ok());
         SurfaceMaterial over;
         over.base_colour = {2, 0, 0, 1};
-        EXPECT_FALSE(r.register_material(over, -1).ok());
+        EXPECT_FALSE(r.register_material(over).ok());
         const Quad q;
         const std::vector<uint32_t> ids = {7};
         EXPECT_FALSE(r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}).ok());

@@ -63,7 +63,10 @@ TEST(VertexLighting, FlatQuadMatchesPerPixelLight) {
         t.width = t.height = 1;
         t.rgba = {128, 200, 64, 255};
         const uint32_t tex = r.register_texture(t).value();
-        const std::vector<uint32_t> textured = {r.register_material(SurfaceMaterial{}, static_cast<int>(tex)).value()};
+        SurfaceMaterial grey;
+        grey.texture = 0;
+        const uint32_t texture_ids[1] = {tex};
+        const std::vector<uint32_t> textured = {r.register_material(grey, texture_ids).value()};
         const Quad q;
         for (const bool with_texture : {false, true}) {
             const TopologySurface surface = with_texture ? TopologySurface{q.uvs, {}, textured} : TopologySurface{};

@@ -1,0 +1,163 @@
+// Material maps in the CrowdRenderer on lavapipe under validation. A quad facing the camera (normal +z), lit by
+// the key light alone (ambient 0, white key, white albedo), shows 255 x max(dot(N', L), 0), where N' is its normal
+// map's texel decoded (n = texel / 255 * 2 - 1, normalised) in the glTF tangent frame: x along +u, y towards
+// v = 0, z along the surface normal. The frame is derived per pixel from screen-space derivatives, so UVs laid
+// along other axes or mirrored must give the same world normal as the frame they define. Occlusion maps scale
+// the ambient light; emissive textures add their colour, one-texel ones also on meshes without UVs. Tolerance:
+// 2 LSB, the rounding of the output to 8 bits plus float error in the derivatives of an affine quad.
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/png.hpp"
+#include "render_scene.hpp"
+#include "systems/render/crowd_renderer.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace aloha {
+namespace {
+
+constexpr uint32_t kSize = 64;
+
+// The square [-1, 1]^2 in z = 0 (two triangles) with UVs given at its corners (-1,-1), (1,-1), (-1,1), (1,1).
+struct Square {
+    std::vector<glm::vec3> positions = {{-1, -1, 0}, {1, -1, 0}, {-1, 1, 0}, {1, 1, 0}};
+    std::vector<glm::vec3> normals = std::vector<glm::vec3>(4, glm::vec3(0, 0, 1));
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> indices = {0, 1, 3, 0, 3, 2};
+};
+
+TextureImage one_texel(std::array<uint8_t, 4> rgba, const char* name) {
+    TextureImage t;
+    t.name = name;
+    t.width = t.height = 1;
+    t.rgba.assign(rgba.begin(), rgba.end());
+    return t;
+}
+
+// Draws the square with material `m` whose textures index `ids`, lit per vertex or per pixel; `frame` gives the light.
+Result<gpu::Rgba8Image> draw_square(CrowdRenderer& r, gpu::Context& ctx, const SurfaceMaterial& m, std::span<const uint32_t> ids,
+                                    const Square& sq, bool vertex_lit, FrameInput frame) {
+    Result<uint32_t> mat = r.register_material(m, ids);
+    if (!mat.ok()) return mat.error();
+    const std::vector<uint32_t> materials = {mat.value()};
+    Result<uint32_t> topo = r.register_topology(sq.indices, 4, false, {sq.uvs, {}, materials}, "meshes", vertex_lit);
+    if (!topo.ok()) return topo.error();
+    const std::vector<DeformableMesh> meshes = {{topo.value(), sq.positions, sq.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
+    frame.camera.view = glm::lookAt(glm::vec3(0, 0, 3), glm::vec3(0), glm::vec3(0, 1, 0));
+    frame.camera.proj = glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 10.0f);
+    frame.meshes = meshes;
+    frame.clear_colour = {0, 0, 0, 1};
+    Result<gpu::Rgba8Image> img = test::draw_square(r, ctx, frame, kSize);
+    if (img.ok()) (void)gpu::write_png(::testing::TempDir() + "aloha_material_maps.png", kSize, kSize, img.value().pixels);
+    return img;
+}
+
+// Largest |pixel - want| over the whole target, every colour channel.
+int worst(const gpu::Rgba8Image& img, glm::vec3 want) {
+    int out = 0;
+    for (size_t i = 0; i < size_t{kSize} * kSize; ++i)
+        for (int c = 0; c < 3; ++c)
+            out = std::max(out, static_cast<int>(std::lround(std::abs(img.pixels[i * 4 + static_cast<size_t>(c)] - want[c] * 255.0f))));
+    return out;
+}
+
+FrameInput key_only(glm::vec3 light) {
+    FrameInput f;
+    f.light_direction = light;
+    f.ambient = 0.0f;
+    f.key_colour = glm::vec3(1.0f);
+    return f;
+}
+
+FrameInput ambient_only() {
+    FrameInput f;
+    f.ambient = 1.0f;  // white sky and ground (the defaults)
+    return f;
+}
+
+TEST(MaterialMapsRender, NormalMapTurnsTheNormalInTheFrameOfTheUvs) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+        ASSERT_TRUE(made.ok()) << made.error().to_string();
+        CrowdRenderer& r = *made.value();
+        // Texel -> tangent-space normal, as glTF defines it.
+        auto decoded = [](std::array<uint8_t, 4> t) { return glm::normalize(glm::vec3(t[0], t[1], t[2]) / 255.0f * 2.0f - 1.0f); };
+        struct Case {
+            const char* what;
+            std::vector<glm::vec2> uvs;  // at (-1,-1), (1,-1), (-1,1), (1,1)
+            glm::vec3 tangent, up;       // world directions of +u and of "towards v = 0"
+        };
+        const Case cases[] = {
+            {"u along +x, v down", {{0, 1}, {1, 1}, {0, 0}, {1, 0}}, {1, 0, 0}, {0, 1, 0}},
+            {"u mirrored", {{1, 1}, {0, 1}, {1, 0}, {0, 0}}, {-1, 0, 0}, {0, 1, 0}},
+            {"u along +y, v along +x", {{0, 0}, {0, 1}, {1, 0}, {1, 1}}, {0, 1, 0}, {-1, 0, 0}},
+            {"v up (mirrored in v)", {{0, 0}, {1, 0}, {0, 1}, {1, 1}}, {1, 0, 0}, {0, -1, 0}},
+        };
+        const std::array<uint8_t, 4> texels[] = {{204, 128, 230, 255}, {128, 204, 230, 255}, {60, 90, 240, 255}};
+        for (const Case& c : cases)
+            for (const std::array<uint8_t, 4>& texel : texels) {
+                const uint32_t ids[1] = {r.register_texture(one_texel(texel, "normal")).value()};
+                SurfaceMaterial m;
+                m.normal_texture = 0;
+                Square sq;
+                sq.uvs = c.uvs;
+                const glm::vec3 n = decoded(texel);
+                const glm::vec3 world = n.x * c.tangent + n.y * c.up + n.z * glm::vec3(0, 0, 1);
+                for (const glm::vec3 light : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(-1, 0, 0), glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f))}) {
+                    Result<gpu::Rgba8Image> img = draw_square(r, *ctx, m, ids, sq, false, key_only(light));
+                    ASSERT_TRUE(img.ok()) << img.error().to_string();
+                    const float want = std::max(glm::dot(world, light), 0.0f);
+                    EXPECT_LE(worst(img.value(), glm::vec3(want)), 2) << c.what << ", texel " << int(texel[0]) << " " << int(texel[1]) << ", light "
+                                                                       << light.x << " " << light.y << " " << light.z << ": want " << want * 255.0f;
+                }
+                // Lit per vertex, the map is not read: the surface normal alone.
+                Result<gpu::Rgba8Image> flat = draw_square(r, *ctx, m, ids, sq, true, key_only({0.3f, -0.5f, 0.8f}));
+                ASSERT_TRUE(flat.ok());
+                EXPECT_LE(worst(flat.value(), glm::vec3(glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f)).z)), 2) << c.what;
+            }
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
+TEST(MaterialMapsRender, OcclusionScalesTheAmbientAndEmissiveAddsItsColour) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
+        ASSERT_TRUE(made.ok()) << made.error().to_string();
+        CrowdRenderer& r = *made.value();
+        Square sq;
+        sq.uvs = {{0, 1}, {1, 1}, {0, 0}, {1, 0}};
+        const uint32_t occlusion[1] = {r.register_texture(one_texel({100, 100, 100, 255}, "occlusion")).value()};
+        SurfaceMaterial occluded;
+        occluded.occlusion_texture = 0;
+        // Ambient 1 under a white sky: the albedo (white) times the occlusion per pixel; per vertex it is not read.
+        for (const bool vertex_lit : {false, true}) {
+            Result<gpu::Rgba8Image> img = draw_square(r, *ctx, occluded, occlusion, sq, vertex_lit, ambient_only());
+            ASSERT_TRUE(img.ok()) << img.error().to_string();
+            EXPECT_LE(worst(img.value(), glm::vec3(vertex_lit ? 1.0f : 100.0f / 255.0f)), 1) << (vertex_lit ? "per vertex" : "per pixel");
+        }
+        // A black albedo and an emissive texture: the emissive colour alone, per pixel and per vertex, with UVs and,
+        // for a one-texel texture, without.
+        const uint32_t emissive[1] = {r.register_texture(one_texel({40, 80, 120, 255}, "emissive")).value()};
+        SurfaceMaterial glowing;
+        glowing.base_colour = {0, 0, 0, 1};
+        glowing.emissive_texture = 0;
+        Square bare = sq;
+        bare.uvs.clear();
+        for (const Square* s : {&sq, &bare})
+            for (const bool vertex_lit : {false, true}) {
+                Result<gpu::Rgba8Image> img = draw_square(r, *ctx, glowing, emissive, *s, vertex_lit, ambient_only());
+                ASSERT_TRUE(img.ok()) << img.error().to_string();
+                EXPECT_LE(worst(img.value(), glm::vec3(40, 80, 120) / 255.0f), 1) << (s->uvs.empty() ? "no UVs" : "UVs") << (vertex_lit ? ", per vertex" : ", per pixel");
+            }
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
+}  // namespace
+}  // namespace aloha
