@@ -5,7 +5,10 @@
 // per-pixel level costs about twice as much: docs/PERFORMANCE.md), lit as shaders/lit_mesh.frag lights a
 // mesh. One fetch reads colour and normal (the packed atlas: systems/render/impostor_packing.hpp); the
 // normal is in the bake camera's frame (x right, y up, z towards the camera), i.e. the quad's, and is lit
-// there with the light the vertex shader turned into that frame. Fade (a
+// there with the light the vertex shader turned into that frame. Unlit materials (KHR_materials_unlit) bake no
+// normal (zero, alpha 0: shaders/lit_mesh.frag), so the normal's alpha over the colour's is the share of lit
+// surface in the texel, exact through the bake's averaging and the mip chain: the albedo is shown as it is in
+// that proportion. Within 1.5/255 of 1 (the two halves' independent 8-bit rounding) the texel is all lit. Fade (a
 // screen-door dither over a 4x4 Bayer matrix): fade f > 0 shows the pixels whose threshold is below f,
 // f < 0 the complement of -f's pixels (the other side of a cross-fade with a mesh dithered at -f).
 
@@ -51,5 +54,6 @@ void main() {
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
     float diffuse = max(dot(n, v_light_fade.xyz), 0.0);
     vec3 lit = albedo * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse);
-    out_colour = vec4(clamp(lit, 0.0, 1.0), v_colour.a);
+    const float lit_share = e.a >= c.a - 1.5 / 255.0 ? 1.0 : e.a / c.a;
+    out_colour = vec4(clamp(mix(albedo, lit, lit_share), 0.0, 1.0), v_colour.a);
 }

@@ -4,8 +4,8 @@
 // material base colour (* the base colour texture at the vertex UVs in textured mode, offsets.w & 2). N is turned
 // to face the camera (two-sided lighting, so meshes with either winding light the same). In box mode (offsets.w & 1)
 // N is the flat face normal from screen-space derivatives of the world position. With offsets.w & 4 the
-// world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes). With offsets.w bit 15 (an unlit
-// material) the albedo is written as it is.
+// world normal itself is written, encoded as 0.5 + 0.5 N (impostor atlas bakes; zero for an unlit material). With
+// offsets.w bit 15 (an unlit material) the albedo is written as it is.
 // Material maps (gpu::LitMode, set 1 bindings 2..4, read at the vertex UVs): with offsets.w & 8 N is turned by the
 // normal map, a glTF tangent-space normal (x along +u, y towards v = 0, z along N) in the tangent frame of the
 // screen-space derivatives of the world position and the UVs (so any deformation of the skin keeps its frame;
@@ -80,7 +80,9 @@ void main() {
     if ((pc.offsets.w & 0x4000u) != 0u && albedo.a < float(pc.offsets.w >> 16) / 65535.0) discard;
 #endif
     if ((pc.offsets.w & 4u) != 0u) {  // normal output (impostor bakes): 0.5 + 0.5 N, the draw's coverage in alpha
-        out_colour = vec4(0.5 + 0.5 * n, albedo.a);
+        // An unlit material writes nothing lit (zero, alpha 0): once the bake averages samples and mip levels, the
+        // atlas's normal alpha over its colour alpha is the share of lit surface (shaders/impostor.frag).
+        out_colour = (pc.offsets.w & 0x8000u) != 0u ? vec4(0.0) : vec4(0.5 + 0.5 * n, albedo.a);
         return;
     }
     if ((pc.offsets.w & 0x8000u) != 0u) {  // an unlit material (gpu::kLitUnlit, KHR_materials_unlit): its albedo as it is

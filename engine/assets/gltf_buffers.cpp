@@ -182,7 +182,7 @@ std::optional<std::vector<unsigned char>> rewritten_for_tinygltf(const unsigned 
 
 std::vector<std::string> supported_required_extensions() {
     return {"KHR_mesh_quantization", std::string(kMeshopt), "KHR_texture_transform", std::string(kDraco), std::string(kWebpExtension),
-            "KHR_materials_unlit"};
+            "KHR_materials_unlit", "KHR_materials_emissive_strength"};
 }
 
 Status prepare_buffers(tinygltf::Model* model, const std::string& file, std::vector<std::string>* notes) {

@@ -300,7 +300,7 @@ private:
     void add_notes() {
         auto plural = [](size_t n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); };
         if (unlit_ > 0)
-            out_->notes.push_back("KHR_materials_unlit: " + plural(unlit_, "material") + " drawn without lighting (their impostors, relit from baked normals, are lit)");
+            out_->notes.push_back("KHR_materials_unlit: " + plural(unlit_, "material") + " drawn without lighting (their impostors too)");
         if (webp_ > 0) out_->notes.push_back(std::string(kWebpExtension) + ": " + plural(webp_, "material texture") + " drawn from WebP images (libwebp)");
         if (transformed_ > 0) out_->notes.push_back("KHR_texture_transform applied to the texture coordinates of " + plural(transformed_, "material texture"));
         const size_t normal = drawn_[static_cast<size_t>(TextureRole::Normal)], occlusion = drawn_[static_cast<size_t>(TextureRole::Occlusion)],

@@ -101,6 +101,7 @@ TEST(GltfMaterialMaps, EmissiveFactorAloneIsOneTexelThatNeedsNoUvs) {
     for (const double strength : {2.0, 4.0}) {
         GltfBuilder b;
         b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+        b.doc["extensionsRequired"] = {"KHR_materials_emissive_strength"};  // read, so a file requiring it loads
         b.doc["materials"] = json::array({{{"emissiveFactor", {0.5, 0.25, 0.0}},
                                            {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", strength}}}}}}});
         Result<GltfCharacter> r = load_triangle(b, false);
