@@ -37,7 +37,7 @@ layout(set = 1, binding = 4) uniform sampler2D emissive_texture;
 
 layout(location = 0) in vec4 v_normal_u;   // xyz: normal, w: texture u
 layout(location = 1) in vec4 v_world_v;    // xyz: world position, w: texture v
-layout(location = 2) flat in vec4 v_colour;
+layout(location = 2) in vec4 v_colour;
 layout(location = 0) out vec4 out_colour;
 
 #ifdef DITHER

@@ -8,9 +8,10 @@
 //   bit 2: z; 0 = -0.5, 1 = +0.5) and no normal (the fragment shader derives flat face normals).
 // - textured (2): the vertex's texture coordinate is element gl_VertexIndex of the material set's
 //   UV buffer (set 1, shared by every character of the topology).
+// - vertex colours (64): the colour is multiplied by element gl_VertexIndex of set 1 binding 5, likewise shared.
 // Compiled twice. Without VERTEX_LIT (for shaders/lit_mesh.frag, lit per pixel) the outputs are packed into
 // three interpolants, since lavapipe stores and sets up every interpolant of every binned triangle: normal
-// and u, world position and v, and the flat colour. With VERTEX_LIT (for shaders/lit_vertex.frag) the lighting
+// and u, world position and v, and the colour (interpolated, for vertex colours). With VERTEX_LIT (for shaders/lit_vertex.frag) the lighting
 // of shaders/lit_mesh.frag is evaluated here, at the vertex (Gouraud), and the outputs are the lit colour and
 // the UVs: on lavapipe each fragment then costs a multiply.
 
@@ -27,6 +28,7 @@ layout(std430, set = 0, binding = 4) readonly buffer Lighting {
     vec4 key;
 } lighting;
 layout(std430, set = 1, binding = 0) readonly buffer Uvs { vec2 uvs[]; };
+layout(std430, set = 1, binding = 5) readonly buffer Colours { vec4 vertex_colours[]; };
 
 layout(push_constant) uniform Push {
     mat4 view_proj;     // clip-space (Vulkan convention) from world
@@ -42,7 +44,7 @@ layout(location = 1) out vec2 v_uv;         // texture coordinates
 #else
 layout(location = 0) out vec4 v_normal_u;   // xyz: normal (cofactor-transformed, not unit), w: texture u
 layout(location = 1) out vec4 v_world_v;    // xyz: world position, w: texture v
-layout(location = 2) flat out vec4 v_colour; // instance colour * material base colour
+layout(location = 2) out vec4 v_colour;      // instance colour * material base colour (* vertex colour)
 #endif
 
 void main() {
@@ -69,6 +71,7 @@ void main() {
     vec4 world = m * vec4(p, 1.0);
     vec2 uv = (mode & 2u) != 0u ? uvs[gl_VertexIndex] : vec2(0.0);
     vec4 colour = instances[inst].colour * pc.base_colour;
+    if ((mode & 64u) != 0u) colour *= vertex_colours[gl_VertexIndex];  // vertex colours (gpu::kLitVertexColour)
 #ifdef VERTEX_LIT
     // The fragment shader's light, here (two-sided: the normal is turned to face the camera).
     vec3 nn = normalize(cof * n);

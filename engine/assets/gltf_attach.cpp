@@ -82,6 +82,8 @@ void add_notes(const MeshNotes& n, std::vector<std::string>* notes) {
         notes->push_back(count(n.bind_mismatch_vertices, "vertex") + " of a second skin whose joints disagree on the bind pose: bound at their largest weight's joint");
     if (n.untextured_primitives)
         notes->push_back(count(n.untextured_primitives, "primitive") + " using a textured material without its TEXCOORD set: drawn with the base colour only");
+    if (n.coloured_primitives)
+        notes->push_back(count(n.coloured_primitives, "primitive") + " with COLOR_0: vertex colours multiply the base colour");
     if (!n.unattached.empty()) {
         std::string list;
         for (const std::string& s : n.unattached) list += (list.empty() ? "" : ", ") + s;

@@ -145,6 +145,7 @@ struct MeshNotes {
     size_t skipped_primitives = 0;        ///< points and lines
     size_t bind_mismatch_vertices = 0;    ///< second-skin vertices whose joints disagree on the bind pose
     size_t untextured_primitives = 0;     ///< textured material but no such TEXCOORD set
+    size_t coloured_primitives = 0;       ///< with COLOR_0
     std::vector<std::string> unattached;  ///< mesh nodes with no skin and no joint above them
 };
 

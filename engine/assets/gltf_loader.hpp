@@ -85,6 +85,7 @@ struct GltfSkinnedMesh {
     std::vector<glm::u16vec4> joints; ///< runtime skeleton joint indices, one per position
     std::vector<glm::vec4> weights;   ///< non-negative, sum 1, one per position
     std::vector<glm::vec2> uvs;       ///< the material texture's coordinates, one per position (empty: none)
+    std::vector<glm::vec4> colours;   ///< COLOR_0: LINEAR RGBA in [0, 1] multiplying the base colour, one per position (empty: none)
     std::vector<uint32_t> indices;    ///< triangle list, each < positions.size()
     int material = -1;                ///< index into GltfCharacter::materials, -1 = the default (white)
     std::string source;               ///< "nodes[3] meshes[1].primitives[0]", for notes and tests

@@ -39,7 +39,7 @@ std::vector<uint32_t> to_triangle_list(const std::vector<uint32_t>& idx, int mod
 // specified, client implementations MUST calculate flat normals"). Degenerate triangles point up.
 void make_flat(GltfSkinnedMesh* m) {
     GltfSkinnedMesh f;
-    const bool uv = !m->uvs.empty();
+    const bool uv = !m->uvs.empty(), colour = !m->colours.empty();
     for (size_t t = 0; t + 2 < m->indices.size(); t += 3) {
         const glm::vec3 a = m->positions[m->indices[t]], b = m->positions[m->indices[t + 1]], c = m->positions[m->indices[t + 2]];
         const glm::vec3 cr = glm::cross(b - a, c - a);
@@ -52,6 +52,7 @@ void make_flat(GltfSkinnedMesh* m) {
             f.joints.push_back(m->joints[v]);
             f.weights.push_back(m->weights[v]);
             if (uv) f.uvs.push_back(m->uvs[v]);
+            if (colour) f.colours.push_back(m->colours[v]);
         }
     }
     m->positions = std::move(f.positions);
@@ -59,6 +60,7 @@ void make_flat(GltfSkinnedMesh* m) {
     m->joints = std::move(f.joints);
     m->weights = std::move(f.weights);
     m->uvs = std::move(f.uvs);
+    m->colours = std::move(f.colours);
     m->indices = std::move(f.indices);
 }
 
@@ -196,6 +198,32 @@ public:
         return {};
     }
 
+    // COLOR_0 (VEC3 or VEC4; float, or normalised unsigned byte or short): linear colours in [0, 1], alpha 1
+    // for VEC3. Nothing when the primitive has none.
+    Status colours(const tinygltf::Primitive& prim, GltfSkinnedMesh* mesh) const {
+        const int a = attribute(prim, "COLOR_0");
+        if (a == -2) return {};
+        if (a < 0 || static_cast<size_t>(a) >= model_.accessors.size())
+            return make_error(file_, "accessor " + std::to_string(a) + " is out of range", 0, 0, at_ + "COLOR_0");
+        const int type = model_.accessors[static_cast<size_t>(a)].type;
+        if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+            return make_error(file_, "COLOR_0 must be VEC3 or VEC4", 0, 0, at_ + "COLOR_0");
+        Result<std::vector<float>> c = read_floats(model_, a, type, {kFloat, kUByte, kUShort}, file_, at_ + "COLOR_0", /*force_normalize=*/true);
+        if (!c.ok()) return c.error();
+        const size_t k = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+        if (Status s = count_check(c.value().size() / k, mesh->positions.size(), "COLOR_0"); !s.ok()) return s;
+        mesh->colours.resize(mesh->positions.size());
+        for (size_t v = 0; v < mesh->colours.size(); ++v) {
+            glm::vec4 out(1.0f);
+            for (size_t i = 0; i < k; ++i) out[static_cast<int>(i)] = c.value()[k * v + i];
+            if (!std::isfinite(out.r + out.g + out.b + out.a))
+                return make_error(file_, "vertex " + std::to_string(v) + " colour is NaN or infinite", 0, 0, at_ + "COLOR_0");
+            mesh->colours[v] = glm::clamp(out, 0.0f, 1.0f);
+        }
+        ++notes_->coloured_primitives;
+        return {};
+    }
+
     // Adds weight * target attribute `name` of every morph target with a non-zero default weight.
     Status morph(const tinygltf::Primitive& prim, const std::vector<double>* weights, const std::string& name,
                  std::vector<glm::vec3>* values, bool* applied) const {
@@ -281,6 +309,7 @@ Result<bool> read_primitive(const tinygltf::Model& model, const tinygltf::Primit
         return make_error(file, "material " + std::to_string(prim.material) + " is out of range (the file has " + std::to_string(materials.size()) + " materials)", 0, 0,
                           where + ".material");
     mesh->material = prim.material;
+    if (Status s = r.colours(prim, mesh); !s.ok()) return s.error();
     if (prim.material >= 0 && material_uv[static_cast<size_t>(prim.material)].texcoord >= 0)
         if (Status s = r.uvs(prim, material_uv[static_cast<size_t>(prim.material)], mesh); !s.ok()) return s.error();
 

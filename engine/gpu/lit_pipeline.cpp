@@ -164,7 +164,7 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     sli.bindingCount = 5;
     sli.pBindings = b;
     ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.set_layout_));
-    VkDescriptorSetLayoutBinding mb[1 + kMaterialTextures]{};
+    VkDescriptorSetLayoutBinding mb[2 + kMaterialTextures]{};
     mb[0].binding = 0;
     mb[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     mb[0].descriptorCount = 1;
@@ -175,7 +175,11 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         mb[i].descriptorCount = 1;
         mb[i].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
     }
-    sli.bindingCount = 1 + kMaterialTextures;
+    mb[1 + kMaterialTextures].binding = 1 + kMaterialTextures;  // vertex colours
+    mb[1 + kMaterialTextures].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    mb[1 + kMaterialTextures].descriptorCount = 1;
+    mb[1 + kMaterialTextures].stageFlags = VK_SHADER_STAGE_VERTEX_BIT;
+    sli.bindingCount = 2 + kMaterialTextures;
     sli.pBindings = mb;
     ALOHA_VK_RETURN(vkCreateDescriptorSetLayout(lp.device_, &sli, nullptr, &lp.material_layout_));
     const VkDescriptorSetLayout layouts[2] = {lp.set_layout_, lp.material_layout_};

@@ -31,6 +31,9 @@ enum LitMode : uint32_t {
     /// Every mesh pipeline adds set 1 binding 4 (emissive colour) to the lit colour, read at the vertex UVs (at
     /// (0, 0) without kLitTexturedMesh: a one-texel emissive texture).
     kLitEmissive = 32,
+    /// Every mesh pipeline multiplies the albedo by the vertex's colour (set 1 binding 5, vec4 per vertex, shared
+    /// by every character of the topology like the UVs), interpolated across the triangle.
+    kLitVertexColour = 64,
 };
 
 /// Bits 8..13 of LitPush::offsets.w for the dithered pipelines (LitPipelines::dithered): a mesh faded to
@@ -164,10 +167,12 @@ public:
     /// The set must not be in use by a pending command buffer.
     void write_set(VkDescriptorSet set, const Buffer& positions, const Buffer& normals, const Buffer& instances,
                    const Buffer& lines, const Buffer& lighting) const;
-    /// Allocates a material set (set 1) pointing at `uvs` (a non-empty storage buffer of vec2) and the
-    /// material's textures (`images`, in binding order). Sets live as long as the pipelines.
-    [[nodiscard]] Result<VkDescriptorSet> material_set(const Buffer& uvs, const MaterialImages& images);
-    /// material_set with one texture, `view` / `sampler`, at every texture binding (impostor atlases, tests).
+    /// Allocates a material set (set 1) pointing at `uvs` (a non-empty storage buffer of vec2), the material's
+    /// textures (`images`, in binding order) and `colours` (binding 5, a non-empty storage buffer of vec4 per
+    /// vertex). Sets live as long as the pipelines.
+    [[nodiscard]] Result<VkDescriptorSet> material_set(const Buffer& uvs, const Buffer& colours, const MaterialImages& images);
+    /// material_set with one texture, `view` / `sampler`, at every texture binding and `uvs` also bound as the
+    /// colours (impostor atlases, tests: drawn without kLitVertexColour).
     [[nodiscard]] Result<VkDescriptorSet> material_set(const Buffer& uvs, VkImageView view, VkSampler sampler);
     /// Releases everything now (also done by the destructor).
     void destroy();

@@ -68,10 +68,10 @@ Result<VkDescriptorSet> LitPipelines::composite_set(VkImageView colour, VkSample
 Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, VkImageView view, VkSampler sampler) {
     MaterialImages images;
     images.fill(MaterialImage{view, sampler});
-    return material_set(uvs, images);
+    return material_set(uvs, uvs, images);
 }
 
-Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, const MaterialImages& images) {
+Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, const Buffer& colours, const MaterialImages& images) {
     VkDescriptorSet set = VK_NULL_HANDLE;
     VkDescriptorSetAllocateInfo ai{};
     ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -84,7 +84,7 @@ Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, const Mate
     }
     if (r == VK_ERROR_OUT_OF_POOL_MEMORY || r == VK_ERROR_FRAGMENTED_POOL) {
         constexpr uint32_t kSets = 256;
-        const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kSets},
+        const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kSets},
                                                {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaterialTextures * kSets}};
         VkDescriptorPoolCreateInfo dpi{};
         dpi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
@@ -99,14 +99,16 @@ Result<VkDescriptorSet> LitPipelines::material_set(const Buffer& uvs, const Mate
     }
     if (r != VK_SUCCESS) return vk_error("vkAllocateDescriptorSets (material)", r);
     const VkDescriptorBufferInfo buffer{uvs.handle(), 0, VK_WHOLE_SIZE};
+    const VkDescriptorBufferInfo colour_buffer{colours.handle(), 0, VK_WHOLE_SIZE};
     VkDescriptorImageInfo image[kMaterialTextures]{};
-    VkWriteDescriptorSet w[1 + kMaterialTextures]{};
+    VkWriteDescriptorSet w[2 + kMaterialTextures]{};
     w[0] = descriptor_write(set, 0, &buffer);
+    w[1 + kMaterialTextures] = descriptor_write(set, 1 + kMaterialTextures, &colour_buffer);
     for (uint32_t i = 0; i < kMaterialTextures; ++i) {
         image[i] = {images[i].sampler, images[i].view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
         w[1 + i] = descriptor_write(set, 1 + i, nullptr, &image[i]);
     }
-    vkUpdateDescriptorSets(device_, 1 + kMaterialTextures, w, 0, nullptr);
+    vkUpdateDescriptorSets(device_, 2 + kMaterialTextures, w, 0, nullptr);
     return set;
 }
 

@@ -182,6 +182,7 @@ Result<uint32_t> DrawListBuilder::topology(CrowdRenderer& renderer, uint16_t typ
     surface_materials.uvs = draw.geometry->level_uvs(level);
     surface_materials.vertex_material = draw.geometry->level_vertex_materials(level);
     surface_materials.materials = materials;
+    if (!materials.empty()) surface_materials.colours = draw.geometry->level_colours(level);
     // Double-sided materials (glTF doubleSided) need their back faces: no culling for the topology.
     bool double_sided = false;
     for (const SurfaceMaterial& m : draw.materials) double_sided = double_sided || m.double_sided;

@@ -19,6 +19,7 @@ ImpostorBakeInput impostor_bake_input(const DrawType& draw, uint8_t level, std::
     in.indices = gc.level_indices(level);
     in.uvs = gc.level_uvs(level);
     in.vertex_material = gc.level_vertex_materials(level);
+    in.colours = gc.level_colours(level);
     in.materials = draw.materials;
     in.textures = draw.textures;
     bool double_sided = false;  // as the draw lists register the level (draw_lists.cpp)

@@ -109,6 +109,9 @@ struct TopologySurface {
     std::span<const glm::vec2> uvs;               ///< one per vertex, or empty (no texture is sampled)
     std::span<const uint16_t> vertex_material;    ///< one per vertex (indices into `materials`), or empty
     std::span<const uint32_t> materials;          ///< ids from CrowdRenderer::register_material
+    /// LINEAR RGBA per vertex multiplying the materials (glTF COLOR_0; drawn encoded as pow(rgb, 1/2.2), as base
+    /// colour factors are), or empty (white). Requires materials.
+    std::span<const glm::vec4> colours;
 };
 
 /// Where the renderer waits/signals for swapchain use; all optional.
@@ -262,6 +265,7 @@ private:
         uint32_t vertex_count = 0;
         bool cull_back_faces = false;
         gpu::Buffer uvs;              // empty without UVs
+        gpu::Buffer colours;          // display-encoded vertex colours, empty without
         std::vector<Range> ranges;    // empty without materials
         uint32_t pass = 0;            // index into pass_names_
         bool vertex_lighting = false;  // lit per vertex (LitPipelines::vertex_lit), else per pixel
@@ -345,6 +349,7 @@ private:
     std::vector<Atlas> atlases_;
     gpu::Texture white_;                              // 1x1 white: untextured draws
     std::vector<bool> texel_textures_;                // per registered texture: 1 x 1 texel
+    gpu::Buffer no_colours_;                          // one white vec4: material sets of topologies without vertex colours
     gpu::Buffer no_uvs_;                              // one zero vec2: draws without UVs
     VkDescriptorSet plain_set_ = VK_NULL_HANDLE;      // no_uvs_ + white_
     std::vector<Slot> slots_;

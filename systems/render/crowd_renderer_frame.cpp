@@ -225,6 +225,7 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const uint32_t normals = frame.write_normals ? uint32_t{gpu::kLitNormals} : 0u;
     const Topology& topo = topologies_[g / 2];
+    const uint32_t colours = topo.colours.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitVertexColour} : 0u;
     if (pipeline != bound) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         bound = pipeline;
@@ -250,7 +251,7 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
             bound = wanted;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
-        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, material_mode(m, topo.uvs.handle() != VK_NULL_HANDLE) | normals | range_dither);
+        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, material_mode(m, topo.uvs.handle() != VK_NULL_HANDLE) | colours | normals | range_dither);
         push.base_colour = m.colour;
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDrawIndexed(cmd, r.index_count, count, r.first_index, 0, 0);

@@ -27,7 +27,14 @@ Status CrowdRenderer::init_materials() {
     no_uvs_ = std::move(b).value();
     const glm::vec2 zero(0.0f);
     no_uvs_.write(std::as_bytes(std::span(&zero, 1)));
-    Result<VkDescriptorSet> set = pipes_.material_set(no_uvs_, white_.view(), white_.sampler());
+    Result<gpu::Buffer> c = gpu::Buffer::create(ctx_, sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!c) return c.error();
+    no_colours_ = std::move(c).value();
+    const glm::vec4 one(1.0f);
+    no_colours_.write(std::as_bytes(std::span(&one, 1)));
+    gpu::MaterialImages images;
+    images.fill(gpu::MaterialImage{white_.view(), white_.sampler()});
+    Result<VkDescriptorSet> set = pipes_.material_set(no_uvs_, no_colours_, images);
     if (!set) return set.error();
     plain_set_ = set.value();
     return {};
@@ -101,6 +108,9 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
     if (!surface.uvs.empty() && surface.uvs.size() != vertex_count)
         return gpu::gpu_error("register_topology: " + std::to_string(surface.uvs.size()) + " UVs for " + std::to_string(vertex_count) + " vertices");
     const bool materials = !surface.materials.empty();
+    if (!surface.colours.empty() && (!materials || surface.colours.size() != vertex_count))
+        return gpu::gpu_error("register_topology: " + std::to_string(surface.colours.size()) + " vertex colours for " + std::to_string(vertex_count) +
+                              " vertices" + (materials ? "" : " without materials"));
     if (materials && !surface.vertex_material.empty() && surface.vertex_material.size() != vertex_count)
         return gpu::gpu_error("register_topology: " + std::to_string(surface.vertex_material.size()) + " vertex materials for " +
                               std::to_string(vertex_count) + " vertices");
@@ -130,6 +140,18 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
             uv.value().write(std::as_bytes(surface.uvs));
             t.uvs = std::move(uv).value();
         }
+        if (!surface.colours.empty()) {
+            std::vector<glm::vec4> encoded(surface.colours.size());
+            for (size_t v = 0; v < encoded.size(); ++v) {
+                const glm::vec4 c = glm::clamp(surface.colours[v], 0.0f, 1.0f);  // NaN stays NaN: refused below
+                if (!std::isfinite(c.r + c.g + c.b + c.a)) return gpu::gpu_error("register_topology: vertex " + std::to_string(v) + " colour is not finite");
+                encoded[v] = glm::vec4(std::pow(c.r, 1.0f / 2.2f), std::pow(c.g, 1.0f / 2.2f), std::pow(c.b, 1.0f / 2.2f), c.a);
+            }
+            Result<gpu::Buffer> cb = gpu::Buffer::create(ctx_, encoded.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+            if (!cb) return cb.error();
+            cb.value().write(std::as_bytes(std::span<const glm::vec4>(encoded)));
+            t.colours = std::move(cb).value();
+        }
         for (size_t k = 0; k < tris.size();) {
             const uint32_t local = local_of(tris[k]);
             size_t end = k;
@@ -146,7 +168,7 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
                 const gpu::Texture& tex = drawn ? textures_[static_cast<size_t>(m.textures[slot])] : white_;
                 images[slot] = {tex.view(), tex.sampler()};
             }
-            Result<VkDescriptorSet> set = pipes_.material_set(uvs ? t.uvs : no_uvs_, images);
+            Result<VkDescriptorSet> set = pipes_.material_set(uvs ? t.uvs : no_uvs_, t.colours.handle() != VK_NULL_HANDLE ? t.colours : no_colours_, images);
             if (!set) return set.error();
             r.set = set.value();
             t.ranges.push_back(r);

@@ -99,7 +99,7 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
         materials.push_back(id.value());
     }
     TopologySurface surface;
-    if (!materials.empty()) surface = {in.uvs, in.vertex_material, materials};
+    if (!materials.empty()) surface = {in.uvs, in.vertex_material, materials, in.colours};
     Result<uint32_t> topology = renderer.register_topology(in.indices, static_cast<uint32_t>(in.rows[0].positions.size()),
                                                            in.cull_back_faces, surface);
     if (!topology) return topology.error();

@@ -35,6 +35,7 @@ struct ImpostorBakeInput {
     std::vector<ImpostorPose> rows;               ///< walk phases 0, 1/(n-1), ..., then the standing pose (n >= 2)
     std::span<const glm::vec2> uvs;               ///< per vertex, or empty
     std::span<const uint16_t> vertex_material;    ///< per vertex (indices into materials), or empty
+    std::span<const glm::vec4> colours;           ///< LINEAR colour per vertex (COLOR_0), or empty (white); with materials
     std::span<const SurfaceMaterial> materials;   ///< the type's materials (may be empty: white)
     std::span<const TextureImage> textures;       ///< their textures
     bool cull_back_faces = false;                 ///< closed mesh wound counter-clockwise from outside

@@ -36,6 +36,7 @@ void write_input(ByteWriter& w, const VkPhysicalDeviceProperties& device, const 
     }
     w.put_vector(in.uvs);
     w.put_vector(in.vertex_material);
+    w.put_vector(in.colours);
     w.put<uint64_t>(in.materials.size());
     for (const SurfaceMaterial& m : in.materials) {
         w.put(m.base_colour);

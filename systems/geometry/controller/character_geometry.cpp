@@ -37,6 +37,7 @@ void check_mesh(const CharacterMesh& mesh, uint32_t joints, std::vector<std::str
     if (mesh.indices.empty() || mesh.indices.size() % 3 != 0) problems.push_back("mesh indices are not a non-empty triangle list");
     if (!mesh.uvs.empty() && mesh.uvs.size() != n) problems.push_back("mesh UV count differs from positions");
     if (!mesh.vertex_material.empty() && mesh.vertex_material.size() != n) problems.push_back("mesh vertex material count differs from positions");
+    if (!mesh.colours.empty() && mesh.colours.size() != n) problems.push_back("mesh colour count differs from positions");
     if (mesh.inverse_bind.size() != joints)
         problems.push_back("mesh has " + std::to_string(mesh.inverse_bind.size()) + " inverse bind matrices for " +
                            std::to_string(joints) + " joints");

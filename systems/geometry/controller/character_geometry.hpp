@@ -41,6 +41,7 @@ struct CharacterMesh {
     std::vector<glm::mat4> inverse_bind;   ///< one per RUNTIME joint
     std::vector<glm::vec2> uvs;            ///< texture coordinates, one per position, or empty (none)
     std::vector<uint16_t> vertex_material; ///< material index per position (the type's list), or empty (all 0)
+    std::vector<glm::vec4> colours;        ///< LINEAR RGBA multiplying the material, one per position, or empty (white)
 };
 
 /// The peeled (SkinnedMesh) bind mesh generated from the muscles of a type without a real mesh, at

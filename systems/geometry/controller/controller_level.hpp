@@ -43,6 +43,7 @@ struct GeometryController::Level {
     SkinEdges control_edges;                       ///< mesh levels: the control surface's edges (strain limiting)
     SkinEdges refined_edges;                       ///< Subdivided: the refined surface's edges
     std::vector<glm::vec2> uvs;                    ///< texture coordinate per displayed vertex (empty: none)
+    std::vector<glm::vec4> colours;                ///< linear colour per displayed vertex (empty: white)
     std::vector<uint16_t> vertex_material;         ///< material per displayed vertex (empty: all 0)
     SlotStore store;                               ///< per-character storage
     std::atomic<uint64_t> work_characters{0};      ///< GeometryWork::characters

@@ -42,14 +42,16 @@ GeometryController::~GeometryController() = default;
 
 namespace {
 
-// UVs and materials of the level's displayed vertices: those of its control surface (the real mesh,
+// UVs, materials and colours of the level's displayed vertices: those of its control surface (the real mesh,
 // or the generated body UVs of the skin layer at rest), carried through the subdivision stencils.
 void set_surface_attributes(const CharacterGeometry& g, GeometryController::Level& level) {
     std::vector<glm::vec2> uvs;
     std::vector<uint16_t> materials;
+    std::vector<glm::vec4> colours;
     if (level.real_mesh) {
         uvs = g.mesh().uvs;
         materials = g.mesh().vertex_material;
+        colours = g.mesh().colours;
     } else {
         uvs = body_skin_uvs(g.skeleton(), g.rest_model(), g.muscles(), level.skin->rest_positions, level.skin->dominant_muscle);
     }
@@ -57,15 +59,19 @@ void set_surface_attributes(const CharacterGeometry& g, GeometryController::Leve
     if (!sub) {
         level.uvs = std::move(uvs);
         level.vertex_material = std::move(materials);
+        level.colours = std::move(colours);
         return;
     }
     // Refined vertex i = sum of weights * control vertices; primitives share no vertex, so every
     // stencil stays within one material.
     if (!uvs.empty()) level.uvs.assign(sub->refined_vertex_count, glm::vec2(0.0f));
     if (!materials.empty()) level.vertex_material.assign(sub->refined_vertex_count, 0);
+    if (!colours.empty()) level.colours.assign(sub->refined_vertex_count, glm::vec4(0.0f));
     for (uint32_t i = 0; i < sub->refined_vertex_count; ++i) {
-        for (uint32_t k = sub->offsets[i]; k < sub->offsets[i + 1]; ++k)
+        for (uint32_t k = sub->offsets[i]; k < sub->offsets[i + 1]; ++k) {
             if (!uvs.empty()) level.uvs[i] += sub->weights[k] * uvs[sub->indices[k]];
+            if (!colours.empty()) level.colours[i] += sub->weights[k] * colours[sub->indices[k]];
+        }
         if (!materials.empty() && sub->offsets[i + 1] > sub->offsets[i]) level.vertex_material[i] = materials[sub->indices[sub->offsets[i]]];
     }
 }
@@ -373,6 +379,8 @@ void GeometryController::spring_roots(uint32_t character, std::vector<glm::vec3>
 std::span<const uint32_t> GeometryController::level_indices(uint8_t level) const { return levels_.at(level)->indices; }
 
 std::span<const glm::vec2> GeometryController::level_uvs(uint8_t level) const { return levels_.at(level)->uvs; }
+
+std::span<const glm::vec4> GeometryController::level_colours(uint8_t level) const { return levels_.at(level)->colours; }
 
 std::span<const uint16_t> GeometryController::level_vertex_materials(uint8_t level) const {
     return levels_.at(level)->vertex_material;

@@ -229,6 +229,9 @@ public:
     [[nodiscard]] std::span<const glm::vec2> level_uvs(uint8_t level) const;
     /// Material index (into the type's materials) of each displayed vertex of `level`; empty = all 0.
     [[nodiscard]] std::span<const uint16_t> level_vertex_materials(uint8_t level) const;
+    /// LINEAR colour of each displayed vertex of `level` (the real mesh's COLOR_0, stencil-interpolated when
+    /// subdivided); empty = white.
+    [[nodiscard]] std::span<const glm::vec4> level_colours(uint8_t level) const;
     /// Topology key of `level` (see SurfaceView::topology_key).
     [[nodiscard]] uint32_t topology_key(uint8_t level) const;
 

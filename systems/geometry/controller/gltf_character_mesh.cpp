@@ -5,14 +5,18 @@ namespace aloha {
 
 CharacterMesh character_mesh_from_gltf(const GltfCharacter& character, const Skeleton& skeleton) {
     CharacterMesh out;
-    bool any_uvs = false;
-    for (const GltfSkinnedMesh& m : character.meshes) any_uvs = any_uvs || !m.uvs.empty();
+    bool any_uvs = false, any_colours = false;
+    for (const GltfSkinnedMesh& m : character.meshes) any_uvs = any_uvs || !m.uvs.empty(), any_colours = any_colours || !m.colours.empty();
     const auto default_material = static_cast<uint16_t>(character.materials.size());
     for (const GltfSkinnedMesh& m : character.meshes) {
         const auto base = static_cast<uint32_t>(out.positions.size());
         if (any_uvs) {
             if (m.uvs.empty()) out.uvs.resize(out.uvs.size() + m.positions.size(), glm::vec2(0.0f));
             else out.uvs.insert(out.uvs.end(), m.uvs.begin(), m.uvs.end());
+        }
+        if (any_colours) {  // white where a primitive has none
+            if (m.colours.empty()) out.colours.resize(out.colours.size() + m.positions.size(), glm::vec4(1.0f));
+            else out.colours.insert(out.colours.end(), m.colours.begin(), m.colours.end());
         }
         out.vertex_material.resize(out.vertex_material.size() + m.positions.size(),
                                    m.material >= 0 ? static_cast<uint16_t>(m.material) : default_material);

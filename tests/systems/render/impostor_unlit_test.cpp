@@ -38,7 +38,7 @@ TEST(ImpostorUnlit, UnlitBodyAndLitHeadMatchADirectRender) {
     ASSERT_TRUE(made.ok()) << made.error().to_string();
     CrowdRenderer& r = *made.value();
     const std::vector<uint32_t> ids = {r.register_material(materials[0]).value(), r.register_material(materials[1]).value()};
-    Result<uint32_t> topology = r.register_topology(fig.indices, 0, true, {{}, vertex_material, ids});
+    Result<uint32_t> topology = r.register_topology(fig.indices, 0, true, {{}, vertex_material, ids, {}});
     ASSERT_TRUE(topology.ok()) << topology.error().to_string();
     Result<uint32_t> id = r.register_impostor_atlas(atlas.value().image, atlas.value().layout);
     ASSERT_TRUE(id.ok()) << id.error().to_string();

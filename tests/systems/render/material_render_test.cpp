@@ -71,7 +71,7 @@ struct Quad {
 std::vector<DeformableMesh> quad_meshes(CrowdRenderer& r, uint32_t material, bool vertex_lit) {
     static const Quad q;
     const std::vector<uint32_t> ids = {material};
-    const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}, "meshes", vertex_lit).value();
+    const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids, {}}, "meshes", vertex_lit).value();
     return {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
 }
 
@@ -115,7 +115,7 @@ TEST(MaterialRender, TexturedQuadShowsTextureColoursAndFactor) {
         const Quad q;
         const std::vector<uint16_t> vertex_material = {0, 1, 1, 0, 1, 1};  // triangles take their first vertex's
         const std::vector<uint32_t> ids = {a.value(), b.value()};
-        Result<uint32_t> topo = r.register_topology(q.indices, 6, false, {q.uvs, vertex_material, ids});
+        Result<uint32_t> topo = r.register_topology(q.indices, 6, false, {q.uvs, vertex_material, ids, {}});
         ASSERT_TRUE(topo.ok()) << topo.error().to_string();
         const std::vector<DeformableMesh> meshes = {{topo.value(), q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
         FrameInput frame = unlit_frame(meshes);
@@ -284,7 +284,7 @@ TEST(MaterialRender, NearestMipReadsOneLevelAndBlendMixesTwo) {
         Quad q;
         q.uvs = {{0, s}, {0.5f * s, s}, {s, s}, {0, 0}, {0.5f * s, 0}, {s, 0}};
         const std::vector<uint32_t> ids = {mat};
-        const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}).value();
+        const uint32_t topo = r.register_topology(q.indices, 6, false, {q.uvs, {}, ids, {}}).value();
         const std::vector<DeformableMesh> meshes = {{topo, q.positions, q.normals, glm::mat4(1.0f), glm::vec4(1.0f)}};
         Result<gpu::Rgba8Image> img = draw(r, *ctx, unlit_frame(meshes), "aloha_material_mips.png");
         if (!img.ok()) return -1;
@@ -323,9 +323,9 @@ TEST(MaterialRender, RegistrationErrors) {
         EXPECT_FALSE(r.register_material(over).ok());
         const Quad q;
         const std::vector<uint32_t> ids = {7};
-        EXPECT_FALSE(r.register_topology(q.indices, 6, false, {q.uvs, {}, ids}).ok());
+        EXPECT_FALSE(r.register_topology(q.indices, 6, false, {q.uvs, {}, ids, {}}).ok());
         const std::vector<glm::vec2> short_uvs(3);
-        EXPECT_FALSE(r.register_topology(q.indices, 6, false, {short_uvs, {}, {}}).ok());
+        EXPECT_FALSE(r.register_topology(q.indices, 6, false, {short_uvs, {}, {}, {}}).ok());
     }
     EXPECT_EQ(ctx->validation_message_count(), 0u);
 }

@@ -69,7 +69,7 @@ TEST(VertexLighting, FlatQuadMatchesPerPixelLight) {
         const std::vector<uint32_t> textured = {r.register_material(grey, texture_ids).value()};
         const Quad q;
         for (const bool with_texture : {false, true}) {
-            const TopologySurface surface = with_texture ? TopologySurface{q.uvs, {}, textured} : TopologySurface{};
+            const TopologySurface surface = with_texture ? TopologySurface{q.uvs, {}, textured, {}} : TopologySurface{};
             const uint32_t per_pixel = r.register_topology(q.indices, 4, true, surface, "pixel", false).value();
             const uint32_t per_vertex = r.register_topology(q.indices, 4, true, surface, "vertex", true).value();
             const glm::vec4 colour(0.9f, 0.6f, 0.3f, 1.0f);
