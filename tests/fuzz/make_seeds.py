@@ -167,6 +167,38 @@ vj = copy.deepcopy(cj)
 del vj['skins']
 del vj['nodes'][2]['skin']
 w('fuzz_gltf', 'chain_rigid.glb', glb(vj, cb))
+# The same character with vertex colours, UVs and every material map the loader draws (a 2 x 2 PNG as base
+# colour, normal, occlusion and emissive texture; factors and KHR_materials_emissive_strength).
+def with_maps(js, blob):
+    import zlib
+    js, blob = copy.deepcopy(js), bytearray(blob)
+    def view(data):
+        while len(blob) % 4: blob.append(0)
+        js['bufferViews'].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)})
+        blob.extend(data)
+        return len(js['bufferViews']) - 1
+    def chunk(t, d): return struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d) & 0xffffffff)
+    raw = b''.join(b'\x00' + bytes(row) for row in ([200, 128, 230, 255, 90, 128, 240, 255], [128, 60, 220, 255, 128, 200, 200, 255]))
+    png = b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 2, 2, 8, 6, 0, 0, 0)) + chunk(b'IDAT', zlib.compress(raw)) + chunk(b'IEND', b'')
+    prim = js['meshes'][0]['primitives'][0]
+    nv = js['accessors'][prim['attributes']['POSITION']]['count']
+    colours = bytes((37 * v + c * 80) % 256 if c < 3 else 255 for v in range(nv) for c in range(4))
+    uvs = struct.pack(f'<{2 * nv}f', *[x for v in range(nv) for x in ((v % 12) / 12.0, (v // 12) / 8.0)])
+    js['accessors'].append({"bufferView": view(colours), "componentType": 5121, "normalized": True, "count": nv, "type": "VEC4"})
+    prim['attributes']['COLOR_0'] = len(js['accessors']) - 1
+    js['accessors'].append({"bufferView": view(uvs), "componentType": 5126, "count": nv, "type": "VEC2"})
+    prim['attributes']['TEXCOORD_0'] = len(js['accessors']) - 1
+    js['images'] = [{"bufferView": view(png), "mimeType": "image/png"}]
+    js['textures'] = [{"source": 0}]
+    js['extensionsUsed'] = ['KHR_materials_emissive_strength']
+    js['materials'][0].update({"normalTexture": {"index": 0, "scale": 0.7}, "occlusionTexture": {"index": 0, "strength": 0.5},
+                               "emissiveTexture": {"index": 0}, "emissiveFactor": [0.2, 0.1, 0.0],
+                               "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}})
+    js['materials'][0]['pbrMetallicRoughness']['baseColorTexture'] = {"index": 0}
+    js['buffers'][0]['byteLength'] = len(blob)
+    return js, bytes(blob)
+mj, mb = with_maps(cj, cb)
+w('fuzz_gltf', 'chain_maps.glb', glb(mj, mb))
 # The same character as gltfpack writes it (KHR_mesh_quantization + KHR_texture_transform, and
 # EXT_meshopt_compression with its filters), when gltfpack (Debian package gltfpack) is installed.
 import shutil, subprocess, tempfile
