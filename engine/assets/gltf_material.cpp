@@ -88,6 +88,8 @@ struct ResolvedTexture {
     size_t image = 0;
     int sampler = -1;
     MaterialUv uv;
+    bool transformed = false;  // KHR_texture_transform given
+    bool from_webp = false;    // `image` is the texture's EXT_texture_webp source
 };
 
 // Reads the materials of one file into a GltfCharacter, decoding (baking) each texture once.
@@ -156,6 +158,8 @@ private:
             }
             *s.slot = texture(t, s.role, bake.value());
             drawn_[static_cast<size_t>(s.role)] += 1;
+            transformed_ += t.transformed ? 1 : 0;
+            webp_ += t.from_webp ? 1 : 0;
         }
         // An emissive factor without a texture: a one-texel emissive texture of that colour.
         if (m.emissive_texture < 0 && bake.value().emissive != glm::vec3(0.0f)) {
@@ -239,7 +243,7 @@ private:
             Result<glm::mat3> m3 = texture_transform(ext->second, file_, where + ".extensions.KHR_texture_transform", &out.uv.texcoord);
             if (!m3.ok()) return m3.error();
             out.uv.transform = m3.value();
-            ++transformed_;
+            out.transformed = true;
         }
         const tinygltf::Texture& tex = model_.textures[static_cast<size_t>(ref.index)];
         const std::string xw = "textures[" + std::to_string(ref.index) + "]";
@@ -263,7 +267,7 @@ private:
             out_->notes.push_back("images[" + std::to_string(img) + "]: image could not be used; " + material + " drawn without it (" + where + ")");
             return std::optional<ResolvedTexture>();
         } else {
-            webp_ += from_webp ? 1 : 0;
+            out.from_webp = from_webp;
         }
         out.image = static_cast<size_t>(img);
         return std::optional<ResolvedTexture>(out);

@@ -55,8 +55,10 @@ inline constexpr uint32_t kLitAlphaTest = 1u << 14;
 /// A negative cutoff (no alpha test) gives 0.
 [[nodiscard]] uint32_t lit_alpha_bits(float cutoff);
 
-/// Textures a material set binds (set 1 bindings 1..4, in this order): base colour, normal map, occlusion, emissive.
+/// Textures a material set binds (set 1 bindings 1..4, in this order: MaterialTexture).
 inline constexpr uint32_t kMaterialTextures = 4;
+/// A material texture's place among a material set's textures (its binding is 1 + this).
+enum MaterialTexture : uint32_t { kBaseColourTexture = 0, kNormalTexture = 1, kOcclusionTexture = 2, kEmissiveTexture = 3 };
 /// A texture as a material set binds it (in SHADER_READ_ONLY_OPTIMAL layout).
 struct MaterialImage {
     VkImageView view = VK_NULL_HANDLE;

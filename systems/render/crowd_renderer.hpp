@@ -277,7 +277,7 @@ private:
     };
     struct Material {
         glm::vec4 colour{1.0f};       // display-space base colour
-        int textures[gpu::kMaterialTextures] = {-1, -1, -1, -1};  // ids: base colour, normal, occlusion, emissive
+        int textures[gpu::kMaterialTextures] = {-1, -1, -1, -1};  // registered ids in gpu::MaterialTexture order, -1 = none
         bool texel_emissive = false;  // its emissive texture is one texel: drawn without UVs too
         uint32_t mode_bits = 0;       // its LitPush::offsets.w bits: gpu::lit_alpha_bits of its cutoff, gpu::kLitUnlit
     };

@@ -61,6 +61,7 @@ Result<uint32_t> CrowdRenderer::register_texture(const TextureImage& image) {
 }
 
 Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& material, std::span<const uint32_t> texture_ids) {
+    // In gpu::MaterialTexture order.
     const int used[gpu::kMaterialTextures] = {material.texture, material.normal_texture, material.occlusion_texture, material.emissive_texture};
     const char* what[gpu::kMaterialTextures] = {"texture", "normal texture", "occlusion texture", "emissive texture"};
     Material m;
@@ -76,7 +77,8 @@ Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& materia
         if (!(f[c] >= 0.0f && f[c] <= 1.0f))
             return gpu::gpu_error("register_material: '" + material.name + "' base colour values must be in [0, 1]");
     m.colour = glm::vec4(std::pow(f.r, 1.0f / 2.2f), std::pow(f.g, 1.0f / 2.2f), std::pow(f.b, 1.0f / 2.2f), f.a);
-    m.texel_emissive = m.textures[3] >= 0 && texel_textures_[static_cast<size_t>(m.textures[3])];
+    const int emissive = m.textures[gpu::kEmissiveTexture];
+    m.texel_emissive = emissive >= 0 && texel_textures_[static_cast<size_t>(emissive)];
     if (!(material.alpha_cutoff <= 1.0f))
         return gpu::gpu_error("register_material: '" + material.name + "' alpha cutoff must be at most 1 (negative: opaque)");
     m.mode_bits = gpu::lit_alpha_bits(material.alpha_cutoff) | (material.unlit ? gpu::kLitUnlit : 0u);
@@ -88,12 +90,12 @@ uint32_t CrowdRenderer::material_mode(const Material& m, bool uvs) {
     uint32_t bits = m.mode_bits;
     if (uvs) {
         // The textured mode passes the UVs on, which every map reads (a base colour texture left out is white).
-        const bool any = m.textures[0] >= 0 || m.textures[1] >= 0 || m.textures[2] >= 0 || m.textures[3] >= 0;
+        const bool any = std::any_of(std::begin(m.textures), std::end(m.textures), [](int t) { return t >= 0; });
         if (any) bits |= gpu::kLitTexturedMesh;
-        if (m.textures[1] >= 0) bits |= gpu::kLitNormalMap;
-        if (m.textures[2] >= 0) bits |= gpu::kLitOcclusion;
+        if (m.textures[gpu::kNormalTexture] >= 0) bits |= gpu::kLitNormalMap;
+        if (m.textures[gpu::kOcclusionTexture] >= 0) bits |= gpu::kLitOcclusion;
     }
-    if ((uvs || m.texel_emissive) && m.textures[3] >= 0) bits |= gpu::kLitEmissive;
+    if ((uvs || m.texel_emissive) && m.textures[gpu::kEmissiveTexture] >= 0) bits |= gpu::kLitEmissive;
     return bits;
 }
 
@@ -143,8 +145,9 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
         if (!surface.colours.empty()) {
             std::vector<glm::vec4> encoded(surface.colours.size());
             for (size_t v = 0; v < encoded.size(); ++v) {
-                const glm::vec4 c = glm::clamp(surface.colours[v], 0.0f, 1.0f);  // NaN stays NaN: refused below
-                if (!std::isfinite(c.r + c.g + c.b + c.a)) return gpu::gpu_error("register_topology: vertex " + std::to_string(v) + " colour is not finite");
+                const glm::vec4 raw = surface.colours[v];
+                if (!std::isfinite(raw.r + raw.g + raw.b + raw.a)) return gpu::gpu_error("register_topology: vertex " + std::to_string(v) + " colour is not finite");
+                const glm::vec4 c = glm::clamp(raw, 0.0f, 1.0f);
                 encoded[v] = glm::vec4(std::pow(c.r, 1.0f / 2.2f), std::pow(c.g, 1.0f / 2.2f), std::pow(c.b, 1.0f / 2.2f), c.a);
             }
             Result<gpu::Buffer> cb = gpu::Buffer::create(ctx_, encoded.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -164,7 +167,7 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
             const bool uvs = t.uvs.handle() != VK_NULL_HANDLE;
             gpu::MaterialImages images;
             for (uint32_t slot = 0; slot < gpu::kMaterialTextures; ++slot) {
-                const bool drawn = m.textures[slot] >= 0 && (uvs || (slot == 3 && m.texel_emissive));
+                const bool drawn = m.textures[slot] >= 0 && (uvs || (slot == gpu::kEmissiveTexture && m.texel_emissive));
                 const gpu::Texture& tex = drawn ? textures_[static_cast<size_t>(m.textures[slot])] : white_;
                 images[slot] = {tex.view(), tex.sampler()};
             }
