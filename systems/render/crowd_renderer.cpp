@@ -37,6 +37,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
     options_ = options;
     far_layer_below_px_ = options.far_layer_below_px.value_or(far_layer_default(ctx_.is_cpu_device()));
     blend_texture_mips_ = options.blend_texture_mips.value_or(blend_texture_mips_default(ctx_.is_cpu_device()));
+    max_texture_side_ = options.max_texture_side;
     far_layer_meshes_below_px_ = options.far_layer_meshes_below_px.value_or(far_layer_meshes_default(ctx_.is_cpu_device()));
     options_.frames_in_flight = std::clamp(options.frames_in_flight, 1u, 4u);
     const VkDevice dev = ctx_.device();

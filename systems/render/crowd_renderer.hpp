@@ -155,6 +155,10 @@ struct RendererOptions {
                                                        ///< (systems/render/far_layer.hpp); 0 (the default): none. On
                                                        ///< lavapipe 70 saves ~3.5 ms a frame on crowd_10k's close pass, but
                                                        ///< walkers of 30-70 px turn to blobs (docs/PERFORMANCE.md)
+    uint32_t max_texture_side = 2048;                  ///< material textures wider or taller are halved (2 x 2 means)
+                                                       ///< until both sides fit, at registration: a crowd's character
+                                                       ///< seldom covers more than 2048 pixels, and an 8192^2 texture
+                                                       ///< takes 341 MiB with its mips; 0: no limit
 };
 
 /// GPU time of one pass of a completed frame (RendererOptions::pass_timestamps). Passes, in recording order:
@@ -199,9 +203,12 @@ public:
     /// first draws the nearest characters first (richer levels go to nearer characters), so a software rasteriser
     /// skips the shading of what they hide, whichever level happened to be registered first.
     void declare_passes(std::span<const std::string> labels);
-    /// Uploads a texture (RGBA8, rows top to bottom, colours as stored: sRGB-encoded) once; returns its id.
-    /// Errors: empty or inconsistent image, Vulkan failures.
+    /// Uploads a texture (RGBA8, rows top to bottom, colours as stored: sRGB-encoded) once, halved first while a
+    /// side exceeds RendererOptions::max_texture_side; returns its id. Errors: empty or inconsistent image, Vulkan
+    /// failures.
     [[nodiscard]] Result<uint32_t> register_texture(const TextureImage& image);
+    /// The size texture `id` was uploaded at (after any halving). Requires a registered id.
+    [[nodiscard]] glm::uvec2 texture_size(uint32_t id) const { return texture_sizes_.at(id); }
     /// Registers a material: `material.base_colour` is a LINEAR factor (glTF) and is drawn encoded as
     /// pow(rgb, 1/2.2), the display space the renderer shades in, so that factor x texel matches the
     /// sRGB encoding of their linear product. Its textures (texture, normal_texture, occlusion_texture,
@@ -349,6 +356,8 @@ private:
     std::vector<Atlas> atlases_;
     gpu::Texture white_;                              // 1x1 white: untextured draws
     std::vector<bool> texel_textures_;                // per registered texture: 1 x 1 texel
+    std::vector<glm::uvec2> texture_sizes_;           // per registered texture: its size as uploaded
+    uint32_t max_texture_side_ = 0;                   // RendererOptions::max_texture_side
     gpu::Buffer no_colours_;                          // one white vec4: material sets of topologies without vertex colours
     gpu::Buffer no_uvs_;                              // one zero vec2: draws without UVs
     VkDescriptorSet plain_set_ = VK_NULL_HANDLE;      // no_uvs_ + white_

@@ -3,6 +3,7 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
+#include "systems/render/impostor_packing.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -52,11 +53,20 @@ Result<uint32_t> CrowdRenderer::register_texture(const TextureImage& image) {
         }
         return VK_SAMPLER_ADDRESS_MODE_REPEAT;
     };
-    Result<gpu::Texture> t = gpu::Texture::create(ctx_, image.width, image.height, image.rgba,
+    // Halved (each texel the mean of the 2 x 2 it covers, downsample_rgba8) while a side exceeds the limit.
+    uint32_t w = image.width, h = image.height;
+    std::vector<uint8_t> halved;
+    while (max_texture_side_ > 0 && std::max(w, h) > max_texture_side_) {
+        halved = downsample_rgba8(halved.empty() ? image.rgba : halved, w, h);
+        w = std::max(w / 2, 1u);
+        h = std::max(h / 2, 1u);
+    }
+    Result<gpu::Texture> t = gpu::Texture::create(ctx_, w, h, halved.empty() ? std::span<const uint8_t>(image.rgba) : std::span<const uint8_t>(halved),
                                                   gpu::SamplerDesc{mode(image.wrap_u), mode(image.wrap_v), image.nearest, blend_texture_mips_});
     if (!t) return t.error();
     textures_.push_back(std::move(t).value());
-    texel_textures_.push_back(image.width == 1 && image.height == 1);
+    texel_textures_.push_back(w == 1 && h == 1);
+    texture_sizes_.emplace_back(w, h);
     return static_cast<uint32_t>(textures_.size() - 1);
 }
 

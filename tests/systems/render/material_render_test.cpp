@@ -303,6 +303,39 @@ TEST(MaterialRender, NearestMipReadsOneLevelAndBlendMixesTwo) {
     EXPECT_EQ(ctx->validation_message_count(), 0u);
 }
 
+// A texture wider or taller than RendererOptions::max_texture_side is halved until it fits (64 x 32 under a limit of
+// 16: 16 x 8), each texel the mean of the 2 x 2 it covers; quad_texture()'s four texels scaled up to 32 x 16 blocks
+// stay four uniform blocks through the means, so the quad shows the same four colours exactly. Smaller textures
+// are uploaded as they are.
+TEST(MaterialRender, TexturesOverTheSideLimitAreHalved) {
+    EXPECT_EQ(RendererOptions{}.max_texture_side, 2048u);
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    {
+        RendererOptions options;
+        options.max_texture_side = 16;
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx, options);
+        ASSERT_TRUE(made.ok());
+        CrowdRenderer& r = *made.value();
+        TextureImage big = quad_texture();
+        big.width = 64;
+        big.height = 32;
+        big.rgba.resize(size_t{64} * 32 * 4);
+        for (uint32_t y = 0; y < 32; ++y)
+            for (uint32_t x = 0; x < 64; ++x)
+                for (uint32_t c = 0; c < 4; ++c) big.rgba[(size_t{y} * 64 + x) * 4 + c] = kTexel[(y / 16) * 2 + x / 32][static_cast<int>(c)];
+        const uint32_t tex = r.register_texture(big).value();
+        EXPECT_EQ(r.texture_size(tex), glm::uvec2(16, 8));
+        EXPECT_EQ(r.texture_size(r.register_texture(quad_texture()).value()), glm::uvec2(2, 2)) << "within the limit: as it is";
+        const uint32_t mat = with_texture(r, SurfaceMaterial{}, tex).value();
+        const std::vector<DeformableMesh> meshes = quad_meshes(r, mat, false);  // the frame keeps a span of them
+        Result<gpu::Rgba8Image> img = draw(r, *ctx, unlit_frame(meshes), "aloha_material_halved.png");
+        ASSERT_TRUE(img.ok()) << img.error().to_string();
+        for (uint32_t k = 0; k < 4; ++k) EXPECT_EQ(block_matches(img.value(), k, kTexel[k]), 32 * 32) << "texel " << k;
+    }
+    EXPECT_EQ(ctx->validation_message_count(), 0u);
+}
+
 // Bad inputs are refused with messages, never drawn.
 TEST(MaterialRender, RegistrationErrors) {
     std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
