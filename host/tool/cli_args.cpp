@@ -24,7 +24,7 @@ struct Bindings {
     CliOptions o;
     std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", cache_max_mb, counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes,
-        distant_layer, texture_mips;
+        distant_layer, texture_mips, texture_max;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
 
@@ -80,6 +80,9 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "material textures read from the two nearest mip levels blended (blend, trilinear) or from the nearest one "
                  "(nearest; default nearest on a software rasteriser, blend on a GPU)")
         ->check(one_of({"blend", "nearest"}));
+    c.add_option("--texture-max", b.texture_max,
+                 "material textures wider or taller than PX are halved at load until they fit (default 2048; 0: no limit)")
+        ->check(whole_number(0, 16384));
     c.add_option("--height", b.height, "override the viewport height")->check(whole_number(16, 8192));
     c.add_option("--overlay", b.o.overlay, "draw bones, muscles and/or springs over the characters (e.g. bones,springs)")
         ->check(member_list({"bones", "muscles", "springs"}));
@@ -219,6 +222,7 @@ void convert(Bindings& b) {
     if (!b.far_layer_meshes.empty()) o.far_layer_meshes_px = float(u32(b.far_layer_meshes));
     if (!b.distant_layer.empty()) o.distant_layer_px = float(u32(b.distant_layer));
     if (!b.texture_mips.empty()) o.blend_texture_mips = b.texture_mips == "blend";
+    if (!b.texture_max.empty()) o.max_texture_side = u32(b.texture_max);
     if (!b.height.empty()) o.height = u32(b.height);
     if (!b.threads.empty()) o.threads = u32(b.threads);
     if (!b.cache_max_mb.empty()) o.cache_max_bytes = parse_cache_limit_mib(b.cache_max_mb);

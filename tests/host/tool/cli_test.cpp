@@ -23,6 +23,10 @@ TEST(Cli, ParsesProfileOptions) {
     EXPECT_EQ(*o.seed, 9u);
     EXPECT_EQ(*o.characters, 2000u);
     EXPECT_TRUE(o.fidelity);
+    EXPECT_FALSE(o.max_texture_side) << "unset: the renderer's default";
+    auto t = parse({"render", "scene.json", "--texture-max", "512"});
+    ASSERT_TRUE(t.ok()) << t.error().to_string();
+    EXPECT_EQ(t.value().max_texture_side, 512u);
 }
 
 TEST(Cli, ParsesBudgetTierAndOcclusionOptions) {
@@ -95,6 +99,8 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"render", "s.json", "--colour", "pink"}, "'--colour' expects"},
         {{"render", "a.json", "b.json"}, "unexpected argument 'b.json'"},
         {{"profile", "s.json", "--width", "8"}, "[16, 8192]"},
+        {{"render", "s.json", "--texture-max", "-1"}, "'-1'"},
+        {{"render", "s.json", "--texture-max", "20000"}, "[0, 16384]"},
     };
     for (const Case& c : cases) {
         auto r = parse(c.args);
