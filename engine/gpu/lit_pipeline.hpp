@@ -1,6 +1,7 @@
 // The lit-mesh and line pipelines (shaders/lit_mesh.*, shaders/line.*): vertex pulling from storage buffers,
-// per-instance model matrix + colour, per-draw material (base colour factor, optional texture with per-vertex
-// UVs), a key light plus hemispherical ambient, depth test, push-constant camera.
+// per-instance model matrix + colour, per-draw material (base colour factor; optional base colour, normal,
+// occlusion and emissive textures at per-vertex UVs; optional per-vertex colours), a key light plus hemispherical
+// ambient, depth test, push-constant camera.
 #pragma once
 
 #include "engine/core/result.hpp"

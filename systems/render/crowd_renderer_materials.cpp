@@ -1,5 +1,6 @@
-// CrowdRenderer materials: textures, materials, topologies with per-vertex UVs and materials (index
-// lists reordered into one range per material, each with its descriptor set), and character lighting.
+// CrowdRenderer materials: textures (halved to the size limit), materials (up to four textures each), topologies
+// with per-vertex UVs, colours and materials (index lists reordered into one range per material, each with its
+// descriptor set), and character lighting.
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/vk_error.hpp"
 #include "systems/render/crowd_renderer.hpp"
