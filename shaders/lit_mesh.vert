@@ -11,9 +11,9 @@
 // - vertex colours (64): the colour is multiplied by element gl_VertexIndex of set 1 binding 5, likewise shared.
 // Compiled twice. Without VERTEX_LIT (for shaders/lit_mesh.frag, lit per pixel) the outputs are packed into
 // three interpolants, since lavapipe stores and sets up every interpolant of every binned triangle: normal
-// and u, world position and v, and the colour (interpolated, for vertex colours). With VERTEX_LIT (for shaders/lit_vertex.frag) the lighting
-// of shaders/lit_mesh.frag is evaluated here, at the vertex (Gouraud), and the outputs are the lit colour and
-// the UVs: on lavapipe each fragment then costs a multiply.
+// and u, world position and v, and the colour (interpolated, for vertex colours). With VERTEX_LIT (for
+// shaders/lit_vertex.frag) the lighting of shaders/lit_mesh.frag is evaluated here, at the vertex (Gouraud), and
+// the outputs are the lit colour and the UVs: on lavapipe each fragment then costs a multiply.
 
 layout(std430, set = 0, binding = 0) readonly buffer Positions { float positions[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Normals { float normals[]; };

@@ -264,7 +264,8 @@ private:
         uint32_t first_index = 0;
         uint32_t index_count = 0;
         uint32_t material = 0;
-        VkDescriptorSet set = VK_NULL_HANDLE;  // the topology's UVs + the material's texture
+        uint32_t mode = 0;                     // its LitPush::offsets.w bits: material_mode, kLitVertexColour
+        VkDescriptorSet set = VK_NULL_HANDLE;  // the topology's UVs and colours + the material's textures
     };
     struct Topology {
         gpu::Buffer indices;
@@ -336,7 +337,7 @@ private:
     Status record(const FrameInput& frame, const gpu::TargetView& target, Slot& slot);
     Status init_materials();
     // The LitPush::offsets.w bits of drawing `m` on a topology with UVs (`uvs`) or without: its mode_bits and
-    // one texture bit per texture it can sample there.
+    // one texture bit per texture it can sample there (Range::mode, set at registration).
     [[nodiscard]] static uint32_t material_mode(const Material& m, bool uvs);
     Status ensure_queries(Slot& slot, uint32_t count);
     uint32_t pass_id(std::string_view name);

@@ -225,7 +225,6 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     const uint32_t normals = frame.write_normals ? uint32_t{gpu::kLitNormals} : 0u;
     const Topology& topo = topologies_[g / 2];
-    const uint32_t colours = topo.colours.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitVertexColour} : 0u;
     if (pipeline != bound) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         bound = pipeline;
@@ -240,10 +239,9 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
     }
     uint32_t draws = 0;
     for (const Range& r : topo.ranges) {  // one draw per material, every instance of the run
-        const Material& m = materials_[r.material];
         // An alpha-tested material is drawn with the dithered pipeline (the one that may discard), keeping
         // every pixel unless the group is fading; the others keep the pipeline without discard.
-        const bool alpha_test = (m.mode_bits & gpu::kLitAlphaTest) != 0;
+        const bool alpha_test = (r.mode & gpu::kLitAlphaTest) != 0;
         const VkPipeline wanted = alpha_test ? pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces) : pipeline;
         const uint32_t range_dither = alpha_test && dither == 0 ? gpu::lit_dither_bits(1.0f) : dither;
         if (wanted != bound) {
@@ -251,8 +249,8 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
             bound = wanted;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &r.set, 0, nullptr);
-        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, material_mode(m, topo.uvs.handle() != VK_NULL_HANDLE) | colours | normals | range_dither);
-        push.base_colour = m.colour;
+        push.offsets = glm::uvec4(vertex_base, topo.vertex_count, instance_base, r.mode | normals | range_dither);
+        push.base_colour = materials_[r.material].colour;
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDrawIndexed(cmd, r.index_count, count, r.first_index, 0, 0);
         ++draws;

@@ -44,8 +44,7 @@ Status CrowdRenderer::warm_up() {
                 };
                 draw(plain_set_, gpu::kLitMesh, 0);
                 for (const Range& r : topo.ranges) {
-                    const uint32_t colours = topo.colours.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitVertexColour} : 0u;
-                    draw(r.set, material_mode(materials_[r.material], topo.uvs.handle() != VK_NULL_HANDLE) | colours, r.first_index);
+                    draw(r.set, r.mode, r.first_index);
                 }
             }
         }

@@ -6,7 +6,10 @@ namespace aloha {
 CharacterMesh character_mesh_from_gltf(const GltfCharacter& character, const Skeleton& skeleton) {
     CharacterMesh out;
     bool any_uvs = false, any_colours = false;
-    for (const GltfSkinnedMesh& m : character.meshes) any_uvs = any_uvs || !m.uvs.empty(), any_colours = any_colours || !m.colours.empty();
+    for (const GltfSkinnedMesh& m : character.meshes) {
+        any_uvs = any_uvs || !m.uvs.empty();
+        any_colours = any_colours || !m.colours.empty();
+    }
     const auto default_material = static_cast<uint16_t>(character.materials.size());
     for (const GltfSkinnedMesh& m : character.meshes) {
         const auto base = static_cast<uint32_t>(out.positions.size());

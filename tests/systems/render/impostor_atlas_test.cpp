@@ -25,8 +25,6 @@ TEST(ImpostorAtlas, ImpostorOfAKnownPoseMatchesADirectRender) {
     ASSERT_TRUE(ctx);
     const Figure fig;
     ImpostorBakeInput in = bake_input(fig, 2);  // one phase and the standing row
-    in.directions = 16;
-    in.cell_height_px = 96;
     Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
     ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
     EXPECT_EQ(atlas.value().layout.rows, 2u);
@@ -143,8 +141,6 @@ void check_impostor_layer(int divisor) {
     ASSERT_TRUE(ctx);
     const Figure fig;
     ImpostorBakeInput in = bake_input(fig, 2);
-    in.directions = 16;
-    in.cell_height_px = 96;
     Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
     ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
     RendererOptions full_options, far_options;  // meshes at full resolution in both (FarLayerMeshMatches... below)

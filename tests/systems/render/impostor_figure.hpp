@@ -46,12 +46,15 @@ struct Figure {
     }
 };
 
-inline ImpostorBakeInput bake_input(const Figure& fig, size_t rows) {  // the figure in `rows` rows, all the same pose
+// The figure in `rows` rows, all the same pose, in 16 directions of 96 px cells (the atlas compare() is derived for).
+inline ImpostorBakeInput bake_input(const Figure& fig, size_t rows) {
     ImpostorBakeInput in;
     in.name = "figure";
     in.indices = fig.indices;
     in.rows.assign(rows, ImpostorPose{fig.positions, fig.normals});
     in.cull_back_faces = true;
+    in.directions = 16;
+    in.cell_height_px = 96;
     return in;
 }
 

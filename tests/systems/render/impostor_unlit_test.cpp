@@ -27,8 +27,6 @@ TEST(ImpostorUnlit, UnlitBodyAndLitHeadMatchADirectRender) {
     materials[1].name = "lit head";
     materials[1].base_colour = {0.3f, 0.5f, 0.7f, 1.0f};
     ImpostorBakeInput in = bake_input(fig, 2);
-    in.directions = 16;
-    in.cell_height_px = 96;
     in.vertex_material = vertex_material;
     in.materials = materials;
     Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
