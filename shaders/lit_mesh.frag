@@ -1,4 +1,5 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // Lit mesh fragment shader: albedo * (ambient * occlusion * hemisphere(N) + (1 - ambient) * key * max(dot(N, L), 0))
 // + emissive, where hemisphere(N) = mix(ground, sky, 0.5 + 0.5 N.y) (set 0 binding 4) and albedo = instance colour *
 // material base colour (* the base colour texture at the vertex UVs in textured mode, offsets.w & 2). N is turned
@@ -11,6 +12,8 @@
 // screen-space derivatives of the world position and the UVs (so any deformation of the skin keeps its frame;
 // mirrored UVs flip the frame's handedness, as MikkTSpace's sign does); with & 16 the ambient term is scaled by the
 // occlusion map's red channel; with & 32 the emissive texture is added (at UV (0, 0) when untextured: one texel).
+// With offsets.w & 128 the light is glTF's metallic-roughness model (shaders/pbr.glsl), metalness and roughness
+// from set 1 binding 5 (blue, green; one texel when untextured), instead of the diffuse one above.
 // Built again with DITHER (the dithered pipelines, gpu::LitPipelines): a screen-door fade keeps only the
 // pixels whose 4x4 Bayer value is below (offsets.w >> 8) & 31 (0..16, gpu::lit_dither_bits), the complement of an
 // impostor faded at -m (shaders/impostor.frag) for the same m, or with bit 13 the complement of those (the left
@@ -34,6 +37,9 @@ layout(set = 1, binding = 1) uniform sampler2D base_colour_texture;
 layout(set = 1, binding = 2) uniform sampler2D normal_texture;
 layout(set = 1, binding = 3) uniform sampler2D occlusion_texture;
 layout(set = 1, binding = 4) uniform sampler2D emissive_texture;
+layout(set = 1, binding = 5) uniform sampler2D metallic_roughness_texture;
+
+#include "pbr.glsl"
 
 layout(location = 0) in vec4 v_normal_u;   // xyz: normal, w: texture u
 layout(location = 1) in vec4 v_world_v;    // xyz: world position, w: texture v
@@ -91,9 +97,16 @@ void main() {
     }
     float ambient = pc.light.w;
     if ((pc.offsets.w & 16u) != 0u) ambient *= texture(occlusion_texture, uv).r;  // occlusion map (gpu::kLitOcclusion)
-    vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
-    float diffuse = max(dot(n, pc.light.xyz), 0.0);
-    vec3 lit = albedo.rgb * (ambient * hemi + (1.0 - pc.light.w) * lighting.key.rgb * diffuse);
+    vec3 lit;
+    if ((pc.offsets.w & 128u) != 0u) {  // glTF metallic-roughness (gpu::kLitMetallicRoughness)
+        const vec2 mr = texture(metallic_roughness_texture, uv).bg;
+        lit = pbr_light(albedo.rgb, mr.x, mr.y, n, normalize(pc.camera.xyz - world), pc.light.xyz, ambient, 1.0 - pc.light.w, lighting.key.rgb,
+                        lighting.sky.rgb, lighting.ground.rgb);
+    } else {
+        vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
+        float diffuse = max(dot(n, pc.light.xyz), 0.0);
+        lit = albedo.rgb * (ambient * hemi + (1.0 - pc.light.w) * lighting.key.rgb * diffuse);
+    }
     if ((pc.offsets.w & 32u) != 0u) lit += texture(emissive_texture, uv).rgb;  // emissive (gpu::kLitEmissive)
     out_colour = vec4(clamp(lit, 0.0, 1.0), albedo.a);
 }

@@ -1,4 +1,5 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // Lit mesh vertex shader with vertex pulling: positions and normals come from storage buffers. The mode bits
 // of offsets.w (gpu::LitMode) choose how a vertex finds its data:
 // - mesh (0): one indexed, instanced draw covers every character that shares a topology (one instance per
@@ -8,12 +9,15 @@
 //   bit 2: z; 0 = -0.5, 1 = +0.5) and no normal (the fragment shader derives flat face normals).
 // - textured (2): the vertex's texture coordinate is element gl_VertexIndex of the material set's
 //   UV buffer (set 1, shared by every character of the topology).
-// - vertex colours (64): the colour is multiplied by element gl_VertexIndex of set 1 binding 5, likewise shared.
+// - vertex colours (64): the colour is multiplied by element gl_VertexIndex of set 1 binding 6, likewise shared.
 // Compiled twice. Without VERTEX_LIT (for shaders/lit_mesh.frag, lit per pixel) the outputs are packed into
 // three interpolants, since lavapipe stores and sets up every interpolant of every binned triangle: normal
 // and u, world position and v, and the colour (interpolated, for vertex colours). With VERTEX_LIT (for
 // shaders/lit_vertex.frag) the lighting of shaders/lit_mesh.frag is evaluated here, at the vertex (Gouraud), and
-// the outputs are the lit colour and the UVs: on lavapipe each fragment then costs a multiply.
+// the outputs are the lit colour and the UVs: on lavapipe each fragment then costs a multiply. With metallic-roughness
+// (128) the vertex's light is shaders/pbr.glsl's for the colour before the base colour texture, metalness and
+// roughness read at the vertex (mip 0); the fragment shader then multiplies the whole light, the specular included,
+// by the texture (an approximation for the small, far characters these levels draw).
 
 layout(std430, set = 0, binding = 0) readonly buffer Positions { float positions[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Normals { float normals[]; };
@@ -28,7 +32,11 @@ layout(std430, set = 0, binding = 4) readonly buffer Lighting {
     vec4 key;
 } lighting;
 layout(std430, set = 1, binding = 0) readonly buffer Uvs { vec2 uvs[]; };
-layout(std430, set = 1, binding = 5) readonly buffer Colours { vec4 vertex_colours[]; };
+layout(std430, set = 1, binding = 6) readonly buffer Colours { vec4 vertex_colours[]; };
+#ifdef VERTEX_LIT
+layout(set = 1, binding = 5) uniform sampler2D metallic_roughness_texture;
+#include "pbr.glsl"
+#endif
 
 layout(push_constant) uniform Push {
     mat4 view_proj;     // clip-space (Vulkan convention) from world
@@ -80,6 +88,11 @@ void main() {
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * nn.y);
     float diffuse = max(dot(nn, pc.light.xyz), 0.0);
     v_lit = vec4(colour.rgb * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse), colour.a);
+    if ((mode & 128u) != 0u) {  // glTF metallic-roughness (gpu::kLitMetallicRoughness)
+        const vec2 mr = textureLod(metallic_roughness_texture, uv, 0.0).bg;
+        v_lit.rgb = pbr_light(colour.rgb, mr.x, mr.y, nn, normalize(pc.camera.xyz - world.xyz), pc.light.xyz, ambient, 1.0 - ambient,
+                              lighting.key.rgb, lighting.sky.rgb, lighting.ground.rgb);
+    }
     if ((pc.offsets.w & 0x8000u) != 0u) v_lit = colour;  // an unlit material (gpu::kLitUnlit): its albedo as it is
     v_uv = uv;
 #else

@@ -184,10 +184,11 @@ Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& paren
         for (size_t m = first; m < out->meshes.size(); ++m) transform_mesh(out->meshes[m], glm::inverse(ibm) * between, flip);
     }
     // A textured material on a primitive without its TEXCOORD set: a copy without the textures that need UVs
-    // (a one-texel emissive texture, an emissive factor alone, does not).
+    // (a one-texel emissive texture, an emissive factor alone, does not; without its map, metallic-roughness
+    // keeps its factors).
     auto needs_uvs = [&](const SurfaceMaterial& s) {
         const bool emissive_map = s.emissive_texture >= 0 && out->textures[static_cast<size_t>(s.emissive_texture)].width * out->textures[static_cast<size_t>(s.emissive_texture)].height > 1;
-        return s.texture >= 0 || s.normal_texture >= 0 || s.occlusion_texture >= 0 || emissive_map;
+        return s.texture >= 0 || s.normal_texture >= 0 || s.occlusion_texture >= 0 || s.metallic_roughness_texture >= 0 || emissive_map;
     };
     std::vector<int> plain(out->materials.size(), -1);
     for (GltfSkinnedMesh& m : out->meshes) {
@@ -196,7 +197,7 @@ Status attach_meshes(const tinygltf::Model& model, const std::vector<int>& paren
         if (copy < 0) {
             SurfaceMaterial c = out->materials[static_cast<size_t>(m.material)];
             c.name += " (no TEXCOORD)";
-            c.texture = c.normal_texture = c.occlusion_texture = -1;
+            c.texture = c.normal_texture = c.occlusion_texture = c.metallic_roughness_texture = -1;
             if (needs_uvs(c)) c.emissive_texture = -1;
             copy = static_cast<int>(out->materials.size());
             out->materials.push_back(std::move(c));

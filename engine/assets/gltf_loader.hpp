@@ -39,11 +39,12 @@
 //   its face normal, as the spec requires; one note). Missing indices become 0..n-1. Morph
 //   targets: the shape at the default weights (node.weights, else mesh.weights, else 0: the base
 //   shape) is kept, one note; `weights` animation channels are skipped with one note per file.
-// - Materials: baseColorFactor, alpha mode, KHR_materials_unlit, and the base colour, normal, occlusion and
-//   emissive textures (their factors baked in; the same texCoord set and KHR_texture_transform as the
-//   material's first texture, applied to the texture coordinates; sampler wrap modes); images are decoded
-//   (PNG, JPEG via stb_image, WebP via libwebp) into RGBA8; an image that cannot be decoded leaves its
-//   materials without it, with a note. Metallic-roughness is not drawn (characters are lit diffusely).
+// - Materials: baseColorFactor, alpha mode, KHR_materials_unlit, metallic and roughness factors, and the base
+//   colour, normal, occlusion, emissive and metallic-roughness textures (their factors baked in; the same
+//   texCoord set and KHR_texture_transform as the material's first texture, applied to the texture
+//   coordinates; sampler wrap modes); images are decoded (PNG, JPEG via stb_image, WebP via libwebp) into
+//   RGBA8; an image that cannot be decoded leaves its materials without it, with a note. Every lit material is
+//   metallic-roughness (SurfaceMaterial::metallic_roughness).
 // - Clips: tracks indexed by RUNTIME joint. Key times are shifted so the earliest key of the clip
 //   is at 0; start_offset keeps that original time; duration = last key - first key (CesiumMan:
 //   2.0 - 0.041667 = 1.958333 s). Unnamed clips are called "clip<index>". LINEAR keys are kept;

@@ -1,10 +1,10 @@
-// glTF materials for the character loader: base colour factor, alpha mode, KHR_materials_unlit, and the four
-// textures the crowd renderer draws: base colour, normal (with its scale), occlusion (with its strength) and
-// emissive (emissiveFactor, KHR_materials_emissive_strength). Each texture has its texCoord set,
-// KHR_texture_transform, sampler wrap and filter modes and EXT_texture_webp's source. A factor that scales a
-// texture is baked into a copy of its image (gltf_texture_bake.cpp), so the renderer reads every input as
-// it is. A primitive has one UV set: a texture on another set than its material's first one is left out
-// with a note.
+// glTF materials for the character loader: base colour factor, alpha mode, KHR_materials_unlit, metallic and
+// roughness factors, and the five textures the crowd renderer draws: base colour, normal (with its scale),
+// occlusion (with its strength), emissive (emissiveFactor, KHR_materials_emissive_strength) and
+// metallic-roughness. Each texture has its texCoord set, KHR_texture_transform, sampler wrap and filter modes and
+// EXT_texture_webp's source. A factor that scales a texture is baked into a copy of its image
+// (gltf_texture_bake.cpp), so the renderer reads every input as it is. A primitive has one UV set: a texture on
+// another set than its material's first one is left out with a note.
 #include "engine/assets/gltf_detail.hpp"
 #include "engine/assets/gltf_texture_bake.hpp"
 
@@ -123,9 +123,13 @@ private:
         if (!base.ok()) return base.error();
         m.base_colour = base.value();
         if (Status s = alpha(src, where, &m); !s.ok()) return s.error();
-        metallic_roughness_ += src.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 ? 1 : 0;
-
         const tinygltf::PbrMetallicRoughness& pbr = src.pbrMetallicRoughness;
+        Result<TextureBake> bake = bake_of(src, where);
+        if (!bake.ok()) return bake.error();
+        m.metallic_roughness = !m.unlit;  // glTF's model; an unlit material shows its base colour only
+        m.metallic = bake.value().metallic;
+        m.roughness = bake.value().roughness;
+        metallic_ += m.metallic_roughness && m.metallic > 0.0f ? 1 : 0;  // metalness factor above 0
         const struct {
             TextureRole role;
             TextureRef ref;
@@ -139,11 +143,12 @@ private:
              where + ".occlusionTexture", &m.occlusion_texture},
             {TextureRole::Emissive, {src.emissiveTexture.index, src.emissiveTexture.texCoord, &src.emissiveTexture.extensions},
              where + ".emissiveTexture", &m.emissive_texture},
+            {TextureRole::MetallicRoughness,
+             {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions},
+             where + ".pbrMetallicRoughness.metallicRoughnessTexture", &m.metallic_roughness_texture},
         };
-        Result<TextureBake> bake = bake_of(src, where);
-        if (!bake.ok()) return bake.error();
         for (const auto& s : slots) {
-            if (s.ref.index < 0) continue;
+            if (s.ref.index < 0 || (m.unlit && s.role == TextureRole::MetallicRoughness)) continue;
             Result<std::optional<ResolvedTexture>> r = resolve(s.ref, s.at, m.name);
             if (!r.ok()) return r.error();
             if (!r.value()) continue;
@@ -197,7 +202,7 @@ private:
         return {};
     }
 
-    // The factors baked into the material's normal, occlusion and emissive textures, checked.
+    // The factors baked into the material's normal, occlusion, emissive and metallic-roughness textures, checked.
     Result<TextureBake> bake_of(const tinygltf::Material& src, const std::string& where) const {
         TextureBake b;
         b.normal_scale = static_cast<float>(src.normalTexture.scale);
@@ -219,6 +224,12 @@ private:
                 b.emissive *= static_cast<float>(s);
                 if (std::max({b.emissive.r, b.emissive.g, b.emissive.b}) > 1.0f) clipped_emissive_ += 1;
             }
+        }
+        for (const auto& [value, key, field] : {std::tuple{src.pbrMetallicRoughness.metallicFactor, "metallicFactor", &b.metallic},
+                                                std::tuple{src.pbrMetallicRoughness.roughnessFactor, "roughnessFactor", &b.roughness}}) {
+            if (!std::isfinite(value) || value < 0.0 || value > 1.0)
+                return make_error(file_, "must be in [0, 1]", 0, 0, where + ".pbrMetallicRoughness." + key);
+            *field = static_cast<float>(value);
         }
         return b;
     }
@@ -277,7 +288,8 @@ private:
     // sampler, role and factor; its index in out_->textures.
     int texture(const ResolvedTexture& t, TextureRole role, const TextureBake& bake) {
         const glm::vec3 f = role == TextureRole::Normal ? glm::vec3(bake.normal_scale) : role == TextureRole::Occlusion ? glm::vec3(bake.occlusion_strength)
-                            : role == TextureRole::Emissive ? bake.emissive : glm::vec3(1.0f);
+                            : role == TextureRole::Emissive ? bake.emissive
+                            : role == TextureRole::MetallicRoughness ? glm::vec3(bake.metallic, bake.roughness, 0.0f) : glm::vec3(1.0f);
         const auto key = std::make_tuple(t.image, t.sampler, static_cast<int>(role), f.x, f.y, f.z);
         if (const auto it = made_.find(key); it != made_.end()) return it->second;
         const tinygltf::Image& image = model_.images[t.image];
@@ -308,18 +320,21 @@ private:
         if (webp_ > 0) out_->notes.push_back(std::string(kWebpExtension) + ": " + plural(webp_, "material texture") + " drawn from WebP images (libwebp)");
         if (transformed_ > 0) out_->notes.push_back("KHR_texture_transform applied to the texture coordinates of " + plural(transformed_, "material texture"));
         const size_t normal = drawn_[static_cast<size_t>(TextureRole::Normal)], occlusion = drawn_[static_cast<size_t>(TextureRole::Occlusion)],
-                     emissive = drawn_[static_cast<size_t>(TextureRole::Emissive)];
+                     emissive = drawn_[static_cast<size_t>(TextureRole::Emissive)],
+                     metallic_roughness = drawn_[static_cast<size_t>(TextureRole::MetallicRoughness)];
         std::string maps;
-        for (const auto& [n, what] : {std::pair{normal, "normal map"}, std::pair{occlusion, "occlusion map"}, std::pair{emissive, "emissive input"}})
+        for (const auto& [n, what] : {std::pair{normal, "normal map"}, std::pair{occlusion, "occlusion map"}, std::pair{emissive, "emissive input"},
+                                      std::pair{metallic_roughness, "metallic-roughness map"}})
             if (n > 0) maps += (maps.empty() ? "" : ", ") + plural(n, what);
         if (!maps.empty())
             out_->notes.push_back("material inputs drawn besides base colour: " + maps +
                                   (normal + occlusion > 0 ? " (normal and occlusion maps by the levels lit per pixel; impostors bake them in)" : ""));
+        if (metallic_ > 0)
+            out_->notes.push_back(plural(metallic_, "material") + " with a metalness factor above 0: impostors show metals under an even white sky, without the "
+                                  "key light's highlight");
         if (clipped_emissive_ > 0)
             out_->notes.push_back("KHR_materials_emissive_strength: " + plural(clipped_emissive_, "material") +
                                   " brighter than 1 drawn clipped to the display's white (no HDR target)");
-        if (metallic_roughness_ > 0)
-            out_->notes.push_back(plural(metallic_roughness_, "material") + "' metallicRoughnessTexture not drawn: characters are lit diffusely");
     }
 
     const tinygltf::Model& model_;
@@ -327,8 +342,8 @@ private:
     GltfCharacter* out_;
     std::map<std::tuple<size_t, int, int, float, float, float>, int> made_;  // (image, sampler, role, factor) -> texture
     std::set<int> fallback_noted_;
-    size_t drawn_[4] = {0, 0, 0, 0};
-    size_t unlit_ = 0, webp_ = 0, transformed_ = 0, metallic_roughness_ = 0;
+    size_t drawn_[5] = {0, 0, 0, 0, 0};
+    size_t unlit_ = 0, webp_ = 0, transformed_ = 0, metallic_ = 0;
     mutable size_t clipped_emissive_ = 0;
 };
 

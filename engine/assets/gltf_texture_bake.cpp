@@ -1,4 +1,4 @@
-// Baking glTF's normal scale, occlusion strength and emissive factor into texture images
+// Baking glTF's normal scale, occlusion strength, emissive factor and metallic and roughness factors into texture images
 // (engine/assets/gltf_texture_bake.hpp).
 #include "engine/assets/gltf_texture_bake.hpp"
 
@@ -49,6 +49,13 @@ void bake_texture(TextureRole role, const TextureBake& bake, TextureImage* image
             }
             return;
         }
+        case TextureRole::MetallicRoughness:
+            for (size_t i = 0; i + 3 < px.size(); i += 4) {
+                px[i + 1] = unorm8(static_cast<float>(px[i + 1]) / 255.0f * bake.roughness);
+                px[i + 2] = unorm8(static_cast<float>(px[i + 2]) / 255.0f * bake.metallic);
+                px[i + 3] = 255;
+            }
+            return;
     }
 }
 

@@ -173,7 +173,8 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         mb[i].binding = i;
         mb[i].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         mb[i].descriptorCount = 1;
-        mb[i].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
+        // The vertex-lit pipelines read metallic-roughness at the vertices.
+        mb[i].stageFlags = i == 1 + kMetallicRoughnessTexture ? VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
     }
     mb[1 + kMaterialTextures].binding = 1 + kMaterialTextures;  // vertex colours
     mb[1 + kMaterialTextures].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;

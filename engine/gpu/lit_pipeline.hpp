@@ -1,7 +1,7 @@
 // The lit-mesh and line pipelines (shaders/lit_mesh.*, shaders/line.*): vertex pulling from storage buffers,
 // per-instance model matrix + colour, per-draw material (base colour factor; optional base colour, normal,
-// occlusion and emissive textures at per-vertex UVs; optional per-vertex colours), a key light plus hemispherical
-// ambient, depth test, push-constant camera.
+// occlusion, emissive and metallic-roughness textures at per-vertex UVs; optional per-vertex colours), a key light
+// plus hemispherical ambient, diffuse or glTF metallic-roughness (shaders/pbr.glsl), depth test, push-constant camera.
 #pragma once
 
 #include "engine/core/result.hpp"
@@ -32,9 +32,14 @@ enum LitMode : uint32_t {
     /// Every mesh pipeline adds set 1 binding 4 (emissive colour) to the lit colour, read at the vertex UVs (at
     /// (0, 0) without kLitTexturedMesh: a one-texel emissive texture).
     kLitEmissive = 32,
-    /// Every mesh pipeline multiplies the albedo by the vertex's colour (set 1 binding 5, vec4 per vertex, shared
+    /// Every mesh pipeline multiplies the albedo by the vertex's colour (set 1 binding 6, vec4 per vertex, shared
     /// by every character of the topology like the UVs), interpolated across the triangle.
     kLitVertexColour = 64,
+    /// Every mesh pipeline lights with glTF's metallic-roughness model (shaders/pbr.glsl: a diffuse lobe of the
+    /// non-metal share and a GGX specular lobe, under the key light and the hemisphere), metalness and roughness
+    /// from set 1 binding 5 (blue, green) at the vertex UVs (at (0, 0) without kLitTexturedMesh: one texel). The
+    /// per-pixel pipelines evaluate it per pixel; the vertex-lit ones at the vertices.
+    kLitMetallicRoughness = 128,
 };
 
 /// Bits 8..13 of LitPush::offsets.w for the dithered pipelines (LitPipelines::dithered): a mesh faded to
@@ -56,10 +61,16 @@ inline constexpr uint32_t kLitAlphaTest = 1u << 14;
 /// A negative cutoff (no alpha test) gives 0.
 [[nodiscard]] uint32_t lit_alpha_bits(float cutoff);
 
-/// Textures a material set binds (set 1 bindings 1..4, in this order: MaterialTexture).
-inline constexpr uint32_t kMaterialTextures = 4;
+/// Textures a material set binds (set 1 bindings 1..5, in this order: MaterialTexture).
+inline constexpr uint32_t kMaterialTextures = 5;
 /// A material texture's place among a material set's textures (its binding is 1 + this).
-enum MaterialTexture : uint32_t { kBaseColourTexture = 0, kNormalTexture = 1, kOcclusionTexture = 2, kEmissiveTexture = 3 };
+enum MaterialTexture : uint32_t {
+    kBaseColourTexture = 0,
+    kNormalTexture = 1,
+    kOcclusionTexture = 2,
+    kEmissiveTexture = 3,
+    kMetallicRoughnessTexture = 4,
+};
 /// A texture as a material set binds it (in SHADER_READ_ONLY_OPTIMAL layout).
 struct MaterialImage {
     VkImageView view = VK_NULL_HANDLE;

@@ -17,6 +17,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -212,10 +213,12 @@ public:
     /// Registers a material: `material.base_colour` is a LINEAR factor (glTF) and is drawn encoded as
     /// pow(rgb, 1/2.2), the display space the renderer shades in, so that factor x texel matches the
     /// sRGB encoding of their linear product. Its textures (texture, normal_texture, occlusion_texture,
-    /// emissive_texture; -1 = none) index `texture_ids`, ids from register_texture. Normal and occlusion maps
-    /// are drawn by the levels lit per pixel; every level adds the emissive colour. Textures are read at the
-    /// topology's UVs (a one-texel emissive texture also without UVs). Errors: an index outside `texture_ids`,
-    /// an id not registered, factors out of range.
+    /// emissive_texture, metallic_roughness_texture; -1 = none) index `texture_ids`, ids from register_texture.
+    /// Normal and occlusion maps are drawn by the levels lit per pixel; every level adds the emissive colour and
+    /// lights `metallic_roughness` materials with that model (from the map, else from a one-texel texture of the
+    /// factors made here, once per pair). Textures are read at the topology's UVs (a one-texel emissive texture
+    /// also without UVs; without UVs metallic-roughness comes from the factors). Errors: an index outside
+    /// `texture_ids`, an id not registered, factors out of range.
     [[nodiscard]] Result<uint32_t> register_material(const SurfaceMaterial& material, std::span<const uint32_t> texture_ids = {});
     /// Uploads an impostor atlas (image laid out as `layout` says, mipmapped) once; returns its id for
     /// ImpostorInstance::atlas. Errors: empty or inconsistent image or layout, Vulkan failures.
@@ -285,8 +288,9 @@ private:
     };
     struct Material {
         glm::vec4 colour{1.0f};       // display-space base colour
-        int textures[gpu::kMaterialTextures] = {-1, -1, -1, -1};  // registered ids in gpu::MaterialTexture order, -1 = none
+        int textures[gpu::kMaterialTextures] = {-1, -1, -1, -1, -1};  // registered ids in gpu::MaterialTexture order, -1 = none
         bool texel_emissive = false;  // its emissive texture is one texel: drawn without UVs too
+        int metallic_roughness_factors = -1;  // one texel of its metallic and roughness factors: drawn without a map or UVs
         uint32_t mode_bits = 0;       // its LitPush::offsets.w bits: gpu::lit_alpha_bits of its cutoff, gpu::kLitUnlit
     };
     struct Atlas {  // its layout is atlas_layouts_[id]
@@ -357,6 +361,7 @@ private:
     std::vector<Atlas> atlases_;
     gpu::Texture white_;                              // 1x1 white: untextured draws
     std::vector<bool> texel_textures_;                // per registered texture: 1 x 1 texel
+    std::map<std::pair<uint8_t, uint8_t>, uint32_t> factor_textures_;  // (metalness, roughness) bytes -> one-texel texture
     std::vector<glm::uvec2> texture_sizes_;           // per registered texture: its size as uploaded
     uint32_t max_texture_side_ = 0;                   // RendererOptions::max_texture_side
     gpu::Buffer no_colours_;                          // one white vec4: material sets of topologies without vertex colours

@@ -1,4 +1,4 @@
-// CrowdRenderer materials: textures (halved to the size limit), materials (up to four textures each), topologies
+// CrowdRenderer materials: textures (halved to the size limit), materials (up to five textures each), topologies
 // with per-vertex UVs, colours and materials (index lists reordered into one range per material, each with its
 // descriptor set), and character lighting.
 #include "engine/gpu/context.hpp"
@@ -73,8 +73,9 @@ Result<uint32_t> CrowdRenderer::register_texture(const TextureImage& image) {
 
 Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& material, std::span<const uint32_t> texture_ids) {
     // In gpu::MaterialTexture order.
-    const int used[gpu::kMaterialTextures] = {material.texture, material.normal_texture, material.occlusion_texture, material.emissive_texture};
-    const char* what[gpu::kMaterialTextures] = {"texture", "normal texture", "occlusion texture", "emissive texture"};
+    const int used[gpu::kMaterialTextures] = {material.texture, material.normal_texture, material.occlusion_texture, material.emissive_texture,
+                                              material.metallic_roughness ? material.metallic_roughness_texture : -1};
+    const char* what[gpu::kMaterialTextures] = {"texture", "normal texture", "occlusion texture", "emissive texture", "metallic-roughness texture"};
     Material m;
     for (uint32_t k = 0; k < gpu::kMaterialTextures; ++k) {
         if (used[k] < 0) continue;
@@ -93,6 +94,25 @@ Result<uint32_t> CrowdRenderer::register_material(const SurfaceMaterial& materia
     if (!(material.alpha_cutoff <= 1.0f))
         return gpu::gpu_error("register_material: '" + material.name + "' alpha cutoff must be at most 1 (negative: opaque)");
     m.mode_bits = gpu::lit_alpha_bits(material.alpha_cutoff) | (material.unlit ? gpu::kLitUnlit : 0u);
+    if (material.metallic_roughness && !material.unlit) {
+        if (!(material.metallic >= 0.0f && material.metallic <= 1.0f && material.roughness >= 0.0f && material.roughness <= 1.0f))
+            return gpu::gpu_error("register_material: '" + material.name + "' metallic and roughness must be in [0, 1]");
+        // The factors as a map stores them: roughness in green, metalness in blue.
+        const auto byte = [](float v) { return static_cast<uint8_t>(std::lround(v * 255.0f)); };
+        const std::pair<uint8_t, uint8_t> key{byte(material.metallic), byte(material.roughness)};
+        auto it = factor_textures_.find(key);
+        if (it == factor_textures_.end()) {
+            TextureImage texel;
+            texel.name = "metallic " + std::to_string(material.metallic) + ", roughness " + std::to_string(material.roughness);
+            texel.width = texel.height = 1;
+            texel.rgba = {0, key.second, key.first, 255};
+            texel.nearest = true;
+            Result<uint32_t> id = register_texture(texel);
+            if (!id) return id.error();
+            it = factor_textures_.emplace(key, id.value()).first;
+        }
+        m.metallic_roughness_factors = static_cast<int>(it->second);
+    }
     materials_.push_back(m);
     return static_cast<uint32_t>(materials_.size() - 1);
 }
@@ -107,6 +127,7 @@ uint32_t CrowdRenderer::material_mode(const Material& m, bool uvs) {
         if (m.textures[gpu::kOcclusionTexture] >= 0) bits |= gpu::kLitOcclusion;
     }
     if ((uvs || m.texel_emissive) && m.textures[gpu::kEmissiveTexture] >= 0) bits |= gpu::kLitEmissive;
+    if (m.metallic_roughness_factors >= 0) bits |= gpu::kLitMetallicRoughness;
     return bits;
 }
 
@@ -180,7 +201,9 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
             gpu::MaterialImages images;
             for (uint32_t slot = 0; slot < gpu::kMaterialTextures; ++slot) {
                 const bool drawn = m.textures[slot] >= 0 && (uvs || (slot == gpu::kEmissiveTexture && m.texel_emissive));
-                const gpu::Texture& tex = drawn ? textures_[static_cast<size_t>(m.textures[slot])] : white_;
+                int id = drawn ? m.textures[slot] : -1;
+                if (slot == gpu::kMetallicRoughnessTexture && !drawn) id = m.metallic_roughness_factors;  // the factors alone
+                const gpu::Texture& tex = id >= 0 ? textures_[static_cast<size_t>(id)] : white_;
                 images[slot] = {tex.view(), tex.sampler()};
             }
             Result<VkDescriptorSet> set = pipes_.material_set(uvs ? t.uvs : no_uvs_, t.colours.handle() != VK_NULL_HANDLE ? t.colours : no_colours_, images);

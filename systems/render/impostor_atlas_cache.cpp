@@ -47,6 +47,10 @@ void write_input(ByteWriter& w, const VkPhysicalDeviceProperties& device, const 
         w.put<uint8_t>(m.double_sided ? 1 : 0);
         w.put(m.alpha_cutoff);
         w.put<uint8_t>(m.unlit ? 1 : 0);
+        w.put<uint8_t>(m.metallic_roughness ? 1 : 0);
+        w.put(m.metallic);
+        w.put(m.roughness);
+        w.put<int32_t>(m.metallic_roughness_texture);
     }
     w.put<uint64_t>(in.textures.size());
     for (const TextureImage& t : in.textures) write_texture(w, t);

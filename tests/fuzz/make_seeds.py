@@ -194,7 +194,8 @@ def with_maps(js, blob):
     js['materials'][0].update({"normalTexture": {"index": 0, "scale": 0.7}, "occlusionTexture": {"index": 0, "strength": 0.5},
                                "emissiveTexture": {"index": 0}, "emissiveFactor": [0.2, 0.1, 0.0],
                                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}})
-    js['materials'][0]['pbrMetallicRoughness']['baseColorTexture'] = {"index": 0}
+    js['materials'][0]['pbrMetallicRoughness'].update({"baseColorTexture": {"index": 0}, "metallicRoughnessTexture": {"index": 0},
+                                                       "metallicFactor": 0.6, "roughnessFactor": 0.4})
     js['buffers'][0]['byteLength'] = len(blob)
     return js, bytes(blob)
 mj, mb = with_maps(cj, cb)

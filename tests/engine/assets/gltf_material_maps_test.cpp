@@ -1,5 +1,6 @@
-// Material maps: a material's normal, occlusion and emissive textures are read with glTF's factors baked into
-// their texels (normal scale, occlusion strength, emissive factor and KHR_materials_emissive_strength); an
+// Material maps: a material's normal, occlusion, emissive and metallic-roughness textures are read with glTF's
+// factors baked into their texels (normal scale, occlusion strength, emissive factor and
+// KHR_materials_emissive_strength, metallic and roughness factors); every lit material is metallic-roughness; an
 // emissive factor alone becomes a one-texel texture that needs no UVs; a map on another UV set than the
 // material's first texture is left out with a note; malformed factors are errors naming their JSON path.
 // Expected texels are computed here from the glTF specification's formulas on the stored 8-bit values; the
@@ -154,6 +155,9 @@ TEST(GltfMaterialMaps, MalformedFactorsAreErrorsNamingTheirPath) {
         {{{"emissiveTexture", {{"index", 0}, {"texCoord", -1}}}}, "materials[0].emissiveTexture"},
         {{{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1}}}}}},
          "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength"},
+        {{{"pbrMetallicRoughness", {{"metallicFactor", 1.5}}}}, "materials[0].pbrMetallicRoughness.metallicFactor"},
+        {{{"pbrMetallicRoughness", {{"roughnessFactor", -0.25}}}}, "materials[0].pbrMetallicRoughness.roughnessFactor"},
+        {{{"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 3}}}}}}, "materials[0].pbrMetallicRoughness.metallicRoughnessTexture"},
     };
     for (const Case& c : cases) {
         GltfBuilder b;
@@ -164,6 +168,61 @@ TEST(GltfMaterialMaps, MalformedFactorsAreErrorsNamingTheirPath) {
         EXPECT_NE(r.error().to_string().find(c.path), std::string::npos) << r.error().to_string();
         EXPECT_NE(r.error().to_string().find("maps.gltf"), std::string::npos) << r.error().to_string();
     }
+}
+
+TEST(GltfMaterialMaps, MetallicRoughnessMapCarriesItsFactors) {
+    GltfBuilder b;
+    const std::vector<uint8_t> texel = {50, 200, 100, 255};  // red unused, green roughness, blue metalness
+    one_texture_per_image(b, {texel});
+    b.doc["materials"] = json::array(
+        {{{"pbrMetallicRoughness", {{"metallicFactor", 0.5}, {"roughnessFactor", 0.25}, {"metallicRoughnessTexture", {{"index", 0}}}}}}});
+    Result<GltfCharacter> r = load_triangle(b);
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const GltfCharacter& c = r.value();
+    const SurfaceMaterial& m = c.materials[0];
+    EXPECT_TRUE(m.metallic_roughness);
+    EXPECT_FLOAT_EQ(m.metallic, 0.5f);
+    EXPECT_FLOAT_EQ(m.roughness, 0.25f);
+    ASSERT_GE(m.metallic_roughness_texture, 0);
+    // glTF: roughness = factor x green, metalness = factor x blue.
+    expect_texel(c.textures[static_cast<size_t>(m.metallic_roughness_texture)], {50, unorm8(200 / 255.0 * 0.25), unorm8(100 / 255.0 * 0.5), 255});
+    EXPECT_TRUE(has_note(c, "1 metallic-roughness map"));
+    EXPECT_TRUE(has_note(c, "1 material with a metalness factor above 0"));
+    EXPECT_EQ(c.meshes[0].uvs.size(), 3u) << "the map's UV set is read";
+}
+
+TEST(GltfMaterialMaps, EveryLitMaterialIsMetallicRoughnessWithTheSpecificationsDefaults) {
+    GltfBuilder b;
+    one_texture_per_image(b, {{0, 128, 255, 255}});
+    b.doc["textures"].push_back({{"source", b.image(test::png_bytes({0, 128, 255, 255, 0, 64, 0, 255}, 2, 1))}});
+    b.doc["materials"] = json::array({json::object(),
+                                      {{"extensions", {{"KHR_materials_unlit", json::object()}}},
+                                       {"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}}},
+                                      {{"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"metallicRoughnessTexture", {{"index", 1}}}}}}});
+    Result<GltfCharacter> r = load_triangle(b);
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const std::vector<SurfaceMaterial>& m = r.value().materials;
+    EXPECT_TRUE(m[0].metallic_roughness) << "a material without pbrMetallicRoughness has glTF's defaults";
+    EXPECT_EQ(m[0].metallic, 1.0f);
+    EXPECT_EQ(m[0].roughness, 1.0f);
+    EXPECT_EQ(m[0].metallic_roughness_texture, -1);
+    EXPECT_FALSE(m[1].metallic_roughness) << "KHR_materials_unlit: no lighting at all";
+    EXPECT_EQ(m[1].metallic_roughness_texture, -1);
+    EXPECT_TRUE(m[2].metallic_roughness);
+    EXPECT_GE(m[2].metallic_roughness_texture, 0);
+    EXPECT_TRUE(has_note(r.value(), "1 material with a metalness factor above 0")) << "material 0; material 2's factor is 0";
+
+    // A primitive without UVs: the map is left out, the factors stay.
+    GltfBuilder nb;
+    nb.doc["textures"] = json::array({{{"source", nb.image(test::png_bytes({0, 128, 255, 255, 0, 64, 0, 255}, 2, 1))}}});
+    nb.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"metallicFactor", 0.75}, {"metallicRoughnessTexture", {{"index", 0}}}}}}});
+    Result<GltfCharacter> plain = load_triangle(nb, false);
+    ASSERT_TRUE(plain.ok()) << plain.error().to_string();
+    const SurfaceMaterial& drawn = plain.value().materials[static_cast<size_t>(plain.value().meshes[0].material)];
+    EXPECT_NE(drawn.name.find("(no TEXCOORD)"), std::string::npos);
+    EXPECT_EQ(drawn.metallic_roughness_texture, -1);
+    EXPECT_TRUE(drawn.metallic_roughness);
+    EXPECT_FLOAT_EQ(drawn.metallic, 0.75f);
 }
 
 }  // namespace
