@@ -4,6 +4,7 @@
 #include "engine/assets/gltf_loader.hpp"
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
+#include "host/scene/character_motions.hpp"
 #include "host/scene/character_rig.hpp"
 #include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
@@ -207,6 +208,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         type.map = std::move(map.value());
         type.frame.units = "metres (built-in humanoid)";
         type.frame.height = desc.height;
+        if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
         measure(type);
         use_generated_look(type);
         return type;
@@ -248,6 +250,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         type.notes.push_back(std::string("layered levels refused: muscles are laid out for humanoids and this type is none; ") +
                              (type.mesh ? "drawn with its skinned mesh at those levels" : "drawn as rigid proxies (it has no mesh)"));
     }
+    if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
     measure(type);
     use_generated_look(type);
     return type;

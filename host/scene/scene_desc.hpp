@@ -31,6 +31,18 @@ struct CameraDesc {
 
 /// A character type: a humanoid definition (the project's own humanoid, built for a height and
 /// build, with its generated motion library), a BVH skeleton or a glTF file.
+/// A motion file whose clips a character type plays, retargeted onto the type's skeleton through the canonical
+/// humanoid (systems/motion/library/retarget.hpp). Exactly one of `bvh` and `gltf`.
+struct MotionFileDesc {
+    std::string bvh;    ///< absolute path of a BVH file (its motion is one clip)
+    std::string gltf;   ///< absolute path of a glTF file (its animations are clips; its meshes are not used)
+    std::string clip;   ///< glTF: the one animation to take by name ("" = every one)
+    std::string name;   ///< the clip's name after the type's prefix ("" = the BVH file's stem, or the glTF animation's name)
+    std::map<std::string, std::string> humanoid_map;  ///< canonical joint -> the file's joint name, as on a type
+    float scale = 0.0f;  ///< metres per file unit (0 = detected from the skeleton's height)
+    std::string pointer; ///< JSON pointer of the entry ("/character_types/0/motions/1")
+};
+
 struct CharacterTypeDesc {
     std::string name;
     std::string humanoid;  ///< absolute path of a humanoid definition (data/characters/humanoid.json)
@@ -46,6 +58,7 @@ struct CharacterTypeDesc {
     std::string canonical;    ///< bvh/gltf: the built-in humanoid definition, reference for mapped skeletons
     std::string scene_file;   ///< the scene file the type is written in (for errors)
     std::string pointer;      ///< JSON pointer of the type in that file ("/character_types/0")
+    std::vector<MotionFileDesc> motions;  ///< clips from other files, retargeted (the type must be a mapped humanoid)
 };
 
 /// A named walk path: waypoints on the ground (y ignored), optionally looping.

@@ -2,6 +2,7 @@
 
 #include "engine/core/json_reader.hpp"
 #include "host/scene/scene_requests.hpp"
+#include "host/scene/scene_type_fields.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -154,17 +155,8 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
         t.scene_file = scene.file;
         t.pointer = p;
         t.scale = static_cast<float>(r.number("scale", 0.0, 1e-6, 1e6));
-        if (const nlohmann::json* map = r.child("humanoid_map")) {
-            if (!map->is_object() || map->size() > 1024) {
-                r.error("humanoid_map", "expected an object of canonical joint name -> joint name in the file");
-            } else {
-                for (const auto& [canonical, file_name] : map->items()) {
-                    if (!file_name.is_string() || file_name.get_ref<const std::string&>().empty())
-                        r.error("humanoid_map/" + canonical, "expected the name of a joint in the file");
-                    else t.humanoid_map[canonical] = file_name.get<std::string>();
-                }
-            }
-        }
+        read_humanoid_map(r, t.humanoid_map);
+        read_motion_files(r, p, scene.file, t, errors);
         if (!t.bvh.empty() || !t.gltf.empty()) {
             auto canonical = resolve_scene_path(scene.file, "builtin:humanoid", p);
             if (canonical.ok()) t.canonical = canonical.value();

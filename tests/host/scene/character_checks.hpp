@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include <unistd.h>
@@ -40,6 +41,19 @@ inline CharacterTypeDesc desc_for(const std::string& name, const std::string& fi
     d.scene_file = "test-scene.json";
     d.pointer = "/character_types/0";
     return d;
+}
+
+/// The humanoid_map that makes CesiumMan.glb (../shared/assets), whose joint names follow no convention, a
+/// humanoid (docs/CHARACTERS.md prints the same map).
+inline std::map<std::string, std::string> cesium_man_humanoid_map() {
+    return {{"Hips", "Skeleton_torso_joint_1"}, {"Chest", "Skeleton_torso_joint_2"}, {"Chest2", "torso_joint_3"},
+            {"lowerneck", "Skeleton_neck_joint_1"}, {"Head", "Skeleton_neck_joint_2"},
+            {"LeftShoulder", "Skeleton_arm_joint_L__4_"}, {"LeftElbow", "Skeleton_arm_joint_L__3_"},
+            {"LeftWrist", "Skeleton_arm_joint_L__2_"}, {"RightShoulder", "Skeleton_arm_joint_R"},
+            {"RightElbow", "Skeleton_arm_joint_R__2_"}, {"RightWrist", "Skeleton_arm_joint_R__3_"},
+            {"LeftHip", "leg_joint_L_1"}, {"LeftKnee", "leg_joint_L_2"}, {"LeftAnkle", "leg_joint_L_3"},
+            {"LeftToe", "leg_joint_L_5"}, {"RightHip", "leg_joint_R_1"}, {"RightKnee", "leg_joint_R_2"},
+            {"RightAnkle", "leg_joint_R_3"}, {"RightToe", "leg_joint_R_5"}};
 }
 
 inline CharacterType load_or_fail(const CharacterTypeDesc& d) {

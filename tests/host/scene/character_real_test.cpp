@@ -24,14 +24,7 @@ TEST(CharacterReal, Cmu131BvhMapsByName) {
 TEST(CharacterReal, CesiumManThroughAnExplicitMap) {
     ALOHA_REQUIRE_TEST_ASSET(path, "CesiumMan.glb");
     CharacterTypeDesc d = desc_for("cesium", path);
-    d.humanoid_map = {{"Hips", "Skeleton_torso_joint_1"}, {"Chest", "Skeleton_torso_joint_2"}, {"Chest2", "torso_joint_3"},
-                      {"lowerneck", "Skeleton_neck_joint_1"}, {"Head", "Skeleton_neck_joint_2"},
-                      {"LeftShoulder", "Skeleton_arm_joint_L__4_"}, {"LeftElbow", "Skeleton_arm_joint_L__3_"},
-                      {"LeftWrist", "Skeleton_arm_joint_L__2_"}, {"RightShoulder", "Skeleton_arm_joint_R"},
-                      {"RightElbow", "Skeleton_arm_joint_R__2_"}, {"RightWrist", "Skeleton_arm_joint_R__3_"},
-                      {"LeftHip", "leg_joint_L_1"}, {"LeftKnee", "leg_joint_L_2"}, {"LeftAnkle", "leg_joint_L_3"},
-                      {"LeftToe", "leg_joint_L_5"}, {"RightHip", "leg_joint_R_1"}, {"RightKnee", "leg_joint_R_2"},
-                      {"RightAnkle", "leg_joint_R_3"}, {"RightToe", "leg_joint_R_5"}};
+    d.humanoid_map = cesium_man_humanoid_map();
     const CharacterType bare = load_or_fail(desc_for("cesium", path));
     EXPECT_FALSE(bare.map.humanoid);
     // Unmapped it is a non-humanoid: its mesh, no muscles (layered levels refused), no walk rig.

@@ -213,5 +213,41 @@ TEST(SceneLoader, HumanoidMapAndScaleOfFileCharacterTypes) {
     EXPECT_NE(message_of(on_humanoid).find("apply to 'bvh' and 'gltf' types only"), std::string::npos) << message_of(on_humanoid);
 }
 
+// Motion files on a type (parsed here; loaded and retargeted by tests/host/scene/character_motions_test.cpp).
+TEST(SceneLoader, MotionFilesOfACharacterType) {
+    const std::string head = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [{"type": "b"}], )";
+    auto good = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "motions": [
+        {"bvh": "closeup.json", "name": "take", "scale": 0.01, "humanoid_map": {"Hips": "pelvis"}},
+        {"gltf": "closeup.json", "clip": "Run"}]}]})");
+    ASSERT_TRUE(good.ok()) << message_of(good);
+    const std::vector<MotionFileDesc>& m = good.value().types.at(0).motions;
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_NE(m[0].bvh.find("closeup.json"), std::string::npos) << "resolved against the scene's folder";
+    EXPECT_EQ(m[0].name, "take");
+    EXPECT_FLOAT_EQ(m[0].scale, 0.01f);
+    EXPECT_EQ(m[0].humanoid_map.at("Hips"), "pelvis");
+    EXPECT_EQ(m[0].pointer, "/character_types/0/motions/0");
+    EXPECT_EQ(m[1].clip, "Run");
+    const struct {
+        const char* motions;
+        const char* where;
+        const char* what;
+    } bad[] = {
+        {R"({"bvh": "closeup.json"})", "/character_types/0/motions", "expected an array of 1 to 256 motion files"},
+        {R"([{"bvh": "closeup.json", "gltf": "closeup.json"}])", "/character_types/0/motions/0", "give exactly one of 'bvh' and 'gltf'"},
+        {R"([{}])", "/character_types/0/motions/0", "give exactly one of 'bvh' and 'gltf'"},
+        {R"([{"bvh": "closeup.json", "clip": "Run"}])", "/character_types/0/motions/0/clip", "picks one animation of a 'gltf' file"},
+        {R"([{"bvh": "closeup.json", "name": "a.b"}])", "/character_types/0/motions/0/name", "has no '.'"},
+        {R"([{"bvh": "/etc/passwd"}])", "/character_types/0/motions/0/bvh", "absolute"},
+        {R"([{"bvh": "closeup.json", "speed": 2}])", "/character_types/0/motions/0", "speed"},
+    };
+    for (const auto& b : bad) {
+        auto r = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "motions": )" + b.motions + "}]}");
+        ASSERT_FALSE(r.ok()) << b.motions;
+        EXPECT_NE(message_of(r).find(b.where), std::string::npos) << message_of(r);
+        EXPECT_NE(message_of(r).find(b.what), std::string::npos) << message_of(r);
+    }
+}
+
 }  // namespace
 }  // namespace aloha

@@ -1,0 +1,137 @@
+// Motion files retargeted onto a character type (character_motions.hpp).
+#include "host/scene/character_motions.hpp"
+
+#include "engine/assets/bvh_loader.hpp"
+#include "engine/assets/gltf_loader.hpp"
+#include "host/scene/character_rig.hpp"
+#include "systems/motion/library/retarget.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace aloha {
+
+namespace {
+
+// One motion file's clips on its own normalised, mapped skeleton.
+struct MotionSource {
+    NormalisedRig rig;
+    std::vector<RawAnimation> clips;  // named as the clips will be after the type's prefix
+    std::string file;
+};
+
+// The type description normalise_file_rig reads for a motion file: its map, scale and place in the scene.
+CharacterTypeDesc rig_desc(const MotionFileDesc& m, const CharacterTypeDesc& type) {
+    CharacterTypeDesc d;
+    d.name = type.name;
+    d.humanoid_map = m.humanoid_map;
+    d.scale = m.scale;
+    d.scene_file = type.scene_file;
+    d.pointer = m.pointer;
+    return d;
+}
+
+Result<MotionSource> load_bvh_motion(const MotionFileDesc& m, const CharacterTypeDesc& type) {
+    BvhOptions options;
+    options.unit_scale = 1.0f;  // file units: detected from the skeleton's height, as for a character
+    Result<BvhData> bvh = load_bvh(m.bvh, options);
+    if (!bvh.ok()) return bvh.error();
+    Result<Skeleton> original = build_skeleton(bvh.value().skeleton, m.bvh);
+    if (!original.ok()) return original.error();
+    Result<NormalisedRig> rig = normalise_file_rig(original.value(), rig_desc(m, type), RigFormat::Bvh, m.bvh);
+    if (!rig.ok()) return rig.error();
+    MotionSource out{std::move(rig).value(), {}, m.bvh};
+    RawAnimation clip = bvh.value().animation;
+    normalise_clip(clip, original.value(), out.rig.change);
+    clip.name = m.name.empty() ? std::filesystem::path(m.bvh).stem().string() : m.name;
+    out.clips.push_back(std::move(clip));
+    return out;
+}
+
+Result<MotionSource> load_gltf_motion(const MotionFileDesc& m, const CharacterTypeDesc& type) {
+    Result<GltfCharacter> gltf = load_gltf_character(m.gltf);
+    if (!gltf.ok()) return gltf.error();
+    const GltfCharacter& g = gltf.value();
+    Result<Skeleton> original = build_skeleton(g.skeleton, m.gltf);
+    if (!original.ok()) return original.error();
+    Result<NormalisedRig> rig = normalise_file_rig(original.value(), rig_desc(m, type), RigFormat::Gltf, m.gltf, g.humanoid);
+    if (!rig.ok()) return rig.error();
+    MotionSource out{std::move(rig).value(), {}, m.gltf};
+    std::string names;
+    for (size_t i = 0; i < g.clips.size(); ++i) {
+        names += (names.empty() ? "'" : ", '") + g.clip_names[i] + "'";
+        if (!m.clip.empty() && g.clip_names[i] != m.clip) continue;
+        RawAnimation clip = g.clips[i];
+        normalise_clip(clip, original.value(), out.rig.change);
+        clip.name = !m.name.empty() && !m.clip.empty() ? m.name : g.clip_names[i];
+        out.clips.push_back(std::move(clip));
+    }
+    if (out.clips.empty())
+        return make_error(type.scene_file, m.clip.empty() ? m.gltf + " has no animations" : "no animation '" + m.clip + "' in " + m.gltf + " (it has " +
+                                                                                             (names.empty() ? "none" : names) + ")",
+                          0, 0, m.pointer + (m.clip.empty() ? "/gltf" : "/clip"));
+    if (!m.name.empty() && m.clip.empty() && out.clips.size() > 1)
+        return make_error(type.scene_file, "'name' names one clip, and " + m.gltf + " has " + std::to_string(out.clips.size()) +
+                                               " animations: pick one with 'clip'", 0, 0, m.pointer + "/name");
+    if (!m.name.empty()) out.clips[0].name = m.name;
+    return out;
+}
+
+}  // namespace
+
+Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {
+    if (desc.motions.empty()) return {};
+    if (!type.map.humanoid)
+        return make_error(desc.scene_file, "type '" + desc.name + "' is not a mapped humanoid, and motion files are retargeted through the canonical "
+                                               "humanoid joints (give it a 'humanoid_map')", 0, 0, desc.pointer + "/motions");
+    const std::string prefix = desc.clip_prefix.empty() ? desc.name : desc.clip_prefix;
+    for (const MotionFileDesc& m : desc.motions) {
+        Result<MotionSource> source = m.bvh.empty() ? load_gltf_motion(m, desc) : load_bvh_motion(m, desc);
+        if (!source.ok()) return source.error();
+        const MotionSource& s = source.value();
+        if (!s.rig.map.humanoid) {
+            std::string missing;
+            for (const std::string& j : s.rig.map.missing) missing += (missing.empty() ? "" : ", ") + j;
+            return make_error(s.file, "the motion's skeleton is not a humanoid (no " + missing + "): give the motion a 'humanoid_map' (" + desc.scene_file +
+                                          " " + m.pointer + ")");
+        }
+        for (const RawAnimation& clip : s.clips) {
+            const std::string name = prefix + "." + clip.name;
+            if (type.clips.find(name) >= 0)
+                return make_error(desc.scene_file, "clip '" + name + "' already exists on type '" + desc.name + "' (give the motion another 'name')", 0, 0,
+                                  m.pointer);
+            RetargetReport report;
+            Result<RawAnimation> moved = retarget_clip(clip, {&s.rig.skeleton, &s.rig.map}, {&type.skeleton, &type.map}, name, &report);
+            if (!moved.ok()) {
+                Error e = moved.error();
+                if (e.file.empty()) e.file = s.file;
+                return e;
+            }
+            Result<ClipId> id = type.clips.add(moved.value(), type.skeleton);
+            if (!id.ok()) {
+                Error e = id.error();
+                if (e.file.empty()) e.file = s.file;
+                return e;
+            }
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(report.scale));
+            std::string note = "clip '" + name + "' retargeted from " + std::filesystem::path(s.file).filename().string() + " (pelvis travel x" + buf;
+            if (report.pelvis_drop > 1e-3f) {
+                std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(report.pelvis_drop * 100.0f));
+                note += std::string("; pelvis lowered up to ") + buf + " cm for the legs to reach the motion's feet";
+            }
+            if (report.foot_reach_error > 1e-3f) {
+                std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(report.foot_reach_error * 100.0f));
+                note += std::string("; the legs fall short of the motion's feet by up to ") + buf + " cm";
+            }
+            if (!report.kept_at_rest.empty()) {
+                note += "; at rest, the motion having none: ";
+                for (size_t k = 0; k < report.kept_at_rest.size(); ++k) note += (k ? ", " : "") + report.kept_at_rest[k];
+            }
+            type.notes.push_back(note + ")");
+        }
+    }
+    return {};
+}
+
+}  // namespace aloha

@@ -1,0 +1,23 @@
+// Fields of a scene's character type that are objects of their own: the explicit humanoid map and the motion
+// files (docs/SCENES.md). Read by scene_loader.cpp; errors go to the scene's error list with their JSON pointer.
+#pragma once
+
+#include "engine/core/json_reader.hpp"
+#include "host/scene/scene_desc.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace aloha {
+
+/// Reads `reader`'s "humanoid_map" (canonical joint name -> the file's joint name) into `out`, when present.
+void read_humanoid_map(JsonObjectReader& reader, std::map<std::string, std::string>& out);
+
+/// Reads `reader`'s "motions" (the type at `pointer` in `scene_file`) into `type.motions`, when present: an array of
+/// up to 256 objects, each with exactly one of "bvh" and "gltf" (paths relative to the scene, as a type's), and
+/// optionally "clip" (glTF only), "name", "humanoid_map" and "scale".
+void read_motion_files(JsonObjectReader& reader, const std::string& pointer, const std::string& scene_file, CharacterTypeDesc& type,
+                       std::vector<Error>& errors);
+
+}  // namespace aloha

@@ -1,0 +1,161 @@
+// Motion files on a character type (CharacterTypeDesc::motions, host/scene/character_motions.hpp): a BVH in
+// another naming convention and unit, and a glTF's animations, are retargeted onto the type's skeleton and
+// played by their new names; what cannot be retargeted is an error naming the scene's JSON pointer or the file.
+// With ../shared/assets (skipped when absent): the CMU 131_01 take onto the built-in humanoid and onto
+// CesiumMan, each planted source ankle staying planted on the target.
+#include "systems/motion/clip.hpp"
+#include "tests/common/clip_pose.hpp"
+#include "tests/common/rig_fixtures.hpp"
+#include "tests/common/test_assets.hpp"
+#include "tests/host/scene/character_checks.hpp"
+
+#include <cstdio>
+
+namespace aloha {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace test;  // NOLINT: the character checks
+
+CharacterTypeDesc builtin_type(const std::string& name) {
+    CharacterTypeDesc d;
+    d.name = name;
+    d.humanoid = builtin_humanoid();
+    d.scene_file = "test-scene.json";
+    d.pointer = "/character_types/0";
+    return d;
+}
+
+MotionFileDesc motion(const fs::path& file, const std::string& name = "") {
+    MotionFileDesc m;
+    (file.extension() == ".bvh" ? m.bvh : m.gltf) = file.string();
+    m.name = name;
+    m.pointer = "/character_types/0/motions/0";
+    return m;
+}
+
+bool has_note(const CharacterType& t, const std::string& part) {
+    for (const std::string& n : t.notes)
+        if (n.find(part) != std::string::npos) return true;
+    return false;
+}
+
+std::string error_of(const CharacterTypeDesc& d) {
+    Result<CharacterType> t = load_character_type(d);
+    return t.ok() ? std::string("(loaded)") : t.error().to_string();
+}
+
+TEST(CharacterMotions, PoserBvhInCentimetresPlaysOnTheBuiltInHumanoid) {
+    const fs::path dir = temp_dir("motions_poser");
+    RigStyle cm;
+    cm.units_per_metre = 100.0f;
+    // 40 frames at 30 fps, the root moving 4 cm a frame along +Z, every joint at rest.
+    test::write_text((dir / "poser.bvh").string(), test::bvh_text(test::styled(test::renamed_humanoid(test::poser_names()), cm), 40, glm::vec3(0, 0, 1), 4.0f));
+    CharacterTypeDesc d = builtin_type("h");
+    d.motions = {motion(dir / "poser.bvh")};
+    const CharacterType t = load_or_fail(d);
+    const int id = find_clip(t, "h.poser");
+    ASSERT_GE(id, 0) << "named by the file's stem after the type's prefix";
+    const AnimationClip* clip = t.clips.find(static_cast<ClipId>(id));
+    ASSERT_NE(clip, nullptr);
+    EXPECT_NEAR(clip->duration(), 39.0f / 30.0f, 1e-4f);
+    // The fixture has the built-in humanoid's proportions at 1.75 m and so does the type: the pelvis travels the
+    // file's 1.56 m (39 frames of 4 cm) times k = 1, within the fixture's rounding of its offsets in the text.
+    EXPECT_NEAR(clip->root_end().z - clip->root_start().z, 1.56f, 0.01f);
+    EXPECT_NEAR(clip->root_end().x - clip->root_start().x, 0.0f, 1e-4f);
+    EXPECT_TRUE(has_note(t, "clip 'h.poser' retargeted from poser.bvh (pelvis travel x1.0"));
+}
+
+TEST(CharacterMotions, GltfAnimationsByNameAndErrors) {
+    const fs::path dir = temp_dir("motions_gltf");
+    // A Rigify glTF with one animation, "sway".
+    test::write_text((dir / "rigify.gltf").string(), test::gltf_text(test::renamed_humanoid(test::rigify_names("DEF-")), 1, 0.3f));
+    CharacterTypeDesc d = builtin_type("h");
+    d.motions = {motion(dir / "rigify.gltf")};
+    const CharacterType t = load_or_fail(d);
+    EXPECT_GE(find_clip(t, "h.sway"), 0) << "a glTF animation keeps its name";
+
+    d.motions[0].clip = "run";
+    EXPECT_NE(error_of(d).find("no animation 'run' in"), std::string::npos) << error_of(d);
+    EXPECT_NE(error_of(d).find("(it has 'sway')"), std::string::npos) << error_of(d);
+    EXPECT_NE(error_of(d).find("/character_types/0/motions/0/clip"), std::string::npos) << error_of(d);
+
+    d.motions[0].clip = "sway";
+    d.motions[0].name = "idle";  // the built-in library's h.idle
+    EXPECT_NE(error_of(d).find("clip 'h.idle' already exists on type 'h' (give the motion another 'name')"), std::string::npos) << error_of(d);
+
+    // A motion whose skeleton is no humanoid.
+    test::write_text((dir / "dog.bvh").string(), test::bvh_text(test::quadruped(), 30, glm::vec3(0, 0, 1), 3.0f));
+    d.motions = {motion(dir / "dog.bvh")};
+    EXPECT_NE(error_of(d).find("dog.bvh: the motion's skeleton is not a humanoid"), std::string::npos) << error_of(d);
+
+    // A type that is no humanoid cannot take motion files.
+    CharacterTypeDesc dog = desc_for("dog", (dir / "dog.bvh").string());
+    dog.motions = {motion(dir / "rigify.gltf")};
+    EXPECT_NE(error_of(dog).find("type 'dog' is not a mapped humanoid"), std::string::npos) << error_of(dog);
+    EXPECT_NE(error_of(dog).find("/character_types/0/motions"), std::string::npos) << error_of(dog);
+
+    // A motion file that is missing names itself.
+    d.motions = {motion(dir / "missing.bvh")};
+    EXPECT_NE(error_of(d).find("missing.bvh"), std::string::npos) << error_of(d);
+}
+
+// Largest horizontal distance a target ankle moves between keys where the source's ankle moves under 1 mm, over
+// k times the source's own move there (0: every planted source foot is planted on the target).
+float planted_excess(const CharacterType& source, int source_clip, const CharacterType& target, int target_clip, float k) {
+    const AnimationClip& a = *source.clips.find(static_cast<ClipId>(source_clip));
+    const AnimationClip& b = *target.clips.find(static_cast<ClipId>(target_clip));
+    auto ankles = [](const CharacterType& type, const AnimationClip& clip, float t) {
+        const std::vector<glm::vec3> pos = clip_model_positions(clip, type.skeleton, t);
+        return std::array<glm::vec3, 2>{pos[static_cast<size_t>(type.map.find("LeftAnkle"))], pos[static_cast<size_t>(type.map.find("RightAnkle"))]};
+    };
+    float worst = 0.0f;
+    std::array<glm::vec3, 2> last_a{}, last_b{};
+    for (int i = 0; i <= static_cast<int>(a.duration() * 120.0f); ++i) {
+        const float t = static_cast<float>(i) / 120.0f;
+        const auto pa = ankles(source, a, t), pb = ankles(target, b, t);
+        for (size_t s = 0; s < 2 && i > 0; ++s) {
+            const float moved_a = glm::length(glm::vec2(pa[s].x - last_a[s].x, pa[s].z - last_a[s].z));
+            const float moved_b = glm::length(glm::vec2(pb[s].x - last_b[s].x, pb[s].z - last_b[s].z));
+            if (moved_a < 1e-3f) worst = std::max(worst, moved_b - k * moved_a);
+        }
+        last_a = pa;
+        last_b = pb;
+    }
+    return worst;
+}
+
+TEST(CharacterMotions, CmuTakeOntoTheBuiltInHumanoidAndCesiumMan) {
+    ALOHA_REQUIRE_TEST_ASSET(bvh, "131_01.bvh");
+    ALOHA_REQUIRE_TEST_ASSET(glb, "CesiumMan.glb");
+    const CharacterType cmu = load_or_fail(desc_for("cmu", bvh));
+    CharacterTypeDesc h = builtin_type("h");
+    h.motions = {motion(bvh, "take")};
+    CharacterTypeDesc cesium = desc_for("cesium", glb);
+    cesium.humanoid_map = cesium_man_humanoid_map();
+    cesium.motions = {motion(bvh, "take")};
+    for (const CharacterTypeDesc* d : {&h, &cesium}) {
+        const CharacterType t = load_or_fail(*d);
+        const int id = find_clip(t, d->name + ".take");
+        ASSERT_GE(id, 0);
+        float k = 0.0f;
+        for (const std::string& n : t.notes)
+            if (std::sscanf(n.c_str(), ("clip '" + d->name + ".take' retargeted from 131_01.bvh (pelvis travel x%f").c_str(), &k) == 1) break;
+        ASSERT_GT(k, 0.0f) << "the note gives the pelvis travel's scale";
+        // The source's planted ankles (under 1 mm a key at 120 Hz) against the target's.
+        const float excess = planted_excess(cmu, cmu.mocap_clip, t, id, k);
+        // Both clips are stored quantised (ClipErrorBound): an ankle sampled from one is off by at most the root's
+        // translation bound (per component: x sqrt 3) plus the rotation bound times the lever from the pelvis to the
+        // ankle (under the leg's length, 1.1 m on either body), and a move between two samples by twice that.
+        auto ankle_bound = [](const AnimationClip& c) { return c.error_bound().translation * std::sqrt(3.0f) + c.error_bound().rotation * 1.1f; };
+        const float bound = 2.0f * ankle_bound(*t.clips.find(static_cast<ClipId>(id))) +
+                            2.0f * k * ankle_bound(*cmu.clips.find(static_cast<ClipId>(cmu.mocap_clip)));
+        std::printf("[figure] 131_01 onto %s: pelvis travel x%.3f, planted-ankle excess %.2e m (quantisation bound %.2e m)\n", d->name.c_str(),
+                    static_cast<double>(k), static_cast<double>(excess), static_cast<double>(bound));
+        EXPECT_LT(excess, bound);
+        EXPECT_FALSE(has_note(t, "fall short")) << "lowering the pelvis lets the legs reach every key";
+    }
+}
+
+}  // namespace
+}  // namespace aloha
