@@ -4,6 +4,7 @@
 #include "engine/assets/bvh_loader.hpp"
 #include "engine/assets/gltf_loader.hpp"
 #include "host/scene/character_rig.hpp"
+#include "systems/motion/library/loop_cut.hpp"
 #include "systems/motion/library/retarget.hpp"
 
 #include <cstdio>
@@ -79,6 +80,28 @@ Result<MotionSource> load_gltf_motion(const MotionFileDesc& m, const CharacterTy
 
 }  // namespace
 
+Status add_walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file) {
+    auto cut = find_best_loop(take, type.skeleton, 0.6f, 0.5f, file);
+    if (!cut.ok()) {
+        type.notes.push_back("no clip walk: " + cut.error().message);
+        return cut.error();
+    }
+    std::string name = type.name + ".loop";
+    for (int n = 2; type.clips.find(name) >= 0; ++n) name = type.name + ".loop" + std::to_string(n);
+    auto id = type.clips.add(cut_loop(take, type.skeleton, cut.value(), name), type.skeleton);
+    if (!id.ok()) {
+        type.notes.push_back("no clip walk: " + id.error().message);
+        return id.error();
+    }
+    type.gait_clips.push_back(id.value());
+    char buf[192];
+    std::snprintf(buf, sizeof buf, "walk loop '%s' cut from '%s' at %.2f-%.2f s (seam %.1f cm, %.2f m/s)", name.c_str(), take.name.c_str(),
+                  static_cast<double>(cut.value().start), static_cast<double>(cut.value().end),
+                  static_cast<double>(100.0f * cut.value().pose_error), static_cast<double>(cut.value().velocity_error));
+    type.notes.push_back(buf);
+    return {};
+}
+
 Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {
     if (desc.motions.empty()) return {};
     if (!type.map.humanoid)
@@ -107,6 +130,10 @@ Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {
                 if (e.file.empty()) e.file = s.file;
                 return e;
             }
+            if (m.walk)
+                if (Status st = add_walk_loop(type, moved.value(), s.file); !st.ok())
+                    return make_error(desc.scene_file, "'walk': clip '" + name + "' cannot be the type's walk: " + st.error().message, 0, 0,
+                                      m.pointer + "/walk");
             Result<ClipId> id = type.clips.add(moved.value(), type.skeleton);
             if (!id.ok()) {
                 Error e = id.error();

@@ -13,4 +13,10 @@ namespace aloha {
 /// used) or the motion file (what its loaders and mapping refuse, a skeleton that is no humanoid).
 Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc);
 
+/// A take used as the type's walk: cut to its best loop (a walk of at least 0.5 m/s: library/loop_cut.hpp) and
+/// added to type.gait_clips as "<type>.loop" (a second one "<type>.loop2", ...), with a note. A take that does not
+/// loop is left out of walking with a note (the type then walks as it did) and the error says why; `file` names
+/// the take's file in both.
+Status add_walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file);
+
 }  // namespace aloha

@@ -54,27 +54,6 @@ Status add_clip(CharacterType& type, const RawAnimation& raw, const std::string&
     return {};
 }
 
-// A file's take used as the walk: cut to its best loop (a walk of at least 0.5 m/s), or left out of
-// walking with a note when it does not loop (the kinematic walk then walks the type).
-void add_walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file) {
-    auto cut = find_best_loop(take, type.skeleton, 0.6f, 0.5f, file);
-    if (!cut.ok()) {
-        type.notes.push_back("no clip walk: " + cut.error().message);
-        return;
-    }
-    auto id = type.clips.add(cut_loop(take, type.skeleton, cut.value(), type.name + ".loop"), type.skeleton);
-    if (!id.ok()) {
-        type.notes.push_back("no clip walk: " + id.error().message);
-        return;
-    }
-    type.gait_clips.push_back(id.value());
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "walk loop cut from '%s' at %.2f-%.2f s (seam %.1f cm, %.2f m/s)", take.name.c_str(),
-                  static_cast<double>(cut.value().start), static_cast<double>(cut.value().end),
-                  static_cast<double>(100.0f * cut.value().pose_error), static_cast<double>(cut.value().velocity_error));
-    type.notes.push_back(buf);
-}
-
 // The file's skeleton mapped and normalised into `type`; `change` says how (for its clips and mesh).
 Status adopt_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format, const std::string& file,
                  CharacterType& type, RigNormalisation& change, const DeclaredHumanoid& declared = {}) {
@@ -104,7 +83,7 @@ Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
     if (Status s = add_clip(type, in_place(mocap, desc.name + ".inplace"), desc.bvh); !s.ok()) return s;
     type.mocap_clip = 0;
     type.inplace_clip = 1;
-    add_walk_loop(type, mocap, desc.bvh);
+    (void)add_walk_loop(type, mocap, desc.bvh);  // a take that does not loop is noted; the type walks kinematically
     return {};
 }
 
@@ -126,7 +105,7 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
             type.mocap_clip = 0;
             if (Status s2 = add_clip(type, in_place(clip, desc.name + ".inplace"), desc.gltf); !s2.ok()) return s2;
             type.inplace_clip = 1;
-            add_walk_loop(type, clip, desc.gltf);
+            (void)add_walk_loop(type, clip, desc.gltf);  // noted when it does not loop
         }
     }
     if (!g.meshes.empty()) {

@@ -40,6 +40,7 @@ struct MotionFileDesc {
     std::string name;   ///< the clip's name after the type's prefix ("" = the BVH file's stem, or the glTF animation's name)
     std::map<std::string, std::string> humanoid_map;  ///< canonical joint -> the file's joint name, as on a type
     float scale = 0.0f;  ///< metres per file unit (0 = detected from the skeleton's height)
+    bool walk = false;   ///< also cut each clip to its best walk loop for the type's walk requests (as a type's own take is)
     std::string pointer; ///< JSON pointer of the entry ("/character_types/0/motions/1")
 };
 

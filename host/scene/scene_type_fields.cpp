@@ -46,6 +46,7 @@ void read_motion_files(JsonObjectReader& reader, const std::string& pointer, con
         m.clip = r.string("clip", "");
         m.name = r.string("name", "");
         m.scale = static_cast<float>(r.number("scale", 0.0, 1e-6, 1e6));
+        m.walk = r.boolean("walk", false);
         read_humanoid_map(r, m.humanoid_map);
         const nlohmann::json& raw = (*motions)[i];
         auto given = [&](const char* key) { return raw.is_object() && raw.contains(key) && raw[key].is_string() && !raw[key].get<std::string>().empty(); };

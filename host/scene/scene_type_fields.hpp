@@ -16,7 +16,7 @@ void read_humanoid_map(JsonObjectReader& reader, std::map<std::string, std::stri
 
 /// Reads `reader`'s "motions" (the type at `pointer` in `scene_file`) into `type.motions`, when present: an array of
 /// up to 256 objects, each with exactly one of "bvh" and "gltf" (paths relative to the scene, as a type's), and
-/// optionally "clip" (glTF only), "name", "humanoid_map" and "scale".
+/// optionally "clip" (glTF only), "name", "humanoid_map", "scale" and "walk".
 void read_motion_files(JsonObjectReader& reader, const std::string& pointer, const std::string& scene_file, CharacterTypeDesc& type,
                        std::vector<Error>& errors);
 
