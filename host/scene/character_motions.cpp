@@ -151,6 +151,10 @@ Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {
                 std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(report.foot_reach_error * 100.0f));
                 note += std::string("; the legs fall short of the motion's feet by up to ") + buf + " cm";
             }
+            if (!report.not_aligned.empty()) {
+                note += "; bones too short to align, turned as the motion's joint: ";
+                for (size_t k = 0; k < report.not_aligned.size(); ++k) note += (k ? ", " : "") + report.not_aligned[k];
+            }
             if (!report.kept_at_rest.empty()) {
                 note += "; at rest, the motion having none: ";
                 for (size_t k = 0; k < report.kept_at_rest.size(); ++k) note += (k ? ", " : "") + report.kept_at_rest[k];

@@ -171,6 +171,11 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
     out.tracks.resize(tn);
     std::vector<glm::quat> tg(tn);
     std::vector<glm::vec3> tp(tn), tsc(tn);
+    // The joint that carries the horizontal travel when it is not the pelvis: the root, when it is the pelvis's
+    // ancestor (tn: none).
+    size_t carrier = tn;
+    for (int a = ts.parents()[t_hips]; a >= 0; a = ts.parents()[static_cast<size_t>(a)])
+        if (ts.parents()[static_cast<size_t>(a)] < 0) carrier = static_cast<size_t>(a);
     PoseBuilder pose(ts);
     std::vector<glm::vec3> ankle_path(legs.size());
     for (size_t i = 0; i < poses.size(); ++i) {
@@ -193,6 +198,12 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
                     local = glm::normalize(glm::inverse(parent_r) * model);
                 }
                 glm::vec3 translation = ts.rest_translations()[j];
+                if (j == carrier) {
+                    // A root above the pelvis (Unreal's `root` on the ground) carries the horizontal travel, as such
+                    // rigs' own clips do, so the motion system's root motion (joint 0) follows the pelvis.
+                    const glm::vec3 at = now.position[s_hips];
+                    translation += glm::vec3(k * at.x - tgt_rest.position[t_hips].x, 0.0f, k * at.z - tgt_rest.position[t_hips].z);
+                }
                 if (j == t_hips) {
                     const glm::vec3 at = now.position[s_hips];
                     const glm::vec3 want(k * at.x, tgt_ground + k * (at.y - src_ground) - drop, k * at.z);
@@ -235,8 +246,11 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
             out.tracks[j].rotations.times.push_back(time);
             out.tracks[j].rotations.values.push_back(pose.rotations[j]);
         }
-        out.tracks[t_hips].translations.times.push_back(time);
-        out.tracks[t_hips].translations.values.push_back(pose.translations[t_hips]);
+        for (const size_t j : {carrier, t_hips}) {
+            if (j == tn) continue;  // no carrier
+            out.tracks[j].translations.times.push_back(time);
+            out.tracks[j].translations.values.push_back(pose.translations[j]);
+        }
     }
     if (report) *report = std::move(rep);
     return out;

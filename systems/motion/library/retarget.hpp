@@ -26,6 +26,8 @@
 //   source plants is planted on the target (it moves k times as far as the source's: no skate the source does
 //   not have); RetargetReport::foot_reach_error says how far an ankle stayed from its path where lowering could
 //   not help (a path point farther sideways from the hip than the leg is long).
+// - a root joint above the target's pelvis (Unreal's `root` on the ground) carries the pelvis's horizontal travel,
+//   as such rigs' own clips do, so root motion (joint 0) follows the body; the pelvis keeps the rest.
 // - other joints keep the target's rest translations (bone lengths are the target's).
 // The result is a RawAnimation on the target skeleton with a key at every source key time.
 #pragma once

@@ -102,29 +102,10 @@ TEST(CharacterMotions, GltfAnimationsByNameAndErrors) {
     EXPECT_NE(error_of(d).find("missing.bvh"), std::string::npos) << error_of(d);
 }
 
-// The built-in humanoid's generated 1.40 m/s walk, three cycles written as a CMU-named BVH in centimetres at 60 fps,
-// given to a Rigify glTF in a T-pose as a motion with "walk": it is cut to a loop and becomes the type's clip walk,
-// which then walks with its planted ankles holding: contact as issue 15 defines it (within 5 mm of the ankle's
-// lowest height and under 0.5 m/s), the bar expect_walks holds the kinematic walk to (1 cm).
-TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
-    const fs::path dir = temp_dir("motions_walk");
-    const Skeleton body = humanoid_skeleton_for({1.62f, 0.3f});
-    const MotionLibrary lib = make_motion_library(body, humanoid_rig(body), "src");
-    const AnimationClip walk = build_clip(lib.gaits[3], body, ClipEncoding::Float32).value();
-    test::write_text((dir / "walk.bvh").string(), test::bvh_text_of_clip(body, walk, 100.0f, 60.0f, 3));
-    RigStyle t_pose;
-    t_pose.t_pose = true;
-    test::write_text((dir / "rig.gltf").string(), test::gltf_text(test::styled(test::renamed_humanoid(test::rigify_names("DEF-"), {}, true), t_pose), 1, 0.3f));
-    CharacterTypeDesc d = desc_for("rig", (dir / "rig.gltf").string());
-    d.motions = {motion(dir / "walk.bvh")};
-    d.motions[0].walk = true;
-    const CharacterType t = load_or_fail(d);
-    ASSERT_EQ(t.gait_clips.size(), 1u) << "its own 'sway' does not loop; the take does";
-    EXPECT_EQ(find_clip(t, "rig.loop"), static_cast<int>(t.gait_clips[0]));
-    EXPECT_TRUE(has_note(t, "walk loop 'rig.loop' cut from 'rig.walk'"));
-    ASSERT_TRUE(t.rig.has_value());
-    const float speed = t.clips.find(t.gait_clips[0])->root_speed();
-    EXPECT_GT(speed, 1.0f);
+// Walks `t` for 5 s at `speed` at the clip level over its walk clips: the number of ankle contacts and the
+// farthest a planted ankle moved from its touchdown, contact as issue 15 defines it (within 5 mm of the ankle's
+// lowest height and under 0.5 m/s); `travel` gets the distance the character went.
+std::pair<int, float> clip_walk(const CharacterType& t, float speed, float* travel) {
     MotionController mc(t.skeleton, t.clips, 1);
     mc.set_walk_rig(*t.rig);
     mc.set_walk_clips(t.gait_clips);
@@ -133,7 +114,7 @@ TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
     std::vector<MotionState> states(1);
     std::vector<Transform> xs(1);
     std::vector<Velocity> vs(1);
-    ASSERT_TRUE(mc.push_request(0, straight_walk(speed)));
+    EXPECT_TRUE(mc.push_request(0, straight_walk(speed)));
     std::vector<std::array<glm::vec3, 2>> ankles;
     for (int frame = 0; frame < 300; ++frame) {
         mc.update(kDt, lods, states, xs, vs);
@@ -154,14 +135,64 @@ TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
             down = on;
         }
     }
-    std::printf("[figure] retargeted walk loop at %.2f m/s: %d contacts, planted ankle drift %.2g m, root %.3f m\n", static_cast<double>(speed),
-                contacts, static_cast<double>(worst), static_cast<double>(xs[0].position.z));
-    EXPECT_GE(contacts, 6);
-    EXPECT_LT(worst, 0.01f);
-    EXPECT_NEAR(xs[0].position.z, speed * 300 * kDt, 0.05f);
+    *travel = glm::length(xs[0].position);
+    return {contacts, worst};
+}
+
+// The Unreal mannequin's layout: a "root" joint on the ground above the pelvis, in centimetres, Z-up facing +X.
+RawSkeleton unreal_rooted() {
+    const RawSkeleton body = test::renamed_humanoid(test::unreal_names());
+    RawSkeleton raw;
+    raw.joints.push_back(RawJoint{"root", -1, glm::vec3(0.0f)});
+    for (RawJoint j : body.joints) {
+        j.parent += 1;  // the old root (pelvis) hangs under "root" at its model position
+        raw.joints.push_back(j);
+    }
+    test::RigStyle unreal;
+    unreal.units_per_metre = 100.0f;
+    unreal.axes = glm::angleAxis(2.0943951f, glm::normalize(glm::vec3(1, 1, 1)));  // +Y -> +Z, +Z -> +X
+    unreal.bone_frames = true;
+    return test::styled(raw, unreal);
+}
+
+// The built-in humanoid's generated 1.40 m/s walk, three cycles written as a CMU-named BVH in centimetres at 60 fps,
+// given with "walk" to a Rigify glTF in a T-pose and to an Unreal-rooted glTF: it is cut to a loop and becomes each
+// type's clip walk, which walks with planted ankles within the bar expect_walks holds the kinematic walk to (1 cm).
+// On the Unreal rig the root joint carries the travel (joint 0 is what the motion system moves the character by).
+TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
+    const fs::path dir = temp_dir("motions_walk");
+    const Skeleton body = humanoid_skeleton_for({1.62f, 0.3f});
+    const MotionLibrary lib = make_motion_library(body, humanoid_rig(body), "src");
+    const AnimationClip walk = build_clip(lib.gaits[3], body, ClipEncoding::Float32).value();
+    test::write_text((dir / "walk.bvh").string(), test::bvh_text_of_clip(body, walk, 100.0f, 60.0f, 3));
+    RigStyle t_pose;
+    t_pose.t_pose = true;
+    test::write_text((dir / "rig.gltf").string(), test::gltf_text(test::styled(test::renamed_humanoid(test::rigify_names("DEF-"), {}, true), t_pose), 1, 0.3f));
+    test::write_text((dir / "unreal.gltf").string(), test::gltf_text(unreal_rooted(), 2, 0.3f));
+    for (const char* name : {"rig", "unreal"}) {
+        CharacterTypeDesc d = desc_for(name, (dir / (std::string(name) + ".gltf")).string());
+        d.motions = {motion(dir / "walk.bvh")};
+        d.motions[0].walk = true;
+        const CharacterType t = load_or_fail(d);
+        ASSERT_EQ(t.gait_clips.size(), 1u) << name << ": its own 'sway' does not loop; the take does";
+        EXPECT_EQ(find_clip(t, std::string(name) + ".loop"), static_cast<int>(t.gait_clips[0]));
+        EXPECT_TRUE(has_note(t, "walk loop '" + std::string(name) + ".loop' cut from '" + name + ".walk'"));
+        ASSERT_TRUE(t.rig.has_value());
+        const float speed = t.clips.find(t.gait_clips[0])->root_speed();
+        EXPECT_GT(speed, 1.0f) << name;
+        float travel = 0.0f;
+        const auto [contacts, drift] = clip_walk(t, speed, &travel);
+        std::printf("[figure] %s: retargeted walk loop at %.2f m/s: %d contacts, planted ankle drift %.2g m, went %.3f m\n", name,
+                    static_cast<double>(speed), contacts, static_cast<double>(drift), static_cast<double>(travel));
+        EXPECT_GE(contacts, 6) << name;
+        EXPECT_LT(drift, 0.01f) << name;
+        EXPECT_NEAR(travel, speed * 300 * kDt, 0.05f) << name;
+    }
 
     // A take that does not loop cannot be the walk: an error at the motion's "walk".
-    d.motions[0].bvh = (dir / "still.bvh").string();
+    CharacterTypeDesc d = desc_for("rig", (dir / "rig.gltf").string());
+    d.motions = {motion(dir / "still.bvh")};
+    d.motions[0].walk = true;
     test::write_text(d.motions[0].bvh, test::bvh_text(test::renamed_humanoid(test::poser_names()), 30, glm::vec3(0, 0, 1), 0.0f));
     EXPECT_NE(error_of(d).find("/character_types/0/motions/0/walk: 'walk': clip 'rig.still' cannot be the type's walk"), std::string::npos) << error_of(d);
 }
