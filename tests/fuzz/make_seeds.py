@@ -293,7 +293,9 @@ for f in sorted(os.listdir(root + '/data/scenes')):
 w('fuzz_scene', 'keys_types.json', json.dumps({
   "name": "t", "frames": 10, "camera": {"keys": [{"time": 0, "position": [0, 2, 10], "target": [0, 1, 0]},
                                                  {"time": 1, "position": [1, 2, 10], "target": [0, 1, 0]}]},
-  "character_types": [{"name": "humanoid", "humanoid": "builtin:humanoid"},
+  "character_types": [{"name": "humanoid", "humanoid": "builtin:humanoid",
+                       "motions": [{"bvh": "walk.bvh", "name": "walk", "walk": True, "scale": 0.01, "humanoid_map": {"Hips": "pelvis"}},
+                                   {"gltf": "anims.glb", "clip": "Wave"}]},
                       {"name": "h2", "humanoid": "builtin:humanoid", "height": 1.6, "build": 0.2}],
   "paths": [{"name": "p", "points": [[0, 0, 0], [1, 0, 1]]}],
   "characters": [{"type": "h2", "requests": [{"type": "look_at", "target": [0, 1, 5]}, {"type": "rest"}]}],
