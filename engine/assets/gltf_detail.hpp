@@ -107,11 +107,12 @@ struct SkinSet {
     std::vector<std::vector<glm::mat4>> skin_ibm;     ///< per skin: inverse bind of skins[k].joints[i] as in the file
 };
 
-/// A file without skins whose nodes carry meshes gets one skin over every node of its displayed scene
-/// (parents first), bound at the rest pose (inverse bind matrices: the nodes' inverted rest world
-/// matrices, in a buffer of their own), so each mesh is a rigid part of its node and node animations
-/// are clips; one note. Files with skins, or without meshes, are left as they are. Errors: a scene
-/// node out of range, a singular rest transform, more than 32767 nodes.
+/// A file without skins whose nodes carry meshes, or that has animations (an animation file: a Blender
+/// armature exported without its mesh), gets one skin over every node of its displayed scene (parents
+/// first), bound at the rest pose (inverse bind matrices: the nodes' inverted rest world matrices, in a
+/// buffer of their own), so each mesh is a rigid part of its node and node animations are clips; one note.
+/// Files with skins, or with neither meshes nor animations, are left as they are. Errors: a scene node out
+/// of range, a singular rest transform, more than 32767 nodes.
 Status add_node_skin(tinygltf::Model* model, const std::vector<int>& parents, const std::string& file, std::vector<std::string>* notes);
 
 /// Reads every skin: fills out->skeleton (rest transforms with folded ancestors, unique names),

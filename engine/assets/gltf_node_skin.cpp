@@ -59,7 +59,7 @@ Status add_node_skin(tinygltf::Model* model, const std::vector<int>& parents, co
     if (!model->skins.empty()) return {};
     bool meshes = false;
     for (const tinygltf::Node& node : model->nodes) meshes |= node.mesh >= 0;
-    if (!meshes) return {};  // nothing to draw: read_skins says the file has no skins
+    if (!meshes && model->animations.empty()) return {};  // nothing to draw or play: read_skins says the file has no skins
     std::vector<int> nodes;
     std::vector<glm::mat4> world;
     if (Status s = scene_nodes(*model, parents, file, &nodes, &world); !s.ok()) return s;
@@ -94,7 +94,9 @@ Status add_node_skin(tinygltf::Model* model, const std::vector<int>& parents, co
     skin.inverseBindMatrices = static_cast<int>(model->accessors.size());
     model->accessors.push_back(accessor);
     model->skins.push_back(std::move(skin));
-    notes->push_back("no skin: the " + std::to_string(nodes.size()) + " nodes of the scene are the skeleton, each mesh a rigid part of its node");
+    notes->push_back(meshes ? "no skin: the " + std::to_string(nodes.size()) + " nodes of the scene are the skeleton, each mesh a rigid part of its node"
+                            : "no skin and no mesh (an animation file): the " + std::to_string(nodes.size()) +
+                                  " nodes of the scene are the skeleton, its animations the clips");
     return {};
 }
 

@@ -243,6 +243,14 @@ TEST(GltfArmatureTransforms, AnimatedNodeAboveTheJointsMovesThem) {
     EXPECT_TRUE(has_note(c, "animations[0]: the animation of nodes[2] (above the joints, not joints) is folded into the keys of the 1 joint below"));
 }
 
+// A clip "wave" turning node `arm` from 90 degrees about z back to rest over 1 s.
+void add_wave(GltfBuilder& b, int arm) {
+    const int times = b.scalars({0.0f, 1.0f});
+    const int rots = b.vec4({{0, 0, kS45, kS45}, {0, 0, 0, 1}});
+    b.doc["animations"] = json::array({{{"name", "wave"}, {"samplers", json::array({{{"input", times}, {"output", rots}}})},
+                                        {"channels", json::array({{{"sampler", 0}, {"target", {{"node", arm}, {"path", "rotation"}}}}})}}});
+}
+
 // A file without skins (a rigid robot: meshes on an animated node hierarchy): every node of the scene becomes a
 // joint bound at its rest pose, each mesh a rigid part of its node, the node animations a clip. body (0,1,0)
 // carries a triangle and an arm node (0.5,0,0) turned 90 degrees about z with its own triangle; the arm's
@@ -252,10 +260,7 @@ TEST(GltfNodeSkin, RigidHierarchyWithoutSkinIsTheSkeleton) {
     const int arm = b.node({{"name", "arm"}, {"translation", {0.5, 0, 0}}, {"rotation", {0, 0, kS45, kS45}}, {"mesh", b.mesh(triangle(b))}});
     const int body = b.node({{"name", "body"}, {"translation", {0, 1, 0}}, {"children", {arm}}, {"mesh", b.mesh(triangle(b))}});
     b.root(body);
-    const int times = b.scalars({0.0f, 1.0f});
-    const int rots = b.vec4({{0, 0, kS45, kS45}, {0, 0, 0, 1}});
-    b.doc["animations"] = json::array({{{"name", "wave"}, {"samplers", json::array({{{"input", times}, {"output", rots}}})},
-                                        {"channels", json::array({{{"sampler", 0}, {"target", {{"node", arm}, {"path", "rotation"}}}}})}}});
+    add_wave(b, arm);
     Result<GltfCharacter> r = load(b);
     ASSERT_TRUE(r.ok()) << r.error().to_string();
     const GltfCharacter& c = r.value();
@@ -288,6 +293,24 @@ TEST(GltfNodeSkin, RigidHierarchyWithoutSkinIsTheSkeleton) {
     const GltfSkinnedMesh* arm_again = mesh_from(again.value(), "nodes[0]");
     ASSERT_TRUE(arm_again);
     expect_near(skin(again.value(), s2.value(), rest_model(s2.value()), *arm_again, 1), glm::vec3(0.5f, 2, 0));
+}
+
+// An animation file (a Blender armature exported without its mesh: nodes and animations, no skin, no mesh): the
+// scene's nodes are the skeleton and its animations the clips, so it can be a motion file (docs/SCENES.md).
+TEST(GltfNodeSkin, AnimationFileWithoutSkinOrMeshIsASkeletonWithClips) {
+    GltfBuilder b;
+    const int arm = b.node({{"name", "arm"}, {"translation", {0.5, 0, 0}}});
+    const int body = b.node({{"name", "body"}, {"translation", {0, 1, 0}}, {"children", {arm}}});
+    b.root(body);
+    add_wave(b, arm);
+    Result<GltfCharacter> r = load(b);
+    ASSERT_TRUE(r.ok()) << r.error().to_string();
+    const GltfCharacter& c = r.value();
+    ASSERT_EQ(c.skeleton.joints.size(), 2u);
+    EXPECT_TRUE(c.meshes.empty());
+    ASSERT_EQ(c.clips.size(), 1u);
+    EXPECT_EQ(c.clip_names[0], "wave");
+    EXPECT_TRUE(has_note(c, "no skin and no mesh (an animation file): the 2 nodes of the scene are the skeleton, its animations the clips"));
 }
 
 // Two skins share joint `a`: skin 0 = {root, a}, skin 1 = {a, b}. Skin 1 binds its mesh in a space

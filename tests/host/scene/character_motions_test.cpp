@@ -77,6 +77,15 @@ TEST(CharacterMotions, GltfAnimationsByNameAndErrors) {
     const CharacterType t = load_or_fail(d);
     EXPECT_GE(find_clip(t, "h.sway"), 0) << "a glTF animation keeps its name";
 
+    // The same skeleton and animation in an animation file (no skin, no mesh), as Blender exports an armature alone.
+    nlohmann::json bare = nlohmann::json::parse(test::gltf_text(test::renamed_humanoid(test::rigify_names("DEF-")), 1, 0.3f));
+    bare.erase("skins");
+    for (auto& node : bare["nodes"]) node.erase("skin");
+    test::write_text((dir / "armature.gltf").string(), bare.dump());
+    CharacterTypeDesc from_bare = builtin_type("h");
+    from_bare.motions = {motion(dir / "armature.gltf")};
+    EXPECT_GE(find_clip(load_or_fail(from_bare), "h.sway"), 0) << "an animation file is a motion file";
+
     d.motions[0].clip = "run";
     EXPECT_NE(error_of(d).find("no animation 'run' in"), std::string::npos) << error_of(d);
     EXPECT_NE(error_of(d).find("(it has 'sway')"), std::string::npos) << error_of(d);
