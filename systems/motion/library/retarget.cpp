@@ -48,9 +48,12 @@ ModelPose rest_pose(const Skeleton& sk) {
     return p;
 }
 
-float lowest_y(const ModelPose& p) {
+// The lowest of the body's joints (the canonical joints `map` maps): a root on the ground, an Armature node or IK
+// helpers are no part of what stands.
+float lowest_y(const ModelPose& p, const HumanoidMap& map) {
     float y = FLT_MAX;
-    for (const glm::vec3& v : p.position) y = std::min(y, v.y);
+    for (const int j : map.joint)
+        if (j >= 0) y = std::min(y, p.position[static_cast<size_t>(j)].y);
     return y;
 }
 
@@ -91,8 +94,8 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
 
     const ModelPose src_rest = rest_pose(ss), tgt_rest = rest_pose(ts);
     const auto s_hips = static_cast<size_t>(sm.joint[0]), t_hips = static_cast<size_t>(tm.joint[0]);
-    const float src_height = src_rest.position[s_hips].y - lowest_y(src_rest);
-    const float tgt_height = tgt_rest.position[t_hips].y - lowest_y(tgt_rest);
+    const float src_height = src_rest.position[s_hips].y - lowest_y(src_rest, sm);
+    const float tgt_height = tgt_rest.position[t_hips].y - lowest_y(tgt_rest, tm);
     if (!(src_height > 1e-4f) || !(tgt_height > 1e-4f))
         return make_error("", "a rest pose has its hips at the height of its lowest joint: the pelvis travel cannot be scaled");
     const float k = tgt_height / src_height;
@@ -113,8 +116,8 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
         }
     }
     float src_ground = FLT_MAX;
-    for (const ModelPose& p : poses) src_ground = std::min(src_ground, lowest_y(p));
-    const float tgt_ground = lowest_y(tgt_rest);
+    for (const ModelPose& p : poses) src_ground = std::min(src_ground, lowest_y(p, sm));
+    const float tgt_ground = lowest_y(tgt_rest, tm);
 
     // Per target joint: the source joint it follows and its rest alignment (the model-space change turning the
     // target's rest rotation into the one that points its bone as the source's rest bone points).
@@ -156,7 +159,7 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
         Leg leg{tm.find(std::string(side) + "Hip"), tm.find(std::string(side) + "Knee"), tm.find(std::string(side) + "Ankle"),
                 sm.find(std::string(side) + "Ankle")};
         if (leg.hip < 0 || leg.knee < 0 || leg.ankle < 0 || leg.source_ankle < 0) continue;
-        leg.source_rest = src_rest.position[static_cast<size_t>(leg.source_ankle)].y - lowest_y(src_rest);
+        leg.source_rest = src_rest.position[static_cast<size_t>(leg.source_ankle)].y - lowest_y(src_rest, sm);
         leg.target_rest = tgt_rest.position[static_cast<size_t>(leg.ankle)].y - tgt_ground;
         const glm::vec3 h = tgt_rest.position[static_cast<size_t>(leg.hip)], kn = tgt_rest.position[static_cast<size_t>(leg.knee)],
                         an = tgt_rest.position[static_cast<size_t>(leg.ankle)];

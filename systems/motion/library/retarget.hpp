@@ -13,10 +13,10 @@
 // - joints between mapped ones, and canonical joints the source lacks, keep their rest rotation relative to
 //   their parent; the mapped joint below them still gets its model rotation from the source.
 // - the pelvis (canonical Hips) travels as the source's does, scaled by k, the ratio of the two rest hip heights
-//   above the lowest rest joint (the legs' length ratio), so a stride stays a stride of the target's legs: a
-//   foot the source plants stays planted to the extent the two legs' proportions agree. Heights are measured
-//   from the ground each stands on: the target's lowest rest joint, and the lowest any source joint comes over
-//   the clip (a file's rest pose need not stand where its motion does). So the target's pelvis is at
+//   above the lowest rest joint of the body (the canonical joints: a root on the ground, an Armature node or IK
+//   helpers do not count), the legs' length ratio, so a stride stays a stride of the target's legs. Heights are
+//   measured from the ground each stands on: the target's lowest rest body joint, and the lowest any source body
+//   joint comes over the clip (a file's rest pose need not stand where its motion does). So the target's pelvis is at
 //   (k x, ground_t + k (y - ground_s), k z) for the source's at (x, y, z).
 // - each ankle follows the source's ankle path scaled the same way, its height measured from its own rest
 //   height (a foot flat on the ground stays flat on the target's): thigh and knee reach it by analytic two-bone

@@ -206,6 +206,34 @@ TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
     EXPECT_NE(error_of(d).find("/character_types/0/motions/0/walk: 'walk': clip 'rig.still' cannot be the type's walk"), std::string::npos) << error_of(d);
 }
 
+// A Mixamo-style animation file: joints in centimetres under an "Armature" node scaling by 0.01 and turning the rig
+// Z-up, no skin, no mesh. The Armature node is then a joint of the skeleton (nothing folds it), which normalisation
+// reads in metres and turns upright; the take, at rest in its first key, stands the built-in humanoid at its own rest
+// height (k = 1 within the fixture's rounding: the fixture has the built-in proportions).
+TEST(CharacterMotions, MixamoAnimationFileUnderAnArmatureNode) {
+    const fs::path dir = temp_dir("motions_mixamo");
+    RigStyle cm;
+    cm.units_per_metre = 100.0f;
+    cm.bone_frames = true;
+    nlohmann::json j = nlohmann::json::parse(test::gltf_text(test::styled(test::renamed_humanoid(test::mixamo_names()), cm), 1, 0.3f));
+    const glm::quat z_up = glm::angleAxis(1.5707963f, glm::vec3(1, 0, 0));
+    j["nodes"].push_back({{"name", "Armature"}, {"children", {0}}, {"scale", {0.01, 0.01, 0.01}}, {"rotation", {z_up.x, z_up.y, z_up.z, z_up.w}}});
+    j["scenes"][0]["nodes"] = {j["nodes"].size() - 1};
+    j.erase("skins");
+    for (auto& node : j["nodes"]) node.erase("skin");
+    test::write_text((dir / "mixamo_anim.gltf").string(), j.dump());
+    CharacterTypeDesc d = builtin_type("h");
+    d.motions = {motion(dir / "mixamo_anim.gltf", "sway")};
+    const CharacterType t = load_or_fail(d);
+    const int id = find_clip(t, "h.sway");
+    ASSERT_GE(id, 0);
+    const AnimationClip& clip = *t.clips.find(static_cast<ClipId>(id));
+    const float rest_hips = t.skeleton.rest_translations()[static_cast<size_t>(t.map.find("Hips"))].y;
+    EXPECT_NEAR(clip.root_start().y, rest_hips, 2e-3f) << "the take's rest pose stands the body at its own hips height";
+    EXPECT_NEAR(glm::length(glm::vec2(clip.root_start().x, clip.root_start().z)), 0.0f, 2e-3f);
+    EXPECT_TRUE(has_note(t, "clip 'h.sway' retargeted from mixamo_anim.gltf (pelvis travel x1.0")) << t.notes.back();
+}
+
 // Largest horizontal distance a target ankle moves between keys where the source's ankle moves under 1 mm, over
 // k times the source's own move there (0: every planted source foot is planted on the target).
 float planted_excess(const CharacterType& source, int source_clip, const CharacterType& target, int target_clip, float k) {

@@ -83,15 +83,21 @@ TEST_F(Retarget, BonesPointAsTheSourcesWhateverTheRestPoseAndPelvisTravelScales)
     const std::vector<glm::vec3> rest_t = clip_model_positions(build_clip(RawAnimation{}, target).value(), target, 0.0f);
     const auto joints = canonical_humanoid();
     const auto hips_s = static_cast<size_t>(source_map.joint[0]), hips_t = static_cast<size_t>(target_map.joint[0]);
+    // Heights from the lowest body (canonical) joint; the built-in humanoid's joints are all canonical.
     float lowest_s = 1e9f, lowest_t = 1e9f;
-    for (const glm::vec3& p : rest_s) lowest_s = std::min(lowest_s, p.y);
-    for (const glm::vec3& p : rest_t) lowest_t = std::min(lowest_t, p.y);
+    for (const int j : source_map.joint)
+        if (j >= 0) lowest_s = std::min(lowest_s, rest_s[static_cast<size_t>(j)].y);
+    for (const int j : target_map.joint)
+        if (j >= 0) lowest_t = std::min(lowest_t, rest_t[static_cast<size_t>(j)].y);
     const float k = (rest_t[hips_t].y - lowest_t) / (rest_s[hips_s].y - lowest_s);
     EXPECT_NEAR(report.scale, k, 1e-6f);
     EXPECT_GT(k, 1.1f) << "a taller body";
-    float ground_s = 1e9f;  // the lowest any source joint comes over the clip
-    for (const float t : a.times())
-        for (const glm::vec3& p : clip_model_positions(a, source, t)) ground_s = std::min(ground_s, p.y);
+    float ground_s = 1e9f;  // the lowest any source body joint comes over the clip
+    for (const float t : a.times()) {
+        const std::vector<glm::vec3> p = clip_model_positions(a, source, t);
+        for (const int j : source_map.joint)
+            if (j >= 0) ground_s = std::min(ground_s, p[static_cast<size_t>(j)].y);
+    }
     float worst_angle = 0.0f, worst_travel = 0.0f, worst_length = 0.0f, worst_ankle = 0.0f, worst_planted = 0.0f;
     std::vector<glm::vec3> previous_s, previous_t;
     for (const float t : a.times()) {
