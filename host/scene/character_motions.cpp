@@ -1,7 +1,6 @@
 // Motion files retargeted onto a character type (character_motions.hpp).
 #include "host/scene/character_motions.hpp"
 
-#include "engine/assets/bvh_loader.hpp"
 #include "engine/assets/gltf_loader.hpp"
 #include "host/scene/character_rig.hpp"
 #include "systems/motion/library/loop_cut.hpp"
@@ -33,19 +32,10 @@ CharacterTypeDesc rig_desc(const MotionFileDesc& m, const CharacterTypeDesc& typ
 }
 
 Result<MotionSource> load_bvh_motion(const MotionFileDesc& m, const CharacterTypeDesc& type) {
-    BvhOptions options;
-    options.unit_scale = 1.0f;  // file units: detected from the skeleton's height, as for a character
-    Result<BvhData> bvh = load_bvh(m.bvh, options);
-    if (!bvh.ok()) return bvh.error();
-    Result<Skeleton> original = build_skeleton(bvh.value().skeleton, m.bvh);
-    if (!original.ok()) return original.error();
-    Result<NormalisedRig> rig = normalise_file_rig(original.value(), rig_desc(m, type), RigFormat::Bvh, m.bvh);
-    if (!rig.ok()) return rig.error();
-    MotionSource out{std::move(rig).value(), {}, m.bvh};
-    RawAnimation clip = bvh.value().animation;
-    normalise_clip(clip, original.value(), out.rig.change);
-    clip.name = m.name.empty() ? std::filesystem::path(m.bvh).stem().string() : m.name;
-    out.clips.push_back(std::move(clip));
+    Result<NormalisedBvh> take = load_normalised_bvh(m.bvh, rig_desc(m, type));
+    if (!take.ok()) return take.error();
+    MotionSource out{std::move(take.value().rig), {std::move(take.value().clip)}, m.bvh};
+    out.clips[0].name = m.name.empty() ? std::filesystem::path(m.bvh).stem().string() : m.name;
     return out;
 }
 

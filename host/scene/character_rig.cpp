@@ -1,6 +1,7 @@
 #include "host/scene/character_rig.hpp"
 
 #include "engine/anim/humanoid_fit.hpp"
+#include "engine/assets/bvh_loader.hpp"
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
@@ -25,6 +26,20 @@ Result<NormalisedRig> normalise_file_rig(const Skeleton& original, const Charact
     if (!skeleton.ok()) return skeleton.error();
     rig.skeleton = std::move(skeleton.value());
     return rig;
+}
+
+Result<NormalisedBvh> load_normalised_bvh(const std::string& file, const CharacterTypeDesc& desc) {
+    BvhOptions options;
+    options.unit_scale = 1.0f;  // file units: the rig's units are detected from its height
+    Result<BvhData> bvh = load_bvh(file, options);
+    if (!bvh.ok()) return bvh.error();
+    Result<Skeleton> original = build_skeleton(bvh.value().skeleton, file);
+    if (!original.ok()) return original.error();
+    Result<NormalisedRig> rig = normalise_file_rig(original.value(), desc, RigFormat::Bvh, file);
+    if (!rig.ok()) return rig.error();
+    NormalisedBvh out{std::move(rig).value(), std::move(bvh.value().animation), std::move(bvh.value().notes)};
+    normalise_clip(out.clip, original.value(), out.rig.change);
+    return out;
 }
 
 void normalise_mesh(CharacterMesh& mesh, const RigNormalisation& change) {

@@ -25,6 +25,18 @@ struct NormalisedRig {
 Result<NormalisedRig> normalise_file_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFormat format,
                                          const std::string& file, const DeclaredHumanoid& declared = {});
 
+/// A BVH file's skeleton and motion, both normalised.
+struct NormalisedBvh {
+    NormalisedRig rig;               ///< the skeleton mapped and normalised
+    RawAnimation clip;               ///< the file's motion on rig.skeleton (named as the loader names it)
+    std::vector<std::string> notes;  ///< the BVH loader's notes
+};
+
+/// Loads the BVH at `file` in its own units (detected from the skeleton's height unless desc.scale gives them),
+/// maps and normalises its skeleton (normalise_file_rig with `desc`) and its motion to match. Errors name the file
+/// or, for the explicit map, the scene file and JSON pointer.
+Result<NormalisedBvh> load_normalised_bvh(const std::string& file, const CharacterTypeDesc& desc);
+
 /// Moves a mesh skinned to the file's skeleton onto the normalised one: v' = G v, n' = A n,
 /// inverse bind C_j^-1 IB_j G^-1.
 void normalise_mesh(CharacterMesh& mesh, const RigNormalisation& change);

@@ -1,6 +1,5 @@
 #include "host/scene/character_type.hpp"
 
-#include "engine/assets/bvh_loader.hpp"
 #include "engine/assets/gltf_loader.hpp"
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
@@ -67,17 +66,14 @@ Status adopt_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFor
 }
 
 Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
-    BvhOptions options;
-    options.unit_scale = 1.0f;  // file units: the rig's units are detected from its height
-    auto bvh = load_bvh(desc.bvh, options);
-    if (!bvh.ok()) return bvh.error();
-    auto original = build_skeleton(bvh.value().skeleton, desc.bvh);
-    if (!original.ok()) return original.error();
-    RigNormalisation change;
-    if (Status s = adopt_rig(original.value(), desc, RigFormat::Bvh, desc.bvh, type, change); !s.ok()) return s;
-    for (const std::string& note : bvh.value().notes) type.notes.push_back(note);
-    RawAnimation mocap = bvh.value().animation;
-    normalise_clip(mocap, original.value(), change);
+    Result<NormalisedBvh> take = load_normalised_bvh(desc.bvh, desc);
+    if (!take.ok()) return take.error();
+    NormalisedBvh& t = take.value();
+    type.skeleton = std::move(t.rig.skeleton);
+    type.map = std::move(t.rig.map);
+    type.frame = std::move(t.rig.frame);
+    for (const std::string& note : t.notes) type.notes.push_back(note);
+    RawAnimation mocap = std::move(t.clip);
     mocap.name = desc.name + ".mocap";
     if (Status s = add_clip(type, mocap, desc.bvh); !s.ok()) return s;
     if (Status s = add_clip(type, in_place(mocap, desc.name + ".inplace"), desc.bvh); !s.ok()) return s;

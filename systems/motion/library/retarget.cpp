@@ -3,6 +3,8 @@
 
 #include "systems/motion/clip.hpp"
 #include "systems/motion/library/pose_builder.hpp"
+#include "systems/motion/local_to_model.hpp"
+#include "systems/motion/walk_rig.hpp"
 #include "systems/motion/sampling.hpp"
 
 #include <glm/gtx/quaternion.hpp>
@@ -15,37 +17,29 @@ namespace aloha {
 
 namespace {
 
-// Model-space rotations and positions of one pose (uniform scales assumed, as normalised rigs have).
+// Model-space rotations and positions of one pose: the motion system's local_to_model, the rotations taken out of
+// its matrices (matrix_rotation; normalised rigs have uniform scales).
 struct ModelPose {
     std::vector<glm::quat> rotation;
     std::vector<glm::vec3> position;
-    std::vector<glm::vec3> scale;
 };
 
-void forward(const Skeleton& sk, const glm::vec3* t, const glm::quat* r, const glm::vec3* s, ModelPose* out) {
+ModelPose model_pose(const Skeleton& sk, const glm::vec3* t, const glm::quat* r, const glm::vec3* s, std::vector<glm::mat4>& scratch) {
     const size_t n = static_cast<size_t>(sk.joint_count());
-    out->rotation.resize(n);
-    out->position.resize(n);
-    out->scale.resize(n);
+    scratch.resize(n);
+    local_to_model(sk.parents().data(), t, r, s, nullptr, scratch.data(), n);
+    ModelPose out;
+    out.rotation.resize(n);
+    out.position.resize(n);
     for (size_t j = 0; j < n; ++j) {
-        const int p = sk.parents()[j];
-        if (p < 0) {
-            out->rotation[j] = r[j];
-            out->position[j] = t[j];
-            out->scale[j] = s[j];
-        } else {
-            const auto q = static_cast<size_t>(p);
-            out->rotation[j] = glm::normalize(out->rotation[q] * r[j]);
-            out->position[j] = out->position[q] + out->rotation[q] * (out->scale[q] * t[j]);
-            out->scale[j] = out->scale[q] * s[j];
-        }
+        out.rotation[j] = matrix_rotation(scratch[j]);
+        out.position[j] = glm::vec3(scratch[j][3]);
     }
+    return out;
 }
 
-ModelPose rest_pose(const Skeleton& sk) {
-    ModelPose p;
-    forward(sk, sk.rest_translations().data(), sk.rest_rotations().data(), sk.rest_scales().data(), &p);
-    return p;
+ModelPose rest_pose(const Skeleton& sk, std::vector<glm::mat4>& scratch) {
+    return model_pose(sk, sk.rest_translations().data(), sk.rest_rotations().data(), sk.rest_scales().data(), scratch);
 }
 
 // The lowest of the body's joints (the canonical joints `map` maps): a root on the ground, an Armature node or IK
@@ -92,7 +86,8 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
     const HumanoidMap& tm = *target.map;
     const auto joints = canonical_humanoid();
 
-    const ModelPose src_rest = rest_pose(ss), tgt_rest = rest_pose(ts);
+    std::vector<glm::mat4> scratch;
+    const ModelPose src_rest = rest_pose(ss, scratch), tgt_rest = rest_pose(ts, scratch);
     const auto s_hips = static_cast<size_t>(sm.joint[0]), t_hips = static_cast<size_t>(tm.joint[0]);
     const float src_height = src_rest.position[s_hips].y - lowest_y(src_rest, sm);
     const float tgt_height = tgt_rest.position[t_hips].y - lowest_y(tgt_rest, tm);
@@ -112,7 +107,7 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
             float alpha = 0.0f;
             find_key(src, src.times()[i], nullptr, &key, &alpha);
             sample_blocks(src, key, alpha, st.data(), sr.data(), sc.data());
-            forward(ss, st.data(), sr.data(), sc.data(), &poses[i]);
+            poses[i] = model_pose(ss, st.data(), sr.data(), sc.data(), scratch);
         }
     }
     float src_ground = FLT_MAX;
