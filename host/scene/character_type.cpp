@@ -3,6 +3,7 @@
 #include "engine/assets/gltf_loader.hpp"
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
+#include "host/scene/character_library.hpp"
 #include "host/scene/character_motions.hpp"
 #include "host/scene/character_rig.hpp"
 #include "systems/geometry/controller/body_texture.hpp"
@@ -226,6 +227,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
                              (type.mesh ? "drawn with its skinned mesh at those levels" : "drawn as rigid proxies (it has no mesh)"));
     }
     if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
+    if (Status s = add_generated_motion(type, desc); !s.ok()) return s.error();
     measure(type);
     use_generated_look(type);
     return type;

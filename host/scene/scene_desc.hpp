@@ -60,6 +60,7 @@ struct CharacterTypeDesc {
     std::string scene_file;   ///< the scene file the type is written in (for errors)
     std::string pointer;      ///< JSON pointer of the type in that file ("/character_types/0")
     std::vector<MotionFileDesc> motions;  ///< clips from other files, retargeted (the type must be a mapped humanoid)
+    bool generated_motion = true;  ///< bvh/gltf: a mapped humanoid also gets the generated motion library, retargeted
 };
 
 /// A named walk path: waypoints on the ground (y ignored), optionally looping.

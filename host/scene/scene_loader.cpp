@@ -162,6 +162,7 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
             if (canonical.ok()) t.canonical = canonical.value();
             else errors.push_back(canonical.error());
         }
+        t.generated_motion = r.boolean("generated_motion", true);
         t.height = static_cast<float>(r.number("height", 1.75, 0.5, 2.5));
         t.build = static_cast<float>(r.number("build", 0.5, 0.0, 1.0));
         // Counted from the file, not from the resolved paths: a path refused above is one error, not two.
@@ -173,6 +174,8 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
             r.error("height", "'height' and 'build' apply to 'humanoid' types only");
         if (!t.humanoid.empty() && (r.has("scale") || r.has("humanoid_map")))
             r.error(r.has("scale") ? "scale" : "humanoid_map", "'scale' and 'humanoid_map' apply to 'bvh' and 'gltf' types only");
+        if (!t.humanoid.empty() && r.has("generated_motion"))
+            r.error("generated_motion", "'generated_motion' applies to 'bvh' and 'gltf' types only (a 'humanoid' type's motion is generated)");
         if (t.bvh.size() > 5 && t.bvh.compare(t.bvh.size() - 5, 5, ".json") == 0)
             r.error("bvh", "this is a JSON file, not a BVH skeleton; the project's humanoid is \"humanoid\": \"builtin:humanoid\"");
         r.reject_unknown_keys();

@@ -21,9 +21,11 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
     dynamics = std::make_unique<DynamicHookContext>();
     motion = std::make_unique<MotionController>(type.skeleton, type.clips, n);
     if (type.rig) motion->set_walk_rig(*type.rig);
-    // The walk's clips: the generated gaits, or a file's take cut to its best loop (none when it does
-    // not loop: the walk is then kinematic at every level).
+    // The walk's clips: the generated gaits (the built-in humanoid's, or retargeted onto a mapped humanoid from a
+    // file), or loops cut from its own takes (none: the walk is then kinematic at every level).
     motion->set_walk_clips(type.gait_clips);
+    // Characters hold the idle's first pose until their requests pose them (a reacher's other arm).
+    if (type.idle_clip >= 0) motion->set_stance(*type.clips.find(static_cast<ClipId>(type.idle_clip)));
     ik->map = &type.map;
     register_ik_hooks(*motion, *ik);
     register_dynamic_walk_hook(*motion, *dynamics);

@@ -8,6 +8,7 @@
 #include "systems/motion/kinematic_walk.hpp"
 #include "systems/motion/local_to_model.hpp"
 #include "systems/motion/pose_pool.hpp"
+#include "systems/motion/sampling.hpp"
 #include "systems/render/impostor_atlas_cache.hpp"
 
 #include <algorithm>
@@ -19,21 +20,31 @@ namespace {
 constexpr uint32_t kWalkRows = 8;     // walk phases baked (the 9th row stands)
 constexpr uint32_t kDirections = 16;  // azimuths around the vertical axis: 22.5 degrees apart
 
-// Model-space joint matrices of `type` at kWalkRows phases of its slowest gait cycle, then standing (the
-// rest pose); every row stands when the type has no gait cycle. `cycle_s` gets the cycle's clip seconds.
+// Model-space joint matrices of `type` at kWalkRows phases of its slowest gait cycle, then standing: its idle's
+// first pose over the origin (what idlers show; a file's T- or A-posed rest is no one's stance), the rest pose when
+// it has no idle; every row stands when the type has no gait cycle. `cycle_s` gets the cycle's clip seconds.
 std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, float& cycle_s) {
     const int joints = type.skeleton.joint_count();
     PosePool pool(joints, kWalkRows + 1, &type.skeleton);
     const AnimationClip* walk = type.gait_clips.empty() ? nullptr : type.clips.find(type.gait_clips.front());
     cycle_s = walk && walk->duration() > 0.0f ? walk->duration() : 1.0f;
+    const AnimationClip* idle = type.idle_clip >= 0 ? type.clips.find(static_cast<ClipId>(type.idle_clip)) : nullptr;
     std::vector<std::vector<glm::mat4>> rows;
     for (uint32_t r = 0; r <= kWalkRows; ++r) {
         PoseView pose = pool.view(r);
-        if (walk && r < kWalkRows) {
+        const bool walking = walk && r < kWalkRows;
+        if (walking) {
             sample_walk_cycle(*walk, cycle_s * static_cast<float>(r) / static_cast<float>(kWalkRows), nullptr, pose);
+        } else if (idle) {
+            int k = 0;
+            float alpha = 0.0f;
+            find_key(*idle, 0.0f, nullptr, &k, &alpha);
+            sample_blocks(*idle, k, alpha, pose.translations.data(), pose.rotations.data(), pose.scales.data());
+            pose.translations[0].x = 0.0f, pose.translations[0].z = 0.0f;  // over the origin, as the walk rows
+        }
+        if (walking || idle)
             local_to_model(type.skeleton.parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),
                            nullptr, pose.model.data(), static_cast<size_t>(joints));
-        }
         rows.emplace_back(pose.model.begin(), pose.model.end());
     }
     return rows;

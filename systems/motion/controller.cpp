@@ -99,6 +99,29 @@ void MotionController::set_walk_clips(std::span<const ClipId> clips) {
     }
 }
 
+void MotionController::set_stance(const AnimationClip& clip) {
+    assert(clip.joint_count() == skeleton_->joint_count());
+    const size_t n = static_cast<size_t>(skeleton_->joint_count());
+    std::vector<glm::vec3> t(n), s(n);
+    std::vector<glm::quat> r(n);
+    std::vector<glm::mat4> model(n);
+    int k = 0;
+    float alpha = 0.0f;
+    find_key(clip, 0.0f, nullptr, &k, &alpha);
+    sample_blocks(clip, k, alpha, t.data(), r.data(), s.data());
+    const glm::vec3 rest_root = skeleton_->rest_translations()[0];
+    t[0].x = rest_root.x, t[0].z = rest_root.z;
+    local_to_model(skeleton_->parents().data(), t.data(), r.data(), s.data(), nullptr, model.data(), n);
+    for (size_t c = 0; c < chars_.size(); ++c) {
+        if (chars_[c].shown) continue;
+        const PoseView v = pool_.view(c);
+        std::copy(t.begin(), t.end(), v.translations.begin());
+        std::copy(r.begin(), r.end(), v.rotations.begin());
+        std::copy(s.begin(), s.end(), v.scales.begin());
+        std::copy(model.begin(), model.end(), v.model.begin());
+    }
+}
+
 int32_t MotionController::pick_walk_clip(float speed) const {
     int32_t best = -1;
     float best_error = 0.0f;

@@ -59,6 +59,12 @@ public:
     /// speed, at the rate that matches the speed exactly (stride kept, cadence warped), so stance
     /// feet stay planted. Unknown ids and clips without travel are left out.
     void set_walk_clips(std::span<const ClipId> clips);
+    /// Every character not posed yet holds `clip`'s first pose instead of the skeleton's rest pose until a request
+    /// poses it: the stance it keeps where its requests move nothing (the arm a reach does not use, the body under a
+    /// look-at, a rest request). The root keeps its rest translation (the clip's horizontal offset is no placement).
+    /// A type whose rest is a T- or A-pose stands in its idle. Not during an update. Requires `clip` built on this
+    /// controller's skeleton (same joint count).
+    void set_stance(const AnimationClip& clip);
     /// The walk clip a walk at `speed` m/s plays (the natural speed nearest by ratio), or -1 without walk clips.
     [[nodiscard]] int32_t pick_walk_clip(float speed) const;
     /// Registers the implementation of a method (nullptr removes it) and optionally its release
@@ -222,7 +228,7 @@ private:
         float inertial_elapsed = 0.0f, inertial_total = 0.0f;  // seconds into / of the transition
         uint8_t inertial_pending = 0;  // the offset is taken at the next pose (the change happened this frame)
         uint8_t inertial_done = 0;     // posed with the offset gone: the slot is released at the next update
-        uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the rest pose)
+        uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the stance)
         Channel prev;                  // the request faded from (while fade_left > 0 and !fade_snapshot)
     };
     // What a steady step can be (Hot::steady): a looping clip, a straight walk played from a clip that

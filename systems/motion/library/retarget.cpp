@@ -10,6 +10,7 @@
 #include <glm/gtx/quaternion.hpp>
 
 #include <algorithm>
+#include <cassert>
 #include <cfloat>
 #include <cmath>
 
@@ -70,6 +71,13 @@ int bone_end(int c, const HumanoidMap& a, const HumanoidMap& b) {
 }
 
 }  // namespace
+
+float rest_hip_height(const RetargetRig& rig) {
+    assert(rig.skeleton && rig.map && rig.map->humanoid);
+    std::vector<glm::mat4> scratch;
+    const ModelPose rest = rest_pose(*rig.skeleton, scratch);
+    return rest.position[static_cast<size_t>(rig.map->joint[0])].y - lowest_y(rest, *rig.map);
+}
 
 Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& source, const RetargetRig& target, const std::string& name,
                                    RetargetReport* report) {

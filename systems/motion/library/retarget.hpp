@@ -57,6 +57,10 @@ struct RetargetReport {
     float pelvis_drop = 0.0f;               ///< the most the pelvis was lowered below its scaled path for the legs to reach, m
 };
 
+/// Height of the rig's rest hips (canonical Hips) above its lowest rest body joint (the canonical joints), m: the
+/// leg length retarget_clip scales the pelvis travel by. Requires a mapped humanoid (map->humanoid).
+[[nodiscard]] float rest_hip_height(const RetargetRig& rig);
+
 /// `clip` (on `source.skeleton`) retargeted onto `target.skeleton`, named `name`. Errors: a rig that is not
 /// a mapped humanoid, a clip that does not build on the source skeleton (build_clip's errors, naming the clip),
 /// a rest hip height of zero.

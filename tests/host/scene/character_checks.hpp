@@ -198,4 +198,41 @@ inline void expect_reaches(const CharacterType& t) {
     EXPECT_LE(miss, 1e-3f + 1e-4f);
 }
 
+// Walks `t` for 5 s at `speed` at the clip level over its walk clips: the number of ankle contacts and the
+// farthest a planted ankle moved from its touchdown, contact as issue 15 defines it (within 5 mm of the ankle's
+// lowest height and under 0.5 m/s); `travel` gets the distance the character went.
+inline std::pair<int, float> clip_walk(const CharacterType& t, float speed, float* travel) {
+    MotionController mc(t.skeleton, t.clips, 1);
+    mc.set_walk_rig(*t.rig);
+    mc.set_walk_clips(t.gait_clips);
+    std::vector<AnimLod> lods(1);
+    lods[0].walk = WalkMethod::ClipPlayback;
+    std::vector<MotionState> states(1);
+    std::vector<Transform> xs(1);
+    std::vector<Velocity> vs(1);
+    EXPECT_TRUE(mc.push_request(0, straight_walk(speed)));
+    std::vector<std::array<glm::vec3, 2>> ankles;
+    for (int frame = 0; frame < 300; ++frame) {
+        mc.update(kDt, lods, states, xs, vs);
+        ankles.push_back({world_of(mc, xs[0], t.rig->ankle[0]), world_of(mc, xs[0], t.rig->ankle[1])});
+    }
+    float worst = 0.0f;
+    int contacts = 0;
+    for (size_t side = 0; side < 2; ++side) {
+        float lowest = 1e9f;
+        for (const auto& a : ankles) lowest = std::min(lowest, a[side].y);
+        bool down = false;
+        glm::vec3 start{};
+        for (size_t f = 1; f < ankles.size(); ++f) {
+            const glm::vec3 p = ankles[f][side], q = ankles[f - 1][side];
+            const bool on = p.y < lowest + 0.005f && glm::length(glm::vec2(p.x - q.x, p.z - q.z)) / kDt < 0.5f;
+            if (on && !down) start = p, ++contacts;
+            if (on) worst = std::max(worst, glm::length(glm::vec2(p.x - start.x, p.z - start.z)));
+            down = on;
+        }
+    }
+    *travel = glm::length(xs[0].position);
+    return {contacts, worst};
+}
+
 }  // namespace aloha::test

@@ -112,43 +112,6 @@ TEST(CharacterMotions, GltfAnimationsByNameAndErrors) {
     EXPECT_NE(error_of(d).find("missing.bvh"), std::string::npos) << error_of(d);
 }
 
-// Walks `t` for 5 s at `speed` at the clip level over its walk clips: the number of ankle contacts and the
-// farthest a planted ankle moved from its touchdown, contact as issue 15 defines it (within 5 mm of the ankle's
-// lowest height and under 0.5 m/s); `travel` gets the distance the character went.
-std::pair<int, float> clip_walk(const CharacterType& t, float speed, float* travel) {
-    MotionController mc(t.skeleton, t.clips, 1);
-    mc.set_walk_rig(*t.rig);
-    mc.set_walk_clips(t.gait_clips);
-    std::vector<AnimLod> lods(1);
-    lods[0].walk = WalkMethod::ClipPlayback;
-    std::vector<MotionState> states(1);
-    std::vector<Transform> xs(1);
-    std::vector<Velocity> vs(1);
-    EXPECT_TRUE(mc.push_request(0, straight_walk(speed)));
-    std::vector<std::array<glm::vec3, 2>> ankles;
-    for (int frame = 0; frame < 300; ++frame) {
-        mc.update(kDt, lods, states, xs, vs);
-        ankles.push_back({world_of(mc, xs[0], t.rig->ankle[0]), world_of(mc, xs[0], t.rig->ankle[1])});
-    }
-    float worst = 0.0f;
-    int contacts = 0;
-    for (size_t side = 0; side < 2; ++side) {
-        float lowest = 1e9f;
-        for (const auto& a : ankles) lowest = std::min(lowest, a[side].y);
-        bool down = false;
-        glm::vec3 start{};
-        for (size_t f = 1; f < ankles.size(); ++f) {
-            const glm::vec3 p = ankles[f][side], q = ankles[f - 1][side];
-            const bool on = p.y < lowest + 0.005f && glm::length(glm::vec2(p.x - q.x, p.z - q.z)) / kDt < 0.5f;
-            if (on && !down) start = p, ++contacts;
-            if (on) worst = std::max(worst, glm::length(glm::vec2(p.x - start.x, p.z - start.z)));
-            down = on;
-        }
-    }
-    *travel = glm::length(xs[0].position);
-    return {contacts, worst};
-}
-
 // The Unreal mannequin's layout: a "root" joint on the ground above the pelvis, in centimetres, Z-up facing +X.
 RawSkeleton unreal_rooted() {
     const RawSkeleton body = test::renamed_humanoid(test::unreal_names());
@@ -187,6 +150,8 @@ TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
         ASSERT_EQ(t.gait_clips.size(), 1u) << name << ": its own 'sway' does not loop; the take does";
         EXPECT_EQ(find_clip(t, std::string(name) + ".loop"), static_cast<int>(t.gait_clips[0]));
         EXPECT_TRUE(has_note(t, "walk loop '" + std::string(name) + ".loop' cut from '" + name + ".walk'"));
+        EXPECT_TRUE(has_note(t, "its own walk loops stay its walk, the gaits play by name")) << "the generated gaits do not replace it";
+        EXPECT_GE(find_clip(t, std::string(name) + ".walk_1.40"), 0);
         ASSERT_TRUE(t.rig.has_value());
         const float speed = t.clips.find(t.gait_clips[0])->root_speed();
         EXPECT_GT(speed, 1.0f) << name;

@@ -110,6 +110,26 @@ TEST(SceneLoader, CameraPathInterpolates) {
     EXPECT_FLOAT_EQ(sample_camera(cam, 5.0f).position.x, 2.0f);
 }
 
+// `generated_motion` (bvh and gltf types: true unless turned off) is read, and refused where it means nothing: on a
+// 'humanoid' type, whose motion is generated anyway, and as anything but a boolean.
+TEST(SceneLoader, GeneratedMotionKey) {
+    const std::string head = R"({"camera": {"position": [0, 2, 10], "target": [0, 1, 0]}, "characters": [{"type": "b"}], )";
+    auto on = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json"}]})");
+    ASSERT_TRUE(on.ok()) << message_of(on);
+    EXPECT_TRUE(on.value().types.at(0).generated_motion) << "on by default";
+    auto off = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "generated_motion": false}]})");
+    ASSERT_TRUE(off.ok()) << message_of(off);
+    EXPECT_FALSE(off.value().types.at(0).generated_motion);
+    auto humanoid = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "generated_motion": false}]})");
+    ASSERT_FALSE(humanoid.ok());
+    EXPECT_NE(message_of(humanoid).find("/character_types/0/generated_motion"), std::string::npos) << message_of(humanoid);
+    EXPECT_NE(message_of(humanoid).find("applies to 'bvh' and 'gltf' types only"), std::string::npos) << message_of(humanoid);
+    auto text = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "generated_motion": "no"}]})");
+    ASSERT_FALSE(text.ok());
+    EXPECT_NE(message_of(text).find("/character_types/0/generated_motion"), std::string::npos) << message_of(text);
+    EXPECT_NE(message_of(text).find("expected true or false"), std::string::npos) << message_of(text);
+}
+
 }  // namespace
 }  // namespace aloha
 

@@ -252,8 +252,10 @@ TEST(Tool, ValidatePrintsTheHumanoidMapping) {
                              "  mapping (canonical <- file, 21 of 31): Hips <- hip, LeftHip <- lThigh, RightHip <- rThigh",
                              "  joints ignored by the layers (1): lIndex1",
                              "  units: centimetres; file axes: up +Y, forward +Z; standing height 1.68 m",
-                             "  clip playback: yes (2 clips: poser.mocap 0.63 s, poser.inplace 0.63 s)",
-                             "  kinematic and dynamic walk: yes", "  geometric levels layered and subdivided: yes"})
+                             "  clip playback: yes (13 clips: poser.mocap 0.63 s, poser.inplace 0.63 s, poser.walk_0.50 ",
+                             "  kinematic and dynamic walk: yes", "  geometric levels layered and subdivided: yes",
+                             "  note: generated motion retargeted from the built-in humanoid at 1.75 m (pelvis travel x1.000): 8 gaits, idle, "
+                             "turn, wave; the gaits are its walk"})
         EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
     fs::remove_all(out);
 }

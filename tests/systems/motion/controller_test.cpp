@@ -220,6 +220,36 @@ TEST(MotionController, RestingCharactersAreNotIterated) {
     EXPECT_EQ(f.states[7].at_rest, 1);
 }
 
+// set_stance: characters not posed yet hold the clip's first pose (every joint of "still" at 0.8 rad, the root at
+// its rest translation), through a look-at without IK (which holds the pose) and with no request at all; a
+// character posed already keeps its pose. Exact: the stance is sampled at a key and copied.
+TEST(MotionController, CharactersHoldTheStanceUntilPosed) {
+    Fixture f(3);
+    MotionController mc(f.sk, f.clips, 3);
+    ASSERT_TRUE(mc.push_request(0, play(f.swing, -1.0f)));
+    f.step(mc);  // character 0 is posed; 1 and 2 are not
+    const std::vector<glm::quat> posed(mc.poses().view(0).rotations.begin(), mc.poses().view(0).rotations.end());
+    const AnimationClip& still = *f.clips.find(f.still);
+    mc.set_stance(still);
+    MotionRequest look;
+    look.kind = RequestKind::LookAt;  // no IK registered: holds the pose it finds
+    look.target = glm::vec3(0, 1, 5);
+    ASSERT_TRUE(mc.push_request(1, look));
+    for (int frame = 0; frame < 5; ++frame) f.step(mc);
+    glm::vec3 t[4], sc[4];
+    glm::quat r[4];
+    sample_blocks(still, 0, 0.0f, t, r, sc);
+    for (uint32_t c : {1u, 2u}) {
+        const ConstPoseView pose = mc.poses().view(c);
+        EXPECT_EQ(pose.translations[0], f.sk.rest_translations()[0]) << c;
+        for (size_t j = 0; j < 4; ++j) EXPECT_EQ(pose.rotations[j], r[j]) << c << " joint " << j;
+        EXPECT_NEAR(glm::angle(pose.rotations[2]), 0.8f, 1e-4f) << "the stance, not the rest pose";
+    }
+    f.step(mc);
+    EXPECT_NE(mc.poses().view(0).rotations[1], r[1]) << "a posed character keeps being posed by its request";
+    EXPECT_NEAR(glm::angle(posed[1]), std::abs(0.6f * std::sin(6.2831853f * kDt)), 2e-3f);
+}
+
 TEST(MotionController, WalkFollowsPathWithRootMotion) {
     Fixture f(1);
     MotionController mc(f.sk, f.clips, 1);
