@@ -3,11 +3,16 @@
 
 #include "engine/assets/gltf_loader.hpp"
 #include "host/scene/character_rig.hpp"
+#include "systems/motion/library/foot_root_motion.hpp"
 #include "systems/motion/library/loop_cut.hpp"
+#include "systems/motion/clip.hpp"
 #include "systems/motion/library/retarget.hpp"
+#include "systems/motion/sampling.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <tuple>
 
 namespace aloha {
 
@@ -68,28 +73,90 @@ Result<MotionSource> load_gltf_motion(const MotionFileDesc& m, const CharacterTy
     return out;
 }
 
-}  // namespace
+// Where the loop goes against where the body faces: the cosine between the root's travel over the loop and the
+// facing its rotation gives the rest pose's +Z at the loop's start (1 forward, -1 a backward walk, 0 a strafe).
+float travel_along_facing(const RawAnimation& take, const Skeleton& skeleton, const LoopCut& cut) {
+    Result<AnimationClip> built = build_clip(take, skeleton, ClipEncoding::Float32);
+    if (!built.ok()) return 1.0f;  // cut from it already: cannot fail here
+    const size_t J = static_cast<size_t>(skeleton.joint_count());
+    std::vector<glm::vec3> t0(J), t1(J), s(J);
+    std::vector<glm::quat> r0(J), r1(J);
+    for (const auto& [time, tr, ro] : {std::tuple{cut.start, &t0, &r0}, std::tuple{cut.end, &t1, &r1}}) {
+        int k = 0;
+        float alpha = 0.0f;
+        find_key(built.value(), time, nullptr, &k, &alpha);
+        sample_blocks(built.value(), k, alpha, tr->data(), ro->data(), s.data());
+    }
+    const glm::vec3 facing = r0[0] * glm::inverse(skeleton.rest_rotations()[0]) * glm::vec3(0, 0, 1);
+    const glm::vec2 f(facing.x, facing.z), d(t1[0].x - t0[0].x, t1[0].z - t0[0].z);
+    return glm::length(f) > 1e-4f && glm::length(d) > 1e-4f ? glm::dot(glm::normalize(f), glm::normalize(d)) : 1.0f;
+}
 
-Status add_walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file) {
-    auto cut = find_best_loop(take, type.skeleton, 0.6f, 0.5f, file);
+// add_walk_loop, the failure noted only when `note_failure`.
+Status walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file, bool note_failure) {
+    Result<LoopCut> cut = find_best_loop(take, type.skeleton, 0.6f, 0.5f, file);
+    RawAnimation in_place_moved;
+    FootRootMotionReport feet;
+    const RawAnimation* walk = &take;
+    if (!cut.ok() && type.rig) {
+        // An in-place cycle (no travel of its own): its feet give it root motion, and that may loop as a walk.
+        const int contacts[] = {type.rig->ankle[0], type.rig->ankle[1], type.rig->toe[0], type.rig->toe[1]};  // toe -1: none
+        Result<RawAnimation> moved = root_motion_from_feet(take, type.skeleton, contacts, 0.5f, file, 60.0f, &feet);
+        if (moved.ok()) {
+            in_place_moved = std::move(moved).value();
+            walk = &in_place_moved;
+            cut = find_best_loop(in_place_moved, type.skeleton, 0.6f, 0.5f, file);
+        } else if (moved.error().message.find("has root motion of its own") == std::string::npos) {
+            cut = moved.error();  // in place, and its feet do not walk it: say why
+        }
+    }
+    if (cut.ok() && travel_along_facing(*walk, type.skeleton, cut.value()) < std::cos(0.7853982f)) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "clip '%s' travels more than 45 degrees away from where the body faces (a backward or sideways step): no walk",
+                      take.name.c_str());
+        cut = make_error(file, buf);
+    }
     if (!cut.ok()) {
-        type.notes.push_back("no clip walk: " + cut.error().message);
+        if (note_failure) type.notes.push_back("no clip walk: " + cut.error().message);
         return cut.error();
     }
     std::string name = type.name + ".loop";
     for (int n = 2; type.clips.find(name) >= 0; ++n) name = type.name + ".loop" + std::to_string(n);
-    auto id = type.clips.add(cut_loop(take, type.skeleton, cut.value(), name), type.skeleton);
+    auto id = type.clips.add(cut_loop(*walk, type.skeleton, cut.value(), name), type.skeleton);
     if (!id.ok()) {
         type.notes.push_back("no clip walk: " + id.error().message);
         return id.error();
     }
     type.gait_clips.push_back(id.value());
-    char buf[192];
+    char buf[256];
     std::snprintf(buf, sizeof buf, "walk loop '%s' cut from '%s' at %.2f-%.2f s (seam %.1f cm, %.2f m/s)", name.c_str(), take.name.c_str(),
                   static_cast<double>(cut.value().start), static_cast<double>(cut.value().end),
                   static_cast<double>(100.0f * cut.value().pose_error), static_cast<double>(cut.value().velocity_error));
-    type.notes.push_back(buf);
+    std::string note = buf;
+    if (walk == &in_place_moved) {
+        std::snprintf(buf, sizeof buf, "; in place: root motion from its feet, %.2f m/s forward, %.2f sideways", static_cast<double>(feet.speed),
+                      static_cast<double>(feet.lateral));
+        note += buf;
+    }
+    type.notes.push_back(note);
     return {};
+}
+
+}  // namespace
+
+Status add_walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file) { return walk_loop(type, take, file, true); }
+
+void add_walk_loops(CharacterType& type, std::span<const RawAnimation> takes, const std::string& file) {
+    std::string first;
+    size_t failed = 0;
+    for (const RawAnimation& take : takes) {
+        Status s = walk_loop(type, take, file, false);
+        if (s.ok()) continue;
+        if (failed++ == 0) first = s.error().message;
+    }
+    if (failed == takes.size() && failed > 0)
+        type.notes.push_back("no clip walk: " + first +
+                             (failed == 2 ? " (nor does its other clip)" : failed > 2 ? " (nor do its " + std::to_string(failed - 1) + " other clips)" : ""));
 }
 
 Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {

@@ -66,7 +66,7 @@ Status adopt_rig(const Skeleton& original, const CharacterTypeDesc& desc, RigFor
     return {};
 }
 
-Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
+Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type, std::vector<RawAnimation>& walk_takes) {
     Result<NormalisedBvh> take = load_normalised_bvh(desc.bvh, desc);
     if (!take.ok()) return take.error();
     NormalisedBvh& t = take.value();
@@ -80,11 +80,11 @@ Status load_from_bvh(const CharacterTypeDesc& desc, CharacterType& type) {
     if (Status s = add_clip(type, in_place(mocap, desc.name + ".inplace"), desc.bvh); !s.ok()) return s;
     type.mocap_clip = 0;
     type.inplace_clip = 1;
-    (void)add_walk_loop(type, mocap, desc.bvh);  // a take that does not loop is noted; the type walks kinematically
+    walk_takes.push_back(std::move(mocap));  // tried as a walk once the walk rig is known
     return {};
 }
 
-Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
+Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type, std::vector<RawAnimation>& walk_takes) {
     auto gltf = load_gltf_character(desc.gltf);
     if (!gltf.ok()) return gltf.error();
     GltfCharacter& g = gltf.value();
@@ -102,8 +102,8 @@ Status load_from_gltf(const CharacterTypeDesc& desc, CharacterType& type) {
             type.mocap_clip = 0;
             if (Status s2 = add_clip(type, in_place(clip, desc.name + ".inplace"), desc.gltf); !s2.ok()) return s2;
             type.inplace_clip = 1;
-            (void)add_walk_loop(type, clip, desc.gltf);  // noted when it does not loop
         }
+        walk_takes.push_back(std::move(clip));  // every animation may be a walk or a run: tried once the walk rig is known
     }
     if (!g.meshes.empty()) {
         type.mesh = character_mesh_from_gltf(g, original.value());
@@ -189,7 +189,8 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         use_generated_look(type);
         return type;
     }
-    Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type) : load_from_bvh(desc, type);
+    std::vector<RawAnimation> walk_takes;
+    Status loaded = desc.bvh.empty() ? load_from_gltf(desc, type, walk_takes) : load_from_bvh(desc, type, walk_takes);
     if (!loaded.ok()) return loaded.error();
     const std::string& file = desc.bvh.empty() ? desc.gltf : desc.bvh;
     for (const std::string& note : type.frame.notes) type.notes.push_back(note);
@@ -213,6 +214,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     auto rig = resolve_walk_rig(type.skeleton, type.map, file);
     if (rig.ok()) type.rig = std::move(rig.value());
     else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
+    add_walk_loops(type, walk_takes, file);  // those that loop as walks (an in-place cycle given root motion by its feet)
     if (type.muscles.size() == 0 && type.mesh && type.map.humanoid) {
         std::vector<glm::mat4> bind_model;
         for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));

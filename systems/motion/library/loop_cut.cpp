@@ -50,24 +50,50 @@ struct Frames {
     std::vector<float> heading;
 };
 
-Frames sample_frames(const AnimationClip& clip, const Skeleton& sk, float step) {
-    Frames f;
-    f.joints = static_cast<size_t>(sk.joint_count());
+// Appends the frame of `clip` at time t to `f` (f.joints set).
+void add_frame(Frames& f, const AnimationClip& clip, const Skeleton& sk, float t) {
     std::vector<glm::vec3> tr(f.joints), sc(f.joints);
     std::vector<glm::quat> ro(f.joints);
     std::vector<glm::mat4> model(f.joints);
+    sample_local(clip, t, tr, ro, sc);
+    local_to_model(sk.parents().data(), tr.data(), ro.data(), sc.data(), nullptr, model.data(), f.joints);
+    const glm::vec3 r(model[0][3]);
+    const float h = heading_of(glm::quat_cast(glm::mat3(model[0])));
+    const glm::quat inv = glm::angleAxis(-h, glm::vec3(0, 1, 0));
+    for (size_t j = 0; j < f.joints; ++j) f.rel.push_back(inv * (glm::vec3(model[j][3]) - glm::vec3(r.x, 0.0f, r.z)));
+    f.root.emplace_back(r.x, r.z);
+    f.heading.push_back(h);
+}
+
+Frames sample_frames(const AnimationClip& clip, const Skeleton& sk, float step) {
+    Frames f;
+    f.joints = static_cast<size_t>(sk.joint_count());
     const int count = static_cast<int>(clip.duration() / step) + 1;
-    for (int i = 0; i < count; ++i) {
-        sample_local(clip, static_cast<float>(i) * step, tr, ro, sc);
-        local_to_model(sk.parents().data(), tr.data(), ro.data(), sc.data(), nullptr, model.data(), f.joints);
-        const glm::vec3 r(model[0][3]);
-        const float h = heading_of(glm::quat_cast(glm::mat3(model[0])));
-        const glm::quat inv = glm::angleAxis(-h, glm::vec3(0, 1, 0));
-        for (size_t j = 0; j < f.joints; ++j) f.rel.push_back(inv * (glm::vec3(model[j][3]) - glm::vec3(r.x, 0.0f, r.z)));
-        f.root.emplace_back(r.x, r.z);
-        f.heading.push_back(h);
-    }
+    for (int i = 0; i < count; ++i) add_frame(f, clip, sk, static_cast<float>(i) * step);
     return f;
+}
+
+// The seam of the whole take as a loop (a cycle authored as one: an in-place walk given root motion): mean joint
+// distance between the first and last poses, and how much more the velocity jumps across the seam (the take's last
+// step against its first, both over `step`) than it jumps anywhere inside the take (`inside`, the largest mean joint
+// change of velocity between consecutive steps): a run's touchdown jolts the feet every step, and a seam at a
+// touchdown is no worse than the others.
+LoopCut whole_take(const AnimationClip& clip, const Skeleton& sk, float step, float inside) {
+    Frames f;
+    f.joints = static_cast<size_t>(sk.joint_count());
+    const float d = clip.duration();
+    for (const float t : {0.0f, step, d - step, d}) add_frame(f, clip, sk, t);
+    const size_t J = f.joints;
+    const auto p = [&](size_t frame, size_t j) { return f.rel[frame * J + j]; };
+    LoopCut out{0.0f, d, 0.0f, 0.0f};
+    float jump = 0.0f;
+    for (size_t j = 0; j < J; ++j) {
+        out.pose_error += glm::length(p(0, j) - p(3, j));
+        jump += glm::length((p(1, j) - p(0, j)) - (p(3, j) - p(2, j))) / step;
+    }
+    out.pose_error /= static_cast<float>(J);
+    out.velocity_error = std::max(0.0f, jump / static_cast<float>(J) - inside);
+    return out;
 }
 
 }  // namespace
@@ -116,6 +142,19 @@ Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleto
                 found = true;
             }
         }
+    }
+    // The whole take, when it keeps moving throughout: a cycle authored as one loops at its ends, which the search
+    // above (velocities need a frame either side) cannot cut.
+    if (clip.duration() >= min_seconds && *std::min_element(speed.begin(), speed.end()) >= min_speed) {
+        float inside = 0.0f;  // the largest change of velocity between consecutive steps inside the take
+        for (size_t i = 1; i + 1 < n; ++i) {
+            float change = 0.0f;
+            for (size_t j = 0; j < J; ++j) change += glm::length(pose(i + 1, j) - 2.0f * pose(i, j) + pose(i - 1, j)) / step;
+            inside = std::max(inside, change / static_cast<float>(J));
+        }
+        const LoopCut whole = whole_take(clip, skeleton, step, inside);
+        const float score = whole.pose_error + 0.1f * whole.velocity_error;
+        if (score < best_score) best_score = score, best = whole, found = true;
     }
     if (!found)
         return make_error(source, "clip '" + take.name + "' has no stretch of " + short_number(min_seconds) +

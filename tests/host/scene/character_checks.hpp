@@ -235,4 +235,17 @@ inline std::pair<int, float> clip_walk(const CharacterType& t, float speed, floa
     return {contacts, worst};
 }
 
+/// `t` walks at `speed` at the clip level for 5 s (clip_walk) as every clip walk must: at least 6 ankle contacts,
+/// planted ankles drifting under 1 cm (the kinematic walk's bar), the distance the speed says within 5 cm. Prints the
+/// figures as "[figure] <what> at <speed> m/s: ...".
+inline void expect_clip_walk(const CharacterType& t, float speed, const std::string& what) {
+    float travel = 0.0f;
+    const auto [contacts, drift] = clip_walk(t, speed, &travel);
+    std::printf("[figure] %s at %.2f m/s: %d contacts, planted ankle drift %.2g m, went %.3f m\n", what.c_str(), static_cast<double>(speed),
+                contacts, static_cast<double>(drift), static_cast<double>(travel));
+    EXPECT_GE(contacts, 6) << what << " at " << speed;
+    EXPECT_LT(drift, 0.01f) << what << " at " << speed;
+    EXPECT_NEAR(travel, speed * 300 * kDt, 0.05f) << what << " at " << speed;
+}
+
 }  // namespace aloha::test

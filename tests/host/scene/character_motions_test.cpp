@@ -7,6 +7,7 @@
 #include "systems/motion/library/motion_library.hpp"
 #include "tests/common/bvh_writer.hpp"
 #include "tests/common/clip_pose.hpp"
+#include "tests/common/gltf_writer.hpp"
 #include "tests/common/rig_fixtures.hpp"
 #include "tests/common/test_assets.hpp"
 #include "tests/host/scene/character_checks.hpp"
@@ -155,13 +156,7 @@ TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
         ASSERT_TRUE(t.rig.has_value());
         const float speed = t.clips.find(t.gait_clips[0])->root_speed();
         EXPECT_GT(speed, 1.0f) << name;
-        float travel = 0.0f;
-        const auto [contacts, drift] = clip_walk(t, speed, &travel);
-        std::printf("[figure] %s: retargeted walk loop at %.2f m/s: %d contacts, planted ankle drift %.2g m, went %.3f m\n", name,
-                    static_cast<double>(speed), contacts, static_cast<double>(drift), static_cast<double>(travel));
-        EXPECT_GE(contacts, 6) << name;
-        EXPECT_LT(drift, 0.01f) << name;
-        EXPECT_NEAR(travel, speed * 300 * kDt, 0.05f) << name;
+        expect_clip_walk(t, speed, std::string(name) + ": retargeted walk loop");
     }
 
     // A take that does not loop cannot be the walk: an error at the motion's "walk".
@@ -170,6 +165,97 @@ TEST(CharacterMotions, WalkTakeBecomesTheTypesClipWalk) {
     d.motions[0].walk = true;
     test::write_text(d.motions[0].bvh, test::bvh_text(test::renamed_humanoid(test::poser_names()), 30, glm::vec3(0, 0, 1), 0.0f));
     EXPECT_NE(error_of(d).find("/character_types/0/motions/0/walk: 'walk': clip 'rig.still' cannot be the type's walk"), std::string::npos) << error_of(d);
+}
+
+// The built-in humanoid's gait with its root's horizontal travel taken out when `in_place` (an "In Place" export),
+// played backwards when `backwards`.
+RawAnimation take_of(const RawAnimation& gait, bool in_place, bool backwards = false) {
+    RawAnimation out = gait;
+    if (in_place)
+        for (glm::vec3& p : out.tracks[0].translations.values) p.x = 0.0f, p.z = 0.0f;
+    if (backwards)
+        for (RawJointTracks& t : out.tracks) {
+            auto flip = [&](auto& track) {
+                std::reverse(track.values.begin(), track.values.end());
+                std::reverse(track.times.begin(), track.times.end());
+                for (float& time : track.times) time = gait.duration - time;
+            };
+            flip(t.translations);
+            flip(t.rotations);
+            flip(t.scales);
+        }
+    return out;
+}
+
+// One cycle of `take` as a BVH in centimetres at 60 fps.
+std::string bvh_of(const Skeleton& body, const RawAnimation& take) {
+    return test::bvh_text_of_clip(body, build_clip(take, body, ClipEncoding::Float32).value(), 100.0f, 60.0f, 1);
+}
+
+// An "In Place" walk and run (the built-in 1.40 m/s walk and 2.60 m/s run, their root's travel taken out, one cycle
+// each), given with "walk" to a T-posed Rigify glTF: each gets root motion from its feet and becomes one of the
+// type's walk clips, walked at the clip level with planted ankles (drift under 1 cm, the bar of every clip walk) at
+// its speed, the generated gaits stepping aside. The same walk as a BVH type's own take is that type's walk. Played
+// backwards it is no walk: an error at the motion's "walk" saying why.
+TEST(CharacterMotions, InPlaceWalkAndRunGetRootMotionFromTheirFeet) {
+    const fs::path dir = temp_dir("motions_in_place");
+    const Skeleton body = humanoid_skeleton_for({1.75f, 0.5f});
+    const MotionLibrary lib = make_motion_library(body, humanoid_rig(body), "src");
+    test::write_text((dir / "walk_ip.bvh").string(), bvh_of(body, take_of(lib.gaits[3], true)));
+    test::write_text((dir / "run_ip.bvh").string(), bvh_of(body, take_of(lib.gaits[6], true)));
+    test::write_text((dir / "back_ip.bvh").string(), bvh_of(body, take_of(lib.gaits[3], true, true)));
+    RigStyle t_pose;
+    t_pose.t_pose = true;
+    test::write_text((dir / "rig.gltf").string(), test::gltf_text(test::styled(test::renamed_humanoid(test::rigify_names("DEF-"), {}, true), t_pose), 1, 0.3f));
+    CharacterTypeDesc d = desc_for("rig", (dir / "rig.gltf").string());
+    d.motions = {motion(dir / "walk_ip.bvh"), motion(dir / "run_ip.bvh")};
+    for (MotionFileDesc& m : d.motions) m.walk = true;
+    const CharacterType t = load_or_fail(d);
+    ASSERT_EQ(t.gait_clips.size(), 2u) << "the walk and the run; the generated gaits play by name";
+    EXPECT_TRUE(has_note(t, "walk loop 'rig.loop' cut from 'rig.walk_ip'")) << t.notes.back();
+    EXPECT_TRUE(has_note(t, "in place: root motion from its feet, 1.40 m/s forward"));
+    EXPECT_TRUE(has_note(t, "its own walk loops stay its walk"));
+    for (const ClipId id : t.gait_clips) expect_clip_walk(t, t.clips.find(id)->root_speed(), "in-place take given root motion by its feet");
+
+    const CharacterType own = load_or_fail(desc_for("ip", (dir / "walk_ip.bvh").string()));
+    ASSERT_EQ(own.gait_clips.size(), 1u) << "a BVH type's in-place take is its walk";
+    EXPECT_EQ(find_clip(own, "ip.loop"), static_cast<int>(own.gait_clips[0]));
+    EXPECT_NEAR(own.clips.find(own.gait_clips[0])->root_speed(), 1.4f, 0.02f);
+
+    d.motions = {motion(dir / "back_ip.bvh")};
+    d.motions[0].walk = true;
+    EXPECT_NE(error_of(d).find("/character_types/0/motions/0/walk: 'walk': clip 'rig.back_ip' cannot be the type's walk: clip "
+                               "'rig.back_ip': its feet carry the body forward at -1.4"),
+              std::string::npos)
+        << error_of(d);
+}
+
+// A game pack's character file: the built-in humanoid with animations "WalkBack" (a walk travelling backwards),
+// "Idle", "Walk" and "Run" (in place) in one glTF. Every animation is tried as a walk: "Walk" and "Run" become the
+// type's walk clips, given root motion by their feet; "WalkBack" and "Idle" are none, and say nothing while
+// another walks. A file with only "WalkBack" and "Idle" walks the generated gaits, one note giving the first's reason.
+TEST(CharacterMotions, EveryAnimationOfAFileIsTriedAsAWalk) {
+    const fs::path dir = temp_dir("motions_pack");
+    const Skeleton body = humanoid_skeleton_for({1.75f, 0.5f});
+    const MotionLibrary lib = make_motion_library(body, humanoid_rig(body), "src");
+    auto built = [&](const RawAnimation& raw) { return build_clip(raw, body, ClipEncoding::Float32).value(); };
+    const AnimationClip back = built(take_of(lib.gaits[3], false, true)), idle = built(lib.idle), walk = built(take_of(lib.gaits[3], true)),
+                        run = built(take_of(lib.gaits[6], true));
+    test::write_gltf_with_clips((dir / "pack.gltf").string(), body, {{"WalkBack", &back}, {"Idle", &idle}, {"Walk", &walk}, {"Run", &run}});
+    const CharacterType t = load_or_fail(desc_for("pack", (dir / "pack.gltf").string()));
+    ASSERT_EQ(t.gait_clips.size(), 2u) << "Walk and Run";
+    EXPECT_TRUE(has_note(t, "walk loop 'pack.loop' cut from 'Walk'"));
+    EXPECT_TRUE(has_note(t, "walk loop 'pack.loop2' cut from 'Run'"));
+    EXPECT_TRUE(has_note(t, "in place: root motion from its feet, 2.5"));  // the run: 2.58 m/s, its flight bridged
+    EXPECT_FALSE(has_note(t, "no clip walk"));
+    EXPECT_NEAR(t.clips.find(t.gait_clips[0])->root_speed(), 1.4f, 0.02f);
+
+    test::write_gltf_with_clips((dir / "still.gltf").string(), body, {{"WalkBack", &back}, {"Idle", &idle}});
+    const CharacterType still = load_or_fail(desc_for("still", (dir / "still.gltf").string()));
+    EXPECT_EQ(still.gait_clips.size(), std::size(kLibraryGaitSpeeds)) << "the generated gaits";
+    EXPECT_TRUE(has_note(still, "no clip walk: clip 'WalkBack' travels more than 45 degrees away from where the body faces (a backward or "
+                                "sideways step): no walk (nor does its other clip)"))
+        << still.notes[0];
 }
 
 // A Mixamo-style animation file: joints in centimetres under an "Armature" node scaling by 0.01 and turning the rig
