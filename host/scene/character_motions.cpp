@@ -92,13 +92,17 @@ float travel_along_facing(const RawAnimation& take, const Skeleton& skeleton, co
     return glm::length(f) > 1e-4f && glm::length(d) > 1e-4f ? glm::dot(glm::normalize(f), glm::normalize(d)) : 1.0f;
 }
 
+// Longest in-place take given root motion to try as a walk (a cycle is a second or two; a long take in place is
+// an idle or a dance, and resampling it would cost load time for nothing).
+constexpr float kMaxInPlaceSeconds = 60.0f;
+
 // add_walk_loop, the failure noted only when `note_failure`.
 Status walk_loop(CharacterType& type, const RawAnimation& take, const std::string& file, bool note_failure) {
     Result<LoopCut> cut = find_best_loop(take, type.skeleton, 0.6f, 0.5f, file);
     RawAnimation in_place_moved;
     FootRootMotionReport feet;
     const RawAnimation* walk = &take;
-    if (!cut.ok() && type.rig) {
+    if (!cut.ok() && type.rig && take.duration <= kMaxInPlaceSeconds) {
         // An in-place cycle (no travel of its own): its feet give it root motion, and that may loop as a walk.
         const int contacts[] = {type.rig->ankle[0], type.rig->ankle[1], type.rig->toe[0], type.rig->toe[1]};  // toe -1: none
         Result<RawAnimation> moved = root_motion_from_feet(take, type.skeleton, contacts, 0.5f, file, 60.0f, &feet);

@@ -14,6 +14,7 @@
 #include "systems/motion/library/motion_library.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <cstdio>
 
@@ -30,6 +31,27 @@ RawAnimation in_place(const RawAnimation& clip, const std::string& name) {
         for (auto& p : v) p.x = 0.0f, p.z = 0.0f;
     }
     return out;
+}
+
+// The file clip a type idles in: one named "idle" (any case) first, then one whose name starts with it, then one
+// containing it (Quaternius "Idle", Kenney "idle", Ready Player Me "F_Standing_Idle_001"), the shortest name
+// winning a tie; -1 without.
+int named_idle(const CharacterType& type, std::span<const RawAnimation> clips) {
+    int best = -1, best_rank = 3;
+    size_t best_length = 0;
+    for (const RawAnimation& clip : clips) {
+        std::string lower = clip.name;
+        for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        const size_t at = lower.find("idle");
+        if (at == std::string::npos) continue;
+        const int rank = lower == "idle" ? 0 : at == 0 ? 1 : 2;
+        if (rank < best_rank || (rank == best_rank && lower.size() < best_length)) {
+            best = type.clips.find(clip.name);
+            best_rank = rank;
+            best_length = lower.size();
+        }
+    }
+    return best;
 }
 
 // Height and radius of the rest pose from the joints' model positions.
@@ -215,6 +237,10 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     if (rig.ok()) type.rig = std::move(rig.value());
     else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
     add_walk_loops(type, walk_takes, file);  // those that loop as walks (an in-place cycle given root motion by its feet)
+    if (const int idle = named_idle(type, walk_takes); idle >= 0) {
+        type.idle_clip = idle;  // idlers play it, characters stand in its first pose
+        type.notes.push_back("idle: the file's clip '" + type.clips.find(static_cast<ClipId>(idle))->name() + "'");
+    }
     if (type.muscles.size() == 0 && type.mesh && type.map.humanoid) {
         std::vector<glm::mat4> bind_model;
         for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));

@@ -26,7 +26,8 @@ struct CharacterType {
     ClipLibrary clips;
     int mocap_clip = -1;            ///< the file's own motion ("<name>.mocap"), -1 when none
     int inplace_clip = -1;          ///< the same with horizontal root travel removed ("<name>.inplace")
-    int idle_clip = -1;             ///< generated idle ("<prefix>.idle"), -1 when the type has no library
+    int idle_clip = -1;             ///< what idlers play and characters stand in: a file clip named like "Idle", else the
+                                    ///< generated idle ("<prefix>.idle"), -1 when neither
     std::vector<ClipId> gait_clips; ///< generated walk/run cycles, slowest first (the walk's clips)
     std::optional<WalkRig> rig;     ///< leg rig for kinematic walking (none when legs are not found)
     MuscleSet muscles;

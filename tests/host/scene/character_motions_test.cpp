@@ -233,7 +233,9 @@ TEST(CharacterMotions, InPlaceWalkAndRunGetRootMotionFromTheirFeet) {
 // A game pack's character file: the built-in humanoid with animations "WalkBack" (a walk travelling backwards),
 // "Idle", "Walk" and "Run" (in place) in one glTF. Every animation is tried as a walk: "Walk" and "Run" become the
 // type's walk clips, given root motion by their feet; "WalkBack" and "Idle" are none, and say nothing while
-// another walks. A file with only "WalkBack" and "Idle" walks the generated gaits, one note giving the first's reason.
+// another walks; "Idle" is what the type idles in. A file with only "WalkBack" and idles walks the generated gaits,
+// one note giving the first's reason, and idles in the one named "idle" in any case ("IDLE" before "Idle_to_Run" and
+// "Standing_Idle").
 TEST(CharacterMotions, EveryAnimationOfAFileIsTriedAsAWalk) {
     const fs::path dir = temp_dir("motions_pack");
     const Skeleton body = humanoid_skeleton_for({1.75f, 0.5f});
@@ -249,12 +251,16 @@ TEST(CharacterMotions, EveryAnimationOfAFileIsTriedAsAWalk) {
     EXPECT_TRUE(has_note(t, "in place: root motion from its feet, 2.5"));  // the run: 2.58 m/s, its flight bridged
     EXPECT_FALSE(has_note(t, "no clip walk"));
     EXPECT_NEAR(t.clips.find(t.gait_clips[0])->root_speed(), 1.4f, 0.02f);
+    EXPECT_EQ(t.idle_clip, find_clip(t, "Idle")) << "the file's own idle, not the generated one";
+    EXPECT_TRUE(has_note(t, "idle: the file's clip 'Idle'"));
 
-    test::write_gltf_with_clips((dir / "still.gltf").string(), body, {{"WalkBack", &back}, {"Idle", &idle}});
+    test::write_gltf_with_clips((dir / "still.gltf").string(), body,
+                                {{"WalkBack", &back}, {"Standing_Idle", &idle}, {"IDLE", &idle}, {"Idle_to_Run", &idle}});
     const CharacterType still = load_or_fail(desc_for("still", (dir / "still.gltf").string()));
     EXPECT_EQ(still.gait_clips.size(), std::size(kLibraryGaitSpeeds)) << "the generated gaits";
+    EXPECT_EQ(still.idle_clip, find_clip(still, "IDLE")) << "named idle, before names starting or containing it";
     EXPECT_TRUE(has_note(still, "no clip walk: clip 'WalkBack' travels more than 45 degrees away from where the body faces (a backward or "
-                                "sideways step): no walk (nor does its other clip)"))
+                                "sideways step): no walk (nor do its 3 other clips)"))
         << still.notes[0];
 }
 
