@@ -8,6 +8,7 @@
 #include "systems/motion/walk_rig.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cstdio>
 
 namespace aloha {
@@ -32,6 +33,10 @@ Result<SourceBody> source_body(const HumanoidDefinition& def, float height) {
     stand_rig_on_rest_ground(rig.value(), skeleton.value());
     return SourceBody{std::move(skeleton).value(), std::move(map).value(), std::move(rig).value()};
 }
+
+// How far from its own speed a type's own walk loop plays before a generated gait takes over: the cadence warped
+// by a quarter either way still reads as that walk, brisk or slow; a walk at twice its cadence reads as no run.
+constexpr float kOwnLoopReach = 1.25f;
 
 }  // namespace
 
@@ -102,7 +107,22 @@ Status add_generated_motion(CharacterType& type, const CharacterTypeDesc& desc) 
         type.gait_clips = gaits;
         note += "; the gaits are its walk";
     } else if (!gaits.empty()) {
-        note += "; its own walk loops stay its walk, the gaits play by name";
+        // Its own loops walk the speeds they can reach within kOwnLoopReach of their cadence; the generated gaits
+        // beyond that join them (a file's walk alone would have to be played at twice its cadence to run).
+        float slowest = FLT_MAX, fastest = 0.0f;
+        for (const ClipId id : type.gait_clips) {
+            const float v = type.clips.find(id)->root_speed();
+            slowest = std::min(slowest, v), fastest = std::max(fastest, v);
+        }
+        std::string joined;
+        for (const ClipId id : gaits) {
+            const AnimationClip& gait = *type.clips.find(id);
+            if (gait.root_speed() >= slowest / kOwnLoopReach && gait.root_speed() <= fastest * kOwnLoopReach) continue;
+            type.gait_clips.push_back(id);
+            joined += (joined.empty() ? "" : ", ") + gait.name();
+        }
+        note += "; its own walk loops stay its walk" + (joined.empty() ? std::string() : " with the gaits beyond their reach (" + joined + ")") +
+                ", the others play by name";
     }
     if (!skipped.empty()) note += "; left out, the file having clips of these names: " + skipped;
     type.notes.push_back(note);

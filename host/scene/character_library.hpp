@@ -15,8 +15,9 @@ namespace aloha {
 /// clips "<prefix>.walk_0.50" ... "<prefix>.run_3.00", "<prefix>.idle", "<prefix>.turn", "<prefix>.wave", made for
 /// the built-in humanoid of desc.canonical at the type's rest hip height (its height clamped to [0.5, 2.5] m) and
 /// retargeted onto type.skeleton. The gaits become the type's walk clips (type.gait_clips) when it has none (no loop
-/// cut from its file or a motion file's `walk`); otherwise its own loops stay its walk and the gaits are only
-/// played by name (noted). The idle becomes type.idle_clip (what idlers play) when it has none. A generated
+/// cut from its file or a motion file's `walk`); otherwise its own loops stay its walk for the speeds within a
+/// quarter of theirs and the gaits beyond join them, after them (a file's walk alone would be warped to run); the
+/// rest play by name (noted). The idle becomes type.idle_clip (what idlers play) when it has none. A generated
 /// clip whose name the type already has is left out (noted). One note sums it up. Does nothing when
 /// desc.generated_motion is false, the type is no mapped humanoid (type.map.humanoid) or desc.canonical is empty.
 /// Errors: the built-in definition's (naming its file), a clip that does not retarget or build (naming the type's

@@ -28,7 +28,8 @@ struct CharacterType {
     int inplace_clip = -1;          ///< the same with horizontal root travel removed ("<name>.inplace")
     int idle_clip = -1;             ///< what idlers play and characters stand in: a file clip named like "Idle", else the
                                     ///< generated idle ("<prefix>.idle"), -1 when neither
-    std::vector<ClipId> gait_clips; ///< generated walk/run cycles, slowest first (the walk's clips)
+    std::vector<ClipId> gait_clips; ///< the walk's clips: generated walk/run cycles slowest first, or the type's own
+                                    ///< loops first (the impostors bake the first) and generated ones beyond their speeds
     std::optional<WalkRig> rig;     ///< leg rig for kinematic walking (none when legs are not found)
     MuscleSet muscles;
     std::optional<CharacterMesh> mesh;  ///< glTF skin, when the type has one
