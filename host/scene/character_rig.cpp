@@ -21,6 +21,18 @@ Result<NormalisedRig> normalise_file_rig(const Skeleton& original, const Charact
     auto frame = detect_rig_frame(original, rig.map, format, desc.scale, file);
     if (!frame.ok()) return frame.error();
     rig.frame = std::move(frame.value());
+    if (desc.standing_height > 0.0f) {
+        if (!(rig.frame.height > 0.0f))
+            return make_error(desc.scene_file, "type '" + desc.name + "' from " + file + " is no mapped humanoid: it has no standing height to vary",
+                              0, 0, desc.pointer);
+        const float factor = desc.standing_height / rig.frame.height;  // the whole body, clips and mesh alike
+        rig.frame.metres_per_unit *= factor;
+        rig.frame.height = desc.standing_height;
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "scaled x%.3f to stand %.2f m tall (a crowd's height variant)", static_cast<double>(factor),
+                      static_cast<double>(desc.standing_height));
+        rig.frame.notes.push_back(buf);
+    }
     rig.change = normalise_rig(original, rig.frame);
     auto skeleton = build_skeleton(rig.change.skeleton, file);
     if (!skeleton.ok()) return skeleton.error();

@@ -217,23 +217,28 @@ void read_paths(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
 }
 
 // Gives every crowd with a height or build range its own body variants: types that copy the
-// crowd's humanoid type with heights spread evenly over the range and builds spread by the golden
-// ratio (so height and build are not correlated). Their clips keep the base type's names.
+// crowd's type with heights spread evenly over the range and builds spread by the golden
+// ratio (so height and build are not correlated). Their clips keep the base type's names. A file's
+// character (bvh, gltf) varies in height only, scaled uniformly to each (standing_height).
 void add_body_variants(SceneDesc& scene, std::vector<Error>& errors) {
     for (size_t ci = 0; ci < scene.crowds.size(); ++ci) {
         CrowdDesc& crowd = scene.crowds[ci];
         if (crowd.variants == 0 || scene.types.empty()) continue;
         const CharacterTypeDesc base = scene.types[static_cast<size_t>(crowd.type)];
-        if (base.humanoid.empty()) {
-            errors.push_back(make_error(scene.file, "height and build variety needs a 'humanoid' character type; '" +
-                                                        base.name + "' is not one", 0, 0, "/crowds/" + std::to_string(ci)));
+        if (base.humanoid.empty() && crowd.build_max >= 0.0f) {
+            errors.push_back(make_error(scene.file, "build variety needs a 'humanoid' character type ('" + base.name +
+                                                        "' is a file's character: give it a 'height' range, which scales it)",
+                                        0, 0, "/crowds/" + std::to_string(ci) + "/build"));
             continue;
         }
         for (uint32_t v = 0; v < crowd.variants; ++v) {
             CharacterTypeDesc t = base;
             const float u = (static_cast<float>(v) + 0.5f) / static_cast<float>(crowd.variants);
             const float g = std::fmod(0.5f + 0.6180340f * static_cast<float>(v), 1.0f);
-            if (crowd.height_max > 0.0f) t.height = crowd.height_min + (crowd.height_max - crowd.height_min) * u;
+            if (crowd.height_max > 0.0f) {
+                const float height = crowd.height_min + (crowd.height_max - crowd.height_min) * u;
+                (base.humanoid.empty() ? t.standing_height : t.height) = height;  // a file's character is scaled to it
+            }
             if (crowd.build_max >= 0.0f) t.build = crowd.build_min + (crowd.build_max - crowd.build_min) * g;
             t.name = base.name + "~" + std::to_string(ci) + "." + std::to_string(v);
             t.clip_prefix = base.clip_prefix.empty() ? base.name : base.clip_prefix;

@@ -128,6 +128,13 @@ TEST(CharacterLibrary, NoneWhenTurnedOffOrNotAHumanoid) {
     EXPECT_EQ(dog.idle_clip, -1);
     EXPECT_LT(find_clip(dog, "dog.walk_1.40"), 0);
     EXPECT_FALSE(has_note(dog, "generated motion"));
+    // Nor can a crowd vary its height (a standing height needs the canonical legs and head to measure).
+    CharacterTypeDesc tall = desc_for("dog", (dir / "dog.bvh").string());
+    tall.standing_height = 1.7f;
+    const Result<CharacterType> refused = load_character_type(tall);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().to_string().find("is no mapped humanoid: it has no standing height to vary"), std::string::npos)
+        << refused.error().to_string();
 }
 
 }  // namespace

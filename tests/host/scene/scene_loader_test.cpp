@@ -163,10 +163,19 @@ TEST(SceneLoader, CrowdBodyVariants) {
     auto bad_height = parse(base + R"("crowds": [{"count": 5, "height": [1.9, 1.6]}]})");
     ASSERT_FALSE(bad_height.ok());
     EXPECT_NE(message_of(bad_height).find("/crowds/0/height"), std::string::npos) << message_of(bad_height);
-    auto not_humanoid = parse(base + R"("character_types": [{"name": "b", "bvh": "closeup.json"}],
-                                         "crowds": [{"type": "b", "count": 5, "height": [1.6, 1.9]}]})");
-    ASSERT_FALSE(not_humanoid.ok());
-    EXPECT_NE(message_of(not_humanoid).find("needs a 'humanoid' character type"), std::string::npos) << message_of(not_humanoid);
+    // A file's character varies in height (scaled uniformly: standing_height), not in build.
+    auto file_height = parse(base + R"("character_types": [{"name": "b", "gltf": "closeup.json"}],
+                                        "crowds": [{"type": "b", "count": 5, "height": [1.6, 1.9], "variants": 2}]})");
+    ASSERT_TRUE(file_height.ok()) << message_of(file_height);
+    ASSERT_EQ(file_height.value().types.size(), 3u);
+    EXPECT_FLOAT_EQ(file_height.value().types[1].standing_height, 1.675f);
+    EXPECT_FLOAT_EQ(file_height.value().types[2].standing_height, 1.825f);
+    EXPECT_EQ(file_height.value().types[0].standing_height, 0.0f) << "the base type stands as its file makes it";
+    auto file_build = parse(base + R"("character_types": [{"name": "b", "gltf": "closeup.json"}],
+                                       "crowds": [{"type": "b", "count": 5, "build": [0, 1]}]})");
+    ASSERT_FALSE(file_build.ok());
+    EXPECT_NE(message_of(file_build).find("/crowds/0/build: build variety needs a 'humanoid' character type"), std::string::npos)
+        << message_of(file_build);
     auto height_on_bvh = parse(base + R"("character_types": [{"name": "b", "bvh": "closeup.json", "height": 1.7}],
                                           "crowds": [{"type": "b", "count": 5}]})");
     ASSERT_FALSE(height_on_bvh.ok());

@@ -3,6 +3,7 @@
 // type's prefix, the crowd plays it, and the motion is the same pelvis travel scaled by each body's legs.
 #include "systems/motion/library/motion_library.hpp"
 #include "tests/common/bvh_writer.hpp"
+#include "tests/common/rig_fixtures.hpp"
 #include "tests/common/test_humanoid.hpp"
 #include "tests/host/scene/world_test_util.hpp"
 
@@ -54,6 +55,57 @@ TEST(WorldMotions, CrowdVariantsPlayATakeRetargetedOntoEachBody) {
     size_t playing = 0;
     for (const MotionState& m : g.span<MotionState>()) playing += m.active == RequestKind::PlayClip && m.at_rest == 0;
     EXPECT_EQ(playing, 12u) << "every character plays the take";
+    fs::remove_all(dir);
+}
+
+// A crowd of a file's character with a height range: each variant is the file's character scaled uniformly to stand
+// as tall as its share of the range says (its skeleton, mesh and clips alike) and walks its own generated gaits, made
+// for its legs: one speed, a shorter cycle for shorter legs; a build range is refused for it, naming the crowd's key.
+TEST(WorldMotions, FileCharacterCrowdVariesInHeight) {
+    const fs::path dir = fs::temp_directory_path() / ("aloha_world_file_variants_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "rig.gltf") << test::gltf_text(test::renamed_humanoid(test::rigify_names("DEF-")), 1, 0.3f, true);
+    const std::string head = R"({"name": "v", "frames": 20, "camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
+      "character_types": [{"name": "rig", "gltf": "rig.gltf"}],
+      "crowds": [{"type": "rig", "count": 9, "layout": "grid", "spacing": 2, "mix": {"walk": 1, "idle": 0, "reach": 0}, )";
+    const SceneDesc scene = scene_from_json(head + R"("height": [1.5, 1.8], "variants": 3}]})", (dir / "scene.json").string());
+    auto w = make_world(scene);
+    ASSERT_TRUE(w);
+    const float own = w->type(0).frame.height;
+    std::vector<float> heights, cycles;
+    for (size_t t = 0; t < w->type_count(); ++t) {
+        const CharacterType& type = w->type(t);
+        if (type.name.find('~') == std::string::npos) continue;
+        heights.push_back(type.frame.height);
+        const int id = find_clip(type, "rig.walk_1.40");
+        ASSERT_GE(id, 0) << type.name << ": the generated gaits under the base type's prefix";
+        const AnimationClip& gait = *type.clips.find(static_cast<ClipId>(id));
+        EXPECT_NEAR(gait.root_speed(), 1.4f, 0.01f) << type.name;
+        cycles.push_back(gait.duration());
+        // Uniform scale: the hips stand at the base's hips height times the height ratio (float rounding: 1e-5 m).
+        const float ratio = type.frame.height / own;
+        const auto hips = [](const CharacterType& c) {
+            return glm::vec3(skeleton_rest_model(c.skeleton)[static_cast<size_t>(c.map.find("Hips"))][3]).y;
+        };
+        EXPECT_NEAR(hips(type), hips(w->type(0)) * ratio, 1e-5f) << type.name;
+        ASSERT_TRUE(type.mesh.has_value());
+        EXPECT_NEAR(type.mesh->positions[0].y, w->type(0).mesh->positions[0].y * ratio, 1e-5f) << type.name << ": the mesh scales with it";
+    }
+    ASSERT_EQ(heights.size(), 3u);
+    for (size_t v = 0; v < 3; ++v) EXPECT_NEAR(heights[v], 1.55f + 0.1f * static_cast<float>(v), 1e-5f) << v;
+    // At one speed, longer legs take longer strides, fewer a second.
+    EXPECT_LT(cycles[0], cycles[1]);
+    EXPECT_LT(cycles[1], cycles[2]);
+    for (int f = 0; f < 20; ++f) w->step();
+    auto g = character_group(w->registry());
+    size_t walking = 0;
+    for (const MotionState& m : g.span<MotionState>()) walking += m.active == RequestKind::Walk;
+    EXPECT_EQ(walking, 9u);
+
+    Result<SceneDesc> built = parse_scene(head + R"("build": [0, 1], "variants": 3}]})", (dir / "scene.json").string());
+    ASSERT_FALSE(built.ok());
+    EXPECT_NE(built.error().to_string().find("/crowds/0/build: build variety needs a 'humanoid' character type"), std::string::npos)
+        << built.error().to_string();
     fs::remove_all(dir);
 }
 
