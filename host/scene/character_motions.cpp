@@ -92,6 +92,12 @@ float travel_along_facing(const RawAnimation& take, const Skeleton& skeleton, co
     return glm::length(f) > 1e-4f && glm::length(d) > 1e-4f ? glm::dot(glm::normalize(f), glm::normalize(d)) : 1.0f;
 }
 
+// Whether `take` stays in place: its root's mean horizontal speed under kInPlaceSpeed (what root_motion_from_feet takes).
+bool in_place(const RawAnimation& take, const Skeleton& skeleton) {
+    Result<AnimationClip> built = build_clip(take, skeleton, ClipEncoding::Float32);
+    return built.ok() && built.value().root_speed() < kInPlaceSpeed;
+}
+
 // Longest in-place take given root motion to try as a walk (a cycle is a second or two; a long take in place is
 // an idle or a dance, and resampling it would cost load time for nothing).
 constexpr float kMaxInPlaceSeconds = 60.0f;
@@ -102,16 +108,16 @@ Status walk_loop(CharacterType& type, const RawAnimation& take, const std::strin
     RawAnimation in_place_moved;
     FootRootMotionReport feet;
     const RawAnimation* walk = &take;
-    if (!cut.ok() && type.rig && take.duration <= kMaxInPlaceSeconds) {
-        // An in-place cycle (no travel of its own): its feet give it root motion, and that may loop as a walk.
+    if (!cut.ok() && type.rig && take.duration <= kMaxInPlaceSeconds && in_place(take, type.skeleton)) {
+        // An in-place cycle: its feet give it root motion, and that may loop as a walk (or say why they do not).
         const int contacts[] = {type.rig->ankle[0], type.rig->ankle[1], type.rig->toe[0], type.rig->toe[1]};  // toe -1: none
         Result<RawAnimation> moved = root_motion_from_feet(take, type.skeleton, contacts, 0.5f, file, 60.0f, &feet);
         if (moved.ok()) {
             in_place_moved = std::move(moved).value();
             walk = &in_place_moved;
             cut = find_best_loop(in_place_moved, type.skeleton, 0.6f, 0.5f, file);
-        } else if (moved.error().message.find("has root motion of its own") == std::string::npos) {
-            cut = moved.error();  // in place, and its feet do not walk it: say why
+        } else {
+            cut = moved.error();
         }
     }
     if (cut.ok() && travel_along_facing(*walk, type.skeleton, cut.value()) < std::cos(0.7853982f)) {

@@ -237,7 +237,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     if (rig.ok()) type.rig = std::move(rig.value());
     else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
     add_walk_loops(type, walk_takes, file);  // those that loop as walks (an in-place cycle given root motion by its feet)
-    if (const int idle = named_idle(type, walk_takes); idle >= 0) {
+    if (const int idle = desc.gltf.empty() ? -1 : named_idle(type, walk_takes); idle >= 0) {  // a BVH take is named after the type
         type.idle_clip = idle;  // idlers play it, characters stand in its first pose
         type.notes.push_back("idle: the file's clip '" + type.clips.find(static_cast<ClipId>(idle))->name() + "'");
     }

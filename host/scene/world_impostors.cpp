@@ -21,8 +21,8 @@ constexpr uint32_t kWalkRows = 8;     // walk phases baked (the 9th row stands)
 constexpr uint32_t kDirections = 16;  // azimuths around the vertical axis: 22.5 degrees apart
 
 // Model-space joint matrices of `type` at kWalkRows phases of its slowest gait cycle, then standing: its idle's
-// first pose over the origin (what idlers show; a file's T- or A-posed rest is no one's stance), the rest pose when
-// it has no idle; every row stands when the type has no gait cycle. `cycle_s` gets the cycle's clip seconds.
+// first pose, the root at its rest place (the stance MotionController::set_stance gives; a file's T- or A-posed rest
+// is no one's stance), the rest pose when it has no idle; every row stands when the type has no gait cycle. `cycle_s` gets the cycle's clip seconds.
 std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, float& cycle_s) {
     const int joints = type.skeleton.joint_count();
     PosePool pool(joints, kWalkRows + 1, &type.skeleton);
@@ -40,7 +40,8 @@ std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, fl
             float alpha = 0.0f;
             find_key(*idle, 0.0f, nullptr, &k, &alpha);
             sample_blocks(*idle, k, alpha, pose.translations.data(), pose.rotations.data(), pose.scales.data());
-            pose.translations[0].x = 0.0f, pose.translations[0].z = 0.0f;  // over the origin, as the walk rows
+            const glm::vec3 rest_root = type.skeleton.rest_translations()[0];  // where it stands: the stance's rule
+            pose.translations[0].x = rest_root.x, pose.translations[0].z = rest_root.z;
         }
         if (walking || idle)
             local_to_model(type.skeleton.parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),

@@ -44,19 +44,21 @@ void sample_local(const AnimationClip& clip, float t, std::vector<glm::vec3>& tr
 // Per sampled frame: every joint's position relative to the root on the ground, in the root's
 // heading frame, and the root's horizontal position and heading.
 struct Frames {
+    explicit Frames(size_t n) : joints(n), tr(n), sc(n), ro(n), model(n) {}
     size_t joints = 0;
     std::vector<glm::vec3> rel;   // frame-major, joints per frame
     std::vector<glm::vec2> root;  // horizontal root position
     std::vector<float> heading;
+    std::vector<glm::vec3> tr, sc;  // scratch for one frame's local pose
+    std::vector<glm::quat> ro;
+    std::vector<glm::mat4> model;
 };
 
-// Appends the frame of `clip` at time t to `f` (f.joints set).
+// Appends the frame of `clip` at time t to `f`.
 void add_frame(Frames& f, const AnimationClip& clip, const Skeleton& sk, float t) {
-    std::vector<glm::vec3> tr(f.joints), sc(f.joints);
-    std::vector<glm::quat> ro(f.joints);
-    std::vector<glm::mat4> model(f.joints);
-    sample_local(clip, t, tr, ro, sc);
-    local_to_model(sk.parents().data(), tr.data(), ro.data(), sc.data(), nullptr, model.data(), f.joints);
+    std::vector<glm::mat4>& model = f.model;
+    sample_local(clip, t, f.tr, f.ro, f.sc);
+    local_to_model(sk.parents().data(), f.tr.data(), f.ro.data(), f.sc.data(), nullptr, model.data(), f.joints);
     const glm::vec3 r(model[0][3]);
     const float h = heading_of(glm::quat_cast(glm::mat3(model[0])));
     const glm::quat inv = glm::angleAxis(-h, glm::vec3(0, 1, 0));
@@ -66,8 +68,7 @@ void add_frame(Frames& f, const AnimationClip& clip, const Skeleton& sk, float t
 }
 
 Frames sample_frames(const AnimationClip& clip, const Skeleton& sk, float step) {
-    Frames f;
-    f.joints = static_cast<size_t>(sk.joint_count());
+    Frames f(static_cast<size_t>(sk.joint_count()));
     const int count = static_cast<int>(clip.duration() / step) + 1;
     for (int i = 0; i < count; ++i) add_frame(f, clip, sk, static_cast<float>(i) * step);
     return f;
@@ -79,8 +80,7 @@ Frames sample_frames(const AnimationClip& clip, const Skeleton& sk, float step) 
 // change of velocity between consecutive steps): a run's touchdown jolts the feet every step, and a seam at a
 // touchdown is no worse than the others.
 LoopCut whole_take(const AnimationClip& clip, const Skeleton& sk, float step, float inside) {
-    Frames f;
-    f.joints = static_cast<size_t>(sk.joint_count());
+    Frames f(static_cast<size_t>(sk.joint_count()));
     const float d = clip.duration();
     for (const float t : {0.0f, step, d - step, d}) add_frame(f, clip, sk, t);
     const size_t J = f.joints;

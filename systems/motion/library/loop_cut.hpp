@@ -26,7 +26,8 @@ inline constexpr float kMaxLoopVelocityError = 0.25f;
 
 /// Finds the best loop of `take` (built for `skeleton`) at least `min_seconds` long whose root keeps
 /// travelling at `min_speed` m/s or more throughout (a walk loop must walk; 0 for any loop), comparing poses sampled
-/// every `step` seconds. Errors (naming `source`) when the take is too short or no loop is within
+/// every `step` seconds. The whole take is a candidate too (a cycle authored as one), its seam's velocity error the
+/// excess of the velocity jump across the seam over the largest jump between steps inside the take. Errors (naming `source`) when the take is too short or no loop is within
 /// kMaxLoopPoseError / kMaxLoopVelocityError (the message gives the best found).
 Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleton, float min_seconds, float min_speed,
                                const std::string& source, float step = 1.0f / 30.0f);
