@@ -66,6 +66,7 @@ Status World::build_impostors() {
         const uint8_t level = impostor_source_level(*rt.geometry);
         impostor_built_[t] = 1;
         if (level == GeometryController::kNoLevel) continue;  // no mesh: its impostor level draws nothing
+        if (rt.count == 0) continue;  // no character to draw (a varied crowd's base type): nothing to bake
         float cycle_s = 1.0f;
         const std::vector<std::vector<glm::mat4>> poses = impostor_poses(rt.type, cycle_s);
         ImpostorBakeInput in = impostor_bake_input(draw_types_[t], level, poses, rt.type.name);

@@ -32,9 +32,9 @@ struct Fixture {
     std::unique_ptr<World> world;
 };
 
-// The close-up walker (one character on a circle) with the default rules, drawn into a 160 x 240 target.
-bool make(Fixture& f) {
-    auto scene = load_scene(kData + "scenes/closeup.json");
+// `scene` (the close-up walker, one character on a circle, by default) with the default rules, drawn into a
+// 160 x 240 target.
+bool make(Fixture& f, Result<SceneDesc> scene = load_scene(kData + "scenes/closeup.json")) {
     EXPECT_TRUE(scene.ok());
     if (!scene.ok()) return false;
     SceneDesc s = scene.value();
@@ -350,6 +350,24 @@ TEST(WorldDraws, MeshLevelsAreRegisteredWhenTheRendererIsAttachedNotAtFirstUse) 
         EXPECT_GT(drawn(w).meshes, 0u);
         EXPECT_EQ(f.renderer->topology_count(), registered) << "nothing registered in a frame";
     }
+    f.world.reset();
+    f.renderer.reset();
+    EXPECT_EQ(f.ctx->validation_message_count(), 0u);
+}
+
+// A crowd with a height range plays only its variants; the base type it varies has no character, so it gets no
+// impostor atlas (a bake of up to a second at load for nothing): one atlas per variant.
+TEST(WorldDraws, OnlyTypesWithCharactersBakeImpostorAtlases) {
+    Fixture f;
+    ASSERT_TRUE(make(f, parse_scene(R"({"camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
+        "crowds": [{"count": 4, "layout": "grid", "spacing": 2, "height": [1.6, 1.8], "variants": 2}]})",
+                                    kData + "scenes/variants_inline.json")));
+    World& w = *f.world;
+    ASSERT_EQ(w.type_count(), 3u) << "the base type and its two variants";
+    EXPECT_EQ(w.runtime(0).count, 0u);
+    std::vector<std::string> baked;
+    for (const World::ImpostorReport& a : w.impostor_atlases()) baked.push_back(a.type);
+    EXPECT_EQ(baked, (std::vector<std::string>{w.type(1).name, w.type(2).name}));
     f.world.reset();
     f.renderer.reset();
     EXPECT_EQ(f.ctx->validation_message_count(), 0u);
