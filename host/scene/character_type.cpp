@@ -196,6 +196,19 @@ int find_clip(const CharacterType& type, const std::string& name) {
     return type.clips.find(name);
 }
 
+// The scene's choice of idle (desc.idle), once every clip is in: an error at the type's "idle" when it has no such clip.
+Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc) {
+    if (desc.idle.empty()) return {};
+    const int id = type.clips.find(desc.idle);
+    if (id < 0)
+        return make_error(desc.scene_file, "type '" + desc.name + "' has no clip '" + desc.idle + "' to idle in (" + std::to_string(type.clips.size()) +
+                                               " clips; `aloha validate` lists them)",
+                          0, 0, desc.pointer + "/idle");
+    type.idle_clip = id;
+    type.notes.push_back("idle: '" + desc.idle + "' (the scene's choice)");
+    return {};
+}
+
 Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     CharacterType type;
     type.name = desc.name;
@@ -207,6 +220,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         type.frame.units = "metres (built-in humanoid)";
         type.frame.height = desc.height;
         if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
+        if (Status s = choose_idle(type, desc); !s.ok()) return s.error();
         measure(type);
         use_generated_look(type);
         return type;
@@ -256,6 +270,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     }
     if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
     if (Status s = add_generated_motion(type, desc); !s.ok()) return s.error();
+    if (Status s = choose_idle(type, desc); !s.ok()) return s.error();
     measure(type);
     use_generated_look(type);
     return type;

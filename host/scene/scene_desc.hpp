@@ -61,6 +61,8 @@ struct CharacterTypeDesc {
     std::string pointer;      ///< JSON pointer of the type in that file ("/character_types/0")
     std::vector<MotionFileDesc> motions;  ///< clips from other files, retargeted (the type must be a mapped humanoid)
     bool generated_motion = true;  ///< bvh/gltf: a mapped humanoid also gets the generated motion library, retargeted
+    std::string idle;              ///< the clip the type idles in (idlers, stance, impostors' standing row); "" = its own
+                                   ///< choice (a file animation named like an idle, else the generated idle)
     float standing_height = 0.0f;  ///< bvh/gltf: a mapped humanoid scaled uniformly to stand this tall (m; a crowd's
                                    ///< height variants), 0 = as its file and `scale` make it
 };

@@ -163,6 +163,7 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
             else errors.push_back(canonical.error());
         }
         t.generated_motion = r.boolean("generated_motion", true);
+        t.idle = r.string("idle", "");
         t.height = static_cast<float>(r.number("height", 1.75, 0.5, 2.5));
         t.build = static_cast<float>(r.number("build", 0.5, 0.0, 1.0));
         // Counted from the file, not from the resolved paths: a path refused above is one error, not two.

@@ -112,6 +112,29 @@ TEST(CharacterLibrary, GaitsAreTheWalkAndTheIdleIsWhatIdlersPlay) {
     for (const float speed : {1.2f, 2.6f}) expect_clip_walk(t, speed, "generated gaits on a T-posed Rigify glTF");
 }
 
+// The scene's `idle` names any of the type's clips to idle in (here the file's "sway" over the generated idle); one the
+// type lacks is an error at the type's "idle".
+TEST(CharacterLibrary, TheScenesIdleChoiceWins) {
+    const fs::path dir = temp_dir("library_idle");
+    RigStyle style;
+    const fs::path file = dir / "rig.gltf";
+    test::write_text(file.string(), test::gltf_text(test::styled(test::renamed_humanoid(test::rigify_names("DEF-")), style), 1, 0.3f));
+    CharacterTypeDesc d = desc_for("rig", file.string());
+    d.idle = "sway";
+    const CharacterType t = load_or_fail(d);
+    EXPECT_EQ(t.idle_clip, find_clip(t, "sway"));
+    EXPECT_EQ(find_clip(t, ""), find_clip(t, "sway")) << "what idlers play";
+    EXPECT_TRUE(has_note(t, "idle: 'sway' (the scene's choice)"));
+    d.idle = "rig.wave";
+    EXPECT_EQ(load_or_fail(d).idle_clip, find_clip(t, "rig.wave")) << "a generated clip will do too";
+    d.idle = "Idle";
+    const Result<CharacterType> missing = load_character_type(d);
+    ASSERT_FALSE(missing.ok());
+    EXPECT_NE(missing.error().to_string().find("test-scene.json: /character_types/0/idle: type 'rig' has no clip 'Idle' to idle in"),
+              std::string::npos)
+        << missing.error().to_string();
+}
+
 // `generated_motion: false` leaves the type as its file made it; a non-humanoid gets no library (nothing to
 // retarget through), and says nothing about one.
 TEST(CharacterLibrary, NoneWhenTurnedOffOrNotAHumanoid) {

@@ -117,9 +117,10 @@ TEST(SceneLoader, GeneratedMotionKey) {
     auto on = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json"}]})");
     ASSERT_TRUE(on.ok()) << message_of(on);
     EXPECT_TRUE(on.value().types.at(0).generated_motion) << "on by default";
-    auto off = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "generated_motion": false}]})");
+    auto off = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "generated_motion": false, "idle": "Idle"}]})");
     ASSERT_TRUE(off.ok()) << message_of(off);
     EXPECT_FALSE(off.value().types.at(0).generated_motion);
+    EXPECT_EQ(off.value().types.at(0).idle, "Idle") << "any type's 'idle' is read as written";
     auto humanoid = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "generated_motion": false}]})");
     ASSERT_FALSE(humanoid.ok());
     EXPECT_NE(message_of(humanoid).find("/character_types/0/generated_motion"), std::string::npos) << message_of(humanoid);
