@@ -7,13 +7,17 @@
 
 namespace aloha {
 
-std::string request_problem(const CharacterType& type, const RequestDesc& rd) {
+ResolvedRequest resolve_request(const CharacterType& type, const RequestDesc& rd) {
+    ResolvedRequest out;
     const RequestKind kind = rd.request.kind;
-    if (kind == RequestKind::PlayClip && find_clip(type, rd.clip) < 0) return "unknown clip '" + rd.clip + "' for type '" + type.name + "'";
-    if ((kind == RequestKind::Reach || kind == RequestKind::LookAt) && find_joint(type.skeleton, type.map, rd.effector) < 0)
-        return "unknown effector joint '" + rd.effector + "' for type '" + type.name + "'";
-    return {};
+    if (kind == RequestKind::PlayClip && (out.clip = find_clip(type, rd.clip)) < 0)
+        out.problem = "unknown clip '" + rd.clip + "' for type '" + type.name + "'";
+    if ((kind == RequestKind::Reach || kind == RequestKind::LookAt) && (out.effector = find_joint(type.skeleton, type.map, rd.effector)) < 0)
+        out.problem = "unknown effector joint '" + rd.effector + "' for type '" + type.name + "'";
+    return out;
 }
+
+std::string request_problem(const CharacterType& type, const RequestDesc& rd) { return resolve_request(type, rd).problem; }
 
 std::vector<Error> scene_request_problems(const SceneDesc& scene, const std::vector<const CharacterType*>& types) {
     struct Seen {

@@ -11,8 +11,18 @@
 
 namespace aloha {
 
-/// Why request `rd` cannot be queued for a character of `type` ("unknown clip 'run' for type 'dog'"),
-/// or "" when it can. World refuses such a request with this message.
+/// A request's names looked up on a character type, once: the clip of a play request, the effector joint of a
+/// reach or look-at (-1 where the kind has none), or why it cannot be queued.
+struct ResolvedRequest {
+    std::string problem;  ///< "unknown clip 'run' for type 'dog'", "" when it can be queued
+    int clip = -1;        ///< PlayClip: the clip's id in type.clips
+    int effector = -1;    ///< Reach / LookAt: the joint
+};
+
+/// Request `rd` resolved for a character of `type`. World queues it with these ids, or refuses it with the problem.
+[[nodiscard]] ResolvedRequest resolve_request(const CharacterType& type, const RequestDesc& rd);
+
+/// Why request `rd` cannot be queued for a character of `type` (resolve_request's problem), or "" when it can.
 [[nodiscard]] std::string request_problem(const CharacterType& type, const RequestDesc& rd);
 
 /// Every distinct problem of the requests and overlays of the scene's characters, crowd members

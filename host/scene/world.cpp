@@ -112,9 +112,10 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
         const RequestDesc& rd = c.requests[k];
         MotionRequest req = rd.request;
         const std::string where = "character " + std::to_string(index) + " request " + std::to_string(k);
-        if (std::string problem = request_problem(type, rd); !problem.empty()) return make_error(scene.file, where + ": " + problem);
+        const ResolvedRequest resolved = resolve_request(type, rd);  // names looked up once
+        if (!resolved.problem.empty()) return make_error(scene.file, where + ": " + resolved.problem);
         if (req.kind == RequestKind::PlayClip) {
-            req.clip = static_cast<uint16_t>(find_clip(type, rd.clip));
+            req.clip = static_cast<uint16_t>(resolved.clip);
         } else if (req.kind == RequestKind::Walk && !rd.route.empty()) {
             // Its own looping route (a crowd's walk_route); ids stop below 0xFFFF, "no path".
             if (motion->path_count() >= 0xFFFF)
@@ -125,16 +126,16 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
             const auto it = std::find(path_names.begin(), path_names.end(), rd.path);
             req.path = static_cast<uint16_t>(it - path_names.begin());
         } else if (req.kind == RequestKind::Reach || req.kind == RequestKind::LookAt) {
-            req.effector = static_cast<int16_t>(find_joint(type.skeleton, type.map, rd.effector));
+            req.effector = static_cast<int16_t>(resolved.effector);
         }
         if (!motion->push_request(id, req))
             return make_error(scene.file, where + ": more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued");
     }
     if (c.overlay) {
         MotionRequest req = c.overlay->request;
-        if (std::string problem = request_problem(type, *c.overlay); !problem.empty())
-            return make_error(scene.file, "character " + std::to_string(index) + " overlay: " + problem);
-        req.effector = static_cast<int16_t>(find_joint(type.skeleton, type.map, c.overlay->effector));
+        const ResolvedRequest resolved = resolve_request(type, *c.overlay);
+        if (!resolved.problem.empty()) return make_error(scene.file, "character " + std::to_string(index) + " overlay: " + resolved.problem);
+        req.effector = static_cast<int16_t>(resolved.effector);
         motion->set_overlay(id, req, c.overlay_weight);
     }
     return {};
