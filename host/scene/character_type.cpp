@@ -196,6 +196,24 @@ int find_clip(const CharacterType& type, const std::string& name) {
     return type.clips.find(name);
 }
 
+// The scene's choice of walks (desc.walks): each named take of the file cut to its walk loop; one that is not in the
+// file or does not loop as a walk is an error at its place in "walks".
+Status add_named_walks(CharacterType& type, const CharacterTypeDesc& desc, std::span<const RawAnimation> takes, const std::string& file) {
+    for (size_t i = 0; i < desc.walks.size(); ++i) {
+        const std::string at = desc.pointer + "/walks/" + std::to_string(i);
+        const auto take = std::find_if(takes.begin(), takes.end(), [&](const RawAnimation& t) { return t.name == desc.walks[i]; });
+        if (take == takes.end()) {
+            std::string names;
+            for (const RawAnimation& t : takes) names += (names.empty() ? "'" : ", '") + t.name + "'";
+            return make_error(desc.scene_file, "no animation '" + desc.walks[i] + "' in " + file + " (it has " + (names.empty() ? "none" : names) + ")", 0,
+                              0, at);
+        }
+        if (Status w = add_walk_loop(type, *take, file); !w.ok())
+            return make_error(desc.scene_file, "'" + desc.walks[i] + "' cannot be a walk: " + w.error().message, 0, 0, at);
+    }
+    return {};
+}
+
 // The scene's choice of idle (desc.idle), once every clip is in: an error at the type's "idle" when it has no such clip.
 Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc) {
     if (desc.idle.empty()) return {};
@@ -250,7 +268,11 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     auto rig = resolve_walk_rig(type.skeleton, type.map, file);
     if (rig.ok()) type.rig = std::move(rig.value());
     else type.notes.push_back("no kinematic walk: " + rig.error().to_string());
-    add_walk_loops(type, walk_takes, file);  // those that loop as walks (an in-place cycle given root motion by its feet)
+    if (desc.walks.empty()) {
+        add_walk_loops(type, walk_takes, file);  // those that loop as walks (an in-place cycle given root motion by its feet)
+    } else if (Status s = add_named_walks(type, desc, walk_takes, file); !s.ok()) {
+        return s.error();
+    }
     if (const int idle = desc.gltf.empty() ? -1 : named_idle(type, walk_takes); idle >= 0) {  // a BVH take is named after the type
         type.idle_clip = idle;  // idlers play it, characters stand in its first pose
         type.notes.push_back("idle: the file's clip '" + type.clips.find(static_cast<ClipId>(idle))->name() + "'");

@@ -61,6 +61,7 @@ struct CharacterTypeDesc {
     std::string pointer;      ///< JSON pointer of the type in that file ("/character_types/0")
     std::vector<MotionFileDesc> motions;  ///< clips from other files, retargeted (the type must be a mapped humanoid)
     bool generated_motion = true;  ///< bvh/gltf: a mapped humanoid also gets the generated motion library, retargeted
+    std::vector<std::string> walks;  ///< bvh/gltf: the file's animations that are its walks ("" = every one that loops as one)
     std::string idle;              ///< the clip the type idles in (idlers, stance, impostors' standing row); "" = its own
                                    ///< choice (a file animation named like an idle, else the generated idle)
     float standing_height = 0.0f;  ///< bvh/gltf: a mapped humanoid scaled uniformly to stand this tall (m; a crowd's

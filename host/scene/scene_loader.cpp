@@ -156,6 +156,7 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
         t.pointer = p;
         t.scale = static_cast<float>(r.number("scale", 0.0, 1e-6, 1e6));
         read_humanoid_map(r, t.humanoid_map);
+        read_walk_names(r, t.walks);
         read_motion_files(r, p, scene.file, t, errors);
         if (!t.bvh.empty() || !t.gltf.empty()) {
             auto canonical = resolve_scene_path(scene.file, "builtin:humanoid", p);
@@ -175,6 +176,8 @@ void read_types(JsonObjectReader& root, SceneDesc& scene, std::vector<Error>& er
             r.error("height", "'height' and 'build' apply to 'humanoid' types only");
         if (!t.humanoid.empty() && (r.has("scale") || r.has("humanoid_map")))
             r.error(r.has("scale") ? "scale" : "humanoid_map", "'scale' and 'humanoid_map' apply to 'bvh' and 'gltf' types only");
+        if (!t.humanoid.empty() && r.has("walks"))
+            r.error("walks", "'walks' applies to 'bvh' and 'gltf' types only (a 'humanoid' type walks its generated gaits)");
         if (!t.humanoid.empty() && r.has("generated_motion"))
             r.error("generated_motion", "'generated_motion' applies to 'bvh' and 'gltf' types only (a 'humanoid' type's motion is generated)");
         if (t.bvh.size() > 5 && t.bvh.compare(t.bvh.size() - 5, 5, ".json") == 0)

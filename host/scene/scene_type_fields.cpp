@@ -3,6 +3,8 @@
 
 #include "host/scene/scene_loader.hpp"
 
+#include <algorithm>
+
 namespace aloha {
 
 void read_humanoid_map(JsonObjectReader& reader, std::map<std::string, std::string>& out) {
@@ -16,6 +18,23 @@ void read_humanoid_map(JsonObjectReader& reader, std::map<std::string, std::stri
         if (!file_name.is_string() || file_name.get_ref<const std::string&>().empty())
             reader.error("humanoid_map/" + canonical, "expected the name of a joint in the file");
         else out[canonical] = file_name.get<std::string>();
+    }
+}
+
+void read_walk_names(JsonObjectReader& reader, std::vector<std::string>& out) {
+    const nlohmann::json* walks = reader.child("walks");
+    if (!walks) return;
+    if (!walks->is_array() || walks->empty() || walks->size() > 256) {
+        reader.error("walks", "expected an array of 1 to 256 animation names");
+        return;
+    }
+    for (size_t i = 0; i < walks->size(); ++i) {
+        const nlohmann::json& name = (*walks)[i];
+        if (!name.is_string() || name.get_ref<const std::string&>().empty())
+            reader.error("walks/" + std::to_string(i), "expected the name of one of the file's animations");
+        else if (std::find(out.begin(), out.end(), name.get<std::string>()) != out.end())
+            reader.error("walks/" + std::to_string(i), "'" + name.get<std::string>() + "' is named twice");
+        else out.push_back(name.get<std::string>());
     }
 }
 

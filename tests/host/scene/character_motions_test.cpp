@@ -282,6 +282,22 @@ TEST(CharacterMotions, EveryAnimationOfAFileIsTriedAsAWalk) {
     EXPECT_EQ(t.idle_clip, find_clip(t, "Idle")) << "the file's own idle, not the generated one";
     EXPECT_TRUE(has_note(t, "idle: the file's clip 'Idle'"));
 
+    // The scene's "walks" picks: only "Run" is its walk; a named animation that does not walk, or is not in the file,
+    // is an error at its place in "walks".
+    CharacterTypeDesc chosen = desc_for("pack", (dir / "pack.gltf").string());
+    chosen.walks = {"Run"};
+    const CharacterType run_only = load_or_fail(chosen);
+    ASSERT_GE(run_only.gait_clips.size(), 1u);
+    EXPECT_TRUE(has_note(run_only, "walk loop 'pack.loop' cut from 'Run'"));
+    EXPECT_FALSE(has_note(run_only, "cut from 'Walk'"));
+    chosen.walks = {"Run", "Idle"};
+    EXPECT_NE(error_of(chosen).find("test-scene.json: /character_types/0/walks/1: 'Idle' cannot be a walk: clip 'Idle': its feet carry the body forward"),
+              std::string::npos)
+        << error_of(chosen);
+    chosen.walks = {"Jog"};
+    EXPECT_NE(error_of(chosen).find("/character_types/0/walks/0: no animation 'Jog' in"), std::string::npos) << error_of(chosen);
+    EXPECT_NE(error_of(chosen).find("(it has 'WalkBack', 'Idle', 'Walk', 'Run')"), std::string::npos) << error_of(chosen);
+
     test::write_gltf_with_clips((dir / "still.gltf").string(), body,
                                 {{"WalkBack", &back}, {"Standing_Idle", &idle}, {"IDLE", &idle}, {"Idle_to_Run", &idle}});
     const CharacterType still = load_or_fail(desc_for("still", (dir / "still.gltf").string()));

@@ -121,6 +121,20 @@ TEST(SceneLoader, GeneratedMotionKey) {
     ASSERT_TRUE(off.ok()) << message_of(off);
     EXPECT_FALSE(off.value().types.at(0).generated_motion);
     EXPECT_EQ(off.value().types.at(0).idle, "Idle") << "any type's 'idle' is read as written";
+    auto walks = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", "walks": ["Walk", "Run"]}]})");
+    ASSERT_TRUE(walks.ok()) << message_of(walks);
+    EXPECT_EQ(walks.value().types.at(0).walks, (std::vector<std::string>{"Walk", "Run"}));
+    for (const auto& [bad, where] : {std::pair{R"("walks": "Walk")", "/character_types/0/walks: expected an array"},
+                                    {R"("walks": ["Walk", ""])", "/character_types/0/walks/1: expected the name"},
+                                    {R"("walks": ["Walk", "Walk"])", "/character_types/0/walks/1: 'Walk' is named twice"}}) {
+        auto r = parse(head + R"("character_types": [{"name": "b", "gltf": "closeup.json", )" + bad + "}]}");
+        ASSERT_FALSE(r.ok()) << bad;
+        EXPECT_NE(message_of(r).find(where), std::string::npos) << message_of(r);
+    }
+    auto on_humanoid = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "walks": ["Walk"]}]})");
+    ASSERT_FALSE(on_humanoid.ok());
+    EXPECT_NE(message_of(on_humanoid).find("/character_types/0/walks: 'walks' applies to 'bvh' and 'gltf' types only"), std::string::npos)
+        << message_of(on_humanoid);
     auto humanoid = parse(head + R"("character_types": [{"name": "b", "humanoid": "builtin:humanoid", "generated_motion": false}]})");
     ASSERT_FALSE(humanoid.ok());
     EXPECT_NE(message_of(humanoid).find("/character_types/0/generated_motion"), std::string::npos) << message_of(humanoid);
