@@ -3,9 +3,9 @@
 
 #include "engine/assets/gltf_loader.hpp"
 #include "host/scene/character_rig.hpp"
+#include "systems/motion/clip.hpp"
 #include "systems/motion/library/foot_root_motion.hpp"
 #include "systems/motion/library/loop_cut.hpp"
-#include "systems/motion/clip.hpp"
 #include "systems/motion/library/retarget.hpp"
 #include "systems/motion/sampling.hpp"
 
@@ -93,7 +93,7 @@ float travel_along_facing(const RawAnimation& take, const Skeleton& skeleton, co
 }
 
 // Whether `take` stays in place: its root's mean horizontal speed under kInPlaceSpeed (what root_motion_from_feet takes).
-bool in_place(const RawAnimation& take, const Skeleton& skeleton) {
+bool stays_in_place(const RawAnimation& take, const Skeleton& skeleton) {
     Result<AnimationClip> built = build_clip(take, skeleton, ClipEncoding::Float32);
     return built.ok() && built.value().root_speed() < kInPlaceSpeed;
 }
@@ -108,7 +108,7 @@ Status walk_loop(CharacterType& type, const RawAnimation& take, const std::strin
     RawAnimation in_place_moved;
     FootRootMotionReport feet;
     const RawAnimation* walk = &take;
-    if (!cut.ok() && type.rig && take.duration <= kMaxInPlaceSeconds && in_place(take, type.skeleton)) {
+    if (!cut.ok() && type.rig && take.duration <= kMaxInPlaceSeconds && stays_in_place(take, type.skeleton)) {
         // An in-place cycle: its feet give it root motion, and that may loop as a walk (or say why they do not).
         const int contacts[] = {type.rig->ankle[0], type.rig->ankle[1], type.rig->toe[0], type.rig->toe[1]};  // toe -1: none
         Result<RawAnimation> moved = root_motion_from_feet(take, type.skeleton, contacts, 0.5f, file, 60.0f, &feet);

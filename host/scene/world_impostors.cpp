@@ -8,7 +8,6 @@
 #include "systems/motion/kinematic_walk.hpp"
 #include "systems/motion/local_to_model.hpp"
 #include "systems/motion/pose_pool.hpp"
-#include "systems/motion/sampling.hpp"
 #include "systems/render/impostor_atlas_cache.hpp"
 
 #include <algorithm>
@@ -21,8 +20,9 @@ constexpr uint32_t kWalkRows = 8;     // walk phases baked (the 9th row stands)
 constexpr uint32_t kDirections = 16;  // azimuths around the vertical axis: 22.5 degrees apart
 
 // Model-space joint matrices of `type` at kWalkRows phases of its slowest gait cycle, then standing: its idle's
-// first pose, the root at its rest place (the stance MotionController::set_stance gives; a file's T- or A-posed rest
-// is no one's stance), the rest pose when it has no idle; every row stands when the type has no gait cycle. `cycle_s` gets the cycle's clip seconds.
+// first pose, the root at its rest place (PosePool::set_stance, the stance its characters hold; a file's T- or A-posed
+// rest is no one's stance), the rest pose when it has no idle; every row stands when the type has no gait cycle.
+// `cycle_s` gets the cycle's clip seconds.
 std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, float& cycle_s) {
     const int joints = type.skeleton.joint_count();
     PosePool pool(joints, kWalkRows + 1, &type.skeleton);
@@ -32,20 +32,13 @@ std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, fl
     std::vector<std::vector<glm::mat4>> rows;
     for (uint32_t r = 0; r <= kWalkRows; ++r) {
         PoseView pose = pool.view(r);
-        const bool walking = walk && r < kWalkRows;
-        if (walking) {
+        if (walk && r < kWalkRows) {
             sample_walk_cycle(*walk, cycle_s * static_cast<float>(r) / static_cast<float>(kWalkRows), nullptr, pose);
-        } else if (idle) {
-            int k = 0;
-            float alpha = 0.0f;
-            find_key(*idle, 0.0f, nullptr, &k, &alpha);
-            sample_blocks(*idle, k, alpha, pose.translations.data(), pose.rotations.data(), pose.scales.data());
-            const glm::vec3 rest_root = type.skeleton.rest_translations()[0];  // where it stands: the stance's rule
-            pose.translations[0].x = rest_root.x, pose.translations[0].z = rest_root.z;
-        }
-        if (walking || idle)
             local_to_model(type.skeleton.parents().data(), pose.translations.data(), pose.rotations.data(), pose.scales.data(),
                            nullptr, pose.model.data(), static_cast<size_t>(joints));
+        } else if (idle) {
+            pool.set_stance(r, *idle, type.skeleton);
+        }
         rows.emplace_back(pose.model.begin(), pose.model.end());
     }
     return rows;

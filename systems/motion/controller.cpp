@@ -101,24 +101,16 @@ void MotionController::set_walk_clips(std::span<const ClipId> clips) {
 
 void MotionController::set_stance(const AnimationClip& clip) {
     assert(clip.joint_count() == skeleton_->joint_count());
-    const size_t n = static_cast<size_t>(skeleton_->joint_count());
-    std::vector<glm::vec3> t(n), s(n);
-    std::vector<glm::quat> r(n);
-    std::vector<glm::mat4> model(n);
-    int k = 0;
-    float alpha = 0.0f;
-    find_key(clip, 0.0f, nullptr, &k, &alpha);
-    sample_blocks(clip, k, alpha, t.data(), r.data(), s.data());
-    const glm::vec3 rest_root = skeleton_->rest_translations()[0];
-    t[0].x = rest_root.x, t[0].z = rest_root.z;
-    local_to_model(skeleton_->parents().data(), t.data(), r.data(), s.data(), nullptr, model.data(), n);
+    PosePool stance(skeleton_->joint_count(), 1);
+    stance.set_stance(0, clip, *skeleton_);
+    const ConstPoseView from = std::as_const(stance).view(0);
     for (size_t c = 0; c < chars_.size(); ++c) {
         if (chars_[c].shown) continue;
-        const PoseView v = pool_.view(c);
-        std::copy(t.begin(), t.end(), v.translations.begin());
-        std::copy(r.begin(), r.end(), v.rotations.begin());
-        std::copy(s.begin(), s.end(), v.scales.begin());
-        std::copy(model.begin(), model.end(), v.model.begin());
+        const PoseView to = pool_.view(c);
+        std::copy(from.translations.begin(), from.translations.end(), to.translations.begin());
+        std::copy(from.rotations.begin(), from.rotations.end(), to.rotations.begin());
+        std::copy(from.scales.begin(), from.scales.end(), to.scales.begin());
+        std::copy(from.model.begin(), from.model.end(), to.model.begin());
     }
 }
 

@@ -45,6 +45,18 @@ void PosePool::set_rest(size_t s, const Skeleton& skeleton) {
                    v.model.data(), v.translations.size());
 }
 
+void PosePool::set_stance(size_t s, const AnimationClip& clip, const Skeleton& skeleton) {
+    PoseView v = view(s);
+    int k = 0;
+    float alpha = 0.0f;
+    find_key(clip, 0.0f, nullptr, &k, &alpha);
+    sample_blocks(clip, k, alpha, v.translations.data(), v.rotations.data(), v.scales.data());
+    const glm::vec3 rest_root = skeleton.rest_translations()[0];
+    v.translations[0].x = rest_root.x, v.translations[0].z = rest_root.z;
+    local_to_model(skeleton.parents().data(), v.translations.data(), v.rotations.data(), v.scales.data(), nullptr,
+                   v.model.data(), v.translations.size());
+}
+
 bool AnimateBatchJob::Validate(std::vector<std::string>* errors) const {
     bool ok = true;
     auto fail = [&](const std::string& m) { ok = false; if (errors) errors->push_back("AnimateBatchJob: " + m); };

@@ -32,6 +32,10 @@ public:
     [[nodiscard]] ConstPoseView view(size_t s) const;
     /// Copies the skeleton's rest pose into slot `s` (local and model). Requires a matching skeleton.
     void set_rest(size_t s, const Skeleton& skeleton);
+    /// Writes `clip`'s first pose into slot `s` (local and model) with the root joint at its rest horizontal place (the
+    /// clip's horizontal offset is no placement): the stance a character of `skeleton` holds until posed, and the
+    /// impostors' standing row. Requires `clip` built on `skeleton`.
+    void set_stance(size_t s, const AnimationClip& clip, const Skeleton& skeleton);
 
 private:
     int joints_ = 0;

@@ -52,6 +52,9 @@ float lowest_y(const ModelPose& p, const HumanoidMap& map) {
     return y;
 }
 
+// Height of the canonical Hips above the lowest body joint in pose `p`.
+float hip_height(const ModelPose& p, const HumanoidMap& map) { return p.position[static_cast<size_t>(map.joint[0])].y - lowest_y(p, map); }
+
 // The canonical joint whose bone (from `c` towards it) aligns `c`: a descendant along `c`'s own chain (same
 // side; the spine's centre child, not a collar; fingers before the thumb) mapped in both rigs, or -1.
 int bone_end(int c, const HumanoidMap& a, const HumanoidMap& b) {
@@ -75,8 +78,7 @@ int bone_end(int c, const HumanoidMap& a, const HumanoidMap& b) {
 float rest_hip_height(const RetargetRig& rig) {
     assert(rig.skeleton && rig.map && rig.map->humanoid);
     std::vector<glm::mat4> scratch;
-    const ModelPose rest = rest_pose(*rig.skeleton, scratch);
-    return rest.position[static_cast<size_t>(rig.map->joint[0])].y - lowest_y(rest, *rig.map);
+    return hip_height(rest_pose(*rig.skeleton, scratch), *rig.map);
 }
 
 Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& source, const RetargetRig& target, const std::string& name,
@@ -97,8 +99,7 @@ Result<RawAnimation> retarget_clip(const RawAnimation& clip, const RetargetRig& 
     std::vector<glm::mat4> scratch;
     const ModelPose src_rest = rest_pose(ss, scratch), tgt_rest = rest_pose(ts, scratch);
     const auto s_hips = static_cast<size_t>(sm.joint[0]), t_hips = static_cast<size_t>(tm.joint[0]);
-    const float src_height = src_rest.position[s_hips].y - lowest_y(src_rest, sm);
-    const float tgt_height = tgt_rest.position[t_hips].y - lowest_y(tgt_rest, tm);
+    const float src_height = hip_height(src_rest, sm), tgt_height = hip_height(tgt_rest, tm);
     if (!(src_height > 1e-4f) || !(tgt_height > 1e-4f))
         return make_error("", "a rest pose has its hips at the height of its lowest joint: the pelvis travel cannot be scaled");
     const float k = tgt_height / src_height;

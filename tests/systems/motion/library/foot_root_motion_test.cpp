@@ -44,7 +44,6 @@ protected:
     Skeleton sk = test::humanoid_skeleton_for();
     WalkRig rig = test::humanoid_rig(sk);
     MotionLibrary lib = make_motion_library(sk, rig, "h");
-    std::array<int, 2> ankles{rig.ankle[0], rig.ankle[1]};
     std::array<int, 4> feet{rig.ankle[0], rig.ankle[1], rig.toe[0], rig.toe[1]};
 };
 
