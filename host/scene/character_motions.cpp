@@ -6,6 +6,7 @@
 #include "systems/motion/clip.hpp"
 #include "systems/motion/library/foot_root_motion.hpp"
 #include "systems/motion/library/loop_cut.hpp"
+#include "systems/motion/library/loop_seam.hpp"
 #include "systems/motion/library/retarget.hpp"
 #include "systems/motion/sampling.hpp"
 
@@ -167,6 +168,26 @@ void add_walk_loops(CharacterType& type, std::span<const RawAnimation> takes, co
     if (failed == takes.size() && failed > 0)
         type.notes.push_back("no clip walk: " + first +
                              (failed == 2 ? " (nor does its other clip)" : failed > 2 ? " (nor do its " + std::to_string(failed - 1) + " other clips)" : ""));
+}
+
+std::string loop_idle(CharacterType& type, ClipId id, const RawAnimation& take, const std::string& file) {
+    Result<LoopCut> seam = whole_take_seam(take, type.skeleton, file);
+    if (!seam.ok()) return " (" + seam.error().message + ")";
+    char buf[200];
+    const LoopCut& s = seam.value();
+    const bool loops = s.pose_error <= kMaxLoopPoseError && s.velocity_error <= kMaxLoopVelocityError;
+    std::snprintf(buf, sizeof buf, loops ? " (its ends differ by %.1f cm per joint and %.2f m/s: closed)"
+                                         : " (does not loop: its ends differ by %.1f cm per joint and %.2f m/s, limits %.1f cm and %.2f m/s; "
+                                           "it jumps each time idlers repeat it)",
+                  static_cast<double>(100.0f * s.pose_error), static_cast<double>(s.velocity_error), static_cast<double>(100.0f * kMaxLoopPoseError),
+                  static_cast<double>(kMaxLoopVelocityError));
+    if (!loops) return buf;
+    RawAnimation closed = take;
+    close_loop_seam(closed);
+    Result<AnimationClip> built = build_clip(closed, type.skeleton);
+    if (!built.ok()) return " (" + built.error().message + ")";  // built before as it was: cannot fail
+    type.clips.replace(id, std::move(built).value());
+    return buf;
 }
 
 Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {

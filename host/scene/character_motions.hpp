@@ -7,6 +7,7 @@
 #include "host/scene/character_type.hpp"
 
 #include <span>
+#include <string>
 
 namespace aloha {
 
@@ -26,5 +27,11 @@ Status add_walk_loop(CharacterType& type, const RawAnimation& take, const std::s
 /// (those that loop as walks forward are added; a take travelling more than 45 degrees off the body's facing, a
 /// backward walk or a strafe, is none). One note when none does, with the first take's reason.
 void add_walk_loops(CharacterType& type, std::span<const RawAnimation> takes, const std::string& file);
+
+/// Makes the type's idle clip `id`, which idlers play over and over, meet itself where it repeats, when `take` (its
+/// animation as loaded) nearly loops as it is: its ends within kMaxLoopPoseError / kMaxLoopVelocityError
+/// (library/loop_cut.hpp whole_take_seam), closed by library/loop_seam.hpp and rebuilt in place. Returns what to
+/// note after the idle's name: the seam closed with its figures, or the figures it keeps jumping by.
+std::string loop_idle(CharacterType& type, ClipId id, const RawAnimation& take, const std::string& file);
 
 }  // namespace aloha

@@ -35,9 +35,10 @@ RawAnimation in_place(const RawAnimation& clip, const std::string& name) {
 
 // The file clip a type idles in: one named "idle" (any case) first, then one whose name starts with it, then one
 // containing it (Quaternius "Idle", Kenney "idle", Ready Player Me "F_Standing_Idle_001"), the shortest name
-// winning a tie; -1 without.
-int named_idle(const CharacterType& type, std::span<const RawAnimation> clips) {
-    int best = -1, best_rank = 3;
+// winning a tie; null without.
+const RawAnimation* named_idle(std::span<const RawAnimation> clips) {
+    const RawAnimation* best = nullptr;
+    int best_rank = 3;
     size_t best_length = 0;
     for (const RawAnimation& clip : clips) {
         std::string lower = clip.name;
@@ -46,7 +47,7 @@ int named_idle(const CharacterType& type, std::span<const RawAnimation> clips) {
         if (at == std::string::npos) continue;
         const int rank = lower == "idle" ? 0 : at == 0 ? 1 : 2;
         if (rank < best_rank || (rank == best_rank && lower.size() < best_length)) {
-            best = type.clips.find(clip.name);
+            best = &clip;
             best_rank = rank;
             best_length = lower.size();
         }
@@ -273,9 +274,10 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     } else if (Status s = add_named_walks(type, desc, walk_takes, file); !s.ok()) {
         return s.error();
     }
-    if (const int idle = desc.gltf.empty() ? -1 : named_idle(type, walk_takes); idle >= 0) {  // a BVH take is named after the type
-        type.idle_clip = idle;  // idlers play it, characters stand in its first pose
-        type.notes.push_back("idle: the file's clip '" + type.clips.find(static_cast<ClipId>(idle))->name() + "'");
+    const RawAnimation* idle = desc.gltf.empty() ? nullptr : named_idle(walk_takes);  // a BVH take is named after the type
+    if (const int id = idle ? type.clips.find(idle->name) : -1; id >= 0) {
+        type.idle_clip = id;  // idlers play it, characters stand in its first pose
+        type.notes.push_back("idle: the file's clip '" + idle->name + "'" + loop_idle(type, static_cast<ClipId>(id), *idle, file));
     }
     if (type.muscles.size() == 0 && type.mesh && type.map.humanoid) {
         std::vector<glm::mat4> bind_model;

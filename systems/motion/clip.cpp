@@ -4,6 +4,7 @@
 #include "systems/motion/sampling.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace aloha {
@@ -291,6 +292,11 @@ Result<ClipId> ClipLibrary::add(const RawAnimation& raw, const Skeleton& skeleto
     Result<AnimationClip> clip = build_clip(raw, skeleton);
     if (!clip) return clip.error();
     return add(std::move(clip).value());
+}
+
+void ClipLibrary::replace(ClipId id, AnimationClip clip) {
+    assert(id < clips_.size());
+    clips_[id] = std::move(clip);
 }
 
 const AnimationClip* ClipLibrary::find(ClipId id) const {

@@ -137,6 +137,9 @@ public:
     ClipId add(AnimationClip clip);
     /// Builds `raw` for `skeleton` (default encoding) and adds it; returns the id or the build error.
     Result<ClipId> add(const RawAnimation& raw, const Skeleton& skeleton);
+    /// Puts `clip` in place of clip `id` (a load-time edit, before anything samples it: the address stays valid).
+    /// Requires id < size().
+    void replace(ClipId id, AnimationClip clip);
     /// The clip with id `id`, or nullptr when there is none.
     [[nodiscard]] const AnimationClip* find(ClipId id) const;
     /// Id of the first clip named `name`, or -1.

@@ -1,5 +1,7 @@
 #include "systems/motion/library/loop_cut.hpp"
 
+#include "systems/motion/library/loop_seam.hpp"
+
 #include "systems/motion/clip.hpp"
 #include "systems/motion/local_to_model.hpp"
 #include "systems/motion/sampling.hpp"
@@ -96,7 +98,70 @@ LoopCut whole_take(const AnimationClip& clip, const Skeleton& sk, float step, fl
     return out;
 }
 
+// The take's joint velocities at the cut's two ends, measured alike: central differences over `h` where the take
+// reaches past both ends, else the same one-sided difference at both. False when the loop is the whole take (no
+// like measure at its ends). `fix_end` is the heading correction cut_loop puts on the loop's last key, about the
+// loop's first root position, turning at `turn_rate` rad/s about +Y throughout.
+bool take_rates(const AnimationClip& clip, const LoopCut& cut, float h, const glm::quat& fix_end, float turn_rate,
+                const glm::vec3& start_root, SeamRates& out) {
+    const float d = clip.duration();
+    const bool before = cut.start - h >= 0.0f, after = cut.end + h <= d;
+    if (!before && !after) return false;
+    const float back = before ? h : 0.0f, ahead = after ? h : 0.0f;  // central with both, one-sided otherwise
+    const size_t J = static_cast<size_t>(clip.joint_count());
+    std::vector<glm::vec3> tr0(J), tr1(J), sc(J);
+    std::vector<glm::quat> ro0(J), ro1(J);
+    const glm::vec3 turn(0.0f, turn_rate, 0.0f);
+    for (const bool at_end : {false, true}) {
+        const float t = at_end ? cut.end : cut.start;
+        sample_local(clip, t - back, tr0, ro0, sc);
+        sample_local(clip, t + ahead, tr1, ro1, sc);
+        std::vector<glm::vec3>& rot = at_end ? out.rotation_end : out.rotation_start;
+        std::vector<glm::vec3>& tra = at_end ? out.translation_end : out.translation_start;
+        rot.resize(J);
+        tra.resize(J);
+        for (size_t j = 0; j < J; ++j) {
+            rot[j] = rotation_vector(ro1[j] * glm::inverse(ro0[j])) / (back + ahead);
+            tra[j] = (tr1[j] - tr0[j]) / (back + ahead);
+        }
+        // The root as the loop has it: turned by the heading correction (none at the start), which also turns
+        // steadily, carrying the root's horizontal offset from where the loop starts round with it.
+        if (J == 0) continue;
+        const glm::quat fix = at_end ? fix_end : glm::quat(1, 0, 0, 0);
+        rot[0] = fix * rot[0] + turn;
+        glm::vec3 v = fix * glm::vec3(tra[0].x, 0.0f, tra[0].z);
+        if (at_end) {
+            sample_local(clip, t, tr0, ro0, sc);
+            v += glm::cross(turn, fix * glm::vec3(tr0[0].x - start_root.x, 0.0f, tr0[0].z - start_root.z));
+        }
+        tra[0] = glm::vec3(v.x, tra[0].y, v.z);
+    }
+    return true;
+}
+
+// The largest mean joint change of velocity between consecutive steps of `f` (sampled every `step` seconds).
+float largest_jump_inside(const Frames& f, float step) {
+    const size_t J = f.joints, n = f.root.size();
+    const auto pose = [&](size_t i, size_t j) { return f.rel[i * J + j]; };
+    float inside = 0.0f;
+    for (size_t i = 1; i + 1 < n; ++i) {
+        float change = 0.0f;
+        for (size_t j = 0; j < J; ++j) change += glm::length(pose(i + 1, j) - 2.0f * pose(i, j) + pose(i - 1, j)) / step;
+        inside = std::max(inside, change / static_cast<float>(J));
+    }
+    return inside;
+}
+
 }  // namespace
+
+Result<LoopCut> whole_take_seam(const RawAnimation& take, const Skeleton& skeleton, const std::string& source, float step) {
+    auto built = build_clip(take, skeleton, ClipEncoding::Float32);
+    if (!built.ok()) return built.error();
+    const AnimationClip& clip = built.value();
+    if (clip.duration() < 3.0f * step)
+        return make_error(source, "clip '" + take.name + "' is too short to loop (" + short_number(clip.duration()) + " s)");
+    return whole_take(clip, skeleton, step, largest_jump_inside(sample_frames(clip, skeleton, step), step));
+}
 
 Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleton, float min_seconds, float min_speed,
                                const std::string& source, float step) {
@@ -146,13 +211,7 @@ Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleto
     // The whole take, when it keeps moving throughout: a cycle authored as one loops at its ends, which the search
     // above (velocities need a frame either side) cannot cut.
     if (clip.duration() >= min_seconds && *std::min_element(speed.begin(), speed.end()) >= min_speed) {
-        float inside = 0.0f;  // the largest change of velocity between consecutive steps inside the take
-        for (size_t i = 1; i + 1 < n; ++i) {
-            float change = 0.0f;
-            for (size_t j = 0; j < J; ++j) change += glm::length(pose(i + 1, j) - 2.0f * pose(i, j) + pose(i - 1, j)) / step;
-            inside = std::max(inside, change / static_cast<float>(J));
-        }
-        const LoopCut whole = whole_take(clip, skeleton, step, inside);
+        const LoopCut whole = whole_take(clip, skeleton, step, largest_jump_inside(f, step));
         const float score = whole.pose_error + 0.1f * whole.velocity_error;
         if (score < best_score) best_score = score, best = whole, found = true;
     }
@@ -173,7 +232,7 @@ Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleto
 }
 
 RawAnimation cut_loop(const RawAnimation& take, const Skeleton& skeleton, const LoopCut& cut, const std::string& name) {
-    auto built = build_clip(take, skeleton);
+    auto built = build_clip(take, skeleton, ClipEncoding::Float32);  // cut from the keys as they are
     RawAnimation out;
     out.name = name;
     if (!built.ok()) return out;
@@ -217,6 +276,10 @@ RawAnimation cut_loop(const RawAnimation& take, const Skeleton& skeleton, const 
         }
     }
     out.duration = cut.end - cut.start;
+    SeamRates rates;
+    const glm::quat fix_end = glm::angleAxis(-drift, glm::vec3(0, 1, 0));
+    const bool like = take_rates(clip, cut, 1.0f / rate, fix_end, -drift / out.duration, start_root, rates);
+    close_loop_seam(out, like ? &rates : nullptr);
     return out;
 }
 

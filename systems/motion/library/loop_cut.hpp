@@ -32,9 +32,17 @@ inline constexpr float kMaxLoopVelocityError = 0.25f;
 Result<LoopCut> find_best_loop(const RawAnimation& take, const Skeleton& skeleton, float min_seconds, float min_speed,
                                const std::string& source, float step = 1.0f / 30.0f);
 
-/// The keys of `take` between cut.start and cut.end (sampled at the take's own key times, ends
-/// interpolated), re-timed from 0, with the root's heading drift over the loop spread evenly so the
-/// last key faces like the first. Named `name`.
+/// How well `take` loops as it is, its last pose back to its first: the whole take as a cut, judged as find_best_loop
+/// judges a whole take (mean joint distance between the end poses; the velocity jump across the seam beyond the
+/// largest jump between `step`s inside it). Errors (naming `source`) for a clip that does not build or is shorter
+/// than three steps.
+Result<LoopCut> whole_take_seam(const RawAnimation& take, const Skeleton& skeleton, const std::string& source,
+                                float step = 1.0f / 30.0f);
+
+/// The keys of `take` between cut.start and cut.end (at the take's own key rate, ends interpolated), re-timed from
+/// 0, with the root's heading drift over the loop spread evenly so the last key faces like the first, and the seam
+/// closed (close_loop_seam: the ends made equal, and their velocities matched to the take's own at the two cut
+/// points, or for a whole take beyond the jumps inside it). Named `name`.
 [[nodiscard]] RawAnimation cut_loop(const RawAnimation& take, const Skeleton& skeleton, const LoopCut& cut,
                                     const std::string& name);
 

@@ -6,6 +6,7 @@ if(TARGET aloha_motion AND TARGET aloha_assets)
       ${CMAKE_CURRENT_LIST_DIR}/idle_clips_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/library_walk_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/loop_cut_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/loop_seam_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/foot_root_motion_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/retarget_test.cpp
     LIBS aloha::motion aloha::assets
