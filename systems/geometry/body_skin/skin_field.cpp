@@ -62,6 +62,43 @@ float capsule_distance(const FieldCapsule& c, glm::vec3 p) {
     return glm::length(p - (c.a + t * ab)) - c.radius;
 }
 
+namespace {
+
+// One pass of a normalised Gaussian (standard deviation `sigma` grid cells, cut at 3 sigma) along `axis` of
+// `grid`'s layout; beyond the grid the border value repeats.
+void blur_axis(std::vector<float>& values, const SampledField& grid, int axis, float sigma) {
+    const int radius = std::max(1, static_cast<int>(std::ceil(3.0f * sigma)));
+    std::vector<float> kernel(static_cast<size_t>(2 * radius + 1));
+    float sum = 0.0f;
+    for (int i = -radius; i <= radius; ++i)
+        sum += kernel[static_cast<size_t>(i + radius)] = std::exp(-0.5f * static_cast<float>(i * i) / (sigma * sigma));
+    for (float& k : kernel) k /= sum;
+    const int n[3] = {static_cast<int>(grid.nx), static_cast<int>(grid.ny), static_cast<int>(grid.nz)};
+    const size_t stride[3] = {1, grid.nx, size_t{grid.nx} * grid.ny};
+    const int len = n[axis], a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    std::vector<float> line(static_cast<size_t>(len));
+    for (int u = 0; u < n[a1]; ++u)
+        for (int v = 0; v < n[a2]; ++v) {
+            const size_t base = static_cast<size_t>(u) * stride[a1] + static_cast<size_t>(v) * stride[a2];
+            for (int i = 0; i < len; ++i) line[static_cast<size_t>(i)] = values[base + static_cast<size_t>(i) * stride[axis]];
+            for (int i = 0; i < len; ++i) {
+                float acc = 0.0f;
+                for (int k = -radius; k <= radius; ++k)
+                    acc += kernel[static_cast<size_t>(k + radius)] * line[static_cast<size_t>(std::clamp(i + k, 0, len - 1))];
+                values[base + static_cast<size_t>(i) * stride[axis]] = acc;
+            }
+        }
+}
+
+}  // namespace
+
+void fill_concavities(std::vector<float>& values, const SampledField& grid, float sigma) {
+    assert(values.size() == size_t{grid.nx} * grid.ny * grid.nz && sigma > 0.0f);
+    std::vector<float> blurred = values;
+    for (int axis = 0; axis < 3; ++axis) blur_axis(blurred, grid, axis, sigma / grid.cell);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = std::min(values[i], blurred[i]);
+}
+
 SampledField sample_body_field(const BodyField& field, float cell) {
     assert(cell > 0.0f && (!field.ellipsoids.empty() || !field.capsules.empty()));
     std::vector<Box> boxes;
@@ -106,6 +143,7 @@ SampledField sample_body_field(const BodyField& field, float cell) {
                     v = smooth_min(v, d, field.blend);
                 }
     }
+    if (field.trunk_fill > 0.0f) fill_concavities(layer[0], out, field.trunk_fill);
     if (groups == 1) {
         out.values = std::move(layer[0]);
     } else {

@@ -43,13 +43,15 @@ struct FieldCapsule {
 /// A smooth union of primitives with blend radius `blend` (m, > 0). Primitives carry a group: group 0
 /// (the trunk) blends with everything; primitives of two different non-zero groups (two limbs) are
 /// joined by the plain minimum, so no blended web grows between limbs that lie close together:
-/// field = min over groups g > 0 of smin(trunk, group g) (just the trunk without other groups).
+/// field = min over groups g > 0 of smin(trunk, group g) (just the trunk without other groups). The trunk's own
+/// field has its concavities filled first (trunk_fill), never a limb's: that would web limbs to the body.
 struct BodyField {
     std::vector<FieldEllipsoid> ellipsoids;
     std::vector<FieldCapsule> capsules;
     std::vector<uint8_t> ellipsoid_group;  ///< one per ellipsoid, or empty (all 0)
     std::vector<uint8_t> capsule_group;    ///< one per capsule, or empty (all 0)
     float blend = 0.015f;
+    float trunk_fill = 0.0f;  ///< fill_concavities' sigma (m) for the trunk's primitives (group 0); 0: none
 };
 
 /// A sampled field: values at the points origin + (i, j, k) * cell of an nx x ny x nz grid.
@@ -80,6 +82,13 @@ struct TriangleSurface {
 /// blend radius of margin, with enclosed voids filled. Each primitive only writes the grid points within its bounds + blend
 /// (elsewhere it cannot change the smooth minimum). Requires at least one primitive.
 [[nodiscard]] SampledField sample_body_field(const BodyField& field, float cell);
+
+/// Fills the concave parts of a signed distance field sampled on `grid`'s points (`values`, laid out as
+/// grid.values): each value becomes the lower of itself and its Gaussian blur (standard deviation `sigma` m, cut at
+/// 3 sigma). A blur keeps a plane's distance, raises a convex surface's and lowers a concave one's, so only hollows,
+/// grooves and creases a few sigma wide are filled, as skin and fat bridge the hollows between muscles; convex parts
+/// (a neck, a shoulder's cap) keep their shape.
+void fill_concavities(std::vector<float>& values, const SampledField& grid, float sigma);
 
 /// Fills enclosed voids: grid points with a positive value that cannot be reached from the grid's
 /// border through positive points (6-neighbours) are negated, so the zero set has no inner shells

@@ -111,9 +111,13 @@ BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleto
                                std::span<const float> proxy_radii) {
     const RestMuscles r = rest_muscles(muscles, rest_model, nullptr);
     const std::span<const int16_t> parents = skeleton.parents();
-    const std::vector<uint8_t> group = limb_groups(parents, rest_model);
+    std::vector<uint8_t> group = limb_groups(parents, rest_model);
+    // A trunk_skin muscle's origin joint (a deltoid's clavicle) is part of the trunk's surface, with the bone from it.
+    for (size_t m = 0; m < muscles.trunk_skin.size(); ++m)
+        if (muscles.trunk_skin[m]) group[static_cast<size_t>(muscles.origin_joint[m])] = 0;
     BodyField field;
     field.blend = kBodySkinBlend;
+    field.trunk_fill = kBodySkinTrunkFill;
     for (size_t m = 0; m < r.centres.size(); ++m)
         field.ellipsoids.push_back({r.centres[m], r.rotations[m], r.radii[m] + glm::vec3(muscles.fat_thickness[m]), muscles.exponents[m]});
     field.ellipsoid_group = muscle_groups(muscles, group);

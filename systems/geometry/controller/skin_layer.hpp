@@ -31,6 +31,9 @@ struct GeneratedBindMesh;
 inline constexpr float kBodySkinCell = 0.008f;
 /// Blend radius (m) of the smooth union of muscles and capsules.
 inline constexpr float kBodySkinBlend = 0.02f;
+/// Hollows of the trunk's surface filled (fill_concavities' sigma, m): the pits between the trapezius, the
+/// deltoids and the pectorals at the shoulders, the grooves between chest and belly.
+inline constexpr float kBodySkinTrunkFill = 0.03f;
 /// Kernel distance (m) of the multi-muscle binding weights.
 inline constexpr float kBindSpread = 0.015f;
 /// Spread (m) of the binding weights' smoothing over the skin graph (weight_smoothing.hpp): the

@@ -136,6 +136,7 @@ Result<std::vector<MuscleDef>> parse_muscle_defs(const json& doc, const std::str
         read_exponents(r, d);
         r.read("fat_thickness", d.fat_thickness, 0.0, 1.0);
         read_fat_region(r, regions, d);
+        d.trunk_skin = r.boolean("trunk_skin", d.trunk_skin);
         d.depth_axis = r.vec3("depth_axis", d.depth_axis, false, 1e3);
         // The mirrored copy's name: a non-empty string when given (one error otherwise).
         const std::string mirror = r.has("mirror") ? r.string("mirror", "", /*required=*/true) : std::string();

@@ -45,6 +45,7 @@ void MuscleSet::push_back(const std::string& name, int origin, glm::vec3 origin_
     fat_thickness.push_back(fat);
     rest_length.push_back(length);
     fat_region.push_back(0);
+    trunk_skin.push_back(0);
 }
 
 std::vector<glm::mat4> rest_model_matrices(const Skeleton& skeleton) { return skeleton_rest_model(skeleton); }
@@ -149,6 +150,7 @@ Result<MuscleSet> resolve_muscles(std::span<const MuscleDef> defs, const Skeleto
             vol = static_cast<float>(superellipsoid_volume(glm::dvec3(0.5 * length, d.rest_radii.x, d.rest_radii.y), ab.x, ab.y));
         }
         set.push_back(d.name, oj, ooff, ij, ioff, hint, vol, p, ab, d.fat_thickness, length);
+        set.trunk_skin.back() = d.trunk_skin ? 1 : 0;
         if (d.fat_region) {  // one entry per region name, in order of first use
             size_t k = 0;
             while (k < set.fat_regions.size() && set.fat_regions[k].name != d.fat_region->name) ++k;

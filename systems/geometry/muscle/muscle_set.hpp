@@ -53,6 +53,7 @@ struct MuscleDef {
     float fat_thickness = 0.005f;  ///< metres of fat over this muscle (read by the fat-spring layer)
     glm::vec3 depth_axis{0.0f};    ///< muscle z (depth) hint in the origin joint's frame; 0 = away from the bone
     std::optional<FatRegion> fat_region;  ///< the body region its fat belongs to (none: the controller's tuning)
+    bool trunk_skin = false;       ///< its skin is the trunk's (a limb muscle over the shoulder girdle: the deltoid)
     std::string source_path;       ///< JSON path of the entry for errors ("" = "/muscles/<index>")
 };
 
@@ -75,6 +76,7 @@ struct MuscleSet {
     std::vector<float> rest_length;           ///< origin-insertion distance at the rest/bind pose (m)
     std::vector<uint8_t> fat_region;          ///< 0 = the controller's fat tuning, k = fat_regions[k - 1]
     std::vector<FatRegion> fat_regions;       ///< the regions the muscles name (at most kMaxFatRegions)
+    std::vector<uint8_t> trunk_skin;          ///< 1: the generated skin joins it to the trunk's muscles, not its limb's
 
     /// Number of muscles.
     [[nodiscard]] int size() const { return static_cast<int>(names.size()); }

@@ -244,9 +244,11 @@ TEST(GeometryControllerMorph, ReferenceSurfaceAndDeviationPairs) {
     ASSERT_EQ(ref.size(), current.size());
     double resolution_sum = 0.0;
     for (size_t i = 0; i < current.size(); ++i) resolution_sum += glm::length(current[i] - ref[i]);
-    // Measured at this pose: mean 0.74 mm, max 6.6 mm; regression bounds 2 mm / 1.5 cm.
+    // Measured at this pose: mean 1.54 mm, max 15.3 mm (1.40 / 11.9 mm before the trunk's hollows were filled: a
+    // vertex in a filled hollow lies farther from the muscles it is bound to, and the two resolutions' bindings
+    // differ more there). Regression bounds 2 mm / 2 cm.
     EXPECT_LT(resolution_sum / static_cast<double>(current.size()), 0.002);
-    EXPECT_LT(test::max_distance(current, ref), 0.015f);
+    EXPECT_LT(test::max_distance(current, ref), 0.02f);
     // Against the peeled level the pairs differ by what linear blending cannot follow (the muscle
     // cross-section turning and bulging): first-order motion along the axis is matched by the
     // generated weights, so the error is second order. Measured at this pose with the continuous

@@ -90,6 +90,28 @@ std::string load_error(const nlohmann::json& doc) {
 
 TEST(MuscleLoader, ValidMinimalDocumentLoads) { EXPECT_EQ(load_error(one_muscle()), ""); }
 
+// "trunk_skin" (default false) reaches the set, on a muscle and on its mirrored copy; the humanoid's deltoids have it.
+TEST(MuscleLoader, TrunkSkinIsReadAndMirrored) {
+    auto doc = one_muscle();
+    doc["muscles"][0]["trunk_skin"] = true;
+    doc["muscles"][0]["mirror"] = "m_r";
+    doc["muscles"].push_back(one_muscle()["muscles"][0]);
+    doc["muscles"][1]["name"] = "plain";
+    auto defs = parse_muscle_defs(doc, "t.json");
+    ASSERT_TRUE(defs.ok()) << defs.error().to_string();
+    auto set = resolve_muscles(defs.value(), test::make_cmu_skeleton(), "t.json");
+    ASSERT_TRUE(set.ok()) << set.error().to_string();
+    const MuscleSet& m = set.value();
+    ASSERT_EQ(m.trunk_skin.size(), 3u);
+    EXPECT_EQ(m.trunk_skin[static_cast<size_t>(m.find("m"))], 1);
+    EXPECT_EQ(m.trunk_skin[static_cast<size_t>(m.find("m_r"))], 1);
+    EXPECT_EQ(m.trunk_skin[static_cast<size_t>(m.find("plain"))], 0);
+    auto humanoid = load_muscle_set(kHumanoid, test::make_cmu_skeleton());
+    ASSERT_TRUE(humanoid.ok());
+    for (const char* name : {"deltoid_l", "deltoid_r"}) EXPECT_EQ(humanoid.value().trunk_skin[static_cast<size_t>(humanoid.value().find(name))], 1) << name;
+    EXPECT_EQ(humanoid.value().trunk_skin[static_cast<size_t>(humanoid.value().find("biceps_l"))], 0);
+}
+
 TEST(MuscleLoader, ErrorsNameFileAndJsonPath) {
     auto doc = one_muscle();
     doc["muscles"][0]["origin"]["joint"] = "LeftShoulderr";
@@ -124,6 +146,10 @@ TEST(MuscleLoader, ErrorsNameFileAndJsonPath) {
     doc = one_muscle();
     doc["muscles"][0]["fat_thickness"] = "thick";
     EXPECT_EQ(load_error(doc), "bad.json: /muscles/0/fat_thickness: expected a number, got string");
+
+    doc = one_muscle();
+    doc["muscles"][0]["trunk_skin"] = "yes";
+    EXPECT_EQ(load_error(doc), "bad.json: /muscles/0/trunk_skin: expected true or false, got string") << load_error(doc);
 
     doc = one_muscle();
     doc["muscles"][0]["radius"] = 0.03;  // a typo is refused, naming the keys a muscle may have
