@@ -171,6 +171,7 @@ void add_walk_loops(CharacterType& type, std::span<const RawAnimation> takes, co
 }
 
 std::string loop_idle(CharacterType& type, ClipId id, const RawAnimation& take, const std::string& file) {
+    if (take.duration < 0.1f) return "";  // a held pose (one key, or a few): nothing repeats
     Result<LoopCut> seam = whole_take_seam(take, type.skeleton, file);
     if (!seam.ok()) return " (" + seam.error().message + ")";
     char buf[200];

@@ -31,7 +31,8 @@ void add_walk_loops(CharacterType& type, std::span<const RawAnimation> takes, co
 /// Makes the type's idle clip `id`, which idlers play over and over, meet itself where it repeats, when `take` (its
 /// animation as loaded) nearly loops as it is: its ends within kMaxLoopPoseError / kMaxLoopVelocityError
 /// (library/loop_cut.hpp whole_take_seam), closed by library/loop_seam.hpp and rebuilt in place. Returns what to
-/// note after the idle's name: the seam closed with its figures, or the figures it keeps jumping by.
+/// note after the idle's name: the seam closed with its figures, or the figures it keeps jumping by; nothing for an
+/// idle under 0.1 s (a held pose).
 std::string loop_idle(CharacterType& type, ClipId id, const RawAnimation& take, const std::string& file);
 
 }  // namespace aloha

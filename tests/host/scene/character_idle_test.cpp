@@ -1,6 +1,6 @@
 // A file's own idle, which idlers play over and over: one whose ends nearly meet is closed where it repeats (its
 // first and last poses made equal, the note giving the seam it had); one that does not loop is left as the file has it,
-// with a note giving how far it jumps.
+// with a note giving how far it jumps; a held pose (one key) is noted as the idle with no seam.
 #include "host/scene/character_type.hpp"
 #include "systems/motion/clip.hpp"
 #include "systems/motion/library/loop_cut.hpp"
@@ -77,6 +77,20 @@ TEST(CharacterIdle, AFileIdleThatNearlyLoopsIsClosedWhereItRepeats) {
     EXPECT_NEAR(ends_apart(*f.clips.find(static_cast<ClipId>(f.idle_clip)), f.skeleton), far_apart, 0.002f) << "left as the file has it";
     EXPECT_NE(idle_note(f).find("(does not loop: its ends differ by"), std::string::npos) << idle_note(f);
     EXPECT_NE(idle_note(f).find("it jumps each time idlers repeat it"), std::string::npos) << idle_note(f);
+
+    // A held pose (one key) repeats nothing: noted as the idle, with no seam.
+    RawAnimation pose = lib.idle;
+    for (RawJointTracks& tracks : pose.tracks) {
+        for (auto* times : {&tracks.rotations.times, &tracks.translations.times, &tracks.scales.times}) times->resize(std::min<size_t>(times->size(), 1));
+        tracks.rotations.values.resize(tracks.rotations.times.size());
+        tracks.translations.values.resize(tracks.translations.times.size());
+        tracks.scales.values.resize(tracks.scales.times.size());
+    }
+    pose.duration = 0.0f;
+    const AnimationClip held = built(pose);
+    write_gltf_with_clips((dir / "held.gltf").string(), body, {{"Idle", &held}});
+    const CharacterType h = load_or_fail(desc_for("held", (dir / "held.gltf").string()));
+    EXPECT_EQ(idle_note(h), "idle: the file's clip 'Idle'");
 }
 
 }  // namespace
