@@ -215,8 +215,9 @@ Status add_named_walks(CharacterType& type, const CharacterTypeDesc& desc, std::
     return {};
 }
 
-// The scene's choice of idle (desc.idle), once every clip is in: an error at the type's "idle" when it has no such clip.
-Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc) {
+// The scene's choice of idle (desc.idle), once every clip is in: an error at the type's "idle" when it has no such clip;
+// one of `file_takes` (the file's own animations) is closed where it repeats (loop_idle).
+Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc, std::span<const RawAnimation> file_takes = {}) {
     if (desc.idle.empty()) return {};
     const int id = type.clips.find(desc.idle);
     if (id < 0)
@@ -224,7 +225,10 @@ Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc) {
                                                " clips; `aloha validate` lists them)",
                           0, 0, desc.pointer + "/idle");
     type.idle_clip = id;
-    type.notes.push_back("idle: '" + desc.idle + "' (the scene's choice)");
+    // One of the file's own animations is closed where it repeats, as a file idle found by its name is.
+    const auto take = std::find_if(file_takes.begin(), file_takes.end(), [&](const RawAnimation& a) { return a.name == desc.idle; });
+    const std::string seam = take == file_takes.end() ? "" : loop_idle(type, static_cast<ClipId>(id), *take, desc.bvh.empty() ? desc.gltf : desc.bvh);
+    type.notes.push_back("idle: '" + desc.idle + "' (the scene's choice)" + seam);
     return {};
 }
 
@@ -294,7 +298,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     }
     if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
     if (Status s = add_generated_motion(type, desc); !s.ok()) return s.error();
-    if (Status s = choose_idle(type, desc); !s.ok()) return s.error();
+    if (Status s = choose_idle(type, desc, walk_takes); !s.ok()) return s.error();
     measure(type);
     use_generated_look(type);
     return type;

@@ -78,6 +78,17 @@ TEST(CharacterIdle, AFileIdleThatNearlyLoopsIsClosedWhereItRepeats) {
     EXPECT_NE(idle_note(f).find("(does not loop: its ends differ by"), std::string::npos) << idle_note(f);
     EXPECT_NE(idle_note(f).find("it jumps each time idlers repeat it"), std::string::npos) << idle_note(f);
 
+    // The scene's `idle` naming one of the file's animations closes it the same way.
+    write_gltf_with_clips((dir / "breathe.gltf").string(), body, {{"Breathe", &near}});
+    CharacterTypeDesc chosen = desc_for("breathe", (dir / "breathe.gltf").string());
+    chosen.idle = "Breathe";
+    const CharacterType b = load_or_fail(chosen);
+    ASSERT_EQ(b.idle_clip, b.clips.find("Breathe"));
+    EXPECT_LT(ends_apart(*b.clips.find(static_cast<ClipId>(b.idle_clip)), b.skeleton), 2.0f * (2.0f * closed.error_bound().rotation + closed.error_bound().translation) + 1e-5f);
+    bool noted = false;
+    for (const std::string& n : b.notes) noted |= n.rfind("idle: 'Breathe' (the scene's choice) (its ends differ by", 0) == 0 && n.find(": closed)") != std::string::npos;
+    EXPECT_TRUE(noted) << b.notes.back();
+
     // A held pose (one key) repeats nothing: noted as the idle, with no seam.
     RawAnimation pose = lib.idle;
     for (RawJointTracks& tracks : pose.tracks) {
