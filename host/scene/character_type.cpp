@@ -278,7 +278,8 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     } else if (Status s = add_named_walks(type, desc, walk_takes, file); !s.ok()) {
         return s.error();
     }
-    const RawAnimation* idle = desc.gltf.empty() ? nullptr : named_idle(walk_takes);  // a BVH take is named after the type
+    // A BVH take is named after the type; the scene's own choice (choose_idle, below) wins over a name.
+    const RawAnimation* idle = desc.gltf.empty() || !desc.idle.empty() ? nullptr : named_idle(walk_takes);
     if (const int id = idle ? type.clips.find(idle->name) : -1; id >= 0) {
         type.idle_clip = id;  // idlers play it, characters stand in its first pose
         type.notes.push_back("idle: the file's clip '" + idle->name + "'" + loop_idle(type, static_cast<ClipId>(id), *idle, file));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace aloha {
 
@@ -43,7 +44,7 @@ float excess_share(const glm::vec3& jump, float inside) {
     return j > inside && j > 0.0f ? 1.0f - inside / j : 0.0f;
 }
 
-// A track's value at key i as a vector: the value itself, or a rotation's vector from key `from`.
+// A track's step from key a to key b as a vector: the values' difference, or the rotation vector between them.
 struct VectorValues {
     const std::vector<glm::vec3>& v;
     glm::vec3 step(size_t a, size_t b) const { return v[b] - v[a]; }
@@ -64,16 +65,21 @@ void own_rates(const Values& values, const std::vector<float>& t, glm::vec3& sta
     for (size_t i = 1; i + 1 < n; ++i) inside = std::max(inside, glm::length(rate(i) - rate(i - 1)));
 }
 
-// Closes a translation or scale track; `keep_travel` leaves the horizontal first-to-last difference (the root's walk).
-float close_vector_track(RawTrack<glm::vec3>& track, float duration, float w, bool keep_travel, bool match_rate, const glm::vec3* rate_start,
-                         const glm::vec3* rate_end) {
+// A track's velocities at the loop's two ends as the source take has them (SeamRates).
+struct EndRates {
+    glm::vec3 start, end;
+};
+
+// Closes a translation or scale track; `keep_travel` leaves the horizontal first-to-last difference (the root's walk);
+// velocities are matched only with `match_rate`, to `rates` when given.
+float close_vector_track(RawTrack<glm::vec3>& track, float duration, float w, bool keep_travel, bool match_rate, const std::optional<EndRates>& rates) {
     if (!spans_loop(track, duration)) return 0.0f;
     std::vector<glm::vec3>& v = track.values;
     glm::vec3 diff = v.front() - v.back();
     if (keep_travel) diff.x = diff.z = 0.0f;
     glm::vec3 half_rate(0.0f);
-    if (match_rate && rate_start) {
-        half_rate = 0.5f * (*rate_start - *rate_end);
+    if (match_rate && rates) {
+        half_rate = 0.5f * (rates->start - rates->end);
     } else if (match_rate) {
         glm::vec3 start, end;
         float inside = 0.0f;
@@ -90,15 +96,15 @@ float close_vector_track(RawTrack<glm::vec3>& track, float duration, float w, bo
     return largest;
 }
 
-float close_rotation_track(RawTrack<glm::quat>& track, float duration, float w, const glm::vec3* rate_start, const glm::vec3* rate_end) {
+float close_rotation_track(RawTrack<glm::quat>& track, float duration, float w, const std::optional<EndRates>& rates) {
     if (!spans_loop(track, duration)) return 0.0f;
     std::vector<glm::quat>& q = track.values;
     // Rotations as left (parent-space) differences: the first key is exp(diff) times the last.
     const glm::vec3 half = 0.5f * rotation_vector(q.front() * glm::inverse(q.back()));
     glm::vec3 start, end;
     float share = 1.0f;
-    if (rate_start) {
-        start = *rate_start, end = *rate_end;
+    if (rates) {
+        start = rates->start, end = rates->end;
     } else {
         float inside = 0.0f;
         own_rates(RotationValues{q}, track.times, start, end, inside);
@@ -117,11 +123,10 @@ float close_rotation_track(RawTrack<glm::quat>& track, float duration, float w, 
     return largest;
 }
 
-// Joint j's entry of a rates list, or null without one.
-const glm::vec3* entry(const SeamRates* rates, const std::vector<glm::vec3> SeamRates::*list, size_t j) {
-    if (!rates) return nullptr;
-    const std::vector<glm::vec3>& l = rates->*list;
-    return j < l.size() ? &l[j] : nullptr;
+// Joint j's velocities at both ends from a start and an end list, or none when either lacks it.
+std::optional<EndRates> end_rates(const std::vector<glm::vec3>& start, const std::vector<glm::vec3>& end, size_t j) {
+    if (j >= start.size() || j >= end.size()) return std::nullopt;
+    return EndRates{start[j], end[j]};
 }
 
 }  // namespace
@@ -145,14 +150,11 @@ SeamClosing close_loop_seam(RawAnimation& loop, const SeamRates* rates, float wi
     const float w = std::min(window, 0.5f * duration);
     for (size_t j = 0; j < loop.tracks.size(); ++j) {
         RawJointTracks& tracks = loop.tracks[j];
-        const glm::vec3* rs = entry(rates, &SeamRates::rotation_start, j);
-        const glm::vec3* re = entry(rates, &SeamRates::rotation_end, j);
-        const glm::vec3* ts = entry(rates, &SeamRates::translation_start, j);
-        const glm::vec3* te = entry(rates, &SeamRates::translation_end, j);
-        out.max_rotation = std::max(out.max_rotation, close_rotation_track(tracks.rotations, duration, w, rs && re ? rs : nullptr, re));
-        out.max_translation =
-            std::max(out.max_translation, close_vector_track(tracks.translations, duration, w, j == 0, true, ts && te ? ts : nullptr, te));
-        close_vector_track(tracks.scales, duration, w, false, false, nullptr, nullptr);
+        const std::optional<EndRates> turning = rates ? end_rates(rates->rotation_start, rates->rotation_end, j) : std::nullopt;
+        const std::optional<EndRates> moving = rates ? end_rates(rates->translation_start, rates->translation_end, j) : std::nullopt;
+        out.max_rotation = std::max(out.max_rotation, close_rotation_track(tracks.rotations, duration, w, turning));
+        out.max_translation = std::max(out.max_translation, close_vector_track(tracks.translations, duration, w, j == 0, true, moving));
+        close_vector_track(tracks.scales, duration, w, false, false, std::nullopt);
     }
     return out;
 }
