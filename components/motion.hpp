@@ -14,7 +14,7 @@ enum class RequestKind : uint8_t { Rest = 0, PlayClip = 1, Walk = 2, Reach = 3, 
 /// One animation request. Which fields matter depends on `kind`.
 struct MotionRequest {
     RequestKind kind = RequestKind::Rest;
-    uint8_t loop = 1;              ///< PlayClip: loop (1) or once (0)
+    uint8_t loop = 1;              ///< PlayClip: loop (1, with the clip's seam closed where it has a looped version) or once (0)
     uint16_t clip = 0;             ///< PlayClip: clip id in the motion library
     float speed = 1.0f;            ///< PlayClip: playback rate; Walk: m/s
     float start_time = 0.0f;       ///< PlayClip: seconds into the clip

@@ -6,7 +6,6 @@
 #include "systems/motion/clip.hpp"
 #include "systems/motion/library/foot_root_motion.hpp"
 #include "systems/motion/library/loop_cut.hpp"
-#include "systems/motion/library/loop_seam.hpp"
 #include "systems/motion/library/retarget.hpp"
 #include "systems/motion/sampling.hpp"
 
@@ -170,28 +169,7 @@ void add_walk_loops(CharacterType& type, std::span<const RawAnimation> takes, co
                              (failed == 2 ? " (nor does its other clip)" : failed > 2 ? " (nor do its " + std::to_string(failed - 1) + " other clips)" : ""));
 }
 
-std::string loop_idle(CharacterType& type, ClipId id, const RawAnimation& take, const std::string& file) {
-    if (take.duration < 0.1f) return "";  // a held pose (one key, or a few): nothing repeats
-    Result<LoopCut> seam = whole_take_seam(take, type.skeleton, file);
-    if (!seam.ok()) return " (" + seam.error().message + ")";
-    char buf[200];
-    const LoopCut& s = seam.value();
-    const bool loops = s.pose_error <= kMaxLoopPoseError && s.velocity_error <= kMaxLoopVelocityError;
-    std::snprintf(buf, sizeof buf, loops ? " (its ends differ by %.1f cm per joint and %.2f m/s: closed)"
-                                         : " (does not loop: its ends differ by %.1f cm per joint and %.2f m/s, limits %.1f cm and %.2f m/s; "
-                                           "it jumps each time idlers repeat it)",
-                  static_cast<double>(100.0f * s.pose_error), static_cast<double>(s.velocity_error), static_cast<double>(100.0f * kMaxLoopPoseError),
-                  static_cast<double>(kMaxLoopVelocityError));
-    if (!loops) return buf;
-    RawAnimation closed = take;
-    close_loop_seam(closed);
-    Result<AnimationClip> built = build_clip(closed, type.skeleton);
-    if (!built.ok()) return " (" + built.error().message + ")";  // built before as it was: cannot fail
-    type.clips.replace(id, std::move(built).value());
-    return buf;
-}
-
-Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {
+Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc, std::vector<LoadedTake>& takes) {
     if (desc.motions.empty()) return {};
     if (!type.map.humanoid)
         return make_error(desc.scene_file, "type '" + desc.name + "' is not a mapped humanoid, and motion files are retargeted through the canonical "
@@ -229,6 +207,7 @@ Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc) {
                 if (e.file.empty()) e.file = s.file;
                 return e;
             }
+            takes.push_back({std::move(moved).value(), s.file});
             char buf[96];
             std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(report.scale));
             std::string note = "clip '" + name + "' retargeted from " + std::filesystem::path(s.file).filename().string() + " (pelvis travel x" + buf;

@@ -4,17 +4,20 @@
 #pragma once
 
 #include "engine/core/result.hpp"
+#include "host/scene/character_loops.hpp"
 #include "host/scene/character_type.hpp"
 
 #include <span>
 #include <string>
+#include <vector>
 
 namespace aloha {
 
-/// Adds the clips of desc.motions to `type` (loaded, with its humanoid map). Errors name the scene file and
-/// the motion's JSON pointer (a type that is no mapped humanoid, a glTF animation not found, a clip name already
-/// used) or the motion file (what its loaders and mapping refuse, a skeleton that is no humanoid).
-Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc);
+/// Adds the clips of desc.motions to `type` (loaded, with its humanoid map), each retargeted take also appended to
+/// `takes` (named as its clip, with its file). Errors name the scene file and the motion's JSON pointer (a type that
+/// is no mapped humanoid, a glTF animation not found, a clip name already used) or the motion file (what its loaders
+/// and mapping refuse, a skeleton that is no humanoid).
+Status add_motion_files(CharacterType& type, const CharacterTypeDesc& desc, std::vector<LoadedTake>& takes);
 
 /// A take used as the type's walk: cut to its best loop (a walk of at least 0.5 m/s: library/loop_cut.hpp) and
 /// added to type.gait_clips as "<type>.loop" (a second one "<type>.loop2", ...), with a note. An in-place take (no
@@ -27,12 +30,5 @@ Status add_walk_loop(CharacterType& type, const RawAnimation& take, const std::s
 /// (those that loop as walks forward are added; a take travelling more than 45 degrees off the body's facing, a
 /// backward walk or a strafe, is none). One note when none does, with the first take's reason.
 void add_walk_loops(CharacterType& type, std::span<const RawAnimation> takes, const std::string& file);
-
-/// Makes the type's idle clip `id`, which idlers play over and over, meet itself where it repeats, when `take` (its
-/// animation as loaded) nearly loops as it is: its ends within kMaxLoopPoseError / kMaxLoopVelocityError
-/// (library/loop_cut.hpp whole_take_seam), closed by library/loop_seam.hpp and rebuilt in place. Returns what to
-/// note after the idle's name: the seam closed with its figures, or the figures it keeps jumping by; nothing for an
-/// idle under 0.1 s (a held pose).
-std::string loop_idle(CharacterType& type, ClipId id, const RawAnimation& take, const std::string& file);
 
 }  // namespace aloha

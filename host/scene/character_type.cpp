@@ -4,6 +4,7 @@
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
 #include "host/scene/character_library.hpp"
+#include "host/scene/character_loops.hpp"
 #include "host/scene/character_motions.hpp"
 #include "host/scene/character_rig.hpp"
 #include "systems/geometry/controller/body_texture.hpp"
@@ -215,20 +216,29 @@ Status add_named_walks(CharacterType& type, const CharacterTypeDesc& desc, std::
     return {};
 }
 
-// The scene's choice of idle (desc.idle), once every clip is in: an error at the type's "idle" when it has no such clip;
-// one of `file_takes` (the file's own animations) is closed where it repeats (loop_idle).
-Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc, std::span<const RawAnimation> file_takes = {}) {
-    if (desc.idle.empty()) return {};
-    const int id = type.clips.find(desc.idle);
-    if (id < 0)
+// The type's idle, once every clip is in: the scene's choice (desc.idle; an error at the type's "idle" when it has
+// no such clip), else a glTF's own animation named like "Idle" (named_idle), else the idle it has (the generated one,
+// or none). An idle among `takes` (animations as loaded) is closed where it repeats (close_clip_seam).
+Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc, std::span<const LoadedTake> takes) {
+    std::string name = desc.idle, how = " (the scene's choice)";
+    if (name.empty() && !desc.gltf.empty()) {
+        std::vector<RawAnimation> own;  // the type's file's animations: a motion file's are named after the type
+        for (const LoadedTake& t : takes)
+            if (t.file == desc.gltf) own.push_back(t.take);
+        const RawAnimation* idle = named_idle(own);
+        if (idle) name = idle->name, how = "";
+    }
+    if (name.empty()) return {};
+    const int id = type.clips.find(name);
+    if (id < 0 && !desc.idle.empty())
         return make_error(desc.scene_file, "type '" + desc.name + "' has no clip '" + desc.idle + "' to idle in (" + std::to_string(type.clips.size()) +
                                                " clips; `aloha validate` lists them)",
                           0, 0, desc.pointer + "/idle");
-    type.idle_clip = id;
-    // One of the file's own animations is closed where it repeats, as a file idle found by its name is.
-    const auto take = std::find_if(file_takes.begin(), file_takes.end(), [&](const RawAnimation& a) { return a.name == desc.idle; });
-    const std::string seam = take == file_takes.end() ? "" : loop_idle(type, static_cast<ClipId>(id), *take, desc.bvh.empty() ? desc.gltf : desc.bvh);
-    type.notes.push_back("idle: '" + desc.idle + "' (the scene's choice)" + seam);
+    if (id < 0) return {};
+    type.idle_clip = id;  // idlers play it, characters stand in its first pose
+    const auto take = std::find_if(takes.begin(), takes.end(), [&](const LoadedTake& t) { return t.take.name == name; });
+    const std::string seam = take == takes.end() ? "" : close_clip_seam(type, static_cast<ClipId>(id), take->take, take->file);
+    type.notes.push_back(std::string(how.empty() ? "idle: the file's clip '" : "idle: '") + name + "'" + how + seam);
     return {};
 }
 
@@ -242,8 +252,10 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         type.map = std::move(map.value());
         type.frame.units = "metres (built-in humanoid)";
         type.frame.height = desc.height;
-        if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
-        if (Status s = choose_idle(type, desc); !s.ok()) return s.error();
+        std::vector<LoadedTake> takes;
+        if (Status s = add_motion_files(type, desc, takes); !s.ok()) return s.error();
+        if (Status s = choose_idle(type, desc, takes); !s.ok()) return s.error();
+        close_clip_seams(type, takes);
         measure(type);
         use_generated_look(type);
         return type;
@@ -278,12 +290,6 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
     } else if (Status s = add_named_walks(type, desc, walk_takes, file); !s.ok()) {
         return s.error();
     }
-    // A BVH take is named after the type; the scene's own choice (choose_idle, below) wins over a name.
-    const RawAnimation* idle = desc.gltf.empty() || !desc.idle.empty() ? nullptr : named_idle(walk_takes);
-    if (const int id = idle ? type.clips.find(idle->name) : -1; id >= 0) {
-        type.idle_clip = id;  // idlers play it, characters stand in its first pose
-        type.notes.push_back("idle: the file's clip '" + idle->name + "'" + loop_idle(type, static_cast<ClipId>(id), *idle, file));
-    }
     if (type.muscles.size() == 0 && type.mesh && type.map.humanoid) {
         std::vector<glm::mat4> bind_model;
         for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));
@@ -297,9 +303,13 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         type.notes.push_back(std::string("layered levels refused: muscles are laid out for humanoids and this type is none; ") +
                              (type.mesh ? "drawn with its skinned mesh at those levels" : "drawn as rigid proxies (it has no mesh)"));
     }
-    if (Status s = add_motion_files(type, desc); !s.ok()) return s.error();
+    std::vector<LoadedTake> takes;  // the file's animations, the in-place copy of its first, the motion files' clips
+    for (const RawAnimation& take : walk_takes) takes.push_back({take, file});
+    if (type.inplace_clip >= 0 && !walk_takes.empty()) takes.push_back({in_place(walk_takes.front(), desc.name + ".inplace"), file});
+    if (Status s = add_motion_files(type, desc, takes); !s.ok()) return s.error();
     if (Status s = add_generated_motion(type, desc); !s.ok()) return s.error();
-    if (Status s = choose_idle(type, desc, walk_takes); !s.ok()) return s.error();
+    if (Status s = choose_idle(type, desc, takes); !s.ok()) return s.error();
+    close_clip_seams(type, takes);
     measure(type);
     use_generated_look(type);
     return type;

@@ -190,6 +190,33 @@ struct ClipEncoder {
     }
 };
 
+glm::quat without_turn_about_vertical(const glm::quat& q) {
+    const float len = std::sqrt(q.w * q.w + q.y * q.y);
+    if (len < 1e-9f) return q;  // a half turn about a horizontal axis: no turn about the vertical to take out
+    const glm::quat twist(q.w / len, 0.0f, q.y / len, 0.0f);
+    return q * glm::conjugate(twist);
+}
+
+namespace {
+
+// Whether the pose at the last key time is the first's (AnimationClip::ends_meet); `keys` holds every joint's value
+// at every key time.
+bool ends_meet(const ClipEncoder::Keys& keys) {
+    const size_t n = keys.joints, last = (keys.count - 1) * n;
+    for (size_t j = 0; j < n; ++j) {
+        glm::quat d = keys.r[last + j] * glm::inverse(keys.r[j]);
+        if (j == 0) d = without_turn_about_vertical(d);  // the root's turn is travel (a clip played in place turns back)
+        const float angle = 2.0f * std::atan2(glm::length(glm::vec3(d.x, d.y, d.z)), std::abs(d.w));
+        glm::vec3 moved = keys.t[last + j] - keys.t[j];
+        if (j == 0) moved.x = moved.z = 0.0f;  // the root's travel over the ground
+        const glm::vec3 scaled = keys.s[last + j] - keys.s[j];
+        if (angle > kEndsMeetAngle || glm::length(moved) > kEndsMeetDistance || glm::length(scaled) > kEndsMeetDistance) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton, ClipEncoding encoding) {
     const size_t n = static_cast<size_t>(skeleton.joint_count());
     const std::string& clip_name = raw.name.empty() ? std::string("<unnamed clip>") : raw.name;
@@ -270,6 +297,7 @@ Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skelet
             keys.r[k * n + j] = has && !aligned[j].empty() ? eval_rot(raw.tracks[j].rotations.times, aligned[j], t) : rest_r[j];
         }
     }
+    clip.ends_meet_ = ends_meet(keys);
     clip.times_ = std::move(times);
     ClipEncoder::encode(clip, keys);
     // Root translation at both ends, as sampling returns it there.
@@ -284,7 +312,9 @@ Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skelet
 }
 
 ClipId ClipLibrary::add(AnimationClip clip) {
+    assert(clips_.size() < 65535);
     clips_.push_back(std::move(clip));
+    looped_.emplace_back();
     return static_cast<ClipId>(clips_.size() - 1);
 }
 
@@ -294,13 +324,19 @@ Result<ClipId> ClipLibrary::add(const RawAnimation& raw, const Skeleton& skeleto
     return add(std::move(clip).value());
 }
 
-void ClipLibrary::replace(ClipId id, AnimationClip clip) {
+void ClipLibrary::set_looped(ClipId id, AnimationClip looped) {
     assert(id < clips_.size());
-    clips_[id] = std::move(clip);
+    assert(looped.joint_count() == clips_[id].joint_count() && looped.duration() == clips_[id].duration());
+    looped_[id] = std::move(looped);
 }
 
 const AnimationClip* ClipLibrary::find(ClipId id) const {
     return id < clips_.size() ? &clips_[id] : nullptr;
+}
+
+const AnimationClip* ClipLibrary::find_looped(ClipId id) const {
+    if (id >= clips_.size()) return nullptr;
+    return looped_[id] ? &*looped_[id] : &clips_[id];
 }
 
 int ClipLibrary::find(const std::string& name) const {
@@ -312,6 +348,8 @@ int ClipLibrary::find(const std::string& name) const {
 size_t ClipLibrary::byte_size() const {
     size_t bytes = 0;
     for (const AnimationClip& c : clips_) bytes += c.byte_size();
+    for (const std::optional<AnimationClip>& c : looped_)
+        if (c) bytes += c->byte_size();
     return bytes;
 }
 

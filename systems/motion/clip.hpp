@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -87,6 +88,10 @@ public:
     /// for root-motion extraction.
     [[nodiscard]] glm::vec3 root_start() const { return root_start_; }
     [[nodiscard]] glm::vec3 root_end() const { return root_end_; }
+    /// True when the last key's pose is the first's, every joint within kEndsMeetAngle and kEndsMeetDistance (the
+    /// root's travel over the ground and its turn about the vertical aside: a clip played in place returns there
+    /// anyway): played over and over, it repeats without a jump. A single-key clip's ends meet.
+    [[nodiscard]] bool ends_meet() const { return ends_meet_; }
     /// Horizontal (XZ) root speed averaged over the clip in m/s (0 for a still or 0-length clip).
     [[nodiscard]] float root_speed() const;
     /// Bytes of clip data held: key blocks, key times, per-channel ranges and constant values.
@@ -116,6 +121,7 @@ private:
     std::vector<glm::quat> const_r_;
     std::vector<glm::vec3> const_s_;
     ClipErrorBound bound_;
+    bool ends_meet_ = true;
     glm::vec3 root_start_{0.0f};
     glm::vec3 root_end_{0.0f};
 };
@@ -127,6 +133,14 @@ private:
 Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skeleton,
                                  ClipEncoding encoding = ClipEncoding::Quantized16);
 
+/// How far apart a clip's ends may be and still meet (AnimationClip::ends_meet): a joint's turn of 1e-3 rad moves
+/// what hangs a metre beyond it by a millimetre, the distance allowed a joint's own translation; scales alike.
+inline constexpr float kEndsMeetAngle = 1e-3f;
+inline constexpr float kEndsMeetDistance = 1e-3f;
+
+/// A rotation without its turn about the vertical (+Y): the swing of its swing-twist decomposition about Y.
+[[nodiscard]] glm::quat without_turn_about_vertical(const glm::quat& q);
+
 /// Id of a clip in a ClipLibrary (MotionRequest::clip).
 using ClipId = uint16_t;
 
@@ -137,20 +151,27 @@ public:
     ClipId add(AnimationClip clip);
     /// Builds `raw` for `skeleton` (default encoding) and adds it; returns the id or the build error.
     Result<ClipId> add(const RawAnimation& raw, const Skeleton& skeleton);
-    /// Puts `clip` in place of clip `id` (a load-time edit, before anything samples it: the address stays valid).
-    /// Requires id < size().
-    void replace(ClipId id, AnimationClip clip);
+    /// Gives clip `id` the version played when it repeats (a looping PlayClip): `looped`, the clip with its seam
+    /// closed (library/loop_seam.hpp). A load-time edit, before anything samples it. Requires id < size() and a
+    /// `looped` of the clip's joints and duration.
+    void set_looped(ClipId id, AnimationClip looped);
     /// The clip with id `id`, or nullptr when there is none.
     [[nodiscard]] const AnimationClip* find(ClipId id) const;
+    /// The clip to sample when `id` is played over and over: its looped version when it has one (set_looped), else
+    /// the clip itself; nullptr when there is no clip `id`.
+    [[nodiscard]] const AnimationClip* find_looped(ClipId id) const;
+    /// Whether clip `id` has a looped version of its own.
+    [[nodiscard]] bool has_looped(ClipId id) const { return id < looped_.size() && looped_[id].has_value(); }
     /// Id of the first clip named `name`, or -1.
     [[nodiscard]] int find(const std::string& name) const;
     /// Number of clips.
     [[nodiscard]] size_t size() const { return clips_.size(); }
-    /// Bytes held by all clips (sum of byte_size()).
+    /// Bytes held by all clips and their looped versions (sum of byte_size()).
     [[nodiscard]] size_t byte_size() const;
 
 private:
-    std::deque<AnimationClip> clips_;  // deque: clip addresses stay valid as clips are added
+    std::deque<AnimationClip> clips_;                 // deque: clip addresses stay valid as clips are added
+    std::deque<std::optional<AnimationClip>> looped_;  // per clip: its looped version, when it has one
 };
 
 }  // namespace aloha

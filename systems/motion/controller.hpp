@@ -228,6 +228,7 @@ private:
         float inertial_elapsed = 0.0f, inertial_total = 0.0f;  // seconds into / of the transition
         uint8_t inertial_pending = 0;  // the offset is taken at the next pose (the change happened this frame)
         uint8_t inertial_done = 0;     // posed with the offset gone: the slot is released at the next update
+        uint8_t inertial_wrap = 0;     // the transition is a looping clip's wrap: the root's travel is not faded
         uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the stance)
         Channel prev;                  // the request faded from (while fade_left > 0 and !fade_snapshot)
     };
@@ -322,6 +323,13 @@ private:
     void prefetch_step(size_t k) const;
     void sample_walk_clip(Channel& ch, const PoseView& out) const;
     bool clip_driven(const Character& ch, const AnimLod& lod) const;
+    // Whether `ch` plays a looping clip whose ends do not meet (AnimationClip::ends_meet) and its clock crossed the
+    // clip's end this step, from `before` (either way): the pose jumps there unless inertialized.
+    bool jumped_at_wrap(const Channel& ch, float before) const;
+    // `ahead`, a copy of a channel advanced from `from` for a throttled character's next key, stopped short of a
+    // jumping wrap (jumped_at_wrap): the keys carry the pose to the clip's end, and the update that crosses the wrap
+    // inertializes it from there (interpolating across it would show the jump spread over the interval).
+    void stop_before_wrap(Channel& ahead, float from) const;
     // True when `ch` walks by the kinematic walk at `lod` (its pose predictable one interval ahead
     // from the phase and the placement moving at its velocity).
     bool kinematic_walking(const Character& ch, const AnimLod& lod) const;

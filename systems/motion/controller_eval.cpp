@@ -32,7 +32,8 @@ void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, con
     };
     switch (ch.req.kind) {
         case RequestKind::PlayClip: {
-            const AnimationClip* clip = clips_->find(ch.req.clip);
+            // Played over and over, a clip whose ends nearly meet is sampled with its seam closed (ClipLibrary::set_looped).
+            const AnimationClip* clip = ch.req.loop ? clips_->find_looped(ch.req.clip) : clips_->find(ch.req.clip);
             if (!clip) return;  // unknown clip: hold the pose
             const float t = wrap_clip_time(ch.time, clip->duration(), ch.req.loop != 0);
             int k = 0;
@@ -111,6 +112,7 @@ void MotionController::pose_one(const Due& d, size_t worker) {
         Channel ahead = ch.cur;
         Transform x_ahead = x;
         advance_clock(ahead, h.keys_span);
+        stop_before_wrap(ahead, ch.cur.time);
         if (kinematic_walking(ch, lod)) {
             // The walk one interval on: its phase advanced and the placement moved at its velocity (the
             // copy's planted feet stay in the world, so the keys carry them back as the root moves).
@@ -144,6 +146,7 @@ void MotionController::settle_inertia(Character& ch, const PoseView& pose, float
     if (ch.inertial_pending) {
         // The change happened this frame: the offset is what separates the new pose from the old.
         inertia_.relate(slot, ConstPoseView{pose.translations, pose.rotations, pose.scales, pose.model});
+        if (ch.inertial_wrap) inertia_.keep_root_travel(slot);
         ch.inertial_pending = 0;
     }
     ch.inertial_done = ch.inertial_elapsed >= ch.inertial_total ? 1 : 0;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 #include <mutex>
 
@@ -172,6 +173,22 @@ void MotionController::prefetch_step(size_t k) const {
 #endif
 }
 
+bool MotionController::jumped_at_wrap(const Channel& ch, float before) const {
+    if (ch.req.kind != RequestKind::PlayClip || !ch.req.loop) return false;
+    const AnimationClip* clip = clips_->find_looped(ch.req.clip);
+    if (!clip || clip->ends_meet() || !(clip->duration() > 0.0f)) return false;
+    return std::floor(before / clip->duration()) != std::floor(ch.time / clip->duration());
+}
+
+void MotionController::stop_before_wrap(Channel& ahead, float from) const {
+    if (!jumped_at_wrap(ahead, from)) return;
+    const float d = clips_->find_looped(ahead.req.clip)->duration();
+    // Forward: the last instant before the next multiple of the duration; backward: the first after the one below.
+    const bool forward = ahead.time > from;
+    const float boundary = (std::floor(from / d) + (forward ? 1.0f : 0.0f)) * d;
+    ahead.time = std::nextafter(boundary, forward ? -INFINITY : INFINITY);
+}
+
 void MotionController::step_active(const Walker& w, float dt, std::span<MotionState> states, StepBlock& out) {
     const uint32_t c = w.character, e = w.element;
     assert(e < lods_.size() && e < states.size() && e < transforms_.size() && e < velocities_.size());
@@ -199,6 +216,7 @@ void MotionController::step_active(const Walker& w, float dt, std::span<MotionSt
     if (!switched && ch.cur.req.kind == RequestKind::Walk && ch.has_walk_method)
         sync_walk_clock(ch.cur, ch.walk_method, walk_method(lod));
     // Requests that end during this frame hand over at the start of the next one.
+    const float clock_before = ch.cur.time;
     advance(ch.cur, lod, dt, &x, &v);
     if (ch.fade_left > 0.0f) {
         if (!ch.fade_snapshot) advance(ch.prev, lod, dt, nullptr, nullptr);
@@ -222,7 +240,9 @@ void MotionController::step_active(const Walker& w, float dt, std::span<MotionSt
     h.last_anim = signature;
     // Any level change is posed at once (even without a transition), so a throttled character's
     // keys restart on the new level's schedule instead of holding the old span's last key.
-    const bool level_start = level_changed && posing && !switched;
+    // A looping clip whose ends do not meet is inertialized where it wraps, as a level change is.
+    const bool wrapped = !switched && jumped_at_wrap(ch.cur, clock_before);
+    const bool level_start = (level_changed || wrapped) && posing && !switched;
     if (ch.inertial_slot >= 0 && ch.inertial_done) {
         const std::lock_guard<std::mutex> lock(slots_mutex_);
         inertia_.release(static_cast<uint32_t>(ch.inertial_slot));
@@ -235,6 +255,7 @@ void MotionController::step_active(const Walker& w, float dt, std::span<MotionSt
         }
         ch.inertial_pending = 1;
         ch.inertial_done = 0;
+        ch.inertial_wrap = wrapped && !level_changed ? 1 : 0;
         ch.inertial_elapsed = 0.0f;
         ch.inertial_total = transition_seconds(lod);
     } else if (ch.inertial_slot >= 0) {

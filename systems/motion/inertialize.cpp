@@ -1,5 +1,6 @@
 #include "systems/motion/inertialize.hpp"
 
+#include "systems/motion/clip.hpp"
 #include "systems/motion/throttle_keys.hpp"
 
 #include <algorithm>
@@ -50,6 +51,15 @@ void InertialOffsets::relate(uint32_t slot, const ConstPoseView& target) {
         out[j].translation -= target.translations[j];
         out[j].scale -= target.scales[j];
     }
+}
+
+void InertialOffsets::keep_root_travel(uint32_t slot) {
+    if (joints_ == 0) return;
+    Offset& root = offsets_[static_cast<size_t>(slot) * joints_];
+    root.translation.x = root.translation.z = 0.0f;
+    glm::quat q = without_turn_about_vertical(root.rotation);
+    if (q.w < 0.0f) q = -q;
+    root.rotation = q;
 }
 
 void InertialOffsets::apply(uint32_t slot, float weight, const PoseView& pose) const {

@@ -42,6 +42,10 @@ public:
     void hold(uint32_t slot, const int16_t* parents, std::span<const glm::mat4> shown);
     /// Turns the pose held in `slot` into its offset from the local pose `target` (the new pose).
     void relate(uint32_t slot, const ConstPoseView& target);
+    /// Takes the root's travel out of the offset in `slot` (after relate()): its translation over the ground (X, Z)
+    /// and its turn about the vertical. A looping clip played in place returns to where it started at each wrap;
+    /// only the rest of the pose's jump there is faded.
+    void keep_root_travel(uint32_t slot);
     /// Adds `weight` times the slot's offset to the local pose `pose` (translations, rotations,
     /// scales; model matrices untouched). weight 1 gives the captured shown pose, 0 leaves `pose`.
     void apply(uint32_t slot, float weight, const PoseView& pose) const;

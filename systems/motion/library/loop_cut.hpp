@@ -23,6 +23,11 @@ struct LoopCut {
 /// Largest mean joint distance (m) and velocity difference (m/s) accepted at a loop's seam.
 inline constexpr float kMaxLoopPoseError = 0.03f;
 inline constexpr float kMaxLoopVelocityError = 0.25f;
+/// Largest mean bend (m per joint, loop_seam.hpp seam_bend) closing may put on a clip played over and over (an
+/// idle, a looping play) to remove the jump where it repeats: what closing a seam at kMaxLoopPoseError does to the
+/// pose alone. A clip that repeats jumps there otherwise, so its velocities are matched whenever the bend allows,
+/// without a bar of their own (the bars above choose walk loops, where a cut elsewhere may match better).
+inline constexpr float kMaxSeamBend = 0.5f * kMaxLoopPoseError;
 
 /// Finds the best loop of `take` (built for `skeleton`) at least `min_seconds` long whose root keeps
 /// travelling at `min_speed` m/s or more throughout (a walk loop must walk; 0 for any loop), comparing poses sampled

@@ -143,6 +143,10 @@ glm::quat from_rotation_vector(const glm::vec3& r) {
     return angle < 1e-9f ? glm::quat(1, 0, 0, 0) : glm::angleAxis(angle, r / angle);
 }
 
+float seam_bend(float pose_error, float velocity_error, float window) {
+    return 0.5f * pose_error + (4.0f / 27.0f) * 0.5f * velocity_error * window;
+}
+
 SeamClosing close_loop_seam(RawAnimation& loop, const SeamRates* rates, float window) {
     SeamClosing out;
     const float duration = loop.duration;

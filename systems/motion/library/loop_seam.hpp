@@ -27,6 +27,12 @@ struct SeamRates {
     std::vector<glm::vec3> translation_start, translation_end;
 };
 
+/// The most closing a seam whose ends are `pose_error` apart (m per joint) with their velocities `velocity_error`
+/// apart (m/s, the part to match) moves a joint, per joint on the mean: half the pose difference (the value offset)
+/// plus 4/27 of half the velocity difference times `window` (the peak of the velocity offset's Hermite cubic
+/// s^3 - s^2). An upper bound: the two offsets do not peak together.
+[[nodiscard]] float seam_bend(float pose_error, float velocity_error, float window = kSeamWindow);
+
 /// What closing a seam changed: the largest offset it put on any key, so callers can say how much the loop was
 /// bent to meet itself.
 struct SeamClosing {

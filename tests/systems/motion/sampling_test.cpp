@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace aloha {
@@ -228,6 +229,77 @@ TEST(ClipLibrary, OwnsClipsById) {
     EXPECT_EQ(lib.find("nonuniform"), 0);
     EXPECT_EQ(lib.find(std::string("missing")), -1);
     EXPECT_EQ(lib.find(ClipId{500}), nullptr);
+    // No looped version: a looping play samples the clip itself.
+    EXPECT_FALSE(lib.has_looped(a.value()));
+    EXPECT_EQ(lib.find_looped(a.value()), first);
+    EXPECT_EQ(lib.find_looped(ClipId{500}), nullptr);
+}
+
+// A one-joint-turning clip over 1 s: joint 1 turns about X from 0 to `end_angle`; the root travels `travel` over
+// the ground, turns `heading` about the vertical and rises `rise`.
+RawAnimation ends_clip(float end_angle, glm::vec3 travel = glm::vec3(0.0f), float heading = 0.0f) {
+    RawAnimation a;
+    a.name = "ends";
+    a.duration = 1.0f;
+    a.tracks.resize(2);
+    for (int k = 0; k <= 10; ++k) {
+        const float t = 0.1f * static_cast<float>(k);
+        a.tracks[1].rotations.times.push_back(t);
+        a.tracks[1].rotations.values.push_back(glm::angleAxis(end_angle * std::sin(1.5707963f * t), glm::vec3(1, 0, 0)));
+        a.tracks[0].translations.times.push_back(t);
+        a.tracks[0].translations.values.push_back(travel * t);
+        a.tracks[0].rotations.times.push_back(t);
+        a.tracks[0].rotations.values.push_back(glm::angleAxis(heading * t, glm::vec3(0, 1, 0)) * glm::angleAxis(0.3f, glm::vec3(1, 0, 0)));
+    }
+    return a;
+}
+
+TEST(AnimationClip, EndsMeetWhenTheLastPoseIsTheFirstTravelAside) {
+    const Skeleton sk = chain(3);
+    auto meet = [&](const RawAnimation& raw) { return build_clip(raw, sk).value().ends_meet(); };
+    EXPECT_TRUE(meet(test::make_wave_clip(sk, 3, 1.0f))) << "a cycle";
+    EXPECT_FALSE(meet(ends_clip(0.5f))) << "joint 1 ends half a radian from where it started";
+    // The threshold: 1e-3 rad. sin(pi/2 * 1) = 1, so the end angle is the jump.
+    EXPECT_TRUE(meet(ends_clip(0.0f)));
+    EXPECT_TRUE(meet(ends_clip(0.5f * kEndsMeetAngle)));
+    EXPECT_FALSE(meet(ends_clip(2.0f * kEndsMeetAngle)));
+    // The root's travel over the ground and its turn about the vertical are no jump of a clip played in place ...
+    EXPECT_TRUE(meet(ends_clip(0.0f, glm::vec3(1.2f, 0.0f, -0.4f), 1.0f)));
+    // ... its rise is.
+    EXPECT_FALSE(meet(ends_clip(0.0f, glm::vec3(0.0f, 0.1f, 0.0f))));
+    // A single key: nothing to repeat.
+    RawAnimation held = ends_clip(0.5f);
+    for (RawJointTracks& t : held.tracks) {
+        t.rotations.times.resize(1), t.rotations.values.resize(1);
+        t.translations.times.resize(1), t.translations.values.resize(1);
+    }
+    held.duration = 0.0f;
+    EXPECT_TRUE(meet(held));
+}
+
+TEST(AnimationClip, TakingTheTurnAboutTheVerticalOutLeavesTheSwing) {
+    const glm::quat swing = glm::angleAxis(0.4f, glm::normalize(glm::vec3(1, 0, 0.5f)));
+    const glm::quat q = swing * glm::angleAxis(1.1f, glm::vec3(0, 1, 0));
+    const glm::quat got = without_turn_about_vertical(q);
+    EXPECT_NEAR(std::abs(glm::dot(got, swing)), 1.0f, 1e-6f);  // the swing has no Y part: recovered exactly
+    EXPECT_NEAR(std::abs(glm::dot(without_turn_about_vertical(glm::angleAxis(2.0f, glm::vec3(0, 1, 0))), glm::quat(1, 0, 0, 0))), 1.0f, 1e-6f);
+}
+
+TEST(ClipLibrary, ALoopedVersionIsWhatALoopingPlaySamples) {
+    const Skeleton sk = chain(3);
+    ClipLibrary lib;
+    const ClipId id = lib.add(ends_clip(0.5f), sk).value();
+    const size_t bytes = lib.byte_size();
+    RawAnimation closed = ends_clip(0.5f);
+    closed.name = "ends (looped)";
+    for (glm::quat& q : closed.tracks[1].rotations.values) q = glm::angleAxis(0.1f, glm::vec3(1, 0, 0));
+    lib.set_looped(id, build_clip(closed, sk).value());
+    EXPECT_TRUE(lib.has_looped(id));
+    EXPECT_EQ(lib.find(id)->name(), "ends");
+    EXPECT_EQ(lib.find_looped(id)->name(), "ends (looped)");
+    EXPECT_EQ(lib.find("ends"), 0);
+    EXPECT_EQ(lib.size(), 1u) << "a looped version is no clip of its own";
+    EXPECT_GT(lib.byte_size(), bytes);
 }
 
 }  // namespace

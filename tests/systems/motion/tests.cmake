@@ -6,6 +6,7 @@ if(TARGET aloha_motion)
       ${CMAKE_CURRENT_LIST_DIR}/clip_quant_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/pose_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/controller_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/controller_wrap_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/walk_test.cpp
     LIBS aloha::motion
     LABELS motion)

@@ -108,5 +108,14 @@ TEST_F(GeneratedClips, LibraryNamesAndBuilds) {
     EXPECT_EQ(lib.idle.name, "h.idle");
 }
 
+TEST_F(GeneratedClips, CyclesRepeatWithoutAJump) {
+    // Played looping, a clip whose ends do not meet is inertialized at each wrap and never takes the controller's
+    // steady step: the generated cycles (what crowds walk, run and idle in) and the turn (one whole revolution,
+    // travel aside) must meet. The wave starts and ends at rest.
+    const MotionLibrary lib = make_motion_library(sk, rig, "h");
+    for (const RawAnimation& g : lib.gaits) EXPECT_TRUE(build_clip(g, sk).value().ends_meet()) << g.name;
+    for (const RawAnimation* c : {&lib.idle, &lib.turn, &lib.wave}) EXPECT_TRUE(build_clip(*c, sk).value().ends_meet()) << c->name;
+}
+
 }  // namespace
 }  // namespace aloha
