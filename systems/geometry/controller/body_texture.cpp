@@ -78,7 +78,8 @@ std::vector<BodyRegion> bone_regions(const Skeleton& skeleton, std::span<const g
 }
 
 std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const glm::mat4> rest_model, const MuscleSet& muscles,
-                                     std::span<const glm::vec3> positions, std::span<const uint16_t> dominant_muscle) {
+                                     std::span<const glm::vec3> positions, std::span<const uint16_t> dominant_muscle,
+                                     std::span<const uint32_t> indices) {
     const size_t m_count = static_cast<size_t>(muscles.size());
     std::vector<glm::vec2> uvs(positions.size(), glm::vec2(0.0f));
     if (m_count == 0 || dominant_muscle.size() != positions.size()) return uvs;
@@ -91,7 +92,7 @@ std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const g
     std::vector<glm::quat> rotations(m_count);
     const MuscleShapeJob shape{&muscles, rest_model, centres, rotations, radii};
     shape.Run();
-    std::vector<float> column(m_count);
+    std::vector<uint8_t> muscle_region(m_count);
     for (size_t m = 0; m < m_count; ++m) {
         // Nearest bone (parent -> joint segment) to the rest centre; the region is the parent's outgoing bone's.
         float best = FLT_MAX;
@@ -102,11 +103,75 @@ std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const g
             const float d = point_segment_distance(centres[m], glm::vec3(rest_model[static_cast<size_t>(p)][3]), glm::vec3(rest_model[j][3]));
             if (d < best) best = d, r = region[static_cast<size_t>(p)];
         }
-        column[m] = (static_cast<float>(r) + 0.5f) / static_cast<float>(kColumns);
+        muscle_region[m] = static_cast<uint8_t>(r);
     }
-    for (size_t i = 0; i < positions.size(); ++i)
-        uvs[i] = glm::vec2(column[dominant_muscle[i]], std::clamp((hi - positions[i].y) / height, 0.0f, 1.0f));
+    std::vector<uint8_t> vertex_region(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) vertex_region[i] = muscle_region[dominant_muscle[i]];
+    const std::vector<float> u = hem_columns(vertex_region, positions, indices, kHemBand);
+    for (size_t i = 0; i < positions.size(); ++i) uvs[i] = glm::vec2(u[i], std::clamp((hi - positions[i].y) / height, 0.0f, 1.0f));
     return uvs;
+}
+
+std::vector<float> hem_columns(std::span<const uint8_t> region, std::span<const glm::vec3> positions, std::span<const uint32_t> indices, float band) {
+    const size_t n = region.size();
+    constexpr float w = 1.0f / static_cast<float>(kColumns);
+    std::vector<float> u(n);
+    for (size_t i = 0; i < n; ++i) u[i] = (static_cast<float>(region[i]) + 0.5f) * w;
+    if (indices.size() < 3 || positions.size() != n) return u;
+    // One-ring neighbours, and the mean edge length that sets how many smoothing rounds make the band.
+    std::vector<std::vector<uint32_t>> ring(n);
+    double edge_sum = 0.0;
+    size_t edges = 0;
+    for (size_t t = 0; t + 2 < indices.size(); t += 3)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = indices[t + static_cast<size_t>(k)], b = indices[t + static_cast<size_t>((k + 1) % 3)];
+            if (a >= n || b >= n) continue;
+            ring[a].push_back(b), ring[b].push_back(a);
+            edge_sum += static_cast<double>(glm::length(positions[a] - positions[b]));
+            ++edges;
+        }
+    for (std::vector<uint32_t>& r : ring) {
+        std::sort(r.begin(), r.end());
+        r.erase(std::unique(r.begin(), r.end()), r.end());
+    }
+    const float edge = edges ? static_cast<float>(edge_sum / static_cast<double>(edges)) : band;
+    // A round of s <- (s + mean of the ring) / 2 spreads a region's share by about half an edge squared in variance:
+    // 2 (band / edge)^2 rounds spread it over about `band`, whatever the mesh's resolution.
+    const int rounds = band > 0.0f ? std::clamp(static_cast<int>(std::ceil(2.0f * (band / edge) * (band / edge))), 1, kMaxHemRounds) : 0;
+    std::vector<glm::vec4> share(n, glm::vec4(0.0f)), next(n);
+    for (size_t i = 0; i < n; ++i) share[i][std::min<int>(region[i], 3)] = 1.0f;
+    for (int round = 0; round < rounds; ++round) {
+        for (size_t i = 0; i < n; ++i) {
+            if (ring[i].empty()) {
+                next[i] = share[i];
+                continue;
+            }
+            glm::vec4 mean(0.0f);
+            for (uint32_t j : ring[i]) mean += share[j];
+            next[i] = 0.5f * (share[i] + mean / static_cast<float>(ring[i].size()));
+        }
+        share.swap(next);
+    }
+    for (size_t i = 0; i < n; ++i) {
+        // The two regions with the largest shares: next to each other in the texture (skin | shirt | trousers |
+        // shoes, as the body joins them), u runs from one's column centre to the other's by the second's share of
+        // the two, so the column border (the hem) lies where both shares are equal. Regions not side by side: the
+        // larger one's centre.
+        int a = 0;
+        for (int k = 1; k < 4; ++k)
+            if (share[i][k] > share[i][a]) a = k;
+        int b = a == 0 ? 1 : 0;
+        for (int k = 0; k < 4; ++k)
+            if (k != a && share[i][k] > share[i][b]) b = k;
+        if (std::abs(a - b) != 1 || share[i][b] <= 0.0f) {
+            u[i] = (static_cast<float>(a) + 0.5f) * w;
+            continue;
+        }
+        const int low = std::min(a, b), high = std::max(a, b);
+        const float t = share[i][high] / (share[i][low] + share[i][high]);
+        u[i] = (static_cast<float>(low) + 0.5f + t) * w;
+    }
+    return u;
 }
 
 TextureImage make_body_texture() {

@@ -8,7 +8,8 @@
 // in the lowest tenth of the height shoes; arm bones starting within the first half of the arm's
 // length (collar, upper arm) are shirt, the rest (forearm, hand) skin; spine bones are shirt up to
 // the highest arm branch and skin above it (neck, head). Each muscle takes the region of the bone
-// nearest its rest centre, and each skin vertex the region of its dominant muscle.
+// nearest its rest centre, and each skin vertex the region of its dominant muscle; the hems between regions are
+// drawn along smooth lines across the triangles (hem_columns).
 #pragma once
 
 #include "engine/anim/skeleton.hpp"
@@ -30,13 +31,28 @@ enum class BodyRegion : uint8_t { Skin = 0, Shirt = 1, Trousers = 2, Shoes = 3 }
 /// children takes its parent's). Requires rest_model.size() == joint count.
 [[nodiscard]] std::vector<BodyRegion> bone_regions(const Skeleton& skeleton, std::span<const glm::mat4> rest_model);
 
-/// Texture coordinates of the generated body skin (rest pose, model space): every vertex takes the
-/// region of its dominant muscle (the region of the bone nearest that muscle's rest centre), u at the
-/// centre of that region's column, and v = (top - y) / height over the rest skeleton's joint heights
-/// (v = 0 at the top row). All zero when there are no muscles or dominant_muscle.size() differs.
+/// Width (m) of the band over which a region's column fades into its neighbour's in the skin's u (hem_columns).
+inline constexpr float kHemBand = 0.05f;
+/// Most smoothing rounds hem_columns makes (a mesh far finer than the band).
+inline constexpr int kMaxHemRounds = 64;
+
+/// Texture coordinates of the generated body skin (rest pose, model space): every vertex takes the region of its
+/// dominant muscle (the region of the bone nearest that muscle's rest centre) and u by hem_columns over the skin's
+/// triangles `indices`; v = (top - y) / height over the rest skeleton's joint heights (v = 0 at the top row). All
+/// zero when there are no muscles or dominant_muscle.size() differs.
 [[nodiscard]] std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const glm::mat4> rest_model,
                                                    const MuscleSet& muscles, std::span<const glm::vec3> positions,
-                                                   std::span<const uint16_t> dominant_muscle);
+                                                   std::span<const uint16_t> dominant_muscle, std::span<const uint32_t> indices);
+
+/// The u of each vertex of a triangle mesh whose vertices have body regions `region` (BodyRegion values): the
+/// regions' one-hot shares smoothed over the mesh (rounds of averaging with the one-ring, as many as spread them
+/// about `band` metres at the mesh's mean edge length, at most kMaxHemRounds), then u between the centres of the two
+/// largest shares' columns when those are side by side, by the share of the two, so the column border (the hem) is
+/// a smooth line where the shares are equal, not the zigzag of triangle edges between vertices of two regions.
+/// A vertex `band` or more away (in rounds) from any other region keeps its column's centre. Without triangles, or
+/// with `band` 0, every vertex is at its column's centre (the hem then follows the edges between regions).
+[[nodiscard]] std::vector<float> hem_columns(std::span<const uint8_t> region, std::span<const glm::vec3> positions,
+                                             std::span<const uint32_t> indices, float band = kHemBand);
 
 /// The generated body texture (256 x 256, four 64-pixel columns: skin; shirt with horizontal stripes;
 /// trousers in a woven dark blue; shoes, dark brown with a black sole at the bottom rows), colours

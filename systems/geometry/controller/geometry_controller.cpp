@@ -53,7 +53,8 @@ void set_surface_attributes(const CharacterGeometry& g, GeometryController::Leve
         materials = g.mesh().vertex_material;
         colours = g.mesh().colours;
     } else {
-        uvs = body_skin_uvs(g.skeleton(), g.rest_model(), g.muscles(), level.skin->rest_positions, level.skin->dominant_muscle);
+        uvs = body_skin_uvs(g.skeleton(), g.rest_model(), g.muscles(), level.skin->rest_positions, level.skin->dominant_muscle,
+                            level.skin->indices);
     }
     const SubdivisionTopology* sub = level.subdivision;
     if (!sub) {
