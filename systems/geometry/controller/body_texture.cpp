@@ -13,6 +13,8 @@ namespace {
 
 constexpr uint32_t kTextureSize = 256;
 constexpr uint32_t kColumns = 4;
+// Rows of the shoes' column that are sole: 5 of 256, about 3.4 cm of a 1.75 m body (v spans the skin's height).
+constexpr float kSoleRows = 5.0f;
 
 float point_segment_distance(glm::vec3 p, glm::vec3 a, glm::vec3 b) {
     const glm::vec3 ab = b - a;
@@ -85,9 +87,6 @@ std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const g
     if (m_count == 0 || dominant_muscle.size() != positions.size()) return uvs;
     const std::vector<BodyRegion> region = bone_regions(skeleton, rest_model);
     const auto parents = skeleton.parents();
-    float lo = FLT_MAX, hi = -FLT_MAX;
-    for (const glm::mat4& m : rest_model) lo = std::min(lo, m[3].y), hi = std::max(hi, m[3].y);
-    const float height = std::max(hi - lo, 1e-6f);
     std::vector<glm::vec3> centres(m_count), radii(m_count);
     std::vector<glm::quat> rotations(m_count);
     const MuscleShapeJob shape{&muscles, rest_model, centres, rotations, radii};
@@ -108,7 +107,11 @@ std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const g
     std::vector<uint8_t> vertex_region(positions.size());
     for (size_t i = 0; i < positions.size(); ++i) vertex_region[i] = muscle_region[dominant_muscle[i]];
     const std::vector<float> u = hem_columns(vertex_region, positions, indices, kHemBand);
-    for (size_t i = 0; i < positions.size(); ++i) uvs[i] = glm::vec2(u[i], std::clamp((hi - positions[i].y) / height, 0.0f, 1.0f));
+    // v over the skin's own height, so the texture's last rows (the soles) are the lowest centimetres of the feet.
+    float top = -FLT_MAX, bottom = FLT_MAX;
+    for (const glm::vec3& p : positions) top = std::max(top, p.y), bottom = std::min(bottom, p.y);
+    const float extent = std::max(top - bottom, 1e-6f);
+    for (size_t i = 0; i < positions.size(); ++i) uvs[i] = glm::vec2(u[i], std::clamp((top - positions[i].y) / extent, 0.0f, 1.0f));
     return uvs;
 }
 
@@ -192,7 +195,7 @@ TextureImage make_body_texture() {
                 case 0: c = glm::vec3(0.88f, 0.69f, 0.56f) * (1.0f - 0.08f * v); break;  // skin, a touch darker lower down
                 case 1: c = (y / 6u) % 3u == 0u ? glm::vec3(0.93f, 0.93f, 0.90f) : glm::vec3(0.16f, 0.36f, 0.66f); break;  // striped shirt
                 case 2: c = glm::vec3(0.20f, 0.25f, 0.36f) + 0.04f * grain; break;  // trousers
-                default: c = v > 0.975f ? glm::vec3(0.06f, 0.05f, 0.05f) : glm::vec3(0.30f, 0.18f, 0.10f) + 0.02f * grain; break;  // shoes
+                default: c = v > 1.0f - kSoleRows / static_cast<float>(kTextureSize) ? glm::vec3(0.06f, 0.05f, 0.05f) : glm::vec3(0.30f, 0.18f, 0.10f) + 0.02f * grain; break;  // shoes
             }
             uint8_t* px = &t.rgba[(size_t{y} * kTextureSize + x) * 4];
             for (int k = 0; k < 3; ++k) px[k] = static_cast<uint8_t>(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));

@@ -38,8 +38,8 @@ inline constexpr int kMaxHemRounds = 64;
 
 /// Texture coordinates of the generated body skin (rest pose, model space): every vertex takes the region of its
 /// dominant muscle (the region of the bone nearest that muscle's rest centre) and u by hem_columns over the skin's
-/// triangles `indices`; v = (top - y) / height over the rest skeleton's joint heights (v = 0 at the top row). All
-/// zero when there are no muscles or dominant_muscle.size() differs.
+/// triangles `indices`; v = (top - y) / height over the skin's own heights (v = 0 at the top row, 1 at the soles).
+/// All zero when there are no muscles or dominant_muscle.size() differs.
 [[nodiscard]] std::vector<glm::vec2> body_skin_uvs(const Skeleton& skeleton, std::span<const glm::mat4> rest_model,
                                                    const MuscleSet& muscles, std::span<const glm::vec3> positions,
                                                    std::span<const uint16_t> dominant_muscle, std::span<const uint32_t> indices);
@@ -55,7 +55,7 @@ inline constexpr int kMaxHemRounds = 64;
                                              std::span<const uint32_t> indices, float band = kHemBand);
 
 /// The generated body texture (256 x 256, four 64-pixel columns: skin; shirt with horizontal stripes;
-/// trousers in a woven dark blue; shoes, dark brown with a black sole at the bottom rows), colours
+/// trousers in a woven dark blue; shoes, dark brown with a black sole in the last 2.5 rows), colours
 /// given in display (sRGB-encoded) values.
 [[nodiscard]] TextureImage make_body_texture();
 

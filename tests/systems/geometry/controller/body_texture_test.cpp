@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -66,6 +67,11 @@ TEST(BodyTexture, SkinVerticesTakeTheirDominantMusclesColumn) {
         EXPECT_GE(t.y, 0.0f);
         EXPECT_LE(t.y, 1.0f);
     }
+    // v spans the skin's own height: 0 at the top of the head, 1 at the soles (the texture's sole rows).
+    const auto [lowest, highest] = std::minmax_element(skin.rest_positions.begin(), skin.rest_positions.end(),
+                                                       [](const glm::vec3& a, const glm::vec3& b) { return a.y < b.y; });
+    EXPECT_FLOAT_EQ(uv[static_cast<size_t>(highest - skin.rest_positions.begin())].y, 0.0f);
+    EXPECT_FLOAT_EQ(uv[static_cast<size_t>(lowest - skin.rest_positions.begin())].y, 1.0f);
     // With them, each vertex stays within its own column or the half of a neighbouring column next to it, and v
     // is unchanged.
     const std::vector<glm::vec2> hemmed =
@@ -168,7 +174,9 @@ TEST(BodyTexture, GeneratedTextureColumns) {
     EXPECT_EQ(px(96, 0), glm::ivec3(237, 237, 230)); // shirt: light stripe on rows 0-5
     EXPECT_EQ(px(96, 6), glm::ivec3(41, 92, 168));   // then blue
     EXPECT_GT(px(160, 100).b, px(160, 100).r);      // trousers: blue
-    EXPECT_LT(px(224, 255).r, 20);                  // shoe sole: near black
+    EXPECT_LT(px(224, 255).r, 20);                  // shoe sole: near black, the last 5 rows
+    EXPECT_LT(px(224, 252).r, 20);
+    EXPECT_GT(px(224, 250).r, 60);                  // above it the brown upper
 }
 
 }  // namespace
