@@ -13,7 +13,7 @@ using test::humanoid;
 TEST(GeometryController, HumanoidLoads) {
     ASSERT_NE(humanoid().geometry, nullptr);
     EXPECT_EQ(humanoid().geometry->joint_count(), 31u);
-    EXPECT_EQ(humanoid().geometry->muscle_count(), 53u);
+    EXPECT_EQ(humanoid().geometry->muscle_count(), 54u);
 }
 
 TEST(GeometryController, CountsFollowTheOneParameter) {
