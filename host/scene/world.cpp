@@ -24,8 +24,9 @@ CharacterRuntime::CharacterRuntime(CharacterType t, uint32_t n) : type(std::move
     // The walk's clips: the generated gaits (the built-in humanoid's, or retargeted onto a mapped humanoid from a
     // file), or loops cut from its own takes (none: the walk is then kinematic at every level).
     motion->set_walk_clips(type.gait_clips);
-    // Characters hold the idle's first pose until their requests pose them (a reacher's other arm).
-    if (type.idle_clip >= 0) motion->set_stance(*type.clips.find(static_cast<ClipId>(type.idle_clip)));
+    // Characters hold the idle's first pose until their requests pose them (a reacher's other arm): the idle as
+    // idlers play it (its looped version, when its seam was closed), so an idler starts where it stands.
+    if (type.idle_clip >= 0) motion->set_stance(*type.clips.find_looped(static_cast<ClipId>(type.idle_clip)));
     ik->map = &type.map;
     register_ik_hooks(*motion, *ik);
     register_dynamic_walk_hook(*motion, *dynamics);

@@ -28,7 +28,8 @@ std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, fl
     PosePool pool(joints, kWalkRows + 1, &type.skeleton);
     const AnimationClip* walk = type.gait_clips.empty() ? nullptr : type.clips.find(type.gait_clips.front());
     cycle_s = walk && walk->duration() > 0.0f ? walk->duration() : 1.0f;
-    const AnimationClip* idle = type.idle_clip >= 0 ? type.clips.find(static_cast<ClipId>(type.idle_clip)) : nullptr;
+    // The idle as idlers play it (its looped version, when its seam was closed): the stance they start in.
+    const AnimationClip* idle = type.idle_clip >= 0 ? type.clips.find_looped(static_cast<ClipId>(type.idle_clip)) : nullptr;
     std::vector<std::vector<glm::mat4>> rows;
     for (uint32_t r = 0; r <= kWalkRows; ++r) {
         PoseView pose = pool.view(r);
