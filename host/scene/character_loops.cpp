@@ -55,11 +55,11 @@ std::string close_clip_seam(CharacterType& type, ClipId id, const RawAnimation& 
     if (take.duration < kHeldPoseSeconds) return "";
     Result<SeamVerdict> v = loop_version(type, id, take, file);
     if (!v.ok()) return " (" + v.error().message + ")";
-    return " (" + v.value().figures + (v.value().closable ? ": closed)" : "; it jumps each time idlers repeat it)");
+    return " (" + v.value().figures + (v.value().closable ? ": closed)" : "; faded over the level's cross-fade time each time idlers repeat it)");
 }
 
 void close_clip_seams(CharacterType& type, std::span<const LoadedTake> takes) {
-    std::string closed, jumping;
+    std::string closed, jumping;  // jumping: faded at each wrap by the motion controller
     for (const LoadedTake& t : takes) {
         const int id = type.clips.find(t.take.name);
         if (id < 0 || id == type.idle_clip || type.clips.has_looped(static_cast<ClipId>(id)) || t.take.duration < kHeldPoseSeconds) continue;
@@ -69,7 +69,7 @@ void close_clip_seams(CharacterType& type, std::span<const LoadedTake> takes) {
         list += (list.empty() ? "'" : "; '") + t.take.name + "' (" + v.value().figures + ")";
     }
     if (!closed.empty()) type.notes.push_back("played looping, closed where they repeat: " + closed);
-    if (!jumping.empty()) type.notes.push_back("played looping, these jump where they repeat: " + jumping);
+    if (!jumping.empty()) type.notes.push_back("played looping, these are faded where they repeat (over the level's cross-fade time): " + jumping);
 }
 
 }  // namespace aloha

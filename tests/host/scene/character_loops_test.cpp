@@ -90,7 +90,7 @@ TEST(CharacterIdle, AFileIdleThatNearlyLoopsIsClosedWhereItRepeats) {
     EXPECT_FALSE(f.clips.has_looped(static_cast<ClipId>(f.idle_clip))) << "left as the file has it";
     EXPECT_NEAR(ends_apart(*f.clips.find_looped(static_cast<ClipId>(f.idle_clip)), f.skeleton), far_apart, 0.002f);
     EXPECT_NE(idle_note(f).find("too far to close (closing would bend it"), std::string::npos) << idle_note(f);
-    EXPECT_NE(idle_note(f).find("it jumps each time idlers repeat it"), std::string::npos) << idle_note(f);
+    EXPECT_NE(idle_note(f).find("faded over the level's cross-fade time each time idlers repeat it"), std::string::npos) << idle_note(f);
 
     // The scene's `idle` naming one of the file's animations closes it the same way.
     write_gltf_with_clips((dir / "breathe.gltf").string(), body, {{"Breathe", &near}});
@@ -151,8 +151,8 @@ TEST(CharacterLoops, EveryClipThatNearlyLoopsGetsALoopedVersion) {
     EXPECT_TRUE(t.clips.find_looped(static_cast<ClipId>(t.idle_clip))->ends_meet());
     EXPECT_TRUE(has_note(t, "played looping, closed where they repeat: ", "'Sway' (its ends differ by"));
     EXPECT_TRUE(has_note(t, "played looping, closed where they repeat: ", "'clips.inplace'"));
-    EXPECT_TRUE(has_note(t, "played looping, these jump where they repeat: ", "'Slump' (its ends differ by"));
-    EXPECT_TRUE(has_note(t, "played looping, these jump where they repeat: ", "too far to close"));
+    EXPECT_TRUE(has_note(t, "played looping, these are faded where they repeat (over the level's cross-fade time): ", "'Slump' (its ends differ by"));
+    EXPECT_TRUE(has_note(t, "played looping, these are faded where they repeat (over the level's cross-fade time): ", "too far to close"));
 }
 
 TEST(CharacterLoops, AMotionFilesClipsAndIdleAreClosedToo) {
