@@ -4,6 +4,7 @@
 // (one key) is noted as the idle with no seam. Any other clip of a file or of a motion file, which a looping `play`
 // repeats, is judged the same way, in one note for all.
 #include "host/scene/character_type.hpp"
+#include "host/scene/motion_sample.hpp"
 #include "systems/motion/clip.hpp"
 #include "systems/motion/library/loop_cut.hpp"
 #include "systems/motion/library/motion_library.hpp"
@@ -11,6 +12,7 @@
 #include "tests/common/gltf_writer.hpp"
 #include "tests/common/rig_fixtures.hpp"
 #include "tests/host/scene/character_checks.hpp"
+#include "tests/host/scene/world_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -183,6 +185,41 @@ TEST(CharacterLoops, AMotionFilesClipsAndIdleAreClosedToo) {
     size_t looped = 0;
     for (size_t i = 0; i < t.clips.size(); ++i) looped += t.clips.has_looped(static_cast<ClipId>(i)) ? 1 : 0;
     EXPECT_EQ(looped, 2u);
+}
+
+TEST(CharacterLoops, AnIdlerStartsInThePoseItsTypeStandsIn) {
+    // Characters stand in the first pose of the idle as idlers play it: its looped version, whose first pose is half
+    // the seam away from the file's. A stander and an idler of a type whose Idle ends 0.68 cm from where it starts.
+    const fs::path dir = temp_dir("stance");
+    const DriftingIdles idles;
+    write_gltf_with_clips((dir / "idle.gltf").string(), idles.body, {{"Idle", &idles.near}});
+    const std::string json = R"({"name": "stance", "frames": 5, "camera": {"position": [1.5, 1.5, 6], "target": [1.5, 1, 0]},
+      "character_types": [{"name": "t", "gltf": "idle.gltf"}],
+      "characters": [{"type": "t", "position": [0, 0, 0]},
+                     {"type": "t", "position": [3, 0, 0], "requests": [{"type": "play", "clip": "Idle", "loop": true}]}]})";
+    WorldOptions o;
+    o.pose_every_character = true;
+    auto w = scene_test::make_world(scene_test::scene_from_json(json, (dir / "scene.json").string()), o);
+    ASSERT_TRUE(w);
+    const CharacterType& type = w->type(0);
+    ASSERT_TRUE(type.clips.has_looped(static_cast<ClipId>(type.idle_clip)));
+    w->step();
+    MotionSample stander, idler;
+    w->motion_sample(0, stander);
+    w->motion_sample(1, idler);
+    ASSERT_EQ(stander.joints.size(), idler.joints.size());
+    ASSERT_EQ(stander.method, "rest");
+    ASSERT_EQ(idler.method, "play_clip");
+    float apart = 0.0f;
+    for (size_t j = 0; j < stander.joints.size(); ++j) apart += glm::length((stander.joints[j] - stander.root) - (idler.joints[j] - idler.root));
+    apart /= static_cast<float>(stander.joints.size());
+    // The file's first pose is half the seam (0.34 cm per joint on the mean) from the looped version's; the idler has
+    // moved one frame on (the idle's lower back turns at most 0.04 rad over its last half second, and its breathing
+    // a few millimetres a second): well under a millimetre.
+    const float half_seam = 0.5f * ends_apart(idles.near, idles.body);
+    std::printf("stander and idler %.3f mm apart per joint after one frame (half the seam: %.2f mm)\n", static_cast<double>(1000.0f * apart),
+                static_cast<double>(1000.0f * half_seam));
+    EXPECT_LT(apart, 0.3f * half_seam);
 }
 
 }  // namespace
