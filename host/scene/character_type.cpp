@@ -18,6 +18,7 @@
 #include <cctype>
 #include <cfloat>
 #include <cstdio>
+#include <optional>
 
 namespace aloha {
 
@@ -37,12 +38,12 @@ RawAnimation in_place(const RawAnimation& clip, const std::string& name) {
 // The file clip a type idles in: one named "idle" (any case) first, then one whose name starts with it, then one
 // containing it (Quaternius "Idle", Kenney "idle", Ready Player Me "F_Standing_Idle_001"), the shortest name
 // winning a tie; null without.
-const RawAnimation* named_idle(std::span<const RawAnimation> clips) {
-    const RawAnimation* best = nullptr;
+const LoadedTake* named_idle(std::span<const LoadedTake> clips) {
+    const LoadedTake* best = nullptr;
     int best_rank = 3;
     size_t best_length = 0;
-    for (const RawAnimation& clip : clips) {
-        std::string lower = clip.name;
+    for (const LoadedTake& clip : clips) {
+        std::string lower = clip.take.name;
         for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
         const size_t at = lower.find("idle");
         if (at == std::string::npos) continue;
@@ -217,17 +218,13 @@ Status add_named_walks(CharacterType& type, const CharacterTypeDesc& desc, std::
 }
 
 // The type's idle, once every clip is in: the scene's choice (desc.idle; an error at the type's "idle" when it has
-// no such clip), else a glTF's own animation named like "Idle" (named_idle), else the idle it has (the generated one,
-// or none). An idle among `takes` (animations as loaded) is closed where it repeats (close_clip_seam).
-Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc, std::span<const LoadedTake> takes) {
+// no such clip), else a glTF's own animation named like "Idle" (named_idle over the first `own` of `takes`, the
+// file's animations as it names them), else the idle it has (the generated one, or none). An idle among `takes`
+// (animations as loaded) is closed where it repeats (close_clip_seam).
+Status choose_idle(CharacterType& type, const CharacterTypeDesc& desc, std::span<const LoadedTake> takes, size_t own = 0) {
     std::string name = desc.idle, how = " (the scene's choice)";
-    if (name.empty() && !desc.gltf.empty()) {
-        std::vector<RawAnimation> own;  // the type's file's animations: a motion file's are named after the type
-        for (const LoadedTake& t : takes)
-            if (t.file == desc.gltf) own.push_back(t.take);
-        const RawAnimation* idle = named_idle(own);
-        if (idle) name = idle->name, how = "";
-    }
+    if (name.empty() && !desc.gltf.empty())
+        if (const LoadedTake* idle = named_idle(takes.first(std::min(own, takes.size())))) name = idle->take.name, how = "";
     if (name.empty()) return {};
     const int id = type.clips.find(name);
     if (id < 0 && !desc.idle.empty())
@@ -303,12 +300,16 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         type.notes.push_back(std::string("layered levels refused: muscles are laid out for humanoids and this type is none; ") +
                              (type.mesh ? "drawn with its skinned mesh at those levels" : "drawn as rigid proxies (it has no mesh)"));
     }
-    std::vector<LoadedTake> takes;  // the file's animations, the in-place copy of its first, the motion files' clips
-    for (const RawAnimation& take : walk_takes) takes.push_back({take, file});
-    if (type.inplace_clip >= 0 && !walk_takes.empty()) takes.push_back({in_place(walk_takes.front(), desc.name + ".inplace"), file});
+    // The file's animations (moved: walking is done with them), the in-place copy of its first, the motion files' clips.
+    std::vector<LoadedTake> takes;
+    const size_t own = walk_takes.size();
+    std::optional<RawAnimation> inplace;
+    if (type.inplace_clip >= 0 && !walk_takes.empty()) inplace = in_place(walk_takes.front(), desc.name + ".inplace");
+    for (RawAnimation& take : walk_takes) takes.push_back({std::move(take), file});
+    if (inplace) takes.push_back({std::move(*inplace), file});
     if (Status s = add_motion_files(type, desc, takes); !s.ok()) return s.error();
     if (Status s = add_generated_motion(type, desc); !s.ok()) return s.error();
-    if (Status s = choose_idle(type, desc, takes); !s.ok()) return s.error();
+    if (Status s = choose_idle(type, desc, takes, own); !s.ok()) return s.error();
     close_clip_seams(type, takes);
     measure(type);
     use_generated_look(type);

@@ -157,6 +157,17 @@ TEST(CharacterLoops, EveryClipThatNearlyLoopsGetsALoopedVersion) {
     EXPECT_TRUE(has_note(t, "played looping, these are faded where they repeat (over the level's cross-fade time): ", "too far to close"));
 }
 
+TEST(CharacterLoops, OnlyTheFilesOwnAnimationsAreIdlesByName) {
+    // The in-place copy of a file's first animation is named after the type: a type named "idler" must not take
+    // "idler.inplace" for an idle by its name; with no animation named like an idle, it idles in the generated one.
+    const fs::path dir = temp_dir("idle_by_name");
+    const DriftingIdles idles;
+    write_gltf_with_clips((dir / "sway.gltf").string(), idles.body, {{"Sway", &idles.near}});
+    const CharacterType t = load_or_fail(desc_for("idler", (dir / "sway.gltf").string()));
+    ASSERT_GE(t.idle_clip, 0);
+    EXPECT_EQ(t.clips.find(static_cast<ClipId>(t.idle_clip))->name(), "idler.idle");
+}
+
 TEST(CharacterLoops, AMotionFilesClipsAndIdleAreClosedToo) {
     const fs::path dir = temp_dir("motion_seams");
     const DriftingIdles idles;
