@@ -34,16 +34,22 @@ layout(std430, set = 0, binding = 4) readonly buffer Lighting {
     vec4 key;
 } lighting;
 layout(set = 1, binding = 1) uniform sampler2D base_colour_texture;
+#ifdef MATERIAL_MAPS
 layout(set = 1, binding = 2) uniform sampler2D normal_texture;
 layout(set = 1, binding = 3) uniform sampler2D occlusion_texture;
 layout(set = 1, binding = 4) uniform sampler2D emissive_texture;
 layout(set = 1, binding = 5) uniform sampler2D metallic_roughness_texture;
 
 #include "pbr.glsl"
+#endif
 
 layout(location = 0) in vec4 v_normal_u;   // xyz: normal, w: texture u
 layout(location = 1) in vec4 v_world_v;    // xyz: world position, w: texture v
-layout(location = 2) in vec4 v_colour;
+#ifdef MATERIAL_MAPS
+layout(location = 2) in vec4 v_colour;       // interpolated: vertex colours
+#else
+layout(location = 2) flat in vec4 v_colour;  // one colour a draw and instance
+#endif
 layout(location = 0) out vec4 out_colour;
 
 #ifdef DITHER
@@ -60,6 +66,7 @@ void main() {
     const vec2 uv = vec2(v_normal_u.w, v_world_v.w);
     vec3 n = (pc.offsets.w & 1u) != 0u ? normalize(cross(dFdx(world), dFdy(world))) : normalize(v_normal_u.xyz);
     if (dot(n, pc.camera.xyz - world) < 0.0) n = -n;
+#ifdef MATERIAL_MAPS
     if ((pc.offsets.w & 8u) != 0u) {  // normal map (gpu::kLitNormalMap)
         // dp = T du + B dv over the pixel's footprint: T = dp/du, B = dp/dv from the two screen derivatives.
         const vec3 dpx = dFdx(world), dpy = dFdy(world);
@@ -79,6 +86,7 @@ void main() {
             }
         }
     }
+#endif
     vec4 albedo = v_colour;
     if ((pc.offsets.w & 2u) != 0u) albedo *= texture(base_colour_texture, uv);
 #ifdef DITHER
@@ -96,6 +104,7 @@ void main() {
         return;
     }
     float ambient = pc.light.w;
+#ifdef MATERIAL_MAPS
     if ((pc.offsets.w & 16u) != 0u) ambient *= texture(occlusion_texture, uv).r;  // occlusion map (gpu::kLitOcclusion)
     vec3 lit;
     if ((pc.offsets.w & 128u) != 0u) {  // glTF metallic-roughness (gpu::kLitMetallicRoughness)
@@ -108,5 +117,10 @@ void main() {
         lit = albedo.rgb * (ambient * hemi + (1.0 - pc.light.w) * lighting.key.rgb * diffuse);
     }
     if ((pc.offsets.w & 32u) != 0u) lit += texture(emissive_texture, uv).rgb;  // emissive (gpu::kLitEmissive)
+#else
+    vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
+    float diffuse = max(dot(n, pc.light.xyz), 0.0);
+    vec3 lit = albedo.rgb * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse);
+#endif
     out_colour = vec4(clamp(lit, 0.0, 1.0), albedo.a);
 }

@@ -32,10 +32,12 @@ layout(std430, set = 0, binding = 4) readonly buffer Lighting {
     vec4 key;
 } lighting;
 layout(std430, set = 1, binding = 0) readonly buffer Uvs { vec2 uvs[]; };
+#ifdef MATERIAL_MAPS
 layout(std430, set = 1, binding = 6) readonly buffer Colours { vec4 vertex_colours[]; };
 #ifdef VERTEX_LIT
 layout(set = 1, binding = 5) uniform sampler2D metallic_roughness_texture;
 #include "pbr.glsl"
+#endif
 #endif
 
 layout(push_constant) uniform Push {
@@ -52,7 +54,11 @@ layout(location = 1) out vec2 v_uv;         // texture coordinates
 #else
 layout(location = 0) out vec4 v_normal_u;   // xyz: normal (cofactor-transformed, not unit), w: texture u
 layout(location = 1) out vec4 v_world_v;    // xyz: world position, w: texture v
-layout(location = 2) out vec4 v_colour;      // instance colour * material base colour (* vertex colour)
+#ifdef MATERIAL_MAPS
+layout(location = 2) out vec4 v_colour;       // instance colour * material base colour * vertex colour
+#else
+layout(location = 2) flat out vec4 v_colour;  // instance colour * material base colour
+#endif
 #endif
 
 void main() {
@@ -79,7 +85,9 @@ void main() {
     vec4 world = m * vec4(p, 1.0);
     vec2 uv = (mode & 2u) != 0u ? uvs[gl_VertexIndex] : vec2(0.0);
     vec4 colour = instances[inst].colour * pc.base_colour;
+#ifdef MATERIAL_MAPS
     if ((mode & 64u) != 0u) colour *= vertex_colours[gl_VertexIndex];  // vertex colours (gpu::kLitVertexColour)
+#endif
 #ifdef VERTEX_LIT
     // The fragment shader's light, here (two-sided: the normal is turned to face the camera).
     vec3 nn = normalize(cof * n);
@@ -88,11 +96,13 @@ void main() {
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * nn.y);
     float diffuse = max(dot(nn, pc.light.xyz), 0.0);
     v_lit = vec4(colour.rgb * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse), colour.a);
+#ifdef MATERIAL_MAPS
     if ((mode & 128u) != 0u) {  // glTF metallic-roughness (gpu::kLitMetallicRoughness)
         const vec2 mr = textureLod(metallic_roughness_texture, uv, 0.0).bg;
         v_lit.rgb = pbr_light(colour.rgb, mr.x, mr.y, nn, normalize(pc.camera.xyz - world.xyz), pc.light.xyz, ambient, 1.0 - ambient,
                               lighting.key.rgb, lighting.sky.rgb, lighting.ground.rgb);
     }
+#endif
     if ((pc.offsets.w & 0x8000u) != 0u) v_lit = colour;  // an unlit material (gpu::kLitUnlit): its albedo as it is
     v_uv = uv;
 #else

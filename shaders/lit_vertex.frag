@@ -16,7 +16,9 @@ layout(push_constant) uniform Push {
 } pc;
 
 layout(set = 1, binding = 1) uniform sampler2D base_colour_texture;
+#ifdef MATERIAL_MAPS
 layout(set = 1, binding = 4) uniform sampler2D emissive_texture;
+#endif
 
 layout(location = 0) in vec4 v_lit;
 layout(location = 1) in vec2 v_uv;
@@ -38,6 +40,8 @@ void main() {
     // Alpha test (gpu::lit_alpha_bits), as shaders/lit_mesh.frag.
     if ((pc.offsets.w & 0x4000u) != 0u && lit.a < float(pc.offsets.w >> 16) / 65535.0) discard;
 #endif
+#ifdef MATERIAL_MAPS
     if ((pc.offsets.w & 32u) != 0u) lit.rgb += texture(emissive_texture, v_uv).rgb;  // emissive (gpu::kLitEmissive)
+#endif
     out_colour = vec4(clamp(lit.rgb, 0.0, 1.0), lit.a);
 }

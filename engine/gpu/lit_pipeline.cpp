@@ -12,13 +12,21 @@
 #include "shaders/line_vert.h"
 #include "shaders/lit_constant_frag.h"
 #include "shaders/lit_mesh_dither_frag.h"
+#include "shaders/lit_mesh_dither_maps_frag.h"
 #include "shaders/lit_mesh_frag.h"
+#include "shaders/lit_mesh_maps_frag.h"
+#include "shaders/lit_mesh_maps_vert.h"
 #include "shaders/lit_mesh_vert.h"
+#include "shaders/lit_mesh_vertex_lit_maps_vert.h"
 #include "shaders/lit_mesh_vertex_lit_vert.h"
 #include "shaders/lit_vertex_dither_frag.h"
+#include "shaders/lit_vertex_dither_maps_frag.h"
 #include "shaders/lit_vertex_frag.h"
+#include "shaders/lit_vertex_maps_frag.h"
 
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cmath>
 #include <span>
 #include <utility>
@@ -118,6 +126,40 @@ Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRen
     return p;
 }
 
+using Spirv = std::span<const uint32_t>;
+
+/// The mesh pipelines' descriptions, in the order mesh, culled, vertex-lit, vertex-lit culled, dithered (mesh,
+/// culled, vertex-lit, vertex-lit culled): built from the MATERIAL_MAPS shaders with `maps`. With constant fragments
+/// (profiling) the mesh and vertex-lit ones use lit_constant.frag, which reads the per-pixel vertex shader's flat
+/// colour, and the dithered ones the per-pixel shaders (the fading few keep their look); `maps` is then ignored.
+std::array<PipelineDesc, 8> lit_descs(bool maps, bool constant_fragments) {
+    if (constant_fragments) maps = false;
+    const Spirv mesh_vert = maps ? Spirv(k_lit_mesh_maps_vert_spv) : Spirv(k_lit_mesh_vert_spv);
+    const Spirv mesh_frag = constant_fragments ? Spirv(k_lit_constant_frag_spv)
+                            : maps             ? Spirv(k_lit_mesh_maps_frag_spv)
+                                               : Spirv(k_lit_mesh_frag_spv);
+    const Spirv mesh_dither_frag = maps ? Spirv(k_lit_mesh_dither_maps_frag_spv) : Spirv(k_lit_mesh_dither_frag_spv);
+    const Spirv vertex_vert = constant_fragments ? Spirv(k_lit_mesh_vert_spv)
+                              : maps             ? Spirv(k_lit_mesh_vertex_lit_maps_vert_spv)
+                                                 : Spirv(k_lit_mesh_vertex_lit_vert_spv);
+    const Spirv vertex_frag = constant_fragments ? Spirv(k_lit_constant_frag_spv)
+                              : maps             ? Spirv(k_lit_vertex_maps_frag_spv)
+                                                 : Spirv(k_lit_vertex_frag_spv);
+    const Spirv vertex_dither_frag = constant_fragments ? Spirv(k_lit_mesh_dither_frag_spv)
+                                     : maps             ? Spirv(k_lit_vertex_dither_maps_frag_spv)
+                                                        : Spirv(k_lit_vertex_dither_frag_spv);
+    constexpr VkPrimitiveTopology kTriangles = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    constexpr VkCullModeFlags kNone = VK_CULL_MODE_NONE, kBack = VK_CULL_MODE_BACK_BIT;
+    return {{{mesh_vert, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
+             {mesh_vert, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, kBack},
+             {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
+             {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, kBack},
+             {mesh_vert, mesh_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
+             {mesh_vert, mesh_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kBack},
+             {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
+             {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kBack}}};
+}
+
 }  // namespace
 
 glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light, const LitLighting& lighting) {
@@ -199,29 +241,21 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     dpi.poolSizeCount = 1;
     dpi.pPoolSizes = &ps;
     ALOHA_VK_RETURN(vkCreateDescriptorPool(lp.device_, &dpi, nullptr, &lp.pool_));
-    const std::span<const uint32_t> mesh_frag =
-        constant_fragments ? std::span<const uint32_t>(k_lit_constant_frag_spv) : std::span<const uint32_t>(k_lit_mesh_frag_spv);
-    // Profiling with constant fragments: the per-pixel vertex shader (its flat colour feeds lit_constant.frag).
-    const std::span<const uint32_t> vertex_vert =
-        constant_fragments ? std::span<const uint32_t>(k_lit_mesh_vert_spv) : std::span<const uint32_t>(k_lit_mesh_vertex_lit_vert_spv);
-    const std::span<const uint32_t> vertex_frag =
-        constant_fragments ? std::span<const uint32_t>(k_lit_constant_frag_spv) : std::span<const uint32_t>(k_lit_vertex_frag_spv);
-    const std::span<const uint32_t> vertex_dither_frag =
-        constant_fragments ? std::span<const uint32_t>(k_lit_mesh_dither_frag_spv) : std::span<const uint32_t>(k_lit_vertex_dither_frag_spv);
+    lp.render_pass_ = render_pass;
+    lp.constant_fragments_ = constant_fragments;
+    const std::array<PipelineDesc, 8> lit = lit_descs(false, constant_fragments);
     constexpr VkPrimitiveTopology kTriangles = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     const std::pair<VkPipeline*, PipelineDesc> pipelines[] = {
-        {&lp.mesh_, {k_lit_mesh_vert_spv, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
-        {&lp.culled_, {k_lit_mesh_vert_spv, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
-        {&lp.vertex_lit_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
-        {&lp.vertex_lit_culled_, {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
+        {&lp.mesh_, lit[0]},
+        {&lp.culled_, lit[1]},
+        {&lp.vertex_lit_, lit[2]},
+        {&lp.vertex_lit_culled_, lit[3]},
         {&lp.lines_, {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE}},
         {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
-        // Dithered (fading characters): lit as above plus the screen-door discard; with constant fragments the
-        // per-pixel shaders (profiling only: the fading few keep their look, not the constant cost).
-        {&lp.dithered_[0], {k_lit_mesh_vert_spv, k_lit_mesh_dither_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
-        {&lp.dithered_[1], {k_lit_mesh_vert_spv, k_lit_mesh_dither_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
-        {&lp.dithered_[2], {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
-        {&lp.dithered_[3], {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_BACK_BIT}},
+        {&lp.dithered_[0], lit[4]},
+        {&lp.dithered_[1], lit[5]},
+        {&lp.dithered_[2], lit[6]},
+        {&lp.dithered_[3], lit[7]},
     };
     for (const auto& [out, desc] : pipelines) {
         Result<VkPipeline> p = make_pipeline(lp.device_, lp.layout_, render_pass, desc);
@@ -254,6 +288,35 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     return lp;
 }
 
+Status LitPipelines::ensure_material_maps() {
+    if (maps_[0] != VK_NULL_HANDLE) return {};
+    const std::array<PipelineDesc, 8> lit = lit_descs(true, constant_fragments_);
+    std::array<VkPipeline, 8> made{};
+    for (size_t i = 0; i < made.size(); ++i) {
+        Result<VkPipeline> p = make_pipeline(device_, layout_, render_pass_, lit[i]);
+        if (!p) {
+            for (VkPipeline q : made)
+                if (q != VK_NULL_HANDLE) vkDestroyPipeline(device_, q, nullptr);
+            return p.error();
+        }
+        made[i] = p.value();
+    }
+    maps_ = made;
+    return {};
+}
+
+VkPipeline LitPipelines::for_mode(VkPipeline pipeline, uint32_t mode) const {
+    if ((mode & kLitMaterialMaps) == 0) return pipeline;
+    const VkPipeline plain[8] = {mesh_, culled_, vertex_lit_, vertex_lit_culled_, dithered_[0], dithered_[1], dithered_[2], dithered_[3]};
+    for (size_t i = 0; i < 8; ++i)
+        if (plain[i] == pipeline) {
+            assert(maps_[i] != VK_NULL_HANDLE && "LitPipelines::for_mode: ensure_material_maps() was not called");
+            return maps_[i];
+        }
+    assert(false && "LitPipelines::for_mode: not a mesh pipeline");
+    return pipeline;
+}
+
 LitPipelines::LitPipelines(LitPipelines&& o) noexcept
     : device_(std::exchange(o.device_, VK_NULL_HANDLE)),
       set_layout_(std::exchange(o.set_layout_, VK_NULL_HANDLE)),
@@ -270,7 +333,10 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       composite_(std::exchange(o.composite_, VK_NULL_HANDLE)),
       composite_set_layout_(std::exchange(o.composite_set_layout_, VK_NULL_HANDLE)),
       composite_layout_(std::exchange(o.composite_layout_, VK_NULL_HANDLE)),
-      composite_pool_(std::exchange(o.composite_pool_, VK_NULL_HANDLE)) {
+      composite_pool_(std::exchange(o.composite_pool_, VK_NULL_HANDLE)),
+      maps_(std::exchange(o.maps_, {})),
+      render_pass_(std::exchange(o.render_pass_, VK_NULL_HANDLE)),
+      constant_fragments_(o.constant_fragments_) {
     for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
 }
 
@@ -294,6 +360,9 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         composite_layout_ = std::exchange(o.composite_layout_, VK_NULL_HANDLE);
         composite_pool_ = std::exchange(o.composite_pool_, VK_NULL_HANDLE);
         for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
+        maps_ = std::exchange(o.maps_, {});
+        render_pass_ = std::exchange(o.render_pass_, VK_NULL_HANDLE);
+        constant_fragments_ = o.constant_fragments_;
     }
     return *this;
 }
@@ -317,6 +386,11 @@ void LitPipelines::destroy() {
         if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
         p = VK_NULL_HANDLE;
     }
+    for (VkPipeline& p : maps_) {
+        if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
+        p = VK_NULL_HANDLE;
+    }
+    render_pass_ = VK_NULL_HANDLE;
     if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
     for (VkDescriptorPool p : material_pools_) vkDestroyDescriptorPool(device_, p, nullptr);
     material_pools_.clear();

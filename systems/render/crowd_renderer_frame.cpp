@@ -242,7 +242,7 @@ uint32_t CrowdRenderer::draw_mesh_group(VkCommandBuffer cmd, const FrameInput& f
         // An alpha-tested material is drawn with the dithered pipeline (the one that may discard), keeping
         // every pixel unless the group is fading; the others keep the pipeline without discard.
         const bool alpha_test = (r.mode & gpu::kLitAlphaTest) != 0;
-        const VkPipeline wanted = alpha_test ? pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces) : pipeline;
+        const VkPipeline wanted = pipes_.for_mode(alpha_test ? pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces) : pipeline, r.mode);
         const uint32_t range_dither = alpha_test && dither == 0 ? gpu::lit_dither_bits(1.0f) : dither;
         if (wanted != bound) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, wanted);

@@ -34,9 +34,9 @@ Status CrowdRenderer::warm_up() {
             if (topo.vertex_count > vertex_capacity) continue;  // larger than the first frame's buffers: warmed when drawn
             vkCmdBindIndexBuffer(cmd, topo.indices.handle(), 0, VK_INDEX_TYPE_UINT32);
             for (const VkPipeline pipeline : {whole_pipeline(topo), pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces)}) {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
                 const uint32_t dither = pipeline == whole_pipeline(topo) ? 0u : gpu::lit_dither_bits(0.5f);
                 auto draw = [&](VkDescriptorSet set, uint32_t mode, uint32_t first_index) {
+                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.for_mode(pipeline, mode));  // a material's maps twin
                     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &set, 0, nullptr);
                     push.offsets = glm::uvec4(0u, topo.vertex_count, 0u, mode | dither);
                     vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);

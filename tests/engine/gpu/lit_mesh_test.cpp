@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -171,6 +172,43 @@ TEST(LitMesh, QuadCoverageColourDepthAndOrientation) {
     }
     EXPECT_EQ(ctx.validation_message_count(), 0u)
         << (ctx.validation_messages().empty() ? "" : ctx.validation_messages().front());
+}
+
+TEST(LitPipelines, MaterialsWithMapsDrawWithTheirTwinsTheOthersWithThePlainPipelines) {
+    ContextOptions opt;
+    opt.validation = true;
+    opt.device = "lavapipe";
+    Result<std::unique_ptr<Context>> made = Context::create(opt);
+    ASSERT_TRUE(made.ok()) << made.error().to_string();
+    {
+        Result<OffscreenTarget> target = OffscreenTarget::create(*made.value(), 8, 8);
+        ASSERT_TRUE(target.ok()) << target.error().to_string();
+        Result<LitPipelines> made_pipes = LitPipelines::create(*made.value(), target.value().view().render_pass, 1);
+        ASSERT_TRUE(made_pipes.ok()) << made_pipes.error().to_string();
+        LitPipelines& pipes = made_pipes.value();
+        const VkPipeline plain[8] = {pipes.mesh(), pipes.mesh_culled(), pipes.vertex_lit(), pipes.vertex_lit_culled(),
+                                     pipes.dithered(false, false), pipes.dithered(false, true), pipes.dithered(true, false),
+                                     pipes.dithered(true, true)};
+        // Without a map bit (textured, unlit, alpha-tested, dithered, normal output) a pipeline is its own choice.
+        for (const VkPipeline p : plain)
+            for (const uint32_t mode : {uint32_t{kLitMesh}, uint32_t{kLitTexturedMesh}, uint32_t{kLitNormals} | kLitTexturedMesh,
+                                        kLitUnlit | kLitAlphaTest | lit_dither_bits(0.5f)})
+                EXPECT_EQ(pipes.for_mode(p, mode), p);
+        ASSERT_TRUE(pipes.ensure_material_maps().ok());
+        ASSERT_TRUE(pipes.ensure_material_maps().ok());  // once: the second call keeps the first twins
+        std::vector<VkPipeline> twins;
+        for (const VkPipeline p : plain) {
+            const VkPipeline twin = pipes.for_mode(p, kLitNormalMap);
+            EXPECT_NE(twin, VK_NULL_HANDLE);
+            EXPECT_NE(twin, p);
+            for (const uint32_t bit : {kLitOcclusion, kLitEmissive, kLitVertexColour, kLitMetallicRoughness})
+                EXPECT_EQ(pipes.for_mode(p, bit | kLitTexturedMesh), twin);
+            twins.push_back(twin);
+        }
+        std::sort(twins.begin(), twins.end());
+        EXPECT_EQ(std::unique(twins.begin(), twins.end()), twins.end()) << "each pipeline has a twin of its own";
+    }
+    EXPECT_EQ(made.value()->validation_message_count(), 0u);
 }
 
 TEST(Buffers, RejectZeroSizes) {
