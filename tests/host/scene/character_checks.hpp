@@ -16,6 +16,8 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include <unistd.h>
 
@@ -25,9 +27,25 @@ namespace fs = std::filesystem;
 
 inline constexpr float kDt = 1.0f / 60.0f;
 
+/// The folders temp_dir made, removed when the test program ends if every test passed (kept to look into after a
+/// failure).
+struct TempDirs {
+    std::vector<fs::path> made;
+    ~TempDirs() {
+        if (!::testing::UnitTest::GetInstance()->Passed()) return;
+        for (const fs::path& p : made) {
+            std::error_code ec;
+            fs::remove_all(p, ec);
+        }
+    }
+};
+
+/// A fresh folder for one test's files under the system's temporary folder (per process; see TempDirs).
 inline fs::path temp_dir(const std::string& name) {
+    static TempDirs dirs;
     const fs::path p = fs::temp_directory_path() / ("aloha_chars_" + name + "_" + std::to_string(::getpid()));
     fs::create_directories(p);
+    dirs.made.push_back(p);
     return p;
 }
 
