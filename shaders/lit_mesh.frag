@@ -38,6 +38,8 @@ layout(set = 1, binding = 1) uniform sampler2D base_colour_texture;
 layout(set = 1, binding = 2) uniform sampler2D normal_texture;
 layout(set = 1, binding = 3) uniform sampler2D occlusion_texture;
 layout(set = 1, binding = 4) uniform sampler2D emissive_texture;
+#endif
+#if defined(MATERIAL_MAPS) || defined(MATERIAL_PBR)
 layout(set = 1, binding = 5) uniform sampler2D metallic_roughness_texture;
 
 #include "pbr.glsl"
@@ -117,6 +119,11 @@ void main() {
         lit = albedo.rgb * (ambient * hemi + (1.0 - pc.light.w) * lighting.key.rgb * diffuse);
     }
     if ((pc.offsets.w & 32u) != 0u) lit += texture(emissive_texture, uv).rgb;  // emissive (gpu::kLitEmissive)
+#elif defined(MATERIAL_PBR)
+    // Metallic-roughness alone (gpu::LitVariant::MetallicRoughness: the bit is set for every draw of this build).
+    const vec2 mr = texture(metallic_roughness_texture, uv).bg;
+    vec3 lit = pbr_light(albedo.rgb, mr.x, mr.y, n, normalize(pc.camera.xyz - world), pc.light.xyz, ambient, 1.0 - ambient,
+                         lighting.key.rgb, lighting.sky.rgb, lighting.ground.rgb);
 #else
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
     float diffuse = max(dot(n, pc.light.xyz), 0.0);

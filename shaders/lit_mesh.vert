@@ -34,10 +34,10 @@ layout(std430, set = 0, binding = 4) readonly buffer Lighting {
 layout(std430, set = 1, binding = 0) readonly buffer Uvs { vec2 uvs[]; };
 #ifdef MATERIAL_MAPS
 layout(std430, set = 1, binding = 6) readonly buffer Colours { vec4 vertex_colours[]; };
-#ifdef VERTEX_LIT
+#endif
+#if defined(VERTEX_LIT) && (defined(MATERIAL_MAPS) || defined(MATERIAL_PBR))
 layout(set = 1, binding = 5) uniform sampler2D metallic_roughness_texture;
 #include "pbr.glsl"
-#endif
 #endif
 
 layout(push_constant) uniform Push {
@@ -96,7 +96,8 @@ void main() {
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * nn.y);
     float diffuse = max(dot(nn, pc.light.xyz), 0.0);
     v_lit = vec4(colour.rgb * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse), colour.a);
-#ifdef MATERIAL_MAPS
+#if defined(MATERIAL_MAPS) || defined(MATERIAL_PBR)
+    // With MATERIAL_PBR alone every draw has the bit (gpu::LitVariant::MetallicRoughness): the test is constant there.
     if ((mode & 128u) != 0u) {  // glTF metallic-roughness (gpu::kLitMetallicRoughness)
         const vec2 mr = textureLod(metallic_roughness_texture, uv, 0.0).bg;
         v_lit.rgb = pbr_light(colour.rgb, mr.x, mr.y, nn, normalize(pc.camera.xyz - world.xyz), pc.light.xyz, ambient, 1.0 - ambient,

@@ -13,11 +13,14 @@
 #include "shaders/lit_constant_frag.h"
 #include "shaders/lit_mesh_dither_frag.h"
 #include "shaders/lit_mesh_dither_maps_frag.h"
+#include "shaders/lit_mesh_dither_pbr_frag.h"
 #include "shaders/lit_mesh_frag.h"
 #include "shaders/lit_mesh_maps_frag.h"
 #include "shaders/lit_mesh_maps_vert.h"
+#include "shaders/lit_mesh_pbr_frag.h"
 #include "shaders/lit_mesh_vert.h"
 #include "shaders/lit_mesh_vertex_lit_maps_vert.h"
+#include "shaders/lit_mesh_vertex_lit_pbr_vert.h"
 #include "shaders/lit_mesh_vertex_lit_vert.h"
 #include "shaders/lit_vertex_dither_frag.h"
 #include "shaders/lit_vertex_dither_maps_frag.h"
@@ -129,19 +132,27 @@ Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRen
 using Spirv = std::span<const uint32_t>;
 
 /// The mesh pipelines' descriptions, in the order mesh, culled, vertex-lit, vertex-lit culled, dithered (mesh,
-/// culled, vertex-lit, vertex-lit culled): built from the MATERIAL_MAPS shaders with `maps`. With constant fragments
-/// (profiling) the mesh and vertex-lit ones use lit_constant.frag, which reads the per-pixel vertex shader's flat
-/// colour, and the dithered ones the per-pixel shaders (the fading few keep their look); `maps` is then ignored.
-std::array<PipelineDesc, 8> lit_descs(bool maps, bool constant_fragments) {
-    if (constant_fragments) maps = false;
-    const Spirv mesh_vert = maps ? Spirv(k_lit_mesh_maps_vert_spv) : Spirv(k_lit_mesh_vert_spv);
+/// culled, vertex-lit, vertex-lit culled), built from the shaders of `variant` (MATERIAL_PBR: the per-pixel and
+/// vertex-lit light; MATERIAL_MAPS: also the maps, vertex colours and their interpolated colour). With constant
+/// fragments (profiling) the mesh and vertex-lit ones use lit_constant.frag, which reads the per-pixel vertex shader's
+/// flat colour, and the dithered ones the per-pixel shaders (the fading few keep their look); `variant` is then
+/// ignored.
+std::array<PipelineDesc, 8> lit_descs(LitVariant variant, bool constant_fragments) {
+    if (constant_fragments) variant = LitVariant::Plain;
+    const bool maps = variant == LitVariant::Maps, pbr = variant == LitVariant::MetallicRoughness;
+    const Spirv mesh_vert = maps ? Spirv(k_lit_mesh_maps_vert_spv) : Spirv(k_lit_mesh_vert_spv);  // MR is per pixel
     const Spirv mesh_frag = constant_fragments ? Spirv(k_lit_constant_frag_spv)
                             : maps             ? Spirv(k_lit_mesh_maps_frag_spv)
+                            : pbr              ? Spirv(k_lit_mesh_pbr_frag_spv)
                                                : Spirv(k_lit_mesh_frag_spv);
-    const Spirv mesh_dither_frag = maps ? Spirv(k_lit_mesh_dither_maps_frag_spv) : Spirv(k_lit_mesh_dither_frag_spv);
+    const Spirv mesh_dither_frag = maps  ? Spirv(k_lit_mesh_dither_maps_frag_spv)
+                                   : pbr ? Spirv(k_lit_mesh_dither_pbr_frag_spv)
+                                         : Spirv(k_lit_mesh_dither_frag_spv);
     const Spirv vertex_vert = constant_fragments ? Spirv(k_lit_mesh_vert_spv)
                               : maps             ? Spirv(k_lit_mesh_vertex_lit_maps_vert_spv)
+                              : pbr              ? Spirv(k_lit_mesh_vertex_lit_pbr_vert_spv)
                                                  : Spirv(k_lit_mesh_vertex_lit_vert_spv);
+    // The vertex-lit fragment shaders draw only the emissive map of the maps: MR is lit at the vertices.
     const Spirv vertex_frag = constant_fragments ? Spirv(k_lit_constant_frag_spv)
                               : maps             ? Spirv(k_lit_vertex_maps_frag_spv)
                                                  : Spirv(k_lit_vertex_frag_spv);
@@ -243,7 +254,7 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     ALOHA_VK_RETURN(vkCreateDescriptorPool(lp.device_, &dpi, nullptr, &lp.pool_));
     lp.render_pass_ = render_pass;
     lp.constant_fragments_ = constant_fragments;
-    const std::array<PipelineDesc, 8> lit = lit_descs(false, constant_fragments);
+    const std::array<PipelineDesc, 8> lit = lit_descs(LitVariant::Plain, constant_fragments);
     constexpr VkPrimitiveTopology kTriangles = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     const std::pair<VkPipeline*, PipelineDesc> pipelines[] = {
         {&lp.mesh_, lit[0]},
@@ -288,9 +299,12 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     return lp;
 }
 
-Status LitPipelines::ensure_material_maps() {
-    if (maps_[0] != VK_NULL_HANDLE) return {};
-    const std::array<PipelineDesc, 8> lit = lit_descs(true, constant_fragments_);
+Status LitPipelines::ensure_variant(uint32_t mode) {
+    const LitVariant variant = lit_variant(mode);
+    if (variant == LitVariant::Plain) return {};
+    std::array<VkPipeline, 8>& twins = twins_[static_cast<uint32_t>(variant) - 1];
+    if (twins[0] != VK_NULL_HANDLE) return {};
+    const std::array<PipelineDesc, 8> lit = lit_descs(variant, constant_fragments_);
     std::array<VkPipeline, 8> made{};
     for (size_t i = 0; i < made.size(); ++i) {
         Result<VkPipeline> p = make_pipeline(device_, layout_, render_pass_, lit[i]);
@@ -301,17 +315,19 @@ Status LitPipelines::ensure_material_maps() {
         }
         made[i] = p.value();
     }
-    maps_ = made;
+    twins = made;
     return {};
 }
 
 VkPipeline LitPipelines::for_mode(VkPipeline pipeline, uint32_t mode) const {
-    if ((mode & kLitMaterialMaps) == 0) return pipeline;
+    const LitVariant variant = lit_variant(mode);
+    if (variant == LitVariant::Plain) return pipeline;
+    const std::array<VkPipeline, 8>& twins = twins_[static_cast<uint32_t>(variant) - 1];
     const VkPipeline plain[8] = {mesh_, culled_, vertex_lit_, vertex_lit_culled_, dithered_[0], dithered_[1], dithered_[2], dithered_[3]};
     for (size_t i = 0; i < 8; ++i)
         if (plain[i] == pipeline) {
-            assert(maps_[i] != VK_NULL_HANDLE && "LitPipelines::for_mode: ensure_material_maps() was not called");
-            return maps_[i];
+            assert(twins[i] != VK_NULL_HANDLE && "LitPipelines::for_mode: ensure_variant() was not called for this mode");
+            return twins[i];
         }
     assert(false && "LitPipelines::for_mode: not a mesh pipeline");
     return pipeline;
@@ -334,7 +350,7 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       composite_set_layout_(std::exchange(o.composite_set_layout_, VK_NULL_HANDLE)),
       composite_layout_(std::exchange(o.composite_layout_, VK_NULL_HANDLE)),
       composite_pool_(std::exchange(o.composite_pool_, VK_NULL_HANDLE)),
-      maps_(std::exchange(o.maps_, {})),
+      twins_(std::exchange(o.twins_, {})),
       render_pass_(std::exchange(o.render_pass_, VK_NULL_HANDLE)),
       constant_fragments_(o.constant_fragments_) {
     for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
@@ -360,7 +376,7 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         composite_layout_ = std::exchange(o.composite_layout_, VK_NULL_HANDLE);
         composite_pool_ = std::exchange(o.composite_pool_, VK_NULL_HANDLE);
         for (int i = 0; i < 4; ++i) dithered_[i] = std::exchange(o.dithered_[i], VK_NULL_HANDLE);
-        maps_ = std::exchange(o.maps_, {});
+        twins_ = std::exchange(o.twins_, {});
         render_pass_ = std::exchange(o.render_pass_, VK_NULL_HANDLE);
         constant_fragments_ = o.constant_fragments_;
     }
@@ -386,10 +402,11 @@ void LitPipelines::destroy() {
         if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
         p = VK_NULL_HANDLE;
     }
-    for (VkPipeline& p : maps_) {
-        if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
-        p = VK_NULL_HANDLE;
-    }
+    for (std::array<VkPipeline, 8>& twins : twins_)
+        for (VkPipeline& p : twins) {
+            if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
+            p = VK_NULL_HANDLE;
+        }
     render_pass_ = VK_NULL_HANDLE;
     if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
     for (VkDescriptorPool p : material_pools_) vkDestroyDescriptorPool(device_, p, nullptr);

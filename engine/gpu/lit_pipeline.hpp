@@ -41,12 +41,20 @@ enum LitMode : uint32_t {
     /// per-pixel pipelines evaluate it per pixel; the vertex-lit ones at the vertices.
     kLitMetallicRoughness = 128,
 };
-/// The LitMode bits only the material-maps pipelines draw (LitPipelines::for_mode): the pipelines without them are
-/// built from shaders with that code left out, since lavapipe runs both sides of a branch on a push constant
-/// (every masked texture read included) and sets up an interpolated colour for every triangle: on crowd_10k's close
-/// frames that code cost about 4 ms a frame though no material used it (docs/PERFORMANCE.md).
+/// The LitMode bits that only pipelines built with the code for them draw (LitPipelines::for_mode): lavapipe runs both
+/// sides of a branch on a push constant (every masked texture read included) and sets up an interpolated colour for
+/// every triangle, so code a material does not use is left out of the shaders it is drawn with (on crowd_10k's
+/// close frames that code cost 2-4 ms a frame though no material used it: docs/PERFORMANCE.md).
 inline constexpr uint32_t kLitMaterialMaps =
     kLitNormalMap | kLitOcclusion | kLitEmissive | kLitVertexColour | kLitMetallicRoughness;
+/// The shader builds a material's LitMode bits call for: Plain (no kLitMaterialMaps bit: the project's own
+/// materials), MetallicRoughness (that bit alone: most glTF materials), Maps (any other bit: every feature's code).
+enum class LitVariant : uint32_t { Plain = 0, MetallicRoughness = 1, Maps = 2 };
+/// The variant LitMode bits `mode` are drawn with.
+[[nodiscard]] constexpr LitVariant lit_variant(uint32_t mode) {
+    const uint32_t maps = mode & kLitMaterialMaps;
+    return maps == 0 ? LitVariant::Plain : maps == kLitMetallicRoughness ? LitVariant::MetallicRoughness : LitVariant::Maps;
+}
 
 /// Bits 8..13 of LitPush::offsets.w for the dithered pipelines (LitPipelines::dithered): a mesh faded to
 /// `share` in [0, 1] of its pixels keeps those whose 4x4 Bayer value b has (b + 0.5) / 16 < share, exactly
@@ -160,13 +168,13 @@ public:
     /// the fragment shaders built with DITHER keep only the pixels lit_dither_bits() in offsets.w names. Only
     /// fading characters are drawn with it (the others' pipelines have no discard, so early depth stays on).
     [[nodiscard]] VkPipeline dithered(bool vertex_lit, bool culled) const { return dithered_[(vertex_lit ? 2 : 0) + (culled ? 1 : 0)]; }
-    /// Builds, once, the twins of the mesh, vertex-lit and dithered pipelines compiled with MATERIAL_MAPS (normal,
-    /// occlusion, emissive and metallic-roughness maps, vertex colours: kLitMaterialMaps). Call it when a material
-    /// that uses any of them is registered, not in a frame; a no-op after the first call.
-    [[nodiscard]] Status ensure_material_maps();
+    /// Builds, once per variant, the twins of the mesh, vertex-lit and dithered pipelines for lit_variant(`mode`)
+    /// (shaders built with MATERIAL_PBR or MATERIAL_MAPS); nothing for Plain. Call it when a material with those
+    /// bits is registered, not in a frame; a no-op once built.
+    [[nodiscard]] Status ensure_variant(uint32_t mode);
     /// The pipeline to draw LitMode bits `mode` with where `pipeline` (one of mesh(), mesh_culled(), vertex_lit(),
-    /// vertex_lit_culled(), dithered()) is the choice for a plain material: `pipeline` itself unless `mode` has a
-    /// kLitMaterialMaps bit, else its material-maps twin (ensure_material_maps must have run).
+    /// vertex_lit_culled(), dithered()) is the choice for a plain material: `pipeline` itself for LitVariant::Plain,
+    /// else its twin of lit_variant(`mode`) (ensure_variant(`mode`) must have run).
     [[nodiscard]] VkPipeline for_mode(VkPipeline pipeline, uint32_t mode) const;
     /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
@@ -223,9 +231,9 @@ private:
     VkPipelineLayout composite_layout_ = VK_NULL_HANDLE;
     VkDescriptorPool composite_pool_ = VK_NULL_HANDLE;
     VkPipeline dithered_[4] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};  ///< mesh, culled, vertex-lit, its culled
-    /// Material-maps twins of mesh_, culled_, vertex_lit_, vertex_lit_culled_, dithered_[0..3], in that order
-    /// (VK_NULL_HANDLE until ensure_material_maps).
-    std::array<VkPipeline, 8> maps_{};
+    /// Twins of mesh_, culled_, vertex_lit_, vertex_lit_culled_, dithered_[0..3], in that order, per LitVariant
+    /// after Plain (VK_NULL_HANDLE until ensure_variant).
+    std::array<std::array<VkPipeline, 8>, 2> twins_{};
     VkRenderPass render_pass_ = VK_NULL_HANDLE;  ///< what the pipelines are compatible with (for the twins)
     bool constant_fragments_ = false;            ///< create()'s profiling option, kept for the twins
 };

@@ -198,8 +198,7 @@ Result<uint32_t> CrowdRenderer::register_topology(std::span<const uint32_t> indi
             const Material& m = materials_[r.material];
             const bool uvs = t.uvs.handle() != VK_NULL_HANDLE;
             r.mode = material_mode(m, uvs) | (t.colours.handle() != VK_NULL_HANDLE ? uint32_t{gpu::kLitVertexColour} : 0u);
-            if ((r.mode & gpu::kLitMaterialMaps) != 0)
-                if (Status made = pipes_.ensure_material_maps(); !made.ok()) return made.error();
+            if (Status made = pipes_.ensure_variant(r.mode); !made.ok()) return made.error();
             gpu::MaterialImages images;
             for (uint32_t slot = 0; slot < gpu::kMaterialTextures; ++slot) {
                 const bool drawn = m.textures[slot] >= 0 && (uvs || (slot == gpu::kEmissiveTexture && m.texel_emissive));

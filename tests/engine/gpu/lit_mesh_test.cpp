@@ -174,7 +174,13 @@ TEST(LitMesh, QuadCoverageColourDepthAndOrientation) {
         << (ctx.validation_messages().empty() ? "" : ctx.validation_messages().front());
 }
 
-TEST(LitPipelines, MaterialsWithMapsDrawWithTheirTwinsTheOthersWithThePlainPipelines) {
+TEST(LitPipelines, MaterialsDrawWithTheTwinsOfTheirVariantThePlainOnesWithThePlainPipelines) {
+    EXPECT_EQ(lit_variant(kLitMesh | kLitTexturedMesh | kLitUnlit | kLitAlphaTest), LitVariant::Plain);
+    EXPECT_EQ(lit_variant(kLitMetallicRoughness | kLitTexturedMesh | kLitNormals), LitVariant::MetallicRoughness);
+    for (const uint32_t bit : {kLitNormalMap, kLitOcclusion, kLitEmissive, kLitVertexColour}) {
+        EXPECT_EQ(lit_variant(bit), LitVariant::Maps);
+        EXPECT_EQ(lit_variant(bit | kLitMetallicRoughness), LitVariant::Maps);
+    }
     ContextOptions opt;
     opt.validation = true;
     opt.device = "lavapipe";
@@ -194,19 +200,25 @@ TEST(LitPipelines, MaterialsWithMapsDrawWithTheirTwinsTheOthersWithThePlainPipel
             for (const uint32_t mode : {uint32_t{kLitMesh}, uint32_t{kLitTexturedMesh}, uint32_t{kLitNormals} | kLitTexturedMesh,
                                         kLitUnlit | kLitAlphaTest | lit_dither_bits(0.5f)})
                 EXPECT_EQ(pipes.for_mode(p, mode), p);
-        ASSERT_TRUE(pipes.ensure_material_maps().ok());
-        ASSERT_TRUE(pipes.ensure_material_maps().ok());  // once: the second call keeps the first twins
+        ASSERT_TRUE(pipes.ensure_variant(kLitMesh).ok());  // plain: nothing to build
+        for (const uint32_t mode : {uint32_t{kLitMetallicRoughness}, uint32_t{kLitNormalMap}}) {
+            ASSERT_TRUE(pipes.ensure_variant(mode).ok());
+            ASSERT_TRUE(pipes.ensure_variant(mode).ok());  // once: the second call keeps the first twins
+        }
         std::vector<VkPipeline> twins;
         for (const VkPipeline p : plain) {
-            const VkPipeline twin = pipes.for_mode(p, kLitNormalMap);
-            EXPECT_NE(twin, VK_NULL_HANDLE);
-            EXPECT_NE(twin, p);
-            for (const uint32_t bit : {kLitOcclusion, kLitEmissive, kLitVertexColour, kLitMetallicRoughness})
-                EXPECT_EQ(pipes.for_mode(p, bit | kLitTexturedMesh), twin);
-            twins.push_back(twin);
+            const VkPipeline pbr = pipes.for_mode(p, kLitMetallicRoughness | kLitTexturedMesh);
+            const VkPipeline maps = pipes.for_mode(p, kLitNormalMap);
+            EXPECT_NE(pbr, VK_NULL_HANDLE);
+            EXPECT_NE(maps, VK_NULL_HANDLE);
+            for (const uint32_t bit : {kLitOcclusion, kLitEmissive, kLitVertexColour})
+                EXPECT_EQ(pipes.for_mode(p, bit | kLitMetallicRoughness | kLitTexturedMesh), maps);
+            twins.push_back(pbr);
+            twins.push_back(maps);
+            twins.push_back(p);
         }
         std::sort(twins.begin(), twins.end());
-        EXPECT_EQ(std::unique(twins.begin(), twins.end()), twins.end()) << "each pipeline has a twin of its own";
+        EXPECT_EQ(std::unique(twins.begin(), twins.end()), twins.end()) << "each pipeline has a twin of its own per variant";
     }
     EXPECT_EQ(made.value()->validation_message_count(), 0u);
 }
