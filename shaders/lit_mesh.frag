@@ -19,6 +19,10 @@
 // impostor faded at -m (shaders/impostor.frag) for the same m, or with bit 13 the complement of those (the left
 // mesh of a mesh <-> mesh cross-fade); the pipelines without it never discard. The DITHER build also alpha-tests
 // (bit 14 of offsets.w, the cutoff in bits 16..31: gpu::lit_alpha_bits), for materials drawn with alpha masks.
+// Each build again with MATERIAL_MAPS (the maps, metallic-roughness, and vertex colours: an interpolated colour) and
+// with MATERIAL_PBR (metallic-roughness alone, every draw of it having the bit): the pipelines of materials with
+// those LitMode bits (gpu::LitVariant); without either the colour is flat and none of that code is there, since
+// lavapipe runs a branch's code under a mask whether or not a pixel takes it (docs/PERFORMANCE.md).
 
 layout(push_constant) uniform Push {
     mat4 view_proj;

@@ -10,7 +10,7 @@
 // - textured (2): the vertex's texture coordinate is element gl_VertexIndex of the material set's
 //   UV buffer (set 1, shared by every character of the topology).
 // - vertex colours (64): the colour is multiplied by element gl_VertexIndex of set 1 binding 6, likewise shared.
-// Compiled twice. Without VERTEX_LIT (for shaders/lit_mesh.frag, lit per pixel) the outputs are packed into
+// Compiled with and without VERTEX_LIT. Without VERTEX_LIT (for shaders/lit_mesh.frag, lit per pixel) the outputs are packed into
 // three interpolants, since lavapipe stores and sets up every interpolant of every binned triangle: normal
 // and u, world position and v, and the colour (interpolated, for vertex colours). With VERTEX_LIT (for
 // shaders/lit_vertex.frag) the lighting of shaders/lit_mesh.frag is evaluated here, at the vertex (Gouraud), and
@@ -18,6 +18,9 @@
 // (128) the vertex's light is shaders/pbr.glsl's for the colour before the base colour texture, metalness and
 // roughness read at the vertex (mip 0); the fragment shader then multiplies the whole light, the specular included,
 // by the texture (an approximation for the small, far characters these levels draw).
+// Each build again with MATERIAL_MAPS (vertex colours, the colour interpolated; with VERTEX_LIT also
+// metallic-roughness) and, with VERTEX_LIT, MATERIAL_PBR (metallic-roughness alone): without them the colour is flat
+// and that code is left out (gpu::LitVariant; shaders/lit_mesh.frag says why).
 
 layout(std430, set = 0, binding = 0) readonly buffer Positions { float positions[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Normals { float normals[]; };

@@ -6,6 +6,7 @@
 // DITHER: the screen-door fade of shaders/lit_mesh.frag (pixels whose 4x4 Bayer value is below offsets.w >> 8,
 // or with bit 13 the others). Of the material maps only the emissive one is drawn here (offsets.w & 32, added after
 // the light); normal and occlusion maps need the per-pixel normal and ambient term.
+// The emissive map's code is only in the MATERIAL_MAPS build (gpu::LitVariant::Maps).
 
 layout(push_constant) uniform Push {
     mat4 view_proj;

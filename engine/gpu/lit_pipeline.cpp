@@ -1,4 +1,5 @@
 #include "engine/gpu/lit_pipeline.hpp"
+#include "engine/gpu/lit_pipeline_build.hpp"
 
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
@@ -10,26 +11,8 @@
 #include "shaders/impostor_frag.h"
 #include "shaders/impostor_vert.h"
 #include "shaders/line_vert.h"
-#include "shaders/lit_constant_frag.h"
-#include "shaders/lit_mesh_dither_frag.h"
-#include "shaders/lit_mesh_dither_maps_frag.h"
-#include "shaders/lit_mesh_dither_pbr_frag.h"
-#include "shaders/lit_mesh_frag.h"
-#include "shaders/lit_mesh_maps_frag.h"
-#include "shaders/lit_mesh_maps_vert.h"
-#include "shaders/lit_mesh_pbr_frag.h"
-#include "shaders/lit_mesh_vert.h"
-#include "shaders/lit_mesh_vertex_lit_maps_vert.h"
-#include "shaders/lit_mesh_vertex_lit_pbr_vert.h"
-#include "shaders/lit_mesh_vertex_lit_vert.h"
-#include "shaders/lit_vertex_dither_frag.h"
-#include "shaders/lit_vertex_dither_maps_frag.h"
-#include "shaders/lit_vertex_frag.h"
-#include "shaders/lit_vertex_maps_frag.h"
 
 #include <algorithm>
-#include <array>
-#include <cassert>
 #include <cmath>
 #include <span>
 #include <utility>
@@ -47,16 +30,12 @@ Result<VkShaderModule> make_module(VkDevice device, std::span<const uint32_t> co
     return m;
 }
 
-struct PipelineDesc {
-    std::span<const uint32_t> vert;
-    std::span<const uint32_t> frag;
-    VkPrimitiveTopology topology;
-    VkCompareOp depth_compare;
-    VkCullModeFlags cull;
-};
 
-Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass,
-                                 const PipelineDesc& d) {
+}  // namespace
+
+namespace detail {
+
+Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass, const PipelineDesc& d) {
     Result<VkShaderModule> vs = make_module(device, d.vert);
     if (!vs) return vs.error();
     Result<VkShaderModule> fs = make_module(device, d.frag);
@@ -129,49 +108,11 @@ Result<VkPipeline> make_pipeline(VkDevice device, VkPipelineLayout layout, VkRen
     return p;
 }
 
-using Spirv = std::span<const uint32_t>;
+}  // namespace detail
 
-/// The mesh pipelines' descriptions, in the order mesh, culled, vertex-lit, vertex-lit culled, dithered (mesh,
-/// culled, vertex-lit, vertex-lit culled), built from the shaders of `variant` (MATERIAL_PBR: the per-pixel and
-/// vertex-lit light; MATERIAL_MAPS: also the maps, vertex colours and their interpolated colour). With constant
-/// fragments (profiling) the mesh and vertex-lit ones use lit_constant.frag, which reads the per-pixel vertex shader's
-/// flat colour, and the dithered ones the per-pixel shaders (the fading few keep their look); `variant` is then
-/// ignored.
-std::array<PipelineDesc, 8> lit_descs(LitVariant variant, bool constant_fragments) {
-    if (constant_fragments) variant = LitVariant::Plain;
-    const bool maps = variant == LitVariant::Maps, pbr = variant == LitVariant::MetallicRoughness;
-    const Spirv mesh_vert = maps ? Spirv(k_lit_mesh_maps_vert_spv) : Spirv(k_lit_mesh_vert_spv);  // MR is per pixel
-    const Spirv mesh_frag = constant_fragments ? Spirv(k_lit_constant_frag_spv)
-                            : maps             ? Spirv(k_lit_mesh_maps_frag_spv)
-                            : pbr              ? Spirv(k_lit_mesh_pbr_frag_spv)
-                                               : Spirv(k_lit_mesh_frag_spv);
-    const Spirv mesh_dither_frag = maps  ? Spirv(k_lit_mesh_dither_maps_frag_spv)
-                                   : pbr ? Spirv(k_lit_mesh_dither_pbr_frag_spv)
-                                         : Spirv(k_lit_mesh_dither_frag_spv);
-    const Spirv vertex_vert = constant_fragments ? Spirv(k_lit_mesh_vert_spv)
-                              : maps             ? Spirv(k_lit_mesh_vertex_lit_maps_vert_spv)
-                              : pbr              ? Spirv(k_lit_mesh_vertex_lit_pbr_vert_spv)
-                                                 : Spirv(k_lit_mesh_vertex_lit_vert_spv);
-    // The vertex-lit fragment shaders draw only the emissive map of the maps: MR is lit at the vertices.
-    const Spirv vertex_frag = constant_fragments ? Spirv(k_lit_constant_frag_spv)
-                              : maps             ? Spirv(k_lit_vertex_maps_frag_spv)
-                                                 : Spirv(k_lit_vertex_frag_spv);
-    const Spirv vertex_dither_frag = constant_fragments ? Spirv(k_lit_mesh_dither_frag_spv)
-                                     : maps             ? Spirv(k_lit_vertex_dither_maps_frag_spv)
-                                                        : Spirv(k_lit_vertex_dither_frag_spv);
-    constexpr VkPrimitiveTopology kTriangles = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    constexpr VkCullModeFlags kNone = VK_CULL_MODE_NONE, kBack = VK_CULL_MODE_BACK_BIT;
-    return {{{mesh_vert, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
-             {mesh_vert, mesh_frag, kTriangles, VK_COMPARE_OP_LESS, kBack},
-             {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
-             {vertex_vert, vertex_frag, kTriangles, VK_COMPARE_OP_LESS, kBack},
-             {mesh_vert, mesh_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
-             {mesh_vert, mesh_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kBack},
-             {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kNone},
-             {vertex_vert, vertex_dither_frag, kTriangles, VK_COMPARE_OP_LESS, kBack}}};
-}
-
-}  // namespace
+using detail::lit_descs;
+using detail::make_pipeline;
+using detail::PipelineDesc;
 
 glm::vec3 lit_colour(glm::vec3 colour, glm::vec3 n, glm::vec4 light, const LitLighting& lighting) {
     n = glm::normalize(n);
@@ -297,40 +238,6 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
     if (!composite) return composite.error();
     lp.composite_ = composite.value();
     return lp;
-}
-
-Status LitPipelines::ensure_variant(uint32_t mode) {
-    const LitVariant variant = lit_variant(mode);
-    if (variant == LitVariant::Plain) return {};
-    std::array<VkPipeline, 8>& twins = twins_[static_cast<uint32_t>(variant) - 1];
-    if (twins[0] != VK_NULL_HANDLE) return {};
-    const std::array<PipelineDesc, 8> lit = lit_descs(variant, constant_fragments_);
-    std::array<VkPipeline, 8> made{};
-    for (size_t i = 0; i < made.size(); ++i) {
-        Result<VkPipeline> p = make_pipeline(device_, layout_, render_pass_, lit[i]);
-        if (!p) {
-            for (VkPipeline q : made)
-                if (q != VK_NULL_HANDLE) vkDestroyPipeline(device_, q, nullptr);
-            return p.error();
-        }
-        made[i] = p.value();
-    }
-    twins = made;
-    return {};
-}
-
-VkPipeline LitPipelines::for_mode(VkPipeline pipeline, uint32_t mode) const {
-    const LitVariant variant = lit_variant(mode);
-    if (variant == LitVariant::Plain) return pipeline;
-    const std::array<VkPipeline, 8>& twins = twins_[static_cast<uint32_t>(variant) - 1];
-    const VkPipeline plain[8] = {mesh_, culled_, vertex_lit_, vertex_lit_culled_, dithered_[0], dithered_[1], dithered_[2], dithered_[3]};
-    for (size_t i = 0; i < 8; ++i)
-        if (plain[i] == pipeline) {
-            assert(twins[i] != VK_NULL_HANDLE && "LitPipelines::for_mode: ensure_variant() was not called for this mode");
-            return twins[i];
-        }
-    assert(false && "LitPipelines::for_mode: not a mesh pipeline");
-    return pipeline;
 }
 
 LitPipelines::LitPipelines(LitPipelines&& o) noexcept
