@@ -170,11 +170,12 @@ public:
     [[nodiscard]] VkPipeline dithered(bool vertex_lit, bool culled) const { return dithered_[(vertex_lit ? 2 : 0) + (culled ? 1 : 0)]; }
     /// Builds, once per variant, the twins of the mesh, vertex-lit and dithered pipelines for lit_variant(`mode`)
     /// (shaders built with MATERIAL_PBR or MATERIAL_MAPS); nothing for Plain. Call it when a material with those
-    /// bits is registered, not in a frame; a no-op once built.
+    /// bits is registered, not in a frame; a no-op once built, and with create()'s constant fragments (profiling draws
+    /// every material with the plain pipelines).
     [[nodiscard]] Status ensure_variant(uint32_t mode);
     /// The pipeline to draw LitMode bits `mode` with where `pipeline` (one of mesh(), mesh_culled(), vertex_lit(),
     /// vertex_lit_culled(), dithered()) is the choice for a plain material: `pipeline` itself for LitVariant::Plain,
-    /// else its twin of lit_variant(`mode`) (ensure_variant(`mode`) must have run).
+    /// else its twin of lit_variant(`mode`) (ensure_variant(`mode`) must have run); `pipeline` with constant fragments.
     [[nodiscard]] VkPipeline for_mode(VkPipeline pipeline, uint32_t mode) const;
     /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
@@ -235,7 +236,7 @@ private:
     /// after Plain (VK_NULL_HANDLE until ensure_variant).
     std::array<std::array<VkPipeline, 8>, 2> twins_{};
     VkRenderPass render_pass_ = VK_NULL_HANDLE;  ///< what the pipelines are compatible with (for the twins)
-    bool constant_fragments_ = false;            ///< create()'s profiling option, kept for the twins
+    bool constant_fragments_ = false;            ///< create()'s profiling option: no twins
 };
 
 }  // namespace aloha::gpu

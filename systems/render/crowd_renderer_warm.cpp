@@ -36,7 +36,7 @@ Status CrowdRenderer::warm_up() {
             for (const VkPipeline pipeline : {whole_pipeline(topo), pipes_.dithered(topo.vertex_lighting, topo.cull_back_faces)}) {
                 const uint32_t dither = pipeline == whole_pipeline(topo) ? 0u : gpu::lit_dither_bits(0.5f);
                 auto draw = [&](VkDescriptorSet set, uint32_t mode, uint32_t first_index) {
-                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.for_mode(pipeline, mode));  // a material's maps twin
+                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.for_mode(pipeline, mode));  // the material variant's twin
                     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &set, 0, nullptr);
                     push.offsets = glm::uvec4(0u, topo.vertex_count, 0u, mode | dither);
                     vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
