@@ -25,6 +25,10 @@ struct MotionRequest {
     glm::vec3 target{0.0f};        ///< Reach/LookAt target (world), Walk direction when no path
     glm::quat orientation{1.0f, 0.0f, 0.0f, 0.0f}; ///< Reach: wanted effector orientation
     uint8_t use_orientation = 0;   ///< Reach: 1 when `orientation` is part of the error (eq. 11)
+    /// PlayClip: 1 (default) gives a clip whose root travels or turns (systems/motion/root_motion.hpp) to the
+    /// character's transform, its pose shown in place, so it moves on and repeats from where it got to; 0 leaves the
+    /// travel in the pose (the transform stays, and a looping clip goes back to its start at each repeat).
+    uint8_t root_motion = 1;
 };
 
 /// Per-character motion state vector that persists across frames.

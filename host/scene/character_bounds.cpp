@@ -72,16 +72,24 @@ TypeExtent measure_type_extent(const Skeleton& skeleton, const ClipLibrary* clip
     std::vector<glm::quat> r(n);
     std::vector<glm::mat4> model(n);
     e.clip_radius.assign(clips->size(), e.rest_radius);
+    e.clip_travel_radius.assign(clips->size(), e.rest_radius);
     for (size_t c = 0; c < clips->size(); ++c) {
         const AnimationClip* clip = clips->find(static_cast<ClipId>(c));
         if (!clip || static_cast<size_t>(clip->joint_count()) != n) continue;
-        float radius = 0.0f;
+        const RootMotionTrack& root = clip->root_motion();
+        float radius = 0.0f, travel_radius = 0.0f;
         for (int k = 0; k < clip->key_count(); ++k) {
             sample_blocks(*clip, k, 0.0f, t.data(), r.data(), s.data());
             local_to_model(parents.data(), t.data(), r.data(), s.data(), nullptr, model.data(), n);
+            travel_radius = std::max(travel_radius, pose_radius(model, e.skin));
+            if (root.moves()) {  // as played with root motion: in place
+                put_roots_in_place(root.at(clip->times()[static_cast<size_t>(k)]).inverse(), parents, t, r);
+                local_to_model(parents.data(), t.data(), r.data(), s.data(), nullptr, model.data(), n);
+            }
             radius = std::max(radius, pose_radius(model, e.skin));
         }
         e.clip_radius[c] = radius;
+        e.clip_travel_radius[c] = travel_radius;
     }
     return e;
 }
@@ -128,9 +136,13 @@ float CharacterRuntime::bounds_radius(const CharacterDesc& c) const {
     for (const RequestDesc& r : c.requests) walks = walks || r.request.kind == RequestKind::Walk;
     auto widen = [&](const RequestDesc& r) {
         switch (r.request.kind) {
-            case RequestKind::PlayClip:
-                clip(find_clip(type, r.clip));
+            case RequestKind::PlayClip: {
+                const int id = find_clip(type, r.clip);
+                if (r.request.root_motion == 0 && id >= 0 && static_cast<size_t>(id) < extent.clip_travel_radius.size())
+                    radius = std::max(radius, extent.clip_travel_radius[static_cast<size_t>(id)]);
+                clip(id);
                 return;
+            }
             case RequestKind::Walk: {
                 const int32_t walk = motion->pick_walk_clip(r.request.speed);
                 if (walk >= 0) return clip(walk);

@@ -25,7 +25,9 @@ struct TypeExtent {
     std::vector<float> bone;       ///< per joint: rest length of the bone from its parent (0 for a root)
     std::vector<float> rest_joint; ///< per joint: horizontal distance from the root joint's vertical line at rest
     float rest_radius = 0.0f;      ///< the rest pose's radius: max over joints of horizontal distance + skin
-    std::vector<float> clip_radius;///< per clip id: the same, largest over the clip's keys
+    std::vector<float> clip_radius;///< per clip id: the same, largest over the clip's keys (a clip whose root moves, as
+                                   ///< played with root motion: in place, root_motion.hpp)
+    std::vector<float> clip_travel_radius;  ///< per clip id: the same with the root's travel left in the pose (root motion off)
 };
 
 /// Measures `skeleton` with its rest-pose skin `skin` (positions in the frame of `skin_joints`, the

@@ -1,18 +1,29 @@
 #include "host/scene/character_report.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 namespace aloha {
 
 std::vector<std::string> character_capabilities(const CharacterType& type) {
     std::vector<std::string> out;
-    // The clips by name and length, as scene requests name them ("play", "clip"); the first 12.
+    // The clips by name and length, as scene requests name them ("play", "clip"), and what root motion a played one
+    // gives; the first 12.
     std::string names;
     for (size_t i = 0; i < type.clips.size() && i < 12; ++i) {
         const AnimationClip* clip = type.clips.find(static_cast<ClipId>(i));
-        char buf[32];
+        char buf[96];
         std::snprintf(buf, sizeof buf, " %.2f s", static_cast<double>(clip->duration()));
-        names += (names.empty() ? "" : ", ") + clip->name() + buf;
+        std::string entry = clip->name() + buf;
+        const RootMotionTrack& root = clip->root_motion();
+        if (root.moves()) {  // played, its travel and turn move the character (systems/motion/root_motion.hpp)
+            const long degrees = std::lround(static_cast<double>(root.net_turn()) * 57.29577951308232);
+            std::string motion;
+            if (root.net_travel() >= 0.005f) std::snprintf(buf, sizeof buf, "%.2f m", static_cast<double>(root.net_travel())), motion = buf;
+            if (degrees != 0) std::snprintf(buf, sizeof buf, "%ld deg", degrees), motion += (motion.empty() ? "" : ", ") + std::string(buf);
+            entry += " (root motion" + (motion.empty() ? std::string(")") : ": " + motion + ")");
+        }
+        names += (names.empty() ? "" : ", ") + entry;
     }
     if (type.clips.size() > 12) names += ", and " + std::to_string(type.clips.size() - 12) + " more";
     out.push_back("clip playback: yes (" + std::to_string(type.clips.size()) + " clips" + (names.empty() ? "" : ": " + names) + ")");

@@ -38,6 +38,7 @@ RequestDesc read_request(const nlohmann::json& value, const std::string& path, c
         m.loop = r.boolean("loop", true) ? 1 : 0;
         m.speed = static_cast<float>(r.number("speed", 1.0, -10.0, 10.0));
         m.start_time = static_cast<float>(r.number("start", 0.0, 0.0, 1e6));
+        m.root_motion = r.boolean("root_motion", true) ? 1 : 0;
     } else if (type == "walk") {
         m.kind = RequestKind::Walk;
         m.speed = static_cast<float>(r.number("speed", 1.2, 0.0, 10.0));

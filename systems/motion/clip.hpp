@@ -7,6 +7,7 @@
 #include "engine/anim/raw_animation.hpp"
 #include "engine/anim/skeleton.hpp"
 #include "engine/core/result.hpp"
+#include "systems/motion/root_motion.hpp"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -94,6 +95,9 @@ public:
     [[nodiscard]] bool ends_meet() const { return ends_meet_; }
     /// Horizontal (XZ) root speed averaged over the clip in m/s (0 for a still or 0-length clip).
     [[nodiscard]] float root_speed() const;
+    /// The root joint's travel and turn over the clip, key by key (root_motion.hpp): what a PlayClip request gives
+    /// its character's transform when the clip moves (RootMotionTrack::moves()).
+    [[nodiscard]] const RootMotionTrack& root_motion() const { return root_motion_; }
     /// Bytes of clip data held: key blocks, key times, per-channel ranges and constant values.
     [[nodiscard]] size_t byte_size() const;
 
@@ -124,6 +128,7 @@ private:
     bool ends_meet_ = true;
     glm::vec3 root_start_{0.0f};
     glm::vec3 root_end_{0.0f};
+    RootMotionTrack root_motion_;
 };
 
 /// Validates `raw` against `skeleton` (at most joint_count() tracks, times finite, >= 0 and strictly

@@ -238,6 +238,12 @@ bool MotionController::kinematic_walking(const Character& ch, const AnimLod& lod
     return ch.cur.req.kind == RequestKind::Walk && rig_ && walk_method(lod) == WalkMethod::Kinematic;
 }
 
+const AnimationClip* MotionController::root_moving_clip(const Channel& ch) const {
+    if (ch.req.kind != RequestKind::PlayClip || ch.req.root_motion == 0) return nullptr;
+    const AnimationClip* clip = ch.req.loop ? clips_->find_looped(ch.req.clip) : clips_->find(ch.req.clip);
+    return clip && clip->root_motion().moves() ? clip : nullptr;
+}
+
 float MotionController::clock_rate(const Channel& ch) {
     if (ch.req.kind == RequestKind::PlayClip) return ch.req.speed;
     const float natural = ch.walk_natural;
@@ -274,9 +280,19 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
     ch.request_time += dt;
     const MotionRequest& r = ch.req;
     if (r.kind == RequestKind::PlayClip) {
+        const float before = ch.time;
         advance_clock(ch, dt);
         const AnimationClip* clip = clips_->find(r.clip);
         if (!r.loop && (!clip || (r.speed >= 0.0f ? ch.time >= clip->duration() : ch.time <= 0.0f))) ch.done = 1;
+        // Root motion: the transform moves as the clip's root did between the two clock readings (the pose is
+        // shown in place: evaluate()).
+        if (const AnimationClip* played = placement ? root_moving_clip(ch) : nullptr) {
+            const GroundMotion m = played->root_motion().between(before, ch.time, r.loop != 0);
+            const glm::vec3 step = placement->rotation * (placement->scale * glm::vec3(m.offset.x, 0.0f, m.offset.y));
+            placement->position += step;
+            placement->rotation = glm::normalize(placement->rotation * m.rotation());
+            if (velocity) velocity->linear = dt > 0.0f ? step / dt : glm::vec3(0.0f);
+        }
     } else if (r.kind == RequestKind::Walk) {
         const float speed = std::max(r.speed, 0.0f);
         const WalkMethod m = walk_method(lod);

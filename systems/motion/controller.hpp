@@ -334,6 +334,9 @@ private:
     // from the phase and the placement moving at its velocity).
     bool kinematic_walking(const Character& ch, const AnimLod& lod) const;
     void advance_clock(Channel& ch, float seconds) const;
+    // The clip `ch` plays when it is a PlayClip whose root motion is given to the transform (the request asks for it
+    // and the clip's root moves: root_motion.hpp); nullptr otherwise.
+    const AnimationClip* root_moving_clip(const Channel& ch) const;
     // Clip seconds per second of `ch`'s clock (PlayClip: its speed; a clip walk: speed over the clip's natural speed).
     static float clock_rate(const Channel& ch);
     // Horizontal unit direction a Walk without a path heads in (its target, else facing `rotation`).

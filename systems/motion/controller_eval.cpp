@@ -40,6 +40,9 @@ void MotionController::evaluate(uint32_t c, Channel& ch, const AnimLod& lod, con
             float alpha = 0.0f;
             find_key(*clip, t, &ch.cache, &k, &alpha);
             sample_blocks(*clip, k, alpha, out.translations.data(), out.rotations.data(), out.scales.data());
+            // A clip whose root motion moves the transform (advance()) is shown in place.
+            if (root_moving_clip(ch))
+                put_roots_in_place(clip->root_motion().at(t).inverse(), skeleton_->parents(), out.translations, out.rotations);
             l2m();
             return;
         }

@@ -26,9 +26,10 @@ void MotionController::enter_steady(uint32_t c, const Character& ch, const Trans
         return;
     Steady s = Steady::None;
     if (r.kind == RequestKind::PlayClip && r.loop) {
-        // A clip that jumps where it wraps is inertialized there (step_active): not a steady request.
+        // A clip that jumps where it wraps is inertialized there (step_active), and one whose root motion moves the
+        // transform moves it in advance(): not steady requests.
         const AnimationClip* clip = clips_->find_looped(r.clip);
-        if (clip && !clip->ends_meet()) return;
+        if ((clip && !clip->ends_meet()) || root_moving_clip(cur)) return;
         s = Steady::Clip;  // advance(): the clock only (a looping clip never ends)
     } else if (r.kind == RequestKind::Walk && r.path == 0xFFFF && ch.has_walk_method &&
                ch.walk_method == WalkMethod::ClipPlayback && cur.walk_clip >= 0) {

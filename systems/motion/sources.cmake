@@ -1,6 +1,7 @@
 # Motion controller core: clips, sampling, local-to-model, blending, pose pool, walk, controller.
 list(APPEND ALOHA_MOTION_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/clip.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/root_motion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/clip_quant.cpp
   ${CMAKE_CURRENT_LIST_DIR}/clip_decode_avx2.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sampling.cpp

@@ -1,6 +1,7 @@
 // Motion files in a World: a crowd of body variants of the built-in humanoid idling on a retargeted take. Each
 // variant is its own body, so each retargets the take onto itself at load; every variant has the clip under the base
 // type's prefix, the crowd plays it, and the motion is the same pelvis travel scaled by each body's legs.
+#include "host/scene/motion_sample.hpp"
 #include "systems/motion/library/motion_library.hpp"
 #include "tests/common/bvh_writer.hpp"
 #include "tests/common/rig_fixtures.hpp"
@@ -9,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -19,14 +21,19 @@ namespace fs = std::filesystem;
 using scene_test::make_world;
 using scene_test::scene_from_json;
 
-TEST(WorldMotions, CrowdVariantsPlayATakeRetargetedOntoEachBody) {
-    const fs::path dir = fs::temp_directory_path() / ("aloha_world_motions_" + std::to_string(::getpid()));
+// Writes dir/take.bvh (creating dir): the built-in humanoid's 1.10 m/s walk, two cycles, as a CMU-named BVH in
+// centimetres at 60 frames a second.
+void write_walking_take(const fs::path& dir) {
     fs::create_directories(dir);
-    // The take: the built-in humanoid's 1.10 m/s walk, two cycles, as a CMU-named BVH in centimetres.
     const Skeleton body = test::humanoid_skeleton_for({1.75f, 0.5f});
     const MotionLibrary lib = make_motion_library(body, test::humanoid_rig(body), "src");
     const AnimationClip walk = build_clip(lib.gaits[2], body, ClipEncoding::Float32).value();
     std::ofstream(dir / "take.bvh") << test::bvh_text_of_clip(body, walk, 100.0f, 60.0f, 2);
+}
+
+TEST(WorldMotions, CrowdVariantsPlayATakeRetargetedOntoEachBody) {
+    const fs::path dir = fs::temp_directory_path() / ("aloha_world_motions_" + std::to_string(::getpid()));
+    write_walking_take(dir);
     const std::string json = R"({"name": "m", "frames": 20, "camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
       "character_types": [{"name": "humanoid", "humanoid": "builtin:humanoid", "motions": [{"bvh": "take.bvh"}]}],
       "crowds": [{"type": "humanoid", "count": 12, "layout": "grid", "spacing": 2, "mix": {"walk": 0, "idle": 1, "reach": 0},
@@ -107,6 +114,51 @@ TEST(WorldMotions, FileCharacterCrowdVariesInHeight) {
     ASSERT_FALSE(built.ok());
     EXPECT_NE(built.error().to_string().find("/crowds/0/build: build variety needs a 'humanoid' character type"), std::string::npos)
         << built.error().to_string();
+    fs::remove_all(dir);
+}
+
+// A take that walks, played looping by a scene's `play` request: its root motion moves the character on, repeat
+// after repeat, the pelvis in the world never jumping (systems/motion/root_motion.hpp); with "root_motion": false the
+// character's placement stays and the pelvis goes back to where the take starts at each repeat.
+TEST(WorldMotions, APlayedWalkingTakeCarriesTheCharacterOn) {
+    const fs::path dir = fs::temp_directory_path() / ("aloha_world_root_motion_" + std::to_string(::getpid()));
+    write_walking_take(dir);  // 2.12 s
+    const std::string json = R"({"name": "m", "frames": 300, "camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
+      "character_types": [{"name": "humanoid", "humanoid": "builtin:humanoid", "motions": [{"bvh": "take.bvh"}]}],
+      "characters": [{"position": [-2, 0, 0], "requests": [{"type": "play", "clip": "humanoid.take"}]},
+                     {"position": [2, 0, 0], "requests": [{"type": "play", "clip": "humanoid.take", "root_motion": false}]}]})";
+    auto w = make_world(scene_from_json(json, (dir / "scene.json").string()));
+    ASSERT_TRUE(w);
+    const CharacterType& type = w->type(0);
+    const AnimationClip* take = type.clips.find(static_cast<ClipId>(find_clip(type, "humanoid.take")));
+    ASSERT_TRUE(take && take->root_motion().moves());
+    const float speed = take->root_motion().net_travel() / take->duration();
+    MotionSample m;
+    std::vector<glm::vec3> pelvis[2], placed[2];
+    constexpr int kFrames = 200;  // 3.3 s at the scene's 60 frames a second: a wrap at 2.12 s
+    for (int f = 0; f < kFrames; ++f) {
+        w->step();
+        for (uint32_t c = 0; c < 2; ++c) {
+            w->motion_sample(c, m);
+            pelvis[c].push_back(m.joints[0]);
+            placed[c].push_back(m.root);
+        }
+    }
+    auto largest_step = [](const std::vector<glm::vec3>& v) {
+        float worst = 0.0f;
+        for (size_t i = 1; i < v.size(); ++i) worst = std::max(worst, glm::length(v[i] - v[i - 1]));
+        return worst;
+    };
+    // With root motion the placement goes the take's way at its speed (the pelvis's travel to the frame and float
+    // rounding aside), and the pelvis never steps further in a frame than three times the walk's mean speed (its
+    // own sway and the stride's speed changes; the wrap, without root motion, jumps 2.3 m).
+    const float dt = 1.0f / 60.0f;
+    EXPECT_NEAR(glm::length(placed[0].back() - placed[0].front()), speed * dt * (kFrames - 1), 0.05f);
+    EXPECT_LE(largest_step(pelvis[0]), 3.0f * speed * dt);
+    EXPECT_EQ(placed[1].back(), placed[1].front());
+    EXPECT_GT(largest_step(pelvis[1]), 1.0f) << "without root motion the take goes back to its start";
+    std::printf("[figure] take %.2f m/s: largest pelvis step a frame %.4f m with root motion, %.4f m without\n",
+                static_cast<double>(speed), static_cast<double>(largest_step(pelvis[0])), static_cast<double>(largest_step(pelvis[1])));
     fs::remove_all(dir);
 }
 

@@ -252,7 +252,8 @@ TEST(Tool, ValidatePrintsTheHumanoidMapping) {
                              "  mapping (canonical <- file, 21 of 31): Hips <- hip, LeftHip <- lThigh, RightHip <- rThigh",
                              "  joints ignored by the layers (1): lIndex1",
                              "  units: centimetres; file axes: up +Y, forward +Z; standing height 1.68 m",
-                             "  clip playback: yes (13 clips: poser.mocap 0.63 s, poser.inplace 0.63 s, poser.walk_0.50 ",
+                             "  clip playback: yes (13 clips: poser.mocap 0.63 s (root motion: 0.76 m), poser.inplace 0.63 s, poser.walk_0.50 ",
+                             "poser.idle 8.00 s, poser.turn 4.00 s (root motion: 360 deg)",
                              "  kinematic and dynamic walk: yes", "  geometric levels layered and subdivided: yes",
                              "  note: generated motion retargeted from the built-in humanoid at 1.75 m (pelvis travel x1.000): 8 gaits, idle, "
                              "turn, wave; the gaits are its walk"})

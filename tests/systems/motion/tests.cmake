@@ -7,6 +7,8 @@ if(TARGET aloha_motion)
       ${CMAKE_CURRENT_LIST_DIR}/pose_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/controller_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/controller_wrap_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/controller_root_motion_test.cpp
+      ${CMAKE_CURRENT_LIST_DIR}/root_motion_test.cpp
       ${CMAKE_CURRENT_LIST_DIR}/walk_test.cpp
     LIBS aloha::motion
     LABELS motion)
