@@ -308,15 +308,7 @@ Result<AnimationClip> build_clip(const RawAnimation& raw, const Skeleton& skelet
     const int last = clip.key_count() - 1;
     sample_blocks(clip, std::max(last - 1, 0), last > 0 ? 1.0f : 0.0f, t.data(), r.data(), s.data());
     clip.root_end_ = t[0];
-    // The root's travel and turn at every key, as sampling returns them (the last key as the segment before ends).
-    std::vector<glm::vec3> root_t(clip.times_.size());
-    std::vector<glm::quat> root_r(clip.times_.size());
-    for (int k = 0; k <= last; ++k) {
-        sample_blocks(clip, k < last ? k : std::max(last - 1, 0), k < last || last == 0 ? 0.0f : 1.0f, t.data(), r.data(), s.data());
-        root_t[static_cast<size_t>(k)] = t[0];
-        root_r[static_cast<size_t>(k)] = r[0];
-    }
-    clip.root_motion_ = RootMotionTrack::build(clip.times_, root_t, root_r);
+    clip.root_motion_ = measure_root_motion(clip, skeleton.parents());
     return clip;
 }
 

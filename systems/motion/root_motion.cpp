@@ -1,6 +1,11 @@
 // A clip's root motion track and the ground motions it gives (see root_motion.hpp).
 #include "systems/motion/root_motion.hpp"
 
+#include "systems/motion/clip.hpp"
+#include "systems/motion/sampling.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -109,6 +114,53 @@ GroundMotion RootMotionTrack::between(float t0, float t1, bool loop) const {
     const float part0 = split(t0, &n0), part1 = split(t1, &n1);
     const auto repeats = static_cast<long long>(n1 - n0);
     return at(part0).inverse().after(at(d).power(repeats).after(at(part1)));
+}
+
+RootMotionTrack measure_root_motion(const AnimationClip& clip, std::span<const int16_t> parents) {
+    const auto n = static_cast<size_t>(clip.joint_count());
+    assert(parents.size() == n && n > 0);
+    // The candidates: joint 0, then down its largest subtree (descendant counts: parents precede children).
+    std::vector<int> below(n, 1);
+    for (size_t j = n; j-- > 1;)
+        if (parents[j] >= 0) below[static_cast<size_t>(parents[j])] += below[j];
+    std::vector<int> chain{0};
+    while (static_cast<int>(chain.size()) <= kRootMotionSearchDepth) {
+        int next = -1;
+        for (size_t j = 1; j < n; ++j)
+            if (parents[j] == chain.back() && (next < 0 || below[j] > below[static_cast<size_t>(next)])) next = static_cast<int>(j);
+        if (next < 0) break;
+        chain.push_back(next);
+    }
+    // Each candidate's model translation and rotation at every key (the last key as the segment before ends).
+    const int last = clip.key_count() - 1;
+    std::vector<glm::vec3> t(n), s(n);
+    std::vector<glm::quat> r(n);
+    std::vector<std::vector<glm::vec3>> at(chain.size(), std::vector<glm::vec3>(static_cast<size_t>(last) + 1));
+    std::vector<std::vector<glm::quat>> turned_by(chain.size(), std::vector<glm::quat>(static_cast<size_t>(last) + 1));
+    for (int k = 0; k <= last; ++k) {
+        sample_blocks(clip, k < last ? k : std::max(last - 1, 0), k < last || last == 0 ? 0.0f : 1.0f, t.data(), r.data(), s.data());
+        glm::mat4 model(1.0f);
+        for (size_t c = 0; c < chain.size(); ++c) {
+            const auto j = static_cast<size_t>(chain[c]);
+            model = model * glm::translate(glm::mat4(1.0f), t[j]) * glm::mat4_cast(r[j]) * glm::scale(glm::mat4(1.0f), s[j]);
+            at[c][static_cast<size_t>(k)] = glm::vec3(model[3]);
+            glm::mat3 axes(model);
+            for (int a = 0; a < 3; ++a) axes[a] = glm::normalize(axes[a]);  // scale off
+            turned_by[c][static_cast<size_t>(k)] = glm::normalize(glm::quat_cast(axes));
+        }
+    }
+    for (size_t c = 0; c < chain.size(); ++c) {
+        RootMotionTrack track = RootMotionTrack::build(clip.times(), at[c], turned_by[c]);
+        track.set_joint(chain[c]);
+        if (track.moves() || c + 1 == chain.size()) {
+            if (!track.moves()) {  // none moves: joint 0's track, which does not either
+                track = RootMotionTrack::build(clip.times(), at[0], turned_by[0]);
+                track.set_joint(0);
+            }
+            return track;
+        }
+    }
+    return {};
 }
 
 void put_roots_in_place(const GroundMotion& in_place_from, std::span<const int16_t> parents, std::span<glm::vec3> translations,

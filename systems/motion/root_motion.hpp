@@ -71,13 +71,30 @@ public:
     [[nodiscard]] float net_travel() const;
     /// Length of the clip the track covers (s).
     [[nodiscard]] float duration() const { return times_.empty() ? 0.0f : times_.back(); }
+    /// The joint whose travel and turn the track follows (measure_root_motion(); 0 unless set).
+    [[nodiscard]] int joint() const { return joint_; }
+    /// Sets joint().
+    void set_joint(int joint) { joint_ = joint; }
 
 private:
     std::vector<float> times_;
     std::vector<glm::vec3> keys_;  // (x, z, unwrapped heading) per key
     float excursion_ = 0.0f;
     bool moves_ = false;
+    int joint_ = 0;
 };
+
+class AnimationClip;
+
+/// Depth below joint 0 to which measure_root_motion() looks for the joint that travels.
+inline constexpr int kRootMotionSearchDepth = 3;
+
+/// The root motion track of `clip` (of a skeleton with `parents`), from its keys as sampling returns them: that of
+/// joint 0 when it travels or turns enough to move (RootMotionTrack::moves()); where joint 0 stays put (an
+/// Unreal-style root bone on the ground, the pelvis carrying the travel), that of the first joint below it along its
+/// largest subtree, up to kRootMotionSearchDepth joints down, that does, in model space (the in-place pose is still
+/// made at joint 0, which carries every joint below it); joint 0's (not moving) when none does.
+[[nodiscard]] RootMotionTrack measure_root_motion(const AnimationClip& clip, std::span<const int16_t> parents);
 
 /// Puts the root joints (`parents[j] < 0`) of a local pose in place: `in_place_from` (F(t)^-1 for the pose's clip
 /// time t) applied to their translations (ground position) and rotations (heading).

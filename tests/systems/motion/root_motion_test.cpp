@@ -2,11 +2,13 @@
 // own travel and turn, which clips move, and the looping clock's repeats.
 #include "systems/motion/clip.hpp"
 #include "systems/motion/root_motion.hpp"
+#include "systems/motion/sampling.hpp"
 #include "tests/systems/motion/motion_test_util.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace aloha {
@@ -111,6 +113,35 @@ TEST(RootMotionTrack, ASwayOrASmallTurnStaysInThePose) {
     EXPECT_EQ(clip.root_motion().between(0.1f, 7.3f, true).offset, glm::vec2(0.0f));
     // 12 cm of travel moves.
     EXPECT_TRUE(build_clip(moving({0.0f, 0.0f}, {0.12f, 0.0f}, 0.0f), chain3()).value().root_motion().moves());
+}
+
+TEST(RootMotionTrack, ARootBoneThatStaysPutHandsItToTheJointThatTravels) {
+    // An Unreal-style root bone on the ground (joint 0, still) with the pelvis (joint 1) walking 2 m and turning a
+    // quarter turn below it: the track follows joint 1 in model space; the in-place pose, made at joint 0, keeps
+    // joint 1 over its first ground position facing its first way.
+    const Skeleton& sk = chain3();
+    RawAnimation a = moving({0.0f, 0.0f}, {0.0f, 2.0f}, 0.5f * kPi);
+    std::swap(a.tracks[0], a.tracks[1]);
+    const AnimationClip clip = build_clip(a, sk, ClipEncoding::Float32).value();
+    const RootMotionTrack& track = clip.root_motion();
+    ASSERT_TRUE(track.moves());
+    EXPECT_EQ(track.joint(), 1);
+    EXPECT_NEAR(track.net_travel(), 2.0f, 1e-5f);
+    EXPECT_NEAR(track.net_turn(), 0.5f * kPi, 1e-5f);
+    std::vector<glm::vec3> t(3), s(3);
+    std::vector<glm::quat> r(3);
+    sample_blocks(clip, 15, 0.0f, t.data(), r.data(), s.data());  // t = 0.5 s
+    put_roots_in_place(track.at(0.5f).inverse(), sk.parents(), t, r);
+    const glm::vec3 pelvis = t[0] + r[0] * t[1];
+    EXPECT_NEAR(pelvis.x, 0.0f, kEps);
+    EXPECT_NEAR(pelvis.z, 0.0f, kEps);
+    const glm::vec3 facing = r[0] * r[1] * glm::vec3(0.0f, 0.0f, 1.0f);
+    EXPECT_NEAR(facing.x, 0.0f, kEps);
+    EXPECT_NEAR(facing.z, 1.0f, kEps);
+    // A clip where nothing travels: joint 0's track, not moving.
+    RawAnimation still = moving({0.0f, 0.0f}, {0.0f, 0.0f}, 0.0f);
+    EXPECT_FALSE(build_clip(still, sk).value().root_motion().moves());
+    EXPECT_EQ(build_clip(still, sk).value().root_motion().joint(), 0);
 }
 
 TEST(RootMotionTrack, ALoopingClockCountsItsRepeats) {
