@@ -41,6 +41,12 @@ struct MotionState {
     float request_time = 0.0f;     ///< seconds since the active request started
     uint32_t pose_slot = 0;        ///< slot in the pose pool
     uint32_t path_cursor = 0;      ///< next waypoint index when walking a path
+    /// 1 while a played clip's root motion carries the character at kTravellingSpeed or more: `phase` is then the walk
+    /// phase its stride at that speed gives (what its impostor shows; a standing impostor would glide).
+    uint8_t travelling = 0;
 };
+
+/// Speed (m/s) from which a played clip's root motion counts as travelling (MotionState::travelling).
+inline constexpr float kTravellingSpeed = 0.2f;
 
 }  // namespace aloha

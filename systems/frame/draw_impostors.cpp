@@ -25,6 +25,8 @@ ImpostorInstance DrawListBuilder::impostor_instance(const DrawType& draw, uint16
     } else if (f.motion[e].active == RequestKind::Walk) {
         const MotionState& m = f.motion[e];
         phase = f.anims[e].walk == WalkMethod::ClipPlayback ? m.time / im.cycle_s - std::floor(m.time / im.cycle_s) : m.phase;
+    } else if (f.motion[e].active == RequestKind::PlayClip && f.motion[e].travelling) {
+        phase = f.motion[e].phase;  // a clip whose root motion carries it: walking at its stride (MotionState::travelling)
     }
     ImpostorInstance inst;
     inst.position_scale = glm::vec4(t.position, t.scale);

@@ -291,7 +291,12 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
             const glm::vec3 step = placement->rotation * (placement->scale * glm::vec3(m.offset.x, 0.0f, m.offset.y));
             placement->position += step;
             placement->rotation = glm::normalize(placement->rotation * m.rotation());
+            const float speed = dt > 0.0f ? glm::length(step) / dt : 0.0f;
             if (velocity) velocity->linear = dt > 0.0f ? step / dt : glm::vec3(0.0f);
+            // Travelling: the walk phase runs at the stride the rig takes at this speed (the body's own size), for
+            // what shows it as a walk cycle (impostors).
+            ch.travelling = rig_ && speed >= kTravellingSpeed ? 1 : 0;
+            if (ch.travelling) advance_walk_phase(ch.walk, *rig_, speed / std::max(placement->scale, 1e-6f), dt, gait_);
         }
     } else if (r.kind == RequestKind::Walk) {
         const float speed = std::max(r.speed, 0.0f);

@@ -189,6 +189,7 @@ private:
         int32_t walk_clip = -1;     // gait cycle a Walk request plays at the ClipPlayback level
         float walk_natural = 0.0f;  // that clip's root_speed() (m/s), read every frame the clock runs
         uint8_t done = 0;
+        uint8_t travelling = 0;     // PlayClip: its root motion moved the character at kTravellingSpeed or more this frame
         SamplingCache cache;
         KinematicWalkState walk;
         // A turn that left the rotation as it was: the same rotation, direction and step (bit for bit)

@@ -96,6 +96,7 @@ bool MotionController::step_steady(const Walker& w, float dt, std::span<MotionSt
     st.pose_slot = c;
     st.path_cursor = 0;
     st.at_rest = 0;
+    st.travelling = 0;  // a clip whose root motion moves the character never takes the steady step
     return true;
 }
 

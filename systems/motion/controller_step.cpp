@@ -287,6 +287,7 @@ void MotionController::step_active(const Walker& w, float dt, std::span<MotionSt
     st.active = ch.cur.req.kind;
     st.time = ch.cur.time;
     st.phase = ch.cur.walk.phase;
+    st.travelling = ch.cur.req.kind == RequestKind::PlayClip ? ch.cur.travelling : 0;
     st.request_time = ch.cur.request_time;
     st.pose_slot = c;
     st.path_cursor = ch.cur.path_cursor;

@@ -373,5 +373,45 @@ TEST(WorldDraws, OnlyTypesWithCharactersBakeImpostorAtlases) {
     EXPECT_EQ(f.ctx->validation_message_count(), 0u);
 }
 
+// A character playing a walking clip with root motion (systems/motion/root_motion.hpp), drawn as an impostor, shows
+// the walk rows of its atlas at the phase its stride gives, which runs on as it travels; with root motion off it
+// does not travel and shows the standing row.
+TEST(WorldDraws, AnImpostorCarriedByRootMotionWalks) {
+    for (const bool root_motion : {true, false}) {
+        SCOPED_TRACE(root_motion ? "root motion" : "no root motion");
+        Fixture f;
+        const std::string request = std::string(R"({"type": "play", "clip": "humanoid.walk_1.10", "root_motion": )") +
+                                    (root_motion ? "true" : "false") + "}";
+        ASSERT_TRUE(make(f, parse_scene(R"({"camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
+            "characters": [{"position": [0, 0, 0], "requests": [)" + request + "]}]}",
+                                        kData + "scenes/root_motion_inline.json")));
+        World& w = *f.world;
+        ASSERT_TRUE(w.pin_geom_level(0, kImpostor).ok());
+        std::vector<float> phases;
+        for (int i = 0; i < 30; ++i) {
+            w.step();
+            ASSERT_TRUE(w.render_status().ok()) << w.render_status().error().to_string();
+            ASSERT_EQ(w.render_lists().impostors.size(), 1u);
+            phases.push_back(w.render_lists().impostors[0].forward_phase.z);
+        }
+        if (root_motion) {
+            // Walking rows, phase in [0, 1), running on (at 1.10 m/s a cycle takes about a second: half a cycle here).
+            for (size_t i = 5; i < phases.size(); ++i) {
+                EXPECT_GE(phases[i], 0.0f) << "frame " << i;
+                EXPECT_LT(phases[i], 1.0f) << "frame " << i;
+            }
+            float advanced = 0.0f;
+            for (size_t i = 6; i < phases.size(); ++i) advanced += phases[i] - phases[i - 1] + (phases[i] < phases[i - 1] ? 1.0f : 0.0f);
+            EXPECT_GT(advanced, 0.2f);
+            EXPECT_LT(advanced, 0.8f);
+        } else {
+            for (size_t i = 5; i < phases.size(); ++i) EXPECT_EQ(phases[i], -1.0f) << "frame " << i;
+        }
+        f.world.reset();
+        f.renderer.reset();
+        EXPECT_EQ(f.ctx->validation_message_count(), 0u);
+    }
+}
+
 }  // namespace
 }  // namespace aloha
