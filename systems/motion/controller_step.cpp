@@ -217,17 +217,30 @@ void MotionController::step_active(const Walker& w, float dt, std::span<MotionSt
         sync_walk_clock(ch.cur, ch.walk_method, walk_method(lod));
     // Requests that end during this frame hand over at the start of the next one.
     const float clock_before = ch.cur.time;
+    const Transform x_before = x;
     advance(ch.cur, lod, dt, &x, &v);
     if (ch.fade_left > 0.0f) {
-        if (!ch.fade_snapshot) advance(ch.prev, lod, dt, nullptr, nullptr);
+        // A fade into or out of a clip whose root motion moves the character blends the two requests' motions as
+        // their poses are blended (a request faded from as a frozen snapshot stands still), so the character's
+        // speed changes over the fade, not at the switch. Other fades move the transform as the new request does.
+        const bool blend_motion = root_moving_clip(ch.cur) || (!ch.fade_snapshot && root_moving_clip(ch.prev));
+        Transform x_prev = x_before;
+        Velocity v_prev{};
+        if (!ch.fade_snapshot) advance(ch.prev, lod, dt, blend_motion ? &x_prev : nullptr, blend_motion ? &v_prev : nullptr);
         ch.fade_left = std::max(0.0f, ch.fade_left - dt);
+        if (blend_motion) {
+            const float faded = ch.fade_left / ch.fade_total;  // the weight of the request faded from, as its pose's
+            x.position = glm::mix(x.position, x_prev.position, faded);
+            x.rotation = glm::slerp(x.rotation, x_prev.rotation, faded);
+            v.linear = glm::mix(v.linear, v_prev.linear, faded);
+        }
     }
     if (ch.cur.req.kind == RequestKind::Walk) {
         ch.walk_method = walk_method(lod);
         ch.has_walk_method = 1;
     } else {
         ch.has_walk_method = 0;
-        if (ch.cur.req.kind != RequestKind::Walk && switched) v.linear = glm::vec3(0.0f);
+        if (ch.cur.req.kind != RequestKind::Walk && switched && !root_moving_clip(ch.cur)) v.linear = glm::vec3(0.0f);
     }
     update_slots(c, ch);
     advance_overlay(ch.overlay, lod, dt);

@@ -1,7 +1,8 @@
 // A clip whose root travels or turns, played by the controller: its root motion moves the transform and the pose is
 // shown in place, so the character's body in the world (transform x pose) moves on continuously, repeat after
 // repeat, where without root motion it goes back to where the clip starts at every wrap; played once, the character
-// stays where the clip took it; the same with throttled updates and with the steady step on.
+// stays where the clip took it; the same with throttled updates and with the steady step on; a fade between two
+// clips blends their motions.
 #include "systems/motion/controller.hpp"
 #include "tests/systems/motion/motion_test_util.hpp"
 
@@ -20,7 +21,7 @@ const glm::vec3 kUp(0.0f, 1.0f, 0.0f);
 
 // A 3-joint chain; over 1 s the root walks 1 m along its own heading (+Z turned by the heading) while turning
 // `turn` rad about the vertical at an even rate: with turn = pi / 2, four repeats walk a closed loop.
-RawAnimation walk_and_turn(float turn) {
+RawAnimation walk_and_turn(float turn, float metres = 1.0f) {
     RawAnimation a;
     a.name = "walk_and_turn";
     a.duration = 1.0f;
@@ -31,7 +32,7 @@ RawAnimation walk_and_turn(float turn) {
         const float t = static_cast<float>(k) / kKeys;
         if (k > 0) {  // midpoint heading of the step: the path is the arc to second order
             const float mid = turn * (t - 0.5f / kKeys);
-            at += glm::angleAxis(mid, kUp) * glm::vec3(0.0f, 0.0f, 1.0f / kKeys);
+            at += glm::angleAxis(mid, kUp) * glm::vec3(0.0f, 0.0f, metres / kKeys);
         }
         a.tracks[0].translations.times.push_back(t);
         a.tracks[0].translations.values.push_back(at);
@@ -104,7 +105,8 @@ TEST(RootMotion, ALoopingTravellingClipCarriesOnWhereEachRepeatEnded) {
     EXPECT_LE(largest_step(on.root), 1.0f * kDt + 1e-4f);
     EXPECT_NEAR(glm::length(on.root.back() - on.root.front()), 239.0f * kDt, 1e-3f);
     EXPECT_NEAR(glm::length(on.placed.back() - glm::vec3(5.0f, 0.0f, -3.0f)), 240.0f * kDt, 1e-3f);
-    for (size_t f = 1; f < on.speed.size(); ++f) EXPECT_NEAR(on.speed[f], 1.0f, 1e-3f) << "frame " << f;
+    // The speed reads within the 16-bit keys' step (1 m in 65,535 steps) twice over a frame: 2 x 1.5e-5 m / dt.
+    for (size_t f = 1; f < on.speed.size(); ++f) EXPECT_NEAR(on.speed[f], 1.0f, 2.0f * 1.53e-5f / kDt) << "frame " << f;
     const Trace off = play(walk_and_turn(0.0f), {.root_motion = false});
     EXPECT_GT(largest_step(off.root), 0.9f);
     EXPECT_EQ(off.placed.back(), glm::vec3(5.0f, 0.0f, -3.0f));
@@ -140,6 +142,45 @@ TEST(RootMotion, ThrottledAndSteadyCharactersMoveAlike) {
             const Trace every = play(walk_and_turn(0.5f * kPi), {});
             EXPECT_LT(glm::length(r.placed.back() - every.placed.back()), 1e-4f);
         }
+}
+
+TEST(RootMotion, AFadeBetweenTwoClipsBlendsTheirMotions) {
+    // 1 m/s for a second, then a 3 m/s clip faded in over 0.5 s: the transform's step goes from 1 to 3 m/s x dt
+    // as the poses blend (linearly: at most 2 m/s x dt / 30 frames more a frame), not at the switch (2 m/s x dt).
+    const Skeleton sk = build_skeleton(test::make_chain(3), "chain3").value();
+    ClipLibrary clips;
+    const ClipId slow = clips.add(walk_and_turn(0.0f, 1.0f), sk).value();
+    const ClipId fast = clips.add(walk_and_turn(0.0f, 3.0f), sk).value();
+    std::vector<AnimLod> lods(1);
+    std::vector<MotionState> states(1);
+    std::vector<Transform> xs(1);
+    std::vector<Velocity> vs(1);
+    MotionController mc(sk, clips, 1);
+    MotionRequest a;
+    a.kind = RequestKind::PlayClip;
+    a.clip = slow;
+    a.duration = 1.0f;
+    MotionRequest b = a;
+    b.clip = fast;
+    b.duration = -1.0f;
+    b.crossfade_s = 0.5f;
+    ASSERT_TRUE(mc.push_request(0, a));
+    ASSERT_TRUE(mc.push_request(0, b));
+    std::vector<float> steps;
+    for (int f = 0; f < 120; ++f) {
+        const glm::vec3 before = xs[0].position;
+        mc.update(kDt, lods, states, xs, vs);
+        steps.push_back(glm::length(xs[0].position - before));
+    }
+    // The clips' keys are 16-bit: a 3 m range in steps of 4.6e-5 m, so a frame's step, a difference of two sampled
+    // positions, reads its speed to within 2 x 4.6e-5 m / dt = 0.0055 m/s.
+    constexpr float kKeyNoise = 0.0055f;
+    float largest_change = 0.0f;
+    for (size_t f = 2; f < steps.size(); ++f) largest_change = std::max(largest_change, std::abs(steps[f] - steps[f - 1]) / kDt);
+    EXPECT_LE(largest_change, 2.0f / 30.0f + 2.0f * kKeyNoise);
+    EXPECT_NEAR(steps[10] / kDt, 1.0f, kKeyNoise);
+    EXPECT_NEAR(steps[75] / kDt, 2.0f, kKeyNoise);  // halfway through the fade (frames 61-90)
+    EXPECT_NEAR(steps.back() / kDt, 3.0f, kKeyNoise);
 }
 
 }  // namespace
