@@ -55,6 +55,7 @@ void MotionController::leave_steady(uint32_t c) {
     if (h.steady == Steady::None) return;
     chars_[c].cur.time = h.time;
     chars_[c].cur.request_time = h.request_time;
+    if (h.steady == Steady::RootClip) chars_[c].cur.walk.phase = h.phase, chars_[c].cur.travelling = h.travelling;
     h.steady = Steady::None;
 }
 
@@ -244,6 +245,20 @@ const AnimationClip* MotionController::root_moving_clip(const Channel& ch) const
     return clip && clip->root_motion().moves() ? clip : nullptr;
 }
 
+void MotionController::move_by_root(const AnimationClip& clip, float before, float after, bool loop, float dt, Transform& placement,
+                                   Velocity* velocity, KinematicWalkState& walk, uint8_t& travelling) const {
+    const GroundMotion m = clip.root_motion().between(before, after, loop);
+    const glm::vec3 step = placement.rotation * (placement.scale * glm::vec3(m.offset.x, 0.0f, m.offset.y));
+    placement.position += step;
+    placement.rotation = glm::normalize(placement.rotation * m.rotation());
+    const float speed = dt > 0.0f ? glm::length(step) / dt : 0.0f;
+    if (velocity) velocity->linear = dt > 0.0f ? step / dt : glm::vec3(0.0f);
+    // Travelling: the walk phase runs at the stride the rig takes at this speed (the body's own size), for what shows
+    // it as a walk cycle (impostors).
+    travelling = rig_ && speed >= kTravellingSpeed ? 1 : 0;
+    if (travelling) advance_walk_phase(walk, *rig_, speed / std::max(placement.scale, 1e-6f), dt, gait_);
+}
+
 float MotionController::clock_rate(const Channel& ch) {
     if (ch.req.kind == RequestKind::PlayClip) return ch.req.speed;
     const float natural = ch.walk_natural;
@@ -286,18 +301,8 @@ void MotionController::advance(Channel& ch, const AnimLod& lod, float dt, Transf
         if (!r.loop && (!clip || (r.speed >= 0.0f ? ch.time >= clip->duration() : ch.time <= 0.0f))) ch.done = 1;
         // Root motion: the transform moves as the clip's root did between the two clock readings (the pose is
         // shown in place: evaluate()).
-        if (const AnimationClip* played = placement ? root_moving_clip(ch) : nullptr) {
-            const GroundMotion m = played->root_motion().between(before, ch.time, r.loop != 0);
-            const glm::vec3 step = placement->rotation * (placement->scale * glm::vec3(m.offset.x, 0.0f, m.offset.y));
-            placement->position += step;
-            placement->rotation = glm::normalize(placement->rotation * m.rotation());
-            const float speed = dt > 0.0f ? glm::length(step) / dt : 0.0f;
-            if (velocity) velocity->linear = dt > 0.0f ? step / dt : glm::vec3(0.0f);
-            // Travelling: the walk phase runs at the stride the rig takes at this speed (the body's own size), for
-            // what shows it as a walk cycle (impostors).
-            ch.travelling = rig_ && speed >= kTravellingSpeed ? 1 : 0;
-            if (ch.travelling) advance_walk_phase(ch.walk, *rig_, speed / std::max(placement->scale, 1e-6f), dt, gait_);
-        }
+        if (const AnimationClip* played = placement ? root_moving_clip(ch) : nullptr)
+            move_by_root(*played, before, ch.time, r.loop != 0, dt, *placement, velocity, ch.walk, ch.travelling);
     } else if (r.kind == RequestKind::Walk) {
         const float speed = std::max(r.speed, 0.0f);
         const WalkMethod m = walk_method(lod);

@@ -233,9 +233,9 @@ private:
         uint8_t shown = 0;             // 1 once a pose has been evaluated (before: the pool holds the stance)
         Channel prev;                  // the request faded from (while fade_left > 0 and !fade_snapshot)
     };
-    // What a steady step can be (Hot::steady): a looping clip, a straight walk played from a clip that
-    // already faces its way, a reach or look-at; None = the full step (step_active).
-    enum class Steady : uint8_t { None = 0, Clip = 1, WalkClip = 2, Hold = 3 };
+    // What a steady step can be (Hot::steady): a looping clip, one whose root motion moves the character, a straight
+    // walk played from a clip that already faces its way, a reach or look-at; None = the full step (step_active).
+    enum class Steady : uint8_t { None = 0, Clip = 1, WalkClip = 2, Hold = 3, RootClip = 4 };
     // Phase 1's record of a character (80 bytes; Character is ~460): the counters every step reads and
     // writes, and, while `steady` is set, all a step of the current request needs (step_steady), whose
     // clocks then live here: Character::cur's copies are written back when it is posed and before any
@@ -256,6 +256,8 @@ private:
         RequestKind kind = RequestKind::Rest;  // steady: cur.req.kind
         uint8_t stale = 0;             // posing skipped while unseen: the pool's pose (and keys) are old
         uint8_t keys_stale = 0;        // posed without its interpolation keys (read at updates only)
+        uint16_t clip = 0;             // RootClip: cur.req.clip
+        uint8_t travelling = 0;        // RootClip: cur.travelling
     };
     struct Due {
         uint32_t character;
@@ -338,6 +340,11 @@ private:
     // The clip `ch` plays when it is a PlayClip whose root motion is given to the transform (the request asks for it
     // and the clip's root moves: root_motion.hpp); nullptr otherwise.
     const AnimationClip* root_moving_clip(const Channel& ch) const;
+    // Moves `placement` by `clip`'s root motion from clip time `before` to `after` (root_motion.hpp), sets `velocity`
+    // (when given) to the step over `dt`, and runs `walk`'s phase at the rig's stride for that speed while it is
+    // travelling (`travelling` set; cleared otherwise). The one place advance() and the steady step do it.
+    void move_by_root(const AnimationClip& clip, float before, float after, bool loop, float dt, Transform& placement,
+                      Velocity* velocity, KinematicWalkState& walk, uint8_t& travelling) const;
     // Clip seconds per second of `ch`'s clock (PlayClip: its speed; a clip walk: speed over the clip's natural speed).
     static float clock_rate(const Channel& ch);
     // Horizontal unit direction a Walk without a path heads in (its target, else facing `rotation`).

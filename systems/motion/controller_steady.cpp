@@ -26,11 +26,13 @@ void MotionController::enter_steady(uint32_t c, const Character& ch, const Trans
         return;
     Steady s = Steady::None;
     if (r.kind == RequestKind::PlayClip && r.loop) {
-        // A clip that jumps where it wraps is inertialized there (step_active), and one whose root motion moves the
-        // transform moves it in advance(): not steady requests.
+        // A clip that jumps where it wraps is inertialized there (step_active): not a steady request.
         const AnimationClip* clip = clips_->find_looped(r.clip);
-        if ((clip && !clip->ends_meet()) || root_moving_clip(cur)) return;
-        s = Steady::Clip;  // advance(): the clock only (a looping clip never ends)
+        if (clip && !clip->ends_meet()) return;
+        // advance(): the clock only (a looping clip never ends), and the root motion of one whose root moves.
+        s = root_moving_clip(cur) ? Steady::RootClip : Steady::Clip;
+        h.clip = r.clip;
+        h.travelling = cur.travelling;
     } else if (r.kind == RequestKind::Walk && r.path == 0xFFFF && ch.has_walk_method &&
                ch.walk_method == WalkMethod::ClipPlayback && cur.walk_clip >= 0) {
         // Heading along its target (not along its own facing, which a turn would change), already facing
@@ -67,12 +69,18 @@ bool MotionController::step_steady(const Walker& w, float dt, std::span<MotionSt
         return false;
     MotionState& st = states[e];
 
-    // advance(): seconds, the clip clock, root motion (turn() leaves the rotation as it is).
+    // advance(): seconds, the clip clock, root motion (turn() leaves the rotation as it is; a root-moving clip's).
     h.request_time += dt;
+    const float before = h.time;
     if (h.steady != Steady::Hold) h.time += dt * h.rate;
     if (h.steady == Steady::WalkClip) {
         x.position += h.velocity * dt;
         velocities_[e].linear = h.velocity;
+    } else if (h.steady == Steady::RootClip) {
+        KinematicWalkState walk;
+        walk.phase = h.phase;
+        move_by_root(*clips_->find_looped(h.clip), before, h.time, true, dt, x, &velocities_[e], walk, h.travelling);
+        h.phase = walk.phase;
     }
 
     const Schedule sched = tick(c, e, h, st, lod, dt);
@@ -96,7 +104,7 @@ bool MotionController::step_steady(const Walker& w, float dt, std::span<MotionSt
     st.pose_slot = c;
     st.path_cursor = 0;
     st.at_rest = 0;
-    st.travelling = 0;  // a clip whose root motion moves the character never takes the steady step
+    st.travelling = h.steady == Steady::RootClip ? h.travelling : 0;
     return true;
 }
 

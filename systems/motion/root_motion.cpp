@@ -75,6 +75,14 @@ RootMotionTrack RootMotionTrack::build(std::span<const float> times, std::span<c
         track.excursion_ = std::max(track.excursion_, glm::length(at - start));
     }
     track.moves_ = times.size() >= 2 && (track.excursion_ >= kRootMotionMinTravel || std::abs(track.net_turn()) >= kRootMotionMinTurn);
+    // Evenly spaced keys (every key within 1e-4 of a spacing of k spacings, as AnimationClip::uniform() reads them).
+    if (times.size() >= 2) {
+        const double spacing = static_cast<double>(times.back()) / static_cast<double>(times.size() - 1);
+        bool uniform = spacing > 0.0;
+        for (size_t k = 0; k < times.size() && uniform; ++k)
+            uniform = std::abs(static_cast<double>(times[k]) - spacing * static_cast<double>(k)) <= 1e-4 * spacing;
+        if (uniform) track.inverse_spacing_ = static_cast<float>(1.0 / spacing);
+    }
     return track;
 }
 
@@ -90,6 +98,11 @@ GroundMotion RootMotionTrack::at(float t) const {
         key = keys_.front();
     } else if (!(t < times_.back())) {
         key = keys_.back();
+    } else if (inverse_spacing_ > 0.0f) {  // evenly spaced: the key by a multiply
+        const float at_key = t * inverse_spacing_;
+        const size_t i = std::min(static_cast<size_t>(at_key), keys_.size() - 2);
+        const float a = std::clamp(at_key - static_cast<float>(i), 0.0f, 1.0f);
+        key = keys_[i] * (1.0f - a) + keys_[i + 1] * a;
     } else {
         const size_t i = static_cast<size_t>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin()) - 1;
         const float a = (t - times_[i]) / (times_[i + 1] - times_[i]);
@@ -113,6 +126,7 @@ GroundMotion RootMotionTrack::between(float t0, float t1, bool loop) const {
     double n0 = 0.0, n1 = 0.0;
     const float part0 = split(t0, &n0), part1 = split(t1, &n1);
     const auto repeats = static_cast<long long>(n1 - n0);
+    if (repeats == 0) return at(part0).inverse().after(at(part1));  // most frames: no wrap between the two readings
     return at(part0).inverse().after(at(d).power(repeats).after(at(part1)));
 }
 

@@ -79,6 +79,7 @@ public:
 private:
     std::vector<float> times_;
     std::vector<glm::vec3> keys_;  // (x, z, unwrapped heading) per key
+    float inverse_spacing_ = 0.0f;  // 1 / the key spacing when the keys are evenly spaced (at() finds a key in O(1)); else 0
     float excursion_ = 0.0f;
     bool moves_ = false;
     int joint_ = 0;

@@ -86,6 +86,21 @@ TEST(RootMotionTrack, FollowsTheRootsTravelAndTurnOverTheGround) {
     expect_near(track.between(0.25f, 0.75f, false).apply(p), track.at(0.25f).inverse().apply(track.at(0.75f).apply(p)), kEps);
 }
 
+TEST(RootMotionTrack, UnevenlySpacedKeysAreFoundAsEvenOnesAre) {
+    // Keys bunched towards the end (times (k / 30)^2): the track finds each time's segment by search, not by a
+    // multiply, and reads the same line (the root's travel is linear in time).
+    RawAnimation a = moving({0.0f, 0.0f}, {2.0f, 0.0f}, 0.0f);
+    for (auto* times : {&a.tracks[0].translations.times, &a.tracks[0].rotations.times})
+        for (float& t : *times) t = t * t;
+    for (size_t k = 0; k < a.tracks[0].translations.values.size(); ++k)
+        a.tracks[0].translations.values[k].x = 2.0f * a.tracks[0].translations.times[k];
+    const AnimationClip clip = build_clip(a, chain3(), ClipEncoding::Float32).value();
+    const RootMotionTrack& track = clip.root_motion();
+    ASSERT_TRUE(track.moves());
+    for (const float t : {0.003f, 0.1f, 0.37f, 0.5f, 0.93f})
+        EXPECT_NEAR(track.at(t).offset.x, 2.0f * t, kEps) << "t " << t;
+}
+
 TEST(RootMotionTrack, AHeadingUnwrapsPastAHalfTurn) {
     // Three quarters of a turn and more: the heading grows on (no jump back by a whole turn at a half turn).
     const AnimationClip clip = build_clip(moving({0.0f, 0.0f}, {0.0f, 0.0f}, 1.75f * kPi), chain3(), ClipEncoding::Float32).value();
