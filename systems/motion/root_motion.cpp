@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 namespace aloha {
 
@@ -57,10 +58,12 @@ GroundMotion GroundMotion::power(long long n) const {
 }
 
 RootMotionTrack RootMotionTrack::build(std::span<const float> times, std::span<const glm::vec3> root_translations,
-                                       std::span<const glm::quat> root_rotations) {
+                                       std::span<const glm::quat> root_rotations, int joint, float inverse_spacing) {
     assert(times.size() == root_translations.size() && times.size() == root_rotations.size());
     RootMotionTrack track;
+    track.joint_ = joint;
     if (times.empty()) return track;
+    track.inverse_spacing_ = times.size() >= 2 ? inverse_spacing : 0.0f;
     track.times_.assign(times.begin(), times.end());
     track.keys_.resize(times.size());
     const glm::quat start_inverse = glm::inverse(root_rotations[0]);
@@ -75,14 +78,6 @@ RootMotionTrack RootMotionTrack::build(std::span<const float> times, std::span<c
         track.excursion_ = std::max(track.excursion_, glm::length(at - start));
     }
     track.moves_ = times.size() >= 2 && (track.excursion_ >= kRootMotionMinTravel || std::abs(track.net_turn()) >= kRootMotionMinTurn);
-    // Evenly spaced keys (every key within 1e-4 of a spacing of k spacings, as AnimationClip::uniform() reads them).
-    if (times.size() >= 2) {
-        const double spacing = static_cast<double>(times.back()) / static_cast<double>(times.size() - 1);
-        bool uniform = spacing > 0.0;
-        for (size_t k = 0; k < times.size() && uniform; ++k)
-            uniform = std::abs(static_cast<double>(times[k]) - spacing * static_cast<double>(k)) <= 1e-4 * spacing;
-        if (uniform) track.inverse_spacing_ = static_cast<float>(1.0 / spacing);
-    }
     return track;
 }
 
@@ -163,18 +158,13 @@ RootMotionTrack measure_root_motion(const AnimationClip& clip, std::span<const i
             turned_by[c][static_cast<size_t>(k)] = glm::normalize(glm::quat_cast(axes));
         }
     }
+    RootMotionTrack first;  // joint 0's, returned when no candidate moves (it does not either)
     for (size_t c = 0; c < chain.size(); ++c) {
-        RootMotionTrack track = RootMotionTrack::build(clip.times(), at[c], turned_by[c]);
-        track.set_joint(chain[c]);
-        if (track.moves() || c + 1 == chain.size()) {
-            if (!track.moves()) {  // none moves: joint 0's track, which does not either
-                track = RootMotionTrack::build(clip.times(), at[0], turned_by[0]);
-                track.set_joint(0);
-            }
-            return track;
-        }
+        RootMotionTrack track = RootMotionTrack::build(clip.times(), at[c], turned_by[c], chain[c], clip.inverse_key_spacing());
+        if (track.moves()) return track;
+        if (c == 0) first = std::move(track);
     }
-    return {};
+    return first;
 }
 
 void put_roots_in_place(const GroundMotion& in_place_from, std::span<const int16_t> parents, std::span<glm::vec3> translations,

@@ -50,11 +50,13 @@ inline constexpr float kRootMotionMinTurn = 0.5235988f;
 class RootMotionTrack {
 public:
     RootMotionTrack() = default;
-    /// Builds the track from the root joint's translation and rotation at each key time (`times` strictly
-    /// increasing from 0, one translation and rotation each, rotations unit). A key whose turn cannot be read
-    /// (never: the forward and the right axis cannot both be vertical) keeps the previous key's heading.
+    /// Builds the track of joint `joint` from its model translation and rotation at each key time (`times` strictly
+    /// increasing from 0, one translation and rotation each, rotations unit). `inverse_spacing`: 1 / the key spacing
+    /// when the keys are evenly spaced (AnimationClip::inverse_key_spacing()), at() then finds a key by a multiply;
+    /// 0 otherwise. A key whose turn about the vertical cannot be read (a half turn about a horizontal axis from
+    /// key 0) keeps the previous key's heading.
     static RootMotionTrack build(std::span<const float> times, std::span<const glm::vec3> root_translations,
-                                 std::span<const glm::quat> root_rotations);
+                                 std::span<const glm::quat> root_rotations, int joint = 0, float inverse_spacing = 0.0f);
 
     /// Whether the clip's root travels or turns enough to be given to the transform (see the class comment).
     [[nodiscard]] bool moves() const { return moves_; }
@@ -71,10 +73,8 @@ public:
     [[nodiscard]] float net_travel() const;
     /// Length of the clip the track covers (s).
     [[nodiscard]] float duration() const { return times_.empty() ? 0.0f : times_.back(); }
-    /// The joint whose travel and turn the track follows (measure_root_motion(); 0 unless set).
+    /// The joint whose travel and turn the track follows (build()'s `joint`).
     [[nodiscard]] int joint() const { return joint_; }
-    /// Sets joint().
-    void set_joint(int joint) { joint_ = joint; }
 
 private:
     std::vector<float> times_;

@@ -18,6 +18,9 @@ namespace {
 constexpr float kDt = 1.0f / 60.0f;
 constexpr float kPi = 3.14159265f;
 const glm::vec3 kUp(0.0f, 1.0f, 0.0f);
+// Slack on a frame's step: the 16-bit keys hold a 1 m travel in 65,535 steps, twice over a step (3.1e-5 m), plus float
+// rounding of positions a few metres out (~1e-6 m).
+constexpr float kStepSlack = 1e-4f;
 
 // A 3-joint chain; over 1 s the root walks 1 m along its own heading (+Z turned by the heading) while turning
 // `turn` rad about the vertical at an even rate: with turn = pi / 2, four repeats walk a closed loop.
@@ -104,7 +107,7 @@ TEST(RootMotion, ALoopingTravellingClipCarriesOnWhereEachRepeatEnded) {
     // crosses a wrap moves as much (the clip's ends meet once its travel is aside). Without root motion the
     // root goes back 1 m at every wrap and the transform stays.
     const Trace on = play(walk_and_turn(0.0f), {});
-    EXPECT_LE(largest_step(on.root), 1.0f * kDt + 1e-4f);
+    EXPECT_LE(largest_step(on.root), 1.0f * kDt + kStepSlack);
     EXPECT_NEAR(glm::length(on.root.back() - on.root.front()), 239.0f * kDt, 1e-3f);
     EXPECT_NEAR(glm::length(on.placed.back() - glm::vec3(5.0f, 0.0f, -3.0f)), 240.0f * kDt, 1e-3f);
     // The speed reads within the 16-bit keys' step (1 m in 65,535 steps) twice over a frame: 2 x 1.5e-5 m / dt.
@@ -118,7 +121,7 @@ TEST(RootMotion, ATurningClipTurnsTheTransformAndRepeatsAlongItsPath) {
     // A quarter turn a second along a 1 m arc: four repeats close the loop, and the transform has turned round once
     // (frame 240 against frame 0).
     const Trace on = play(walk_and_turn(0.5f * kPi), {});
-    EXPECT_LE(largest_step(on.root), 1.0f * kDt + 1e-4f);
+    EXPECT_LE(largest_step(on.root), 1.0f * kDt + kStepSlack);
     const Trace four = play(walk_and_turn(0.5f * kPi), {.frames = 241});  // frame 240 is 4 s after frame 0
     EXPECT_LT(glm::length(four.root.back() - four.root.front()), 1e-3f);
     EXPECT_GT(std::abs(glm::dot(four.last.rotation, four.first.rotation)), 1.0f - 1e-6f);
@@ -131,7 +134,7 @@ TEST(RootMotion, AClipPlayedOnceLeavesTheCharacterWhereItEnded) {
     const Trace once = play(walk_and_turn(0.0f), {.loop = false, .frames = 90, .speed = 2.0f});
     EXPECT_NEAR(glm::length(once.root[89] - once.root[0]), 1.0f - 2.0f * kDt, 1e-3f);
     EXPECT_EQ(once.root[89], once.root[45]);
-    EXPECT_LE(largest_step(once.root), 2.0f * kDt + 1e-4f);
+    EXPECT_LE(largest_step(once.root), 2.0f * kDt + kStepSlack);
 }
 
 TEST(RootMotion, ThrottledAndSteadyCharactersMoveAlike) {
@@ -140,7 +143,7 @@ TEST(RootMotion, ThrottledAndSteadyCharactersMoveAlike) {
     for (const uint8_t interval : {uint8_t{1}, uint8_t{3}})
         for (const bool steady : {false, true}) {
             const Trace r = play(walk_and_turn(0.5f * kPi), {.interval = interval, .steady = steady});
-            EXPECT_LE(largest_step(r.root), 1.0f * kDt + 1e-3f) << "interval " << int(interval) << (steady ? ", steady" : "");
+            EXPECT_LE(largest_step(r.root), 1.0f * kDt + kStepSlack) << "interval " << int(interval) << (steady ? ", steady" : "");
             const Trace every = play(walk_and_turn(0.5f * kPi), {.interval = interval});
             if (steady) {
                 // It takes the steady step (every frame but the first few) and moves the transform as the full step
