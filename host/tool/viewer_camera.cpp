@@ -1,5 +1,7 @@
 #include "host/tool/viewer_camera.hpp"
 
+#include "engine/core/look_at.hpp"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -92,7 +94,7 @@ CameraKey ViewerCamera::placement(const CameraKey& scene_key) const {
 RenderCamera ViewerCamera::matrices(const CameraKey& scene_key, float aspect) const {
     const CameraKey k = placement(scene_key);
     RenderCamera c;
-    c.view = glm::lookAt(k.position, k.target, kUp);
+    c.view = look_at_y_up(k.position, k.target);
     c.proj = glm::perspective(glm::radians(fov_y_deg), aspect, near_plane, far_plane);
     return c;
 }

@@ -1,5 +1,7 @@
 #include "systems/lod/attributes.hpp"
 
+#include "engine/core/look_at.hpp"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -11,7 +13,7 @@ LodCamera make_lod_camera(glm::vec3 eye, glm::vec3 target, float fovy_rad, glm::
                           float near_plane, float far_plane) {
     LodCamera c;
     c.position = eye;
-    c.view = glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f));
+    c.view = look_at_y_up(eye, target);
     c.projection = glm::perspective(fovy_rad, viewport_px.x / viewport_px.y, near_plane, far_plane);
     c.viewport_px = viewport_px;
     c.near_plane = near_plane;

@@ -146,6 +146,22 @@ TEST(LodAttributes, EmptyOptionalSpansUseDefaults) {
     EXPECT_NEAR(out[0].projected_height_px, 54.0f, kTol);
 }
 
+// A camera straight above the crowd (an RTS view) sees the characters below it: its view is defined (it was NaN with
+// +Y as the up hint, and every character tested invisible). Centre at depth 30 - 0.9 below the eye; the one 5 m to
+// the side is at x_ndc = 5 / 29.1 (tan(fovy/2) = 1, aspect 4/3: x_ndc = 0.75 x / z).
+TEST(LodAttributes, CameraStraightDownSeesTheCharactersBelow) {
+    Crowd c;
+    c.add({0, 0.9f, 0});
+    c.add({5, 0.9f, 0});
+    const LodCamera cam = make_lod_camera({0, 30, 0}, {0, 0, 0}, glm::half_pi<float>(), {800, 600}, 0.1f, 100.0f);
+    const std::vector<LodAttributes> a = c.run(cam);
+    EXPECT_EQ(a[0].visible, 1);
+    EXPECT_NEAR(a[0].distance, 29.1f, kTol);
+    EXPECT_NEAR(a[0].eccentricity, 0.0f, kTol);
+    EXPECT_EQ(a[1].visible, 1);
+    EXPECT_NEAR(a[1].eccentricity, 0.75f * 5.0f / 29.1f, kTol);
+}
+
 TEST(LodAttributes, ValidateListsEveryFailure) {
     std::vector<Transform> t(2);
     std::vector<Velocity> v(1);
