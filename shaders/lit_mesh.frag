@@ -71,7 +71,7 @@ void main() {
     const vec3 world = v_world_v.xyz;
     const vec2 uv = vec2(v_normal_u.w, v_world_v.w);
     vec3 n = (pc.offsets.w & 1u) != 0u ? normalize(cross(dFdx(world), dFdy(world))) : normalize(v_normal_u.xyz);
-    if (dot(n, pc.camera.xyz - world) < 0.0) n = -n;
+    if (dot(n, pc.camera.xyz - world * pc.camera.w) < 0.0) n = -n;
 #ifdef MATERIAL_MAPS
     if ((pc.offsets.w & 8u) != 0u) {  // normal map (gpu::kLitNormalMap)
         // dp = T du + B dv over the pixel's footprint: T = dp/du, B = dp/dv from the two screen derivatives.
@@ -115,7 +115,7 @@ void main() {
     vec3 lit;
     if ((pc.offsets.w & 128u) != 0u) {  // glTF metallic-roughness (gpu::kLitMetallicRoughness)
         const vec2 mr = texture(metallic_roughness_texture, uv).bg;
-        lit = pbr_light(albedo.rgb, mr.x, mr.y, n, normalize(pc.camera.xyz - world), pc.light.xyz, ambient, 1.0 - pc.light.w, lighting.key.rgb,
+        lit = pbr_light(albedo.rgb, mr.x, mr.y, n, normalize(pc.camera.xyz - world * pc.camera.w), pc.light.xyz, ambient, 1.0 - pc.light.w, lighting.key.rgb,
                         lighting.sky.rgb, lighting.ground.rgb);
     } else {
         vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);
@@ -126,7 +126,7 @@ void main() {
 #elif defined(MATERIAL_PBR)
     // Metallic-roughness alone (gpu::LitVariant::MetallicRoughness: the bit is set for every draw of this build).
     const vec2 mr = texture(metallic_roughness_texture, uv).bg;
-    vec3 lit = pbr_light(albedo.rgb, mr.x, mr.y, n, normalize(pc.camera.xyz - world), pc.light.xyz, ambient, 1.0 - ambient,
+    vec3 lit = pbr_light(albedo.rgb, mr.x, mr.y, n, normalize(pc.camera.xyz - world * pc.camera.w), pc.light.xyz, ambient, 1.0 - ambient,
                          lighting.key.rgb, lighting.sky.rgb, lighting.ground.rgb);
 #else
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * n.y);

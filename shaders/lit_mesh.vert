@@ -94,7 +94,7 @@ void main() {
 #ifdef VERTEX_LIT
     // The fragment shader's light, here (two-sided: the normal is turned to face the camera).
     vec3 nn = normalize(cof * n);
-    if (dot(nn, pc.camera.xyz - world.xyz) < 0.0) nn = -nn;
+    if (dot(nn, pc.camera.xyz - world.xyz * pc.camera.w) < 0.0) nn = -nn;
     float ambient = pc.light.w;
     vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * nn.y);
     float diffuse = max(dot(nn, pc.light.xyz), 0.0);
@@ -103,7 +103,7 @@ void main() {
     // With MATERIAL_PBR alone every draw has the bit (gpu::LitVariant::MetallicRoughness): the test is constant there.
     if ((mode & 128u) != 0u) {  // glTF metallic-roughness (gpu::kLitMetallicRoughness)
         const vec2 mr = textureLod(metallic_roughness_texture, uv, 0.0).bg;
-        v_lit.rgb = pbr_light(colour.rgb, mr.x, mr.y, nn, normalize(pc.camera.xyz - world.xyz), pc.light.xyz, ambient, 1.0 - ambient,
+        v_lit.rgb = pbr_light(colour.rgb, mr.x, mr.y, nn, normalize(pc.camera.xyz - world.xyz * pc.camera.w), pc.light.xyz, ambient, 1.0 - ambient,
                               lighting.key.rgb, lighting.sky.rgb, lighting.ground.rgb);
     }
 #endif

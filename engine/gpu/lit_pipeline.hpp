@@ -97,7 +97,9 @@ using MaterialImages = std::array<MaterialImage, kMaterialTextures>;
 struct LitPush {
     glm::mat4 view_proj{1.0f};  ///< Vulkan clip space from world (see vulkan_clip_from_gl())
     glm::vec4 light{0.0f, 0.0f, 1.0f, 0.2f}; ///< xyz: unit direction towards the light, w: ambient in [0,1]
-    glm::vec4 camera{0.0f};     ///< xyz: camera position in world space (normals are turned to face it)
+    glm::vec4 camera{0.0f};     ///< w 1: xyz the camera's position in world space (normals are turned to face it);
+                                ///< w 0 (an eye at infinity): xyz the unit direction towards it. The shaders take
+                                ///< camera.xyz - world * camera.w as the way to the eye.
     glm::uvec4 offsets{0u};     ///< mesh: x vertex_base, y vertex_stride (0 = shared), z instance_base, w LitMode bits;
                                 ///< lines: x first line vertex
     glm::vec4 base_colour{1.0f}; ///< the draw's material colour (display space), multiplies the albedo

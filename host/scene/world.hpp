@@ -83,6 +83,9 @@ struct WorldOptions {
                                                 ///< $XDG_CACHE_HOME/aloha, else $HOME/.cache/aloha
     std::optional<uint64_t> bake_cache_max_bytes;  ///< the bake cache's size limit (0: none); default:
                                                    ///< $ALOHA_CACHE_MAX_MB MiB, else 1 GiB (least recently used go first)
+    uint32_t impostor_elevations = 3;      ///< bands of views in each type's impostor atlas, 1 to 8: level views
+                                           ///< only (1), or n evenly from level to straight down (the default 3:
+                                           ///< 0, 45 and 90 degrees; each band one level atlas's memory and bake)
     bool pose_every_character = false;     ///< true: every character's pose is current every frame, seen or
                                            ///< not (tools that read every pose: motion metrics, export);
                                            ///< false: poses nobody reads are left out (PoseUse)

@@ -65,6 +65,7 @@ Status World::build_impostors() {
         const std::vector<std::vector<glm::mat4>> poses = impostor_poses(rt.type, cycle_s);
         ImpostorBakeInput in = impostor_bake_input(draw_types_[t], level, poses, rt.type.name);
         in.directions = kDirections;
+        in.elevations = options_.impostor_elevations;
         // The bake cache holds atlases by a digest of everything the bake reads and of the device.
         const std::vector<uint8_t> key = bake_cache_ ? impostor_atlas_key(renderer_->context().properties(), in) : std::vector<uint8_t>{};
         std::optional<ImpostorAtlas> read;

@@ -24,7 +24,7 @@ struct Bindings {
     CliOptions o;
     std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", cache_max_mb, counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes,
-        distant_layer, texture_mips, texture_max;
+        distant_layer, texture_mips, texture_max, impostor_elevations;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
 
@@ -76,6 +76,10 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "far impostors under PX pixels tall at 720 lines are drawn at a quarter of the resolution instead of half "
                  "(default 0: none; faster on a software rasteriser, coarser far crowd)")
         ->check(whole_number(0, 8192));
+    c.add_option("--impostor-elevations", b.impostor_elevations,
+                 "bands of views in each impostor atlas: 1 level views only, N evenly from level to straight down "
+                 "(default 3: 0, 45 and 90 degrees; each band costs one level atlas's memory and bake time)")
+        ->check(whole_number(1, 8));
     c.add_option("--texture-mips", b.texture_mips,
                  "material textures read from the two nearest mip levels blended (blend, trilinear) or from the nearest one "
                  "(nearest; default nearest on a software rasteriser, blend on a GPU)")
@@ -221,6 +225,7 @@ void convert(Bindings& b) {
     if (!b.far_layer.empty()) o.far_layer_px = float(u32(b.far_layer));
     if (!b.far_layer_meshes.empty()) o.far_layer_meshes_px = float(u32(b.far_layer_meshes));
     if (!b.distant_layer.empty()) o.distant_layer_px = float(u32(b.distant_layer));
+    if (!b.impostor_elevations.empty()) o.impostor_elevations = u32(b.impostor_elevations);
     if (!b.texture_mips.empty()) o.blend_texture_mips = b.texture_mips == "blend";
     if (!b.texture_max.empty()) o.max_texture_side = u32(b.texture_max);
     if (!b.height.empty()) o.height = u32(b.height);

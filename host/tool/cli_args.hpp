@@ -56,6 +56,7 @@ struct CliOptions {
                                                ///< (unset: far_layer_meshes_default)
     std::optional<bool> blend_texture_mips;  ///< --texture-mips blend|nearest: RendererOptions::blend_texture_mips (unset: by device)
     std::optional<uint32_t> max_texture_side;  ///< --texture-max PX: RendererOptions::max_texture_side (unset: its default)
+    std::optional<uint32_t> impostor_elevations;  ///< --impostor-elevations N: WorldOptions::impostor_elevations
     std::optional<float> distant_layer_px;  ///< --distant-layer PX: RendererOptions::distant_layer_below_px (unset: 0)
     GpuOverlap gpu_overlap = GpuOverlap::Auto;  ///< --gpu-overlap on|off|auto: GPU frame overlapped with the next CPU systems (profile)
     std::string joints;                ///< --joints FILE.csv: where export writes joint positions

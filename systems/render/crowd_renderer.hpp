@@ -35,6 +35,9 @@ class Context;
 struct RenderCamera {
     glm::mat4 view{1.0f};  ///< view from world
     glm::mat4 proj{1.0f};  ///< OpenGL clip from view (y up, z in [-w, w])
+    /// The way to the eye (two-sided normals, specular) is the view's +Z everywhere instead of towards the eye's
+    /// position: for an orthographic view of things far off its axis (the impostor bake's cells, metres across).
+    bool eye_at_infinity = false;
 };
 
 /// One character's deformed surface: vertices in model space over a registered topology.
@@ -65,7 +68,9 @@ struct ProxyFade {
 };
 
 /// What shaders/impostor.vert reads of an atlas (set 1 binding 0, vec4 each): first (cell width, cell height in
-/// texels, mip levels, 0), then per cell (row r, column d at 1 + r * directions + d) the bounds of its colour
+/// texels, mip levels, 0), then (the elevated bands' cell height in model units or 0 with one band, the depth ratio,
+/// 0, 0), then per cell (row r of all bands' rows, band e's rows from e * rows; column d at 2 + r * directions + d)
+/// the bounds of its colour
 /// texels with alpha > 0 as fractions of the cell (x0, y0, x1, y1; x from the left, y from the bottom; all 0 for an
 /// empty cell), so the quad covers only the silhouette. Precondition: `image` is whole cells of `layout`.
 [[nodiscard]] std::vector<glm::vec4> impostor_cell_table(const TextureImage& image, const ImpostorAtlasLayout& layout);

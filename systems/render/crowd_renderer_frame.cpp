@@ -140,7 +140,9 @@ Status CrowdRenderer::record(const FrameInput& frame, const gpu::TargetView& tar
     gpu::LitPush push;
     push.view_proj = gpu::vulkan_clip_from_gl() * frame.camera.proj * frame.camera.view;
     push.light = glm::vec4(glm::normalize(frame.light_direction), frame.ambient);
-    push.camera = glm::vec4(glm::vec3(glm::inverse(frame.camera.view)[3]), 1.0f);
+    // The way to the eye: towards its position, or along its +Z axis everywhere (RenderCamera::eye_at_infinity).
+    const glm::mat4 eye = glm::inverse(frame.camera.view);
+    push.camera = frame.camera.eye_at_infinity ? glm::vec4(glm::normalize(glm::vec3(eye[2])), 0.0f) : glm::vec4(glm::vec3(eye[3]), 1.0f);
     uint32_t draws = 0;
     // The far layer first, in its own render pass: the frame's pass composites it (record_composite).
     if (far_plan_.far_count > 0) draws += record_far_layer(frame, cmd, slot, push, target.extent);

@@ -16,12 +16,14 @@ static_assert(sizeof(ImpostorInstance) == 64 && offsetof(ImpostorInstance, atlas
 }  // namespace
 
 std::vector<glm::vec4> impostor_cell_table(const TextureImage& image, const ImpostorAtlasLayout& layout) {
-    const uint32_t cw = image.width / layout.directions, ch = image.height / (2 * layout.rows);
+    const uint32_t rows = layout.rows * layout.elevations;  // every band's, one after another
+    const uint32_t cw = image.width / layout.directions, ch = image.height / (2 * rows);
     uint32_t levels = 1;  // of the packed atlas: one half's size (pack_impostor_atlas)
     for (uint32_t s = std::max(image.width, image.height / 2); s > 1; s /= 2) ++levels;
-    std::vector<glm::vec4> table{glm::vec4(float(cw), float(ch), float(levels), 0.0f)};
-    table.reserve(1 + size_t{layout.rows} * layout.directions);
-    for (uint32_t r = 0; r < layout.rows; ++r)
+    std::vector<glm::vec4> table{glm::vec4(float(cw), float(ch), float(levels), 0.0f),
+                                 glm::vec4(layout.elevations > 1 ? layout.elevated_height : 0.0f, layout.depth_ratio, 0.0f, 0.0f)};
+    table.reserve(2 + size_t{rows} * layout.directions);
+    for (uint32_t r = 0; r < rows; ++r)
         for (uint32_t d = 0; d < layout.directions; ++d) {
             uint32_t x0 = cw, y0 = ch, x1 = 0, y1 = 0;  // covered texels [x0, x1) x [y0, y1), y down from the cell's top
             for (uint32_t y = 0; y < ch; ++y) {
@@ -44,11 +46,15 @@ Result<uint32_t> CrowdRenderer::register_impostor_atlas(const TextureImage& imag
     if (layout.directions == 0 || layout.rows < 2)
         return gpu::gpu_error("register_impostor_atlas: '" + image.name + "' needs at least 1 direction and 2 rows (a phase and the standing row), has " +
                               std::to_string(layout.directions) + " x " + std::to_string(layout.rows));
-    if (image.width % layout.directions != 0 || image.height % (2 * layout.rows) != 0)
+    if (layout.elevations < 1 || layout.elevations > kMaxImpostorElevations)
+        return gpu::gpu_error("register_impostor_atlas: '" + image.name + "' has " + std::to_string(layout.elevations) +
+                              " elevations (bands of views), expected 1 to " + std::to_string(kMaxImpostorElevations));
+    const uint32_t rows = layout.rows * layout.elevations;
+    if (image.width % layout.directions != 0 || image.height % (2 * rows) != 0)
         return gpu::gpu_error("register_impostor_atlas: '" + image.name + "' of " + std::to_string(image.width) + " x " +
                               std::to_string(image.height) + " pixels is not " + std::to_string(layout.directions) + " x 2*" +
-                              std::to_string(layout.rows) + " whole cells");
-    if (!(layout.width > 0.0f && layout.height > 0.0f))
+                              std::to_string(rows) + " whole cells");
+    if (!(layout.width > 0.0f && layout.height > 0.0f) || (layout.elevations > 1 && !(layout.elevated_height > 0.0f)))
         return gpu::gpu_error("register_impostor_atlas: '" + image.name + "' has an empty quad");
     if (image.rgba.size() != size_t{image.width} * image.height * 4)
         return gpu::gpu_error("register_impostor_atlas: '" + image.name + "' has " + std::to_string(image.rgba.size()) + " bytes for " +
@@ -92,7 +98,7 @@ uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::L
         if (end == first) continue;
         const ImpostorAtlasLayout& layout = atlas_layouts_[run.atlas];
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[run.atlas].set, 0, nullptr);
-        push.offsets = glm::uvec4(layout.directions, layout.rows, base + first, 0u);
+        push.offsets = glm::uvec4(layout.directions, layout.rows, base + first, layout.elevations);
         push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, viewport_height);
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDraw(cmd, 6, end - first, 0, 0);

@@ -77,7 +77,8 @@ void plan_far_layer(const FarLayerInput& in, FarLayerPlan& out) {
                     std::partition_point(split, in.order.begin() + end, [&](uint32_t i) { return in.depth[i] <= distant_limit; }) -
                     in.order.begin());
             }
-            const float radius = 0.5f * std::sqrt(layout.width * layout.width + layout.height * layout.height);
+            const float tallest = impostor_quad_height(layout);  // every band's quad is centred on the pivot
+            const float radius = 0.5f * std::sqrt(layout.width * layout.width + tallest * tallest);
             for (uint32_t k = run.split; k < end; ++k) {
                 const glm::vec4& ps = in.records[in.order[k]].position_scale;
                 (k < run.distant ? bound : distant_bound)

@@ -17,13 +17,19 @@ namespace {
 constexpr float kMargin = 0.04f;  // empty border of a cell, share of the bounds on each side
 
 struct Cells {
-    float width_m = 0.0f, height_m = 0.0f, bottom_m = 0.0f;  // one cell in model units; its lower edge
+    float width_m = 0.0f, height_m = 0.0f, bottom_m = 0.0f;  // one level cell in model units; its lower edge
+    float elevated_height_m = 0.0f;                          // the cells of the bands from above (0 with one band)
+    float depth_ratio = 0.0f;                                // mean depth along a level view over the height
     uint32_t width_px = 0, height_px = 0;
+    [[nodiscard]] float pivot() const { return bottom_m + 0.5f * height_m; }
 };
 
 // Cells that hold the mesh in every pose and from every azimuth: the radius about the vertical axis by
-// the height range, with a margin, at square pixels.
-Cells cell_size(const ImpostorBakeInput& in) {
+// the height range, with a margin, at square pixels. Seen from elevation a, a point y above the pivot and r from
+// the vertical axis lies at most |y| cos a + r sin a from the pivot on the image's vertical: the elevated bands'
+// cells are as tall as the largest of that over their elevations (with the same margin), at the level cells'
+// pixel height (their texels not quite square).
+Cells cell_size(const ImpostorBakeInput& in, uint32_t elevations) {
     float radius = 0.0f, lo = 1e30f, hi = -1e30f;
     for (const ImpostorPose& p : in.rows)
         for (const glm::vec3& v : p.positions) {
@@ -40,6 +46,28 @@ Cells cell_size(const ImpostorBakeInput& in) {
     const float width = 2.0f * std::max(radius, 1e-3f) + 2.0f * h * kMargin;
     c.width_px = static_cast<uint32_t>(std::ceil(width / metres_per_px / 4.0f)) * 4;
     c.width_m = static_cast<float>(c.width_px) * metres_per_px;
+    // The figure's depth along each level view (its extent towards that view's camera), averaged over the views and
+    // the rows, over its height: how much of it a view from above adds to its picture's height.
+    double depth = 0.0;
+    const uint32_t dirs = std::max(in.directions, 1u);
+    for (const ImpostorPose& p : in.rows)
+        for (uint32_t d = 0; d < dirs; ++d) {
+            const float azimuth = 6.28318531f * static_cast<float>(d) / static_cast<float>(dirs);
+            const glm::vec2 toward(std::sin(azimuth), std::cos(azimuth));
+            float near = -1e30f, far = 1e30f;
+            for (const glm::vec3& v : p.positions) {
+                const float z = v.x * toward.x + v.z * toward.y;
+                near = std::max(near, z);
+                far = std::min(far, z);
+            }
+            depth += near - far;
+        }
+    c.depth_ratio = static_cast<float>(depth / static_cast<double>(in.rows.size() * dirs)) / h;
+    for (uint32_t e = 1; e < elevations; ++e) {
+        const float a = impostor_elevation(e, elevations);
+        const float half = 0.5f * h * std::cos(a) + std::max(radius, 1e-3f) * std::sin(a);
+        c.elevated_height_m = std::max(c.elevated_height_m, 2.0f * half + 2.0f * h * kMargin);
+    }
     return c;
 }
 
@@ -60,6 +88,12 @@ glm::mat4 impostor_view_rotation(uint32_t d, uint32_t directions) {
     return glm::rotate(glm::mat4(1.0f), -azimuth, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
+glm::mat4 impostor_view_transform(uint32_t d, uint32_t directions, float elevation, float pivot_y) {
+    // Leaning +Y towards +Z by the elevation is a rotation about +X by that angle.
+    return glm::rotate(glm::mat4(1.0f), elevation, glm::vec3(1.0f, 0.0f, 0.0f)) *
+           glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -pivot_y, 0.0f)) * impostor_view_rotation(d, directions);
+}
+
 std::string impostor_atlas_image_name(const std::string& type) { return "impostor atlas '" + type + "'"; }
 
 Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeInput& in) {
@@ -71,9 +105,11 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
         if (in.rows[r].positions.size() != in.rows[0].positions.size() || in.rows[r].normals.size() != in.rows[0].positions.size())
             return fail("row " + std::to_string(r) + " has " + std::to_string(in.rows[r].positions.size()) + " positions and " +
                         std::to_string(in.rows[r].normals.size()) + " normals for " + std::to_string(in.rows[0].positions.size()) + " vertices");
-    const uint32_t dirs = std::max(in.directions, 1u), rows = static_cast<uint32_t>(in.rows.size());
-    const Cells cells = cell_size(in);
-    const uint32_t width = dirs * cells.width_px, height = rows * cells.height_px;
+    if (in.elevations < 1 || in.elevations > kMaxImpostorElevations)
+        return fail(std::to_string(in.elevations) + " elevations (bands of views), expected 1 to " + std::to_string(kMaxImpostorElevations));
+    const uint32_t dirs = std::max(in.directions, 1u), rows = static_cast<uint32_t>(in.rows.size()), bands = in.elevations;
+    const Cells cells = cell_size(in, bands);
+    const uint32_t width = dirs * cells.width_px, band_height = rows * cells.height_px, height = bands * band_height;
     if (width > 8192 || 2 * height > 8192) return fail("atlas of " + std::to_string(width) + " x " + std::to_string(2 * height) + " pixels is too large");
 
     RendererOptions options;
@@ -84,7 +120,7 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
     Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(ctx, options);
     if (!made) return made.error();
     CrowdRenderer& renderer = *made.value();
-    Result<gpu::OffscreenTarget> target = gpu::OffscreenTarget::create(ctx, width, height);
+    Result<gpu::OffscreenTarget> target = gpu::OffscreenTarget::create(ctx, width, band_height);  // one band at a time
     if (!target) return target.error();
 
     std::vector<uint32_t> textures, materials;
@@ -104,36 +140,44 @@ Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeI
                                                            in.cull_back_faces, surface);
     if (!topology) return topology.error();
 
-    // Cell (d, r): column d, row r from the top; the character's origin sits at the cell's centre line,
-    // its quad's lower edge (bottom_m above the origin) on the cell's lower edge.
-    std::vector<DeformableMesh> meshes;
-    for (uint32_t r = 0; r < rows; ++r)
-        for (uint32_t d = 0; d < dirs; ++d) {
-            const glm::vec3 origin((static_cast<float>(d) + 0.5f) * cells.width_m,
-                                   -static_cast<float>(r + 1) * cells.height_m - cells.bottom_m, 0.0f);
-            meshes.push_back({topology.value(), in.rows[r].positions, in.rows[r].normals,
-                              glm::translate(glm::mat4(1.0f), origin) * impostor_view_rotation(d, dirs), glm::vec4(1.0f)});
-        }
-    FrameInput frame;
-    frame.meshes = meshes;
-    frame.camera.view = glm::lookAt(glm::vec3(0.0f, 0.0f, 10.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
-    frame.camera.proj = glm::ortho(0.0f, static_cast<float>(dirs) * cells.width_m, -static_cast<float>(rows) * cells.height_m, 0.0f, 0.1f, 20.0f);
-    frame.clear_colour = glm::vec4(0.0f);
-    frame.ambient = 1.0f;  // white sky and ground (the defaults): the albedo, unlit
     ImpostorAtlas out;
     out.image.name = impostor_atlas_image_name(in.name);
     out.image.width = width;
     out.image.height = 2 * height;
     out.image.rgba.resize(size_t{width} * 2 * height * 4);
-    for (size_t half = 0; half < 2; ++half) {
-        frame.write_normals = half == 1;
-        if (Status s = renderer.render(frame, target.value()); !s) return s.error();
-        if (Status s = renderer.finish(); !s) return s.error();
-        Result<gpu::Rgba8Image> image = target.value().read_back(ctx);
-        if (!image) return image.error();
-        std::memcpy(out.image.rgba.data() + half * width * height * 4, image.value().pixels.data(), size_t{width} * height * 4);
+    FrameInput frame;
+    frame.camera.view = glm::lookAt(glm::vec3(0.0f, 0.0f, 10.0f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    frame.camera.eye_at_infinity = true;  // orthographic: every cell is seen along -Z, however far off the axis
+    frame.clear_colour = glm::vec4(0.0f);
+    frame.ambient = 1.0f;  // white sky and ground (the defaults): the albedo, unlit
+    std::vector<DeformableMesh> meshes;
+    for (uint32_t band = 0; band < bands; ++band) {
+        // Cell (d, r) of the band: column d, row r from the top; the character's pivot at the cell's centre, seen
+        // from the band's elevation (band 0: its quad's lower edge, bottom_m above the origin, on the cell's lower edge).
+        const float cell_h = band == 0 ? cells.height_m : cells.elevated_height_m;
+        const float elevation = impostor_elevation(band, bands);
+        meshes.clear();
+        for (uint32_t r = 0; r < rows; ++r)
+            for (uint32_t d = 0; d < dirs; ++d) {
+                const glm::vec3 centre((static_cast<float>(d) + 0.5f) * cells.width_m, -(static_cast<float>(r) + 0.5f) * cell_h, 0.0f);
+                meshes.push_back({topology.value(), in.rows[r].positions, in.rows[r].normals,
+                                  glm::translate(glm::mat4(1.0f), centre) * impostor_view_transform(d, dirs, elevation, cells.pivot()),
+                                  glm::vec4(1.0f)});
+            }
+        frame.meshes = meshes;
+        // Depth: 10 m either side of the cells' plane, where any figure under 10 m from its pivot lies, leant or not.
+        frame.camera.proj = glm::ortho(0.0f, static_cast<float>(dirs) * cells.width_m, -static_cast<float>(rows) * cell_h, 0.0f, 0.1f, 20.0f);
+        for (size_t half = 0; half < 2; ++half) {
+            frame.write_normals = half == 1;
+            if (Status s = renderer.render(frame, target.value()); !s) return s.error();
+            if (Status s = renderer.finish(); !s) return s.error();
+            Result<gpu::Rgba8Image> image = target.value().read_back(ctx);
+            if (!image) return image.error();
+            const size_t band_bytes = size_t{width} * band_height * 4;
+            std::memcpy(out.image.rgba.data() + half * size_t{width} * height * 4 + band * band_bytes, image.value().pixels.data(), band_bytes);
+        }
     }
-    out.layout = {dirs, rows, cells.width_m, cells.bottom_m, cells.height_m};
+    out.layout = {dirs, rows, cells.width_m, cells.bottom_m, cells.height_m, bands, cells.elevated_height_m, cells.depth_ratio};
     out.texture_bytes = 2 * mip_chain_bytes(width, height);  // packed: (colour, normal) pairs over one half (impostor_packing.hpp)
     out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return out;

@@ -40,6 +40,7 @@ struct ImpostorBakeInput {
     std::span<const TextureImage> textures;       ///< their textures
     bool cull_back_faces = false;                 ///< closed mesh wound counter-clockwise from outside
     uint32_t directions = 16;                     ///< camera azimuths around the vertical axis (>= 1)
+    uint32_t elevations = 1;                      ///< bands of views, level then from above (impostor_elevation; 1..8)
     uint32_t cell_height_px = 96;                 ///< pixels per cell vertically (its width follows the bounds)
 };
 
@@ -55,13 +56,19 @@ struct ImpostorAtlas {
 [[nodiscard]] std::string impostor_atlas_image_name(const std::string& type);
 
 /// Bakes `in` on `ctx` (a renderer and target of its own, released before returning). Errors: fewer than
-/// two rows, poses whose sizes differ from the first's, an empty mesh, an atlas wider or taller than
-/// 8192 pixels, Vulkan failures.
+/// two rows, poses whose sizes differ from the first's, an empty mesh, elevations outside 1..8, an atlas wider or
+/// taller than 8192 pixels, Vulkan failures.
 [[nodiscard]] Result<ImpostorAtlas> bake_impostor_atlas(gpu::Context& ctx, const ImpostorBakeInput& in);
 
 /// The world from model matrix the bake gives direction `d` (of `directions`) in its cell: the camera,
 /// looking along -Z, sees the character from azimuth 2 pi d / directions in the character's own frame
 /// (0 = in front of it, along its +Z). Without the cell offset; for tests that render the same view.
 [[nodiscard]] glm::mat4 impostor_view_rotation(uint32_t d, uint32_t directions);
+
+/// The same from `elevation` radians above the horizon, about the pivot `pivot_y` above the origin: the character
+/// turned to azimuth d, its pivot moved to the origin, then leant towards the camera (+Z) by the elevation, so a
+/// camera looking along -Z sees it as one looking down at that angle does. Equals impostor_view_rotation() moved
+/// down by pivot_y at elevation 0.
+[[nodiscard]] glm::mat4 impostor_view_transform(uint32_t d, uint32_t directions, float elevation, float pivot_y);
 
 }  // namespace aloha

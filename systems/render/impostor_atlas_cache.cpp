@@ -6,7 +6,7 @@
 namespace aloha {
 namespace {
 
-constexpr uint32_t kImpostorAtlasKind = 0x494d5001;  // "IMP" v1: a new payload layout gets a new number
+constexpr uint32_t kImpostorAtlasKind = 0x494d5003;  // "IMP" v3 (bands of elevations): a new payload layout gets a new number
 
 static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec2) == 8 && sizeof(glm::vec4) == 16, "written as raw bytes");
 
@@ -56,6 +56,7 @@ void write_input(ByteWriter& w, const VkPhysicalDeviceProperties& device, const 
     for (const TextureImage& t : in.textures) write_texture(w, t);
     w.put<uint8_t>(in.cull_back_faces ? 1 : 0);
     w.put(in.directions);
+    w.put(in.elevations);
     w.put(in.cell_height_px);
 }
 
@@ -67,6 +68,9 @@ void layout_fields(Atlas& a, Io&& io) {
     io(a.layout.width);
     io(a.layout.bottom);
     io(a.layout.height);
+    io(a.layout.elevations);
+    io(a.layout.elevated_height);
+    io(a.layout.depth_ratio);
     io(a.texture_bytes);
 }
 
@@ -102,7 +106,8 @@ std::optional<ImpostorAtlas> read_impostor_atlas(std::span<const uint8_t> bytes)
     layout_fields(atlas, [&r](auto& field) { r.get(field); });
     const auto wrap_ok = [](uint32_t w) { return w <= static_cast<uint32_t>(TextureWrap::MirroredRepeat); };
     if (!r.done() || uint64_t{image.width} * image.height * 4 != image.rgba.size() || image.width == 0 || !wrap_ok(wrap_u) ||
-        !wrap_ok(wrap_v) || nearest > 1 || atlas.layout.directions == 0 || atlas.layout.rows < 2)
+        !wrap_ok(wrap_v) || nearest > 1 || atlas.layout.directions == 0 || atlas.layout.rows < 2 ||
+        atlas.layout.elevations < 1 || atlas.layout.elevations > kMaxImpostorElevations)
         return std::nullopt;
     image.wrap_u = static_cast<TextureWrap>(wrap_u);
     image.wrap_v = static_cast<TextureWrap>(wrap_v);

@@ -4,6 +4,8 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace aloha {
@@ -28,13 +30,55 @@ struct ImpostorInstance {
 
 /// How an impostor atlas image is laid out (systems/render/impostor_atlas.hpp builds one). The image's top
 /// half holds colour cells (RGB premultiplied by coverage in alpha), the bottom half normal cells (0.5 + 0.5 N
-/// in the bake camera's frame, premultiplied the same way); each half is `directions` columns x `rows` rows.
+/// in the bake camera's frame, premultiplied the same way); each half is `elevations` bands, one above the other,
+/// of `directions` columns x `rows` rows. Band e shows the character from impostor_elevation(e, elevations) above
+/// the horizon: its cells are the image plane of a camera looking down at that angle, centred on the pivot (the
+/// point `bottom + height / 2` above the origin), and its quad leans back by that angle (shaders/impostor.vert).
 struct ImpostorAtlasLayout {
     uint32_t directions = 16;  ///< columns: camera azimuths 2 pi c / directions in the character's frame (local +Z = 0)
-    uint32_t rows = 9;         ///< walk phases r / (rows - 1), then one standing row
+    uint32_t rows = 9;         ///< per band: walk phases r / (rows - 1), then one standing row
     float width = 1.0f;        ///< the quad (one cell) in model units: width, centred on the origin
-    float bottom = 0.0f;       ///< height of its lower edge above the origin
-    float height = 1.8f;       ///< its height
+    float bottom = 0.0f;       ///< band 0 (level views): height of its lower edge above the origin
+    float height = 1.8f;       ///< band 0: its height
+    uint32_t elevations = 1;   ///< bands of views (>= 1): band 0 level, the others from above
+    float elevated_height = 0.0f;  ///< bands 1.. : their cells' height in model units (> 0 when elevations > 1)
+    float depth_ratio = 0.0f;  ///< the figure's mean depth along a level view over its height (impostor_band_stretch)
 };
+
+/// The most bands of views an atlas may have.
+inline constexpr uint32_t kMaxImpostorElevations = 8;
+
+/// The elevation (radians above the horizon) band `e` of `elevations` views the character from: evenly from level to
+/// straight down, e x 90 / (elevations - 1) degrees (three bands: 0, 45 and 90; one band: level). The shader shows
+/// the band nearest the camera's elevation (band 0 for a camera below the pivot), within 90 / (2 (elevations - 1))
+/// degrees of it. Requires e < elevations.
+[[nodiscard]] inline float impostor_elevation(uint32_t e, uint32_t elevations) {
+    return elevations > 1 ? 1.57079633f * static_cast<float>(e) / static_cast<float>(elevations - 1) : 0.0f;
+}
+
+/// How much taller a band's picture is drawn than baked when seen from elevation `seen` (radians) instead of its own
+/// `baked`: a figure of height h and depth d along the view spans about h cos a + d sin a on the image plane of a
+/// view from elevation a, so its picture from `baked` is stretched by (cos seen + k sin seen) / (cos baked + k sin
+/// baked), k = d / h (ImpostorAtlasLayout::depth_ratio), on a quad facing the camera: its silhouette as tall as the
+/// figure's would be (shaders/impostor.vert does this for the bands from above). 1 where seen = baked.
+[[nodiscard]] inline float impostor_band_stretch(float seen, float baked, float depth_ratio) {
+    return (std::cos(seen) + depth_ratio * std::sin(seen)) / (std::cos(baked) + depth_ratio * std::sin(baked));
+}
+
+/// The tallest of an impostor's quads in model units, whichever band it shows and from wherever it is seen (all are
+/// centred on the pivot and `width` wide: the far layer's bounds): band 0's upright quad, or a band from above at
+/// its largest stretch over the elevations it is shown at (within half a band's step of its own).
+[[nodiscard]] inline float impostor_quad_height(const ImpostorAtlasLayout& l) {
+    float tallest = l.height;
+    if (l.elevations < 2) return tallest;
+    const float step = 1.57079633f / static_cast<float>(l.elevations - 1);
+    const float peak = std::atan(l.depth_ratio);  // where cos a + k sin a is largest
+    for (uint32_t e = 1; e < l.elevations; ++e) {
+        const float baked = impostor_elevation(e, l.elevations);
+        const float seen = std::clamp(peak, baked - 0.5f * step, std::min(baked + 0.5f * step, 1.57079633f));
+        tallest = std::max(tallest, l.elevated_height * impostor_band_stretch(seen, baked, l.depth_ratio));
+    }
+    return tallest;
+}
 
 }  // namespace aloha

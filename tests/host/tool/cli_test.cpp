@@ -24,9 +24,11 @@ TEST(Cli, ParsesProfileOptions) {
     EXPECT_EQ(*o.characters, 2000u);
     EXPECT_TRUE(o.fidelity);
     EXPECT_FALSE(o.max_texture_side) << "unset: the renderer's default";
-    auto t = parse({"render", "scene.json", "--texture-max", "512"});
+    EXPECT_FALSE(o.impostor_elevations) << "unset: the world's default";
+    auto t = parse({"render", "scene.json", "--texture-max", "512", "--impostor-elevations", "1"});
     ASSERT_TRUE(t.ok()) << t.error().to_string();
     EXPECT_EQ(t.value().max_texture_side, 512u);
+    EXPECT_EQ(t.value().impostor_elevations, 1u);
 }
 
 TEST(Cli, ParsesBudgetTierAndOcclusionOptions) {
@@ -101,6 +103,8 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"profile", "s.json", "--width", "8"}, "[16, 8192]"},
         {{"render", "s.json", "--texture-max", "-1"}, "'-1'"},
         {{"render", "s.json", "--texture-max", "20000"}, "[0, 16384]"},
+        {{"profile", "s.json", "--impostor-elevations", "9"}, "'--impostor-elevations' expects a whole number in [1, 8], got '9'"},
+        {{"profile", "s.json", "--impostor-elevations", "0"}, "[1, 8]"},
     };
     for (const Case& c : cases) {
         auto r = parse(c.args);

@@ -45,7 +45,7 @@ TEST(ImpostorAtlasCache, ThePayloadReadsBackWhatWasWritten) {
     ImpostorAtlas atlas;
     atlas.image = TextureImage{"impostor atlas 'quad'", 3, 2, {}, TextureWrap::ClampToEdge, TextureWrap::ClampToEdge, false};
     for (uint8_t i = 0; i < 3 * 2 * 4; ++i) atlas.image.rgba.push_back(static_cast<uint8_t>(i * 7));
-    atlas.layout = ImpostorAtlasLayout{16, 9, 0.7f, -0.01f, 1.85f};
+    atlas.layout = ImpostorAtlasLayout{16, 9, 0.7f, -0.01f, 1.85f, 3, 2.03f, 0.27f};
     atlas.texture_bytes = 1234;
     const std::vector<uint8_t> bytes = write_impostor_atlas(atlas);
     const std::optional<ImpostorAtlas> read = read_impostor_atlas(bytes);
@@ -60,6 +60,9 @@ TEST(ImpostorAtlasCache, ThePayloadReadsBackWhatWasWritten) {
     EXPECT_EQ(read->layout.width, 0.7f);
     EXPECT_EQ(read->layout.bottom, -0.01f);
     EXPECT_EQ(read->layout.height, 1.85f);
+    EXPECT_EQ(read->layout.elevations, 3u);
+    EXPECT_EQ(read->layout.elevated_height, 2.03f);
+    EXPECT_EQ(read->layout.depth_ratio, 0.27f);
     EXPECT_EQ(read->texture_bytes, 1234u);
     // Damaged payloads: cut short, one byte too many, texels that disagree with the size.
     EXPECT_FALSE(read_impostor_atlas(std::span(bytes).first(bytes.size() - 1)).has_value());
@@ -69,6 +72,9 @@ TEST(ImpostorAtlasCache, ThePayloadReadsBackWhatWasWritten) {
     ImpostorAtlas wrong = atlas;
     wrong.image.width = 4;
     EXPECT_FALSE(read_impostor_atlas(write_impostor_atlas(wrong)).has_value());
+    ImpostorAtlas no_band = atlas;
+    no_band.layout.elevations = 0;
+    EXPECT_FALSE(read_impostor_atlas(write_impostor_atlas(no_band)).has_value());
 }
 
 TEST(ImpostorAtlasCache, TheKeyFollowsEveryInputAndTheDevice) {
@@ -93,6 +99,7 @@ TEST(ImpostorAtlasCache, TheKeyFollowsEveryInputAndTheDevice) {
         {"filtering", [](Inputs& i, ImpostorBakeInput& in, VkPhysicalDeviceProperties&) { i.textures[0].nearest = true; in.textures = i.textures; }},
         {"back-face culling", [](Inputs&, ImpostorBakeInput& in, VkPhysicalDeviceProperties&) { in.cull_back_faces = true; }},
         {"directions", [](Inputs&, ImpostorBakeInput& in, VkPhysicalDeviceProperties&) { in.directions = 8; }},
+        {"elevations", [](Inputs&, ImpostorBakeInput& in, VkPhysicalDeviceProperties&) { in.elevations = 3; }},
         {"cell height", [](Inputs&, ImpostorBakeInput& in, VkPhysicalDeviceProperties&) { in.cell_height_px = 64; }},
         {"the driver version", [](Inputs&, ImpostorBakeInput&, VkPhysicalDeviceProperties& d) { d.driverVersion = 43; }},
         {"the pipeline cache UUID", [](Inputs&, ImpostorBakeInput&, VkPhysicalDeviceProperties& d) { d.pipelineCacheUUID[15] = 1; }},

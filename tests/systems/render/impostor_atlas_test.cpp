@@ -30,41 +30,99 @@ TEST(ImpostorAtlas, ImpostorOfAKnownPoseMatchesADirectRender) {
     EXPECT_EQ(atlas.value().layout.rows, 2u);
     EXPECT_EQ(atlas.value().image.height, 2u * 2u * 96u);
 
-    Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(*ctx);
-    ASSERT_TRUE(made.ok()) << made.error().to_string();
-    CrowdRenderer& r = *made.value();
-    Result<uint32_t> topology = r.register_topology(fig.indices, 0, true);
-    ASSERT_TRUE(topology.ok());
-    Result<uint32_t> id = r.register_impostor_atlas(atlas.value().image, atlas.value().layout);
-    ASSERT_TRUE(id.ok()) << id.error().to_string();
-
-    const glm::vec4 tint(0.85f, 0.65f, 0.5f, 1.0f);
+    Bench bench;
+    ASSERT_TRUE(bench.make(*ctx, fig, atlas.value()));
     // The character turned by `heading` about +Y, seen from atlas direction d (camera azimuth in its frame).
     for (const auto& [heading, d] : {std::pair{0.0f, 0u}, std::pair{0.7f, 3u}, std::pair{-2.0f, 10u}}) {
         SCOPED_TRACE("heading " + std::to_string(heading) + ", direction " + std::to_string(d));
         const float azimuth = heading + 6.28318531f * float(d) / 16.0f;  // world azimuth of the camera
-        FrameInput direct = camera_frame(azimuth);
-        const glm::mat4 model = glm::rotate(glm::mat4(1.0f), heading, glm::vec3(0, 1, 0));
-        const std::vector<DeformableMesh> meshes = {{topology.value(), fig.positions, fig.normals, model, tint}};
-        direct.meshes = meshes;
-        Result<gpu::Rgba8Image> a = draw(r, *ctx, direct);
-        ASSERT_TRUE(a.ok()) << a.error().to_string();
-
-        FrameInput quad = camera_frame(azimuth);
-        ImpostorInstance inst;
-        inst.forward_phase = glm::vec4(std::sin(heading), std::cos(heading), 0.0f, 1.0f);  // local +Z in world (x, z)
-        inst.colour = tint;
-        inst.atlas = id.value();
-        quad.impostors = std::span(&inst, 1);
-        Result<gpu::Rgba8Image> b = draw(r, *ctx, quad);
-        ASSERT_TRUE(b.ok()) << b.error().to_string();
-        expect_matches(a.value(), b.value());
+        const auto [a, b] = bench.draw_both(*ctx, fig, heading, azimuth);
+        expect_matches(a, b);
         if (std::getenv("ALOHA_DUMP_IMPOSTOR")) {
-            (void)gpu::write_png("/tmp/imp_direct_" + std::to_string(d) + ".png", kSize, kSize, a.value().pixels);
-            (void)gpu::write_png("/tmp/imp_quad_" + std::to_string(d) + ".png", kSize, kSize, b.value().pixels);
+            (void)gpu::write_png("/tmp/imp_direct_" + std::to_string(d) + ".png", kSize, kSize, a.pixels);
+            (void)gpu::write_png("/tmp/imp_quad_" + std::to_string(d) + ".png", kSize, kSize, b.pixels);
         }
     }
     EXPECT_TRUE(ctx->validation_messages().empty());
+}
+
+// The bands of views from above (ImpostorBakeInput::elevations): seen from a band's own elevation (45 and 90 degrees
+// of three bands) at an atlas direction, the impostor matches a direct render as the level views do, with one pixel
+// more of reach. The bound above, redone for these views: the elevated cells are 1.80 m tall over 96 px (twice the
+// figure's half-height 0.885 m x cos 45 plus its 0.29 m radius about the vertical x sin 45, plus the margins of 4% of
+// its 1.77 m height each side; straight down needs only 0.72 m), 1.14 px a texel, so the filtered edge moves by
+// 0.57 + 0.5 px; the orthographic bake against the perspective view now sees the figure's depth along the view (up to
+// 0.885 sin a + 0.29 cos a: 0.83 m at 45 degrees, 0.89 m at 90) scale its image by up to that over the 25 m distance,
+// across at most 51 px (0.83 m) from the image's centre at 45 degrees, 18 px (0.29 m) at 90: 1.7 px. Under 3 px in all.
+TEST(ImpostorAtlas, ElevatedViewsMatchADirectRenderFromAbove) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    ImpostorBakeInput in = bake_input(fig, 2);
+    in.elevations = 3;
+    Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
+    ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
+    EXPECT_EQ(atlas.value().layout.elevations, 3u);
+    EXPECT_EQ(atlas.value().image.height, 2u * 3u * 2u * 96u) << "three bands of two rows, colour and normal";
+    EXPECT_NEAR(atlas.value().layout.elevated_height, 1.80f, 0.01f);
+
+    Bench bench;
+    ASSERT_TRUE(bench.make(*ctx, fig, atlas.value()));
+    for (const uint32_t band : {1u, 2u})
+        for (const auto& [heading, d] : {std::pair{0.0f, 0u}, std::pair{0.7f, 3u}, std::pair{-2.0f, 10u}}) {
+            const float elevation = impostor_elevation(band, 3);
+            SCOPED_TRACE("band " + std::to_string(band) + ", heading " + std::to_string(heading) + ", direction " + std::to_string(d));
+            const auto [direct, impostor] = bench.draw_both(*ctx, fig, heading, heading + 6.28318531f * float(d) / 16.0f, elevation);
+            expect_matches(direct, impostor, 3, band == 1 ? 800 : 250);  // foreshortened from above; 15 x 25 px straight down
+            if (std::getenv("ALOHA_DUMP_IMPOSTOR")) {
+                const std::string tag = std::to_string(band) + "_" + std::to_string(d);
+                (void)gpu::write_png("/tmp/imp_up_direct_" + tag + ".png", kSize, kSize, direct.pixels);
+                (void)gpu::write_png("/tmp/imp_up_quad_" + tag + ".png", kSize, kSize, impostor.pixels);
+            }
+        }
+    // Half-way between the bands (67.5 degrees), 22.5 degrees from either: not the same picture, but the figure is there
+    // (a quad standing upright showed little from that high) and about as large: its area within a factor of 2 of the
+    // direct render's.
+    const auto [direct, impostor] = bench.draw_both(*ctx, fig, 0.3f, 0.0f, 1.1780972f);
+    const auto area = [](const gpu::Rgba8Image& img) {
+        const Mask m = mask_of(img);
+        return static_cast<double>(std::count(m.on.begin(), m.on.end(), uint8_t{1}));
+    };
+    EXPECT_GT(area(direct), 400.0);
+    EXPECT_GT(area(impostor), 0.5 * area(direct));
+    EXPECT_LT(area(impostor), 2.0 * area(direct));
+    EXPECT_TRUE(ctx->validation_messages().empty());
+}
+
+// The atlas's last cell (the standing row of nine, the sixteenth direction: its centre 9 m across and 16 m down from
+// the bake camera's axis) is lit as the first is: the bake's camera is orthographic, so each normal is turned to face
+// along its axis, not towards its position (towards which the flanks of the far cells faced away and were lit as
+// their backs).
+TEST(ImpostorAtlas, TheFarthestCellIsLitAsTheFirst) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, bake_input(fig, 9));
+    ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
+    Bench bench;
+    ASSERT_TRUE(bench.make(*ctx, fig, atlas.value()));
+    const float heading = 0.4f;
+    const auto [a, b] = bench.draw_both(*ctx, fig, heading, heading + 6.28318531f * 15.0f / 16.0f, 0.0f, -1.0f);  // standing row
+    expect_matches(a, b);
+    EXPECT_TRUE(ctx->validation_messages().empty());
+}
+
+TEST(ImpostorAtlas, RefusesBandsOfViewsOutsideTheirRange) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    for (const uint32_t elevations : {0u, kMaxImpostorElevations + 1}) {
+        ImpostorBakeInput in = bake_input(fig, 2);
+        in.elevations = elevations;
+        const Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, in);
+        ASSERT_FALSE(atlas.ok());
+        EXPECT_NE(atlas.error().to_string().find("elevations (bands of views), expected 1 to 8"), std::string::npos) << atlas.error().to_string();
+    }
 }
 
 TEST(ImpostorAtlas, RefusesAnAtlasWithoutItsRows) {
@@ -99,13 +157,24 @@ TEST(ImpostorAtlas, CellTableHoldsEachCellsCoveredTexels) {
     cover(0, 7);
     cover(3, 12);  // normal half
     const std::vector<glm::vec4> t = impostor_cell_table(image, ImpostorAtlasLayout{2, 2, 1.0f, 0.0f, 1.8f});
-    ASSERT_EQ(t.size(), 5u);
+    ASSERT_EQ(t.size(), 6u);
     EXPECT_EQ(t[0], glm::vec4(8.0f, 4.0f, 5.0f, 0.0f));  // cell texels, mip levels of the packed 16 x 8
-    EXPECT_EQ(t[1], glm::vec4(0.0f));                     // row 0, dir 0: empty
+    EXPECT_EQ(t[1], glm::vec4(0.0f));                     // one band: no elevated cells
+    EXPECT_EQ(t[2], glm::vec4(0.0f));                     // row 0, dir 0: empty
     // x from the left: [2, 5) / 8; y from the bottom: texel rows 1..2 down from the top are [1, 3) / 4 up.
-    EXPECT_EQ(t[2], glm::vec4(2.0f / 8.0f, 1.0f / 4.0f, 5.0f / 8.0f, 3.0f / 4.0f));
-    EXPECT_EQ(t[3], glm::vec4(0.0f, 0.0f, 1.0f / 8.0f, 1.0f / 4.0f));  // row 1, dir 0: the corner texel
-    EXPECT_EQ(t[4], glm::vec4(0.0f));
+    EXPECT_EQ(t[3], glm::vec4(2.0f / 8.0f, 1.0f / 4.0f, 5.0f / 8.0f, 3.0f / 4.0f));
+    EXPECT_EQ(t[4], glm::vec4(0.0f, 0.0f, 1.0f / 8.0f, 1.0f / 4.0f));  // row 1, dir 0: the corner texel
+    EXPECT_EQ(t[5], glm::vec4(0.0f));
+
+    // The same image as two bands of views of two rows each: four rows of 8 x 2-texel cells, band 1's after band
+    // 0's, and the elevated cells' height (model units) and the depth ratio in the second entry.
+    const std::vector<glm::vec4> banded = impostor_cell_table(image, ImpostorAtlasLayout{2, 2, 1.0f, 0.0f, 1.8f, 2, 2.1f, 0.25f});
+    ASSERT_EQ(banded.size(), 10u);
+    EXPECT_EQ(banded[0], glm::vec4(8.0f, 2.0f, 5.0f, 0.0f));
+    EXPECT_EQ(banded[1], glm::vec4(2.1f, 0.25f, 0.0f, 0.0f));
+    EXPECT_EQ(banded[3], glm::vec4(2.0f / 8.0f, 0.0f, 5.0f / 8.0f, 1.0f / 2.0f));  // row 0, dir 1: texel row 1, the cell's lower one
+    EXPECT_EQ(banded[5], glm::vec4(2.0f / 8.0f, 1.0f / 2.0f, 5.0f / 8.0f, 1.0f));  // row 1, dir 1: texel row 2, its upper one
+    EXPECT_EQ(banded[8], glm::vec4(0.0f, 0.0f, 1.0f / 8.0f, 1.0f / 2.0f));        // band 1's row 1, dir 0: the corner
 }
 
 

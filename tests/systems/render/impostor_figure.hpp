@@ -84,10 +84,12 @@ inline Mask mask_of(const gpu::Rgba8Image& img) {  // clear colour is black: the
     return m;
 }
 
-inline FrameInput camera_frame(float azimuth) {  // the camera on a level circle around the origin, aimed at mid-height
+// The camera kDistance from mid-height at `azimuth` about it and `elevation` above the level, aimed at it.
+inline FrameInput camera_frame(float azimuth, float elevation = 0.0f) {
     FrameInput f;
     const glm::vec3 target(0.0f, 0.9f, 0.0f);
-    const glm::vec3 eye = target + kDistance * glm::vec3(std::sin(azimuth), 0.0f, std::cos(azimuth));
+    const glm::vec3 eye = target + kDistance * glm::vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                                                         std::cos(azimuth) * std::cos(elevation));
     f.camera.view = glm::lookAt(eye, target, glm::vec3(0, 1, 0));
     f.camera.proj = glm::perspective(2.0f * std::atan(1.05f / kDistance), 1.0f, 1.0f, 100.0f);  // 2.1 m over 128 px
     f.clear_colour = {0, 0, 0, 1};
@@ -98,6 +100,49 @@ inline FrameInput camera_frame(float azimuth) {  // the camera on a level circle
 inline Result<gpu::Rgba8Image> draw(CrowdRenderer& r, gpu::Context& ctx, const FrameInput& frame) {
     return test::draw_square(r, ctx, frame, kSize);
 }
+
+// A renderer with the figure's topology and its baked atlas registered, drawing the figure directly and as an impostor
+// from the same camera.
+struct Bench {
+    std::unique_ptr<CrowdRenderer> renderer;
+    uint32_t topology = 0, atlas = 0;
+    glm::vec4 tint{0.85f, 0.65f, 0.5f, 1.0f};
+
+    // Registers `fig` and `baked` with a new renderer on `ctx`; false (with the test failed) when that fails.
+    bool make(gpu::Context& ctx, const Figure& fig, const ImpostorAtlas& baked) {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(ctx);
+        EXPECT_TRUE(made.ok()) << (made.ok() ? "" : made.error().to_string());
+        if (!made.ok()) return false;
+        renderer = std::move(made).value();
+        Result<uint32_t> t = renderer->register_topology(fig.indices, 0, true);
+        Result<uint32_t> a = renderer->register_impostor_atlas(baked.image, baked.layout);
+        EXPECT_TRUE(t.ok() && a.ok()) << (a.ok() ? "" : a.error().to_string());
+        if (!t.ok() || !a.ok()) return false;
+        topology = t.value();
+        atlas = a.value();
+        return true;
+    }
+
+    // The figure turned by `heading` about +Y drawn directly, and its impostor at walk `phase` (< 0: the standing
+    // row), both from camera_frame(azimuth, elevation). Empty images (with the test failed) where a draw fails.
+    std::pair<gpu::Rgba8Image, gpu::Rgba8Image> draw_both(gpu::Context& ctx, const Figure& fig, float heading, float azimuth,
+                                                          float elevation = 0.0f, float phase = 0.0f) {
+        FrameInput direct = camera_frame(azimuth, elevation);
+        const std::vector<DeformableMesh> meshes = {
+            {topology, fig.positions, fig.normals, glm::rotate(glm::mat4(1.0f), heading, glm::vec3(0, 1, 0)), tint}};
+        direct.meshes = meshes;
+        FrameInput quad = camera_frame(azimuth, elevation);
+        ImpostorInstance inst;
+        inst.forward_phase = glm::vec4(std::sin(heading), std::cos(heading), phase, 1.0f);  // local +Z in world (x, z)
+        inst.colour = tint;
+        inst.atlas = atlas;
+        quad.impostors = std::span(&inst, 1);
+        Result<gpu::Rgba8Image> a = draw(*renderer, ctx, direct), b = draw(*renderer, ctx, quad);
+        EXPECT_TRUE(a.ok() && b.ok());
+        if (!a.ok() || !b.ok()) return {};
+        return {std::move(a).value(), std::move(b).value()};
+    }
+};
 
 // Tolerance. The atlas cell is 96 px for the figure's 1.8 m plus 8% margin (0.0203 m per texel); on screen
 // 128 px span 2.1 m (0.0164 m per pixel), so a texel covers 1.24 pixels. The alpha-tested, bilinearly
@@ -151,19 +196,21 @@ inline Comparison compare(const gpu::Rgba8Image& reference, const gpu::Rgba8Imag
     return out;
 }
 
-inline void expect_matches(const gpu::Rgba8Image& direct, const gpu::Rgba8Image& impostor) {
-    Comparison cmp = compare(direct, impostor, 2);
+// The bounds derived above, with silhouettes and neighbourhoods `reach` px wide (2 for the level views), for a figure
+// of more than `min_area` pixels.
+inline void expect_matches(const gpu::Rgba8Image& direct, const gpu::Rgba8Image& impostor, int reach = 2, size_t min_area = 1500) {
+    Comparison cmp = compare(direct, impostor, reach);
     const size_t area = cmp.area, outside = cmp.outside, compared = cmp.excess.size();
     std::vector<int>& excess = cmp.excess;
     const int worst = excess.empty() ? 0 : *std::max_element(excess.begin(), excess.end());
     const double sum = cmp.sum;
-    EXPECT_GT(area, 1500u) << "the figure fills about 110 x 30 pixels";
-    EXPECT_EQ(outside, 0u) << "silhouette pixels more than 2 px from the other render's silhouette";
-    ASSERT_GT(compared, 500u);
+    EXPECT_GT(area, min_area) << "the level figure fills about 110 x 30 pixels";
+    EXPECT_EQ(outside, 0u) << "silhouette pixels more than " << reach << " px from the other render's silhouette";
+    ASSERT_GT(compared, min_area / 3) << "pixels at least `reach` px inside both silhouettes";
     EXPECT_LE(sum / double(3 * compared), 6.0) << "mean colour difference inside both silhouettes (levels)";
     std::sort(excess.begin(), excess.end());
-    EXPECT_LE(excess[excess.size() * 99 / 100], 20) << "99th percentile of the colour difference from the direct render within 2 px (levels)";
-    EXPECT_LE(worst, 75) << "largest colour difference inside both silhouettes from the direct render within 2 px (levels)";
+    EXPECT_LE(excess[excess.size() * 99 / 100], 20) << "99th percentile of the colour difference from the direct render within " << reach << " px (levels)";
+    EXPECT_LE(worst, 75) << "largest colour difference inside both silhouettes from the direct render within " << reach << " px (levels)";
 }
 
 }  // namespace aloha::impostor_test
