@@ -9,8 +9,9 @@
 // elevation is nearest the camera's above the pivot (the quad's centre, bottom + height / 2 above the origin;
 // band 0 for a camera below it). Band 0's quad stands upright (foreshortened as the standing figure is); a band from
 // above is drawn on a quad facing the camera, its cells (cells[1].x tall) stretched by impostor_band_stretch for the
-// camera's elevation against the band's (depth ratio cells[1].y), so its silhouette is as tall as the figure's. The atlas is packed (systems/render/impostor_packing.hpp): one texel holds the
-// colour and the normal of the same point, so its size is the baked image's width and half its height.
+// camera's elevation against the band's (depth ratio cells[1].y), so its silhouette is as tall as the figure's.
+// The atlas is packed (systems/render/impostor_packing.hpp): one texel holds the colour and the normal of the same
+// point, so its size is the baked image's width and half its height.
 // The quad covers only the cell's silhouette (set 1 binding 0, systems/render/crowd_renderer.hpp
 // impostor_cell_table), padded by a texel of the mip level the quad's screen size calls for (log2 of atlas
 // texels per pixel, rounded: v_level), so that the coarser level's wider silhouette is not cut.
