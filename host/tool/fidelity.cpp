@@ -149,6 +149,10 @@ public:
         }
         const std::span<const uint8_t> now = lod.value().pixels, now_reference = reference.value().pixels;
         out.psnr_db = psnr_db(now, now_reference);
+        const SilhouetteCoverage cover = silhouette_coverage(now, now_reference, lod.value().width);
+        out.silhouette_ratio = cover.reference_pixels > 0 ? double(cover.pixels) / double(cover.reference_pixels) : 1.0;
+        out.silhouette_covered = cover.covered;
+        out.silhouette_on_reference = cover.on_reference;
         out.switches = frame_.switches;
         for (const SwitchRect& r : frame_.switch_rects) out.switches_without_rect += (r.x1 <= r.x0 || r.y1 <= r.y0) ? 1u : 0u;
         out.changed_fraction = change_map(now, previous_.pixels, change_now_);  // 0 and no map on the first frame
@@ -233,6 +237,7 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
     const std::vector<FidelityFrame> frames = with_changes_after(measured);
     nlohmann::json j;
     std::vector<double> mean, rest_mean, moving_mean, max, psnr_values, changes;  // per frame
+    std::vector<double> silhouette_ratio, silhouette_covered, silhouette_on_reference;
     std::vector<uint8_t> switch_flags;
     size_t levels = 0;
     for (const auto& f : frames) levels = std::max(levels, f.mean_deviation_per_level.size());
@@ -245,6 +250,9 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
         moving_mean.push_back(f.mean_moving_deviation_px);  // -1: not measured on that frame
         max.push_back(f.max_deviation_px);
         psnr_values.push_back(f.psnr_db);
+        silhouette_ratio.push_back(f.silhouette_ratio);
+        silhouette_covered.push_back(f.silhouette_covered);
+        silhouette_on_reference.push_back(f.silhouette_on_reference);
         changes.push_back(f.changed_fraction);
         switch_flags.push_back(f.switches > 0 ? 1 : 0);
         literal.add(f.mean_deviation_per_level);
@@ -262,6 +270,12 @@ nlohmann::json fidelity_report(const std::vector<FidelityFrame>& measured, const
     j["mean_moving_reference_deviation_px"] = moving_measured ? to_json(summarize(moving_mean)) : nlohmann::json(nullptr);
     j["max_deviation_px"] = to_json(summarize(max));
     j["psnr_db"] = to_json(summarize(psnr_values));
+    // Silhouettes: what PSNR over the whole frame hardly sees (a far crowd drawn too small, or not at all).
+    j["silhouettes"] = {{"pixels_over_reference", to_json(summarize(silhouette_ratio))},
+                        {"reference_covered_within_1px", to_json(summarize(silhouette_covered))},
+                        {"drawn_on_reference_within_1px", to_json(summarize(silhouette_on_reference))},
+                        {"note", "A pixel is a character's where it differs from the reference's most common colour (the "
+                                 "background) by more than 24 levels summed over RGB (host/tool/image_compare.hpp)."}};
     nlohmann::json per_level = nlohmann::json::array();
     for (size_t l = 0; l < levels; ++l) {
         const bool any = !literal.at(l).is_null();
@@ -336,6 +350,15 @@ std::string fidelity_summary(const nlohmann::json& report) {
                   c["above_history"].get<size_t>(), c["events"].get<size_t>(), c["expected_above_without_pops"].get<double>(),
                   c["p_value"].get<double>(), c["no_more_pops_than_chance"].get<bool>() ? "ok" : "POPS");
     std::string out = line;
+    if (report.contains("silhouettes")) {
+        const nlohmann::json& s = report["silhouettes"];
+        std::snprintf(line, sizeof line,
+                      "fidelity silhouettes: characters drawn on %.2fx the reference's pixels, %.1f%% of the reference's within 1 px "
+                      "of them, %.1f%% of them within 1 px of the reference's (means over the frames)\n",
+                      s["pixels_over_reference"]["mean"].get<double>(), 100.0 * s["reference_covered_within_1px"]["mean"].get<double>(),
+                      100.0 * s["drawn_on_reference_within_1px"]["mean"].get<double>());
+        out += line;
+    }
     const nlohmann::json& o = p["over_p95"];
     if (o["switch_frames_over"].get<size_t>() > 0) {
         std::snprintf(line, sizeof line,

@@ -49,6 +49,9 @@ struct FidelityFrame {
     double mean_moving_deviation_px = -1;
     std::vector<double> mean_moving_deviation_per_level;  ///< by geometric level (-1 when no character there)
     double psnr_db = 0;                ///< LOD render vs full-detail render
+    /// The LOD render's character pixels over the reference's, and the shares covered within 1 px each way
+    /// (image_compare.hpp's silhouette_coverage).
+    double silhouette_ratio = 1.0, silhouette_covered = 1.0, silhouette_on_reference = 1.0;
     double changed_fraction = 0;       ///< mean absolute RGB change from the previous LOD frame (0..1)
     /// The same change in the full-detail reference picture (every visible character at the richest level,
     /// no switches): the picture's own motion on this frame, the control for the switch-frame tests.

@@ -28,4 +28,22 @@ double change_map(std::span<const uint8_t> now, std::span<const uint8_t> before,
 double error_change(std::span<const uint8_t> lod, std::span<const uint8_t> reference, std::span<const uint8_t> lod_before,
                     std::span<const uint8_t> reference_before, std::vector<uint16_t>& out);
 
+/// How one picture's characters cover a reference picture's (silhouettes, where PSNR over the whole frame hardly sees a
+/// far crowd drawn too small or not at all). A pixel is a character's where it differs from the reference's background
+/// (its most common colour) by more than kSilhouetteLevels summed over RGB.
+struct SilhouetteCoverage {
+    uint64_t reference_pixels = 0;  ///< the reference's character pixels
+    uint64_t pixels = 0;            ///< the other picture's
+    double covered = 1.0;           ///< share of the reference's with one of the other's within 1 px (1 when it has none)
+    double on_reference = 1.0;      ///< share of the other's with one of the reference's within 1 px (1 when it has none)
+};
+
+/// Summed |RGB| difference from the background over which a pixel is a character's (a tenth of one channel's range,
+/// over the 8-bit noise of shading and dithering at the background's edge).
+inline constexpr int kSilhouetteLevels = 24;
+
+/// SilhouetteCoverage of `image` against `reference`, both `width` pixels wide (RGBA8 rows). Requires the two images to
+/// be the same size, a whole number of rows (else all zero counts).
+[[nodiscard]] SilhouetteCoverage silhouette_coverage(std::span<const uint8_t> image, std::span<const uint8_t> reference, uint32_t width);
+
 }  // namespace aloha::tool

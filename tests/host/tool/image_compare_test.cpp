@@ -82,5 +82,39 @@ TEST(ImageCompare, ImagesOfDifferentSizesGiveNoErrorChange) {
     EXPECT_TRUE(map.empty());
 }
 
+// Silhouettes against the reference's background (its most common colour, grey 30 here): a 4 x 4 figure drawn one
+// pixel off is covered both ways within the 1-px reach; three pixels off, not at all; a figure missing from the other
+// picture leaves the reference's share covered at half when one of two is drawn; a shade 24 levels (summed) off the
+// background is no figure, 27 is.
+TEST(ImageCompare, SilhouetteCoverageCountsCharacterPixelsWithinOnePixel) {
+    const auto block = [](int x0, int y0) { return [=](int x, int y) { return x >= x0 && x < x0 + 4 && y >= y0 && y < y0 + 4 ? 200 : 30; }; };
+    const auto reference = image(block(4, 4));
+    const SilhouetteCoverage same = silhouette_coverage(reference, reference, kW);
+    EXPECT_EQ(same.reference_pixels, 16u);
+    EXPECT_EQ(same.pixels, 16u);
+    EXPECT_EQ(same.covered, 1.0);
+    EXPECT_EQ(same.on_reference, 1.0);
+    const SilhouetteCoverage shifted = silhouette_coverage(image(block(5, 5)), reference, kW);
+    EXPECT_EQ(shifted.covered, 1.0);
+    EXPECT_EQ(shifted.on_reference, 1.0);
+    const SilhouetteCoverage away = silhouette_coverage(image(block(12, 4)), reference, kW);
+    EXPECT_EQ(away.covered, 0.0);
+    EXPECT_EQ(away.on_reference, 0.0);
+    // Two figures in the reference, one drawn.
+    const auto two = image([&](int x, int y) { return block(4, 4)(x, y) == 200 || block(20, 8)(x, y) == 200 ? 200 : 30; });
+    const SilhouetteCoverage one_of_two = silhouette_coverage(reference, two, kW);
+    EXPECT_EQ(one_of_two.reference_pixels, 32u);
+    EXPECT_EQ(one_of_two.covered, 0.5);
+    EXPECT_EQ(one_of_two.on_reference, 1.0);
+    // Nothing drawn: no pixels, the reference's covered share 0, the other share 1 (nothing drawn off it).
+    const SilhouetteCoverage none = silhouette_coverage(image([](int, int) { return 30; }), reference, kW);
+    EXPECT_EQ(none.pixels, 0u);
+    EXPECT_EQ(none.covered, 0.0);
+    EXPECT_EQ(none.on_reference, 1.0);
+    EXPECT_EQ(silhouette_coverage(image([](int, int) { return 38; }), reference, kW).pixels, 0u) << "8 levels a channel: 24 summed";
+    EXPECT_EQ(silhouette_coverage(image([](int, int) { return 39; }), reference, kW).pixels, size_t(kW * kH)) << "27 summed";
+    EXPECT_EQ(silhouette_coverage(reference, image([](int, int) { return 30; }), 0).reference_pixels, 0u) << "no width: nothing counted";
+}
+
 }  // namespace
 }  // namespace aloha::tool

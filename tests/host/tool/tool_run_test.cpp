@@ -112,6 +112,12 @@ TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
     EXPECT_EQ(report["gpu_overlap"]["mode"], "off");
     EXPECT_EQ(report["gpu_overlap"]["frames_overlapped"], 0);
     EXPECT_EQ(report["fidelity"]["psnr_db"]["count"], 4);
+    // Silhouettes: the close-up's one character, drawn where the reference draws it.
+    const nlohmann::json& silhouettes = report["fidelity"]["silhouettes"];
+    EXPECT_EQ(silhouettes["pixels_over_reference"]["count"], 4);
+    EXPECT_GT(silhouettes["reference_covered_within_1px"]["min"].get<double>(), 0.9);
+    EXPECT_GT(silhouettes["drawn_on_reference_within_1px"]["min"].get<double>(), 0.9);
+    EXPECT_NE(r.output.find("fidelity silhouettes:"), std::string::npos) << r.output;
     // The default rules' level 0 has fat springs, so the deviation against the moving body is measured on
     // every frame, as the literal one is (null would mean a frame's mesh vertices had no reference springs).
     EXPECT_EQ(report["fidelity"]["mean_moving_reference_deviation_px"]["count"], 4);
