@@ -3,14 +3,16 @@
 
     scripts/silhouette_coverage.py REFERENCE.png OTHER.png [OTHER2.png ...]
 
-A pixel is a character's when it differs from the background (the top-left pixel's colour) by more than 24 levels
-summed over R, G and B. For each OTHER image it prints the two images' character pixel counts, the share of the
+A pixel is a character's when it differs from the background (the reference's most common colour) by more than 24
+levels summed over R, G and B, as `aloha profile --fidelity` reads it (fidelity.silhouettes, host/tool/image_compare.hpp);
+this script does the same for any two renders. For each OTHER image it prints the two images' character pixel counts, the share of the
 reference's character pixels with one of OTHER's within 1 px (recall: characters drawn where they stand) and the share
 of OTHER's with one of the reference's within 1 px (precision: nothing drawn where nobody stands). PSNR over a whole
 frame hardly sees a far crowd missing (the dark background dominates it); these see it directly
 (docs/PERFORMANCE.md, "Impostors seen from above"). Reads 8-bit RGB or RGBA PNGs (aloha's own) with the standard
 library only.
 """
+import collections
 import struct
 import sys
 import zlib
@@ -64,10 +66,8 @@ def read_png(path):
     return width, height, rows
 
 
-def character_mask(path):
-    width, height, rows = read_png(path)
-    background = rows[0][0]
-    return width, height, [[sum(abs(p[c] - background[c]) for c in range(3)) > 24 for p in row] for row in rows]
+def character_mask(rows, background):
+    return [[sum(abs(p[c] - background[c]) for c in range(3)) > 24 for p in row] for row in rows]
 
 
 def near(mask, width, height, x, y, reach=1):
@@ -82,12 +82,15 @@ def near(mask, width, height, x, y, reach=1):
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
-    width, height, reference = character_mask(sys.argv[1])
+    width, height, reference_rows = read_png(sys.argv[1])
+    background = collections.Counter(p for row in reference_rows for p in row).most_common(1)[0][0]
+    reference = character_mask(reference_rows, background)
     ref_count = sum(map(sum, reference))
     for path in sys.argv[2:]:
-        w, h, other = character_mask(path)
+        w, h, rows = read_png(path)
         if (w, h) != (width, height):
             sys.exit(f"{path}: {w} x {h} pixels, the reference is {width} x {height}")
+        other = character_mask(rows, background)
         count = sum(map(sum, other))
         recall = sum(1 for y in range(height) for x in range(width) if reference[y][x] and near(other, width, height, x, y))
         precision = sum(1 for y in range(height) for x in range(width) if other[y][x] and near(reference, width, height, x, y))

@@ -4,9 +4,9 @@
 // the one mip level the vertex shader chose for the whole quad (on lavapipe a filtered texture() with its
 // per-pixel level costs about twice as much: docs/PERFORMANCE.md), lit as shaders/lit_mesh.frag lights a
 // mesh. One fetch reads colour and normal (the packed atlas: systems/render/impostor_packing.hpp); the
-// normal is in the bake camera's frame (x right, y up, z towards the camera), i.e. the quad's, and is lit
-// there with the light the vertex shader turned into that frame (and the hemisphere by world +Y in it: a band seen
-// from above has its quad leant back). Unlit materials (KHR_materials_unlit) bake no
+// normal is in its band's bake camera's frame (x right, y up, z towards that camera), and is lit there with the
+// light the vertex shader turned into that frame (and the hemisphere by world +Y in it: a band seen from above
+// looks down at the figure). Unlit materials (KHR_materials_unlit) bake no
 // normal (zero, alpha 0: shaders/lit_mesh.frag), so the normal's alpha over the colour's is the share of lit
 // surface in the texel, exact through the bake's averaging and the mip chain: the albedo is shown as it is in
 // that proportion. Within 1.5/255 of 1 (the two halves' independent 8-bit rounding) the texel is all lit. Fade (a
@@ -30,9 +30,9 @@ layout(set = 1, binding = 1) uniform usampler2D atlas;  // x: colour, y: normal,
 
 layout(location = 0) in vec2 v_uv;
 layout(location = 1) flat in vec4 v_colour;
-layout(location = 2) flat in vec4 v_light_fade;  // xyz: light direction in the quad's frame, w: fade
+layout(location = 2) flat in vec4 v_light_fade;  // xyz: light direction in the band's frame, w: fade
 layout(location = 3) flat in vec3 v_level;   // xy: the atlas's size in texels at mip z (chosen per quad)
-layout(location = 4) flat in vec2 v_up;      // world +Y in the quad's frame (y, z components)
+layout(location = 4) flat in vec2 v_up;      // world +Y in the band's frame (y, z components)
 layout(location = 0) out vec4 out_colour;
 
 const float kBayer[16] = float[](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0, 9.0, 15.0, 7.0, 13.0, 5.0);

@@ -35,10 +35,10 @@ layout(std430, set = 1, binding = 0) readonly buffer Cells { vec4 cells[]; };  /
 
 layout(location = 0) out vec2 v_uv;             // packed atlas texture coordinates
 layout(location = 1) flat out vec4 v_colour;    // tint
-layout(location = 2) flat out vec4 v_light_fade; // xyz: direction to the key light in the quad's frame (x right,
-                                                 // y up, z towards the camera: the atlas normals' frame), w: fade
+layout(location = 2) flat out vec4 v_light_fade; // xyz: direction to the key light in the band's frame (x right,
+                                                 // y up, z towards its bake camera: the atlas normals' frame), w: fade
 layout(location = 3) flat out vec3 v_level;     // xy: the atlas's size in texels at mip z (the quad's level)
-layout(location = 4) flat out vec2 v_up;        // world +Y in the quad's frame (y, z): (cos a, sin a) of its lean
+layout(location = 4) flat out vec2 v_up;        // world +Y in the band's frame (y, z): (cos a, sin a) of its elevation
 
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
 
@@ -92,8 +92,8 @@ void main() {
         return;
     }
     // Texels per pixel at the pivot's depth along the quad's vertical: atlas texels are (nearly) square in model
-    // units and a quad faces the camera across, so only its height is foreshortened (by the camera's elevation
-    // against the quad's lean) and sets the lod. Its length on screen in pixels, whichever way it points there (a
+    // units and a quad faces the camera across, so only its height is foreshortened (band 0's upright quad by the
+    // camera's elevation) and sets the lod. Its length on screen in pixels, whichever way it points there (a
     // camera looking down sees the vertical of a quad beside the view's centre across the screen): NDC x is
     // P11 / P00 times as many pixels as NDC y (the viewport's aspect; the rows of view_proj are the rigid view's
     // scaled by P00 and P11).

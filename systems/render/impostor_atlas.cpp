@@ -46,6 +46,7 @@ Cells cell_size(const ImpostorBakeInput& in, uint32_t elevations) {
     const float width = 2.0f * std::max(radius, 1e-3f) + 2.0f * h * kMargin;
     c.width_px = static_cast<uint32_t>(std::ceil(width / metres_per_px / 4.0f)) * 4;
     c.width_m = static_cast<float>(c.width_px) * metres_per_px;
+    if (elevations < 2) return c;  // no band from above: no elevated cells, no stretch
     // The figure's depth along each level view (its extent towards that view's camera), averaged over the views and
     // the rows, over its height: how much of it a view from above adds to its picture's height.
     double depth = 0.0;

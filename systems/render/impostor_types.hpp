@@ -33,7 +33,8 @@ struct ImpostorInstance {
 /// in the bake camera's frame, premultiplied the same way); each half is `elevations` bands, one above the other,
 /// of `directions` columns x `rows` rows. Band e shows the character from impostor_elevation(e, elevations) above
 /// the horizon: its cells are the image plane of a camera looking down at that angle, centred on the pivot (the
-/// point `bottom + height / 2` above the origin), and its quad leans back by that angle (shaders/impostor.vert).
+/// point `bottom + height / 2` above the origin); band 0 is drawn on an upright quad, the others on a quad facing
+/// the camera, stretched by impostor_band_stretch (shaders/impostor.vert).
 struct ImpostorAtlasLayout {
     uint32_t directions = 16;  ///< columns: camera azimuths 2 pi c / directions in the character's frame (local +Z = 0)
     uint32_t rows = 9;         ///< per band: walk phases r / (rows - 1), then one standing row
