@@ -2,17 +2,20 @@
 // Impostor vertex shader: one camera-facing quad (6 vertices, no index buffer) per instance of set 0
 // binding 2 read as Impostor records (64 bytes, systems/render/crowd_renderer.hpp ImpostorInstance).
 // The quad turns about the vertical axis to face the camera and spans the type's atlas cell in model
-// units (push base_colour: x width, y bottom, z height), scaled by the instance's scale. The cell is the
-// atlas direction nearest the camera's azimuth in the character's frame (local +Z forward) and the walk
-// phase row (offsets.x directions, offsets.y phase rows; the last row is the standing pose, used when
-// the phase is negative), in the band of views (offsets.w bands, systems/render/impostor_types.hpp) whose
-// elevation is nearest the camera's above the pivot (the quad's centre, bottom + height / 2 above the origin;
-// band 0 for a camera below it). Band 0's quad stands upright (foreshortened as the standing figure is); a band from
-// above is drawn on a quad facing the camera, its cells (cells[1].x tall) stretched by impostor_band_stretch for the
-// camera's elevation against the band's (depth ratio cells[1].y), so its silhouette is as tall as the figure's.
+// units (push base_colour: x width, y bottom, z height), scaled by the instance's scale. It shows the atlas
+// directions about the camera's azimuth in the character's frame (local +Z forward) and the walk phase rows about
+// the character's phase (offsets.x directions, offsets.y phase rows, a cycle; the last row is the standing pose,
+// used when the phase is negative): the nearest of each, or compiled with BLEND (the impostor_blend pipeline) the
+// two of each either side, blended by where the camera and the phase lie between them (up to four cells:
+// shaders/impostor.frag), fading in from quads offsets.w >> 8 px tall (the nearest) to twice that, in the band of views (offsets.w & 255 bands,
+// systems/render/impostor_types.hpp) whose elevation is nearest the camera's above the pivot (the quad's centre,
+// bottom + height / 2 above the origin; band 0 for a camera below it). Band 0's quad stands upright (foreshortened
+// as the standing figure is); a band from above is drawn on a quad facing the camera, its cells (cells[1].x tall)
+// stretched by impostor_band_stretch for the camera's elevation against the band's (depth ratio cells[1].y), so its
+// silhouette is as tall as the figure's.
 // The atlas is packed (systems/render/impostor_packing.hpp): one texel holds the colour and the normal of the same
 // point, so its size is the baked image's width and half its height.
-// The quad covers only the cell's silhouette (set 1 binding 0, systems/render/crowd_renderer.hpp
+// The quad covers only the shown cells' silhouettes (set 1 binding 0, systems/render/crowd_renderer.hpp
 // impostor_cell_table), padded by a texel of the mip level the quad's screen size calls for (log2 of atlas
 // texels per pixel, rounded: v_level), so that the coarser level's wider silhouette is not cut.
 
@@ -28,7 +31,8 @@ layout(push_constant) uniform Push {
     mat4 view_proj;
     vec4 light;
     vec4 camera;
-    uvec4 offsets;      // x: directions, y: rows (phases + 1 standing), z: first instance, w: mode
+    uvec4 offsets;      // x: directions, y: rows (phases + 1 standing), z: first instance, w: bands | blend_from << 8
+                        // (impostor_mode_bits, systems/render/impostor_types.hpp)
     vec4 base_colour;   // x: quad width, y: quad bottom, z: quad height (model units), w: viewport height (px)
 } pc;
 layout(std430, set = 1, binding = 0) readonly buffer Cells { vec4 cells[]; };  // [0]: texel grid, [1]: bands, then bounds
@@ -39,8 +43,39 @@ layout(location = 2) flat out vec4 v_light_fade; // xyz: direction to the key li
                                                  // y up, z towards its bake camera: the atlas normals' frame), w: fade
 layout(location = 3) flat out vec3 v_level;     // xy: the atlas's size in texels at mip z (the quad's level)
 layout(location = 4) flat out vec2 v_up;        // world +Y in the band's frame (y, z): (cos a, sin a) of its elevation
+#ifdef BLEND
+layout(location = 5) flat out vec4 v_blend;     // x, y: the second view's and the second phase's offset from v_uv's cell
+                                                 // (texture coordinates); z, w: their weights (0: the first one only)
+layout(location = 6) flat out vec3 v_light1;    // the light in the second view's frame (as v_light_fade.xyz in the first's)
+#endif
 
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
+
+// The key light in the frame of the view baked from `view` directions of `dirs` in the character's frame (local x
+// `local_x`, local z `f`, world xz), in band `cs` (cos, sin of its elevation): that view's normals' frame (right,
+// band_up, band_facing of its bake camera). The frame is orthonormal, so lighting the atlas normal with the light
+// turned into it equals lighting the normal turned into the world (what shaders/lit_mesh.frag does).
+vec3 light_in_view(float view, float dirs, vec2 local_x, vec2 f, vec2 cs) {
+    float a = view * 6.28318531 / dirs;
+    vec2 hv = normalize(sin(a) * local_x + cos(a) * f);
+    vec3 toward = vec3(hv.x, 0.0, hv.y);
+    vec3 band_up = cs.x * vec3(0.0, 1.0, 0.0) - cs.y * toward;
+    vec3 band_facing = cs.x * toward + cs.y * vec3(0.0, 1.0, 0.0);
+    return vec3(dot(pc.light.xyz, vec3(hv.y, 0.0, -hv.x)), dot(pc.light.xyz, band_up), dot(pc.light.xyz, band_facing));
+}
+
+#ifdef BLEND
+// How far a blend weight w between two baked pictures is kept (sharpness s in [0, 1]): s 1 keeps w, s 0 snaps to the
+// nearer picture (w >= 0.5: the second), between them a linear ramp of width s about one half.
+float sharpen(float w, float s) {
+    return s > 0.0 ? clamp((w - 0.5) / s + 0.5, 0.0, 1.0) : step(0.5, w);
+}
+
+// Grows `box` (cell-space bounds x0, y0, x1, y1; empty while x1 <= x0) to hold the cell bounds `b` (empty likewise).
+void include_cell(inout vec4 box, vec4 b) {
+    if (b.z > b.x) box = box.z > box.x ? vec4(min(box.xy, b.xy), max(box.zw, b.zw)) : b;
+}
+#endif
 
 void main() {
     Impostor im = impostors[pc.offsets.z + uint(gl_InstanceIndex)];
@@ -56,15 +91,12 @@ void main() {
     vec3 toward = vec3(h.x, 0.0, h.y);
     vec3 right = vec3(h.y, 0.0, -h.x);  // cross(up, toward)
     // The band nearest the camera's elevation above the pivot: band e of n views from e x 90 / (n - 1) degrees.
-    float bands = float(pc.offsets.w);
+    float bands = float(pc.offsets.w & 0xffu);
     float steps = max(bands - 1.0, 1.0);
     float seen = atan(d.y, level_distance);
     float band = clamp(floor(seen / 1.57079633 * steps + 0.5), 0.0, bands - 1.0);
     float baked = band * 1.57079633 / steps;
     vec2 cs = vec2(cos(baked), sin(baked));
-    // The band's own frame (its bake camera's: the atlas normals' frame): vertical leant back by its elevation.
-    vec3 band_up = cs.x * vec3(0.0, 1.0, 0.0) - cs.y * toward;
-    vec3 band_facing = cs.x * toward + cs.y * vec3(0.0, 1.0, 0.0);
     // The quad: band 0 upright; a band from above facing the camera, stretched to the figure's height from there.
     vec3 up = vec3(0.0, 1.0, 0.0);
     float cell_height = pc.base_colour.z;
@@ -74,22 +106,6 @@ void main() {
         up = cos(seen) * vec3(0.0, 1.0, 0.0) - sin(seen) * toward;
         float k = banding.y;
         cell_height = banding.x * (cos(seen) + k * sin(seen)) / (cs.x + k * cs.y);
-    }
-    // Camera azimuth in the character's frame: local x = (f.y, -f.x), local z = f (xz components).
-    vec2 f = im.forward_phase.xy;
-    float lx = h.x * f.y - h.y * f.x;
-    float lz = h.x * f.x + h.y * f.y;
-    float dirs = float(pc.offsets.x);
-    float alpha = atan(lx, lz);  // (-pi, pi]
-    float v = mod(floor(alpha / 6.28318531 * dirs + 0.5), dirs);
-    float rows = float(pc.offsets.y);
-    float phase = im.forward_phase.z;
-    float k = phase < 0.0 ? rows - 1.0 : mod(floor(phase * (rows - 1.0) + 0.5), rows - 1.0);
-    float row = band * rows + k;  // among every band's rows
-    vec4 b = cells[2u + uint(row) * pc.offsets.x + uint(v)];
-    if (b.z <= b.x) {  // empty cell: a degenerate quad
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
-        return;
     }
     // Texels per pixel at the pivot's depth along the quad's vertical: atlas texels are (nearly) square in model
     // units and a quad faces the camera across, so only its height is foreshortened (band 0's upright quad by the
@@ -106,17 +122,73 @@ void main() {
     float rho = grid.y / max(py, 1e-3);
     float lod = clamp(log2(rho), 0.0, grid.z - 1.0);
     float level = floor(lod + 0.5);  // the nearest level, as a sampler's nearest-mip mode picks it
+    vec2 f = im.forward_phase.xy;
+    vec2 local_x = vec2(f.y, -f.x);  // the character's local x (world xz); local z is f
+    float dirs = float(pc.offsets.x);
+    float av = atan(dot(h, local_x), dot(h, f)) / 6.28318531 * dirs;  // the camera's azimuth in directions, (-dirs/2, dirs/2]
+    float rows = float(pc.offsets.y);
+    float phases = rows - 1.0;
+    float phase = im.forward_phase.z;
+#ifdef BLEND
+    // The two baked directions either side of the camera's azimuth and the two walk phases either side of the
+    // character's, each pair with the second's weight. Blending fades in with the quad's size from blend_from px
+    // (the nearest picture, as the far layer below it shows) to twice that (a linear blend); blend_from 0: blended at
+    // any size.
+    float blend_from = float(pc.offsets.w >> 8u);
+    float sharpness = blend_from > 0.0 ? clamp(py / blend_from - 1.0, 0.0, 1.0) : 1.0;
+    float v0 = floor(av);
+    float wv = sharpen(av - v0, sharpness);
+    if (wv >= 1.0) {
+        v0 += 1.0;
+        wv = 0.0;
+    }
+    float v1 = mod(v0 + 1.0, dirs);
+    v0 = mod(v0, dirs);
+    float k0 = rows - 1.0, wk = 0.0;  // the standing row for a negative phase
+    if (phase >= 0.0) {
+        float ap = phase * phases;
+        k0 = floor(ap);
+        wk = sharpen(ap - k0, sharpness);
+        if (wk >= 1.0) {
+            k0 += 1.0;
+            wk = 0.0;
+        }
+        k0 = mod(k0, phases);
+    }
+    float k1 = phase >= 0.0 ? mod(k0 + 1.0, phases) : k0;
+    float row0 = band * rows + k0, row1 = band * rows + k1;  // among every band's rows
+    // The quad covers every shown cell's silhouette.
+    uint first = 2u + uint(row0) * pc.offsets.x, second = 2u + uint(row1) * pc.offsets.x;
+    vec4 b = vec4(0.0);
+    include_cell(b, cells[first + uint(v0)]);
+    if (wv > 0.0) include_cell(b, cells[first + uint(v1)]);
+    if (wk > 0.0) include_cell(b, cells[second + uint(v0)]);
+    if (wv > 0.0 && wk > 0.0) include_cell(b, cells[second + uint(v1)]);
+#else
+    // The nearest baked direction and walk phase.
+    float v0 = mod(floor(av + 0.5), dirs);
+    float k0 = phase < 0.0 ? rows - 1.0 : mod(floor(phase * phases + 0.5), phases);
+    float row0 = band * rows + k0;  // among every band's rows
+    vec4 b = cells[2u + uint(row0) * pc.offsets.x + uint(v0)];
+#endif
+    if (b.z <= b.x) {  // empty cell(s): a degenerate quad
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        return;
+    }
     // A texel of that level that passes the alpha test holds a covered texel of level 0 within its 2^level
     // footprint; one more texel for footprints that do not divide the cell evenly.
     vec2 pad = (exp2(level) + 1.0) / grid.xy;
     vec2 c = mix(max(b.xy - pad, 0.0), min(b.zw + pad, 1.0), kCorners[gl_VertexIndex]);
     vec3 world = pivot + scale * (right * ((c.x - 0.5) * pc.base_colour.x) + up * ((c.y - 0.5) * cell_height));
-    v_uv = vec2((v + c.x) / dirs, (row + 1.0 - c.y) / (rows * bands));
-    v_level = vec3(max(floor(vec2(grid.x * dirs, grid.y * rows * bands) / exp2(level)), 1.0), level);
+    float all_rows = rows * bands;
+    v_uv = vec2((v0 + c.x) / dirs, (row0 + 1.0 - c.y) / all_rows);
+    v_level = vec3(max(floor(vec2(grid.x * dirs, grid.y * all_rows) / exp2(level)), 1.0), level);
     v_colour = im.colour;
     v_up = cs;
-    // The band's frame (right, band_up, band_facing) is orthonormal, so lighting the atlas normal in it with the light
-    // turned into it equals lighting the normal turned into the world (what shaders/lit_mesh.frag does).
-    v_light_fade = vec4(dot(pc.light.xyz, right), dot(pc.light.xyz, band_up), dot(pc.light.xyz, band_facing), im.forward_phase.w);
+    v_light_fade = vec4(light_in_view(v0, dirs, local_x, f, cs), im.forward_phase.w);
+#ifdef BLEND
+    v_blend = vec4((v1 - v0) / dirs, (row1 - row0) / all_rows, wv, wk);
+    v_light1 = wv > 0.0 ? light_in_view(v1, dirs, local_x, f, cs) : vec3(0.0);
+#endif
     gl_Position = pc.view_proj * vec4(world, 1.0);
 }

@@ -24,7 +24,7 @@ struct Bindings {
     CliOptions o;
     std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", cache_max_mb, counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes,
-        distant_layer, texture_mips, texture_max, impostor_elevations;
+        distant_layer, texture_mips, texture_max, impostor_elevations, impostor_views;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
 
@@ -80,6 +80,10 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "bands of views in each impostor atlas: 1 level views only, N evenly from level to straight down "
                  "(default 3: 0, 45 and 90 degrees; each band costs one level atlas's memory and bake time)")
         ->check(whole_number(1, 8));
+    c.add_option("--impostor-views", b.impostor_views,
+                 "impostors drawn at full resolution blend their two nearest views and walk phases (blend, the default; "
+                 "fading in from the far layer's limit to twice it) or show the nearest (nearest); the far layers show the nearest")
+        ->check(one_of({"blend", "nearest"}));
     c.add_option("--texture-mips", b.texture_mips,
                  "material textures read from the two nearest mip levels blended (blend, trilinear) or from the nearest one "
                  "(nearest; default nearest on a software rasteriser, blend on a GPU)")
@@ -227,6 +231,7 @@ void convert(Bindings& b) {
     if (!b.distant_layer.empty()) o.distant_layer_px = float(u32(b.distant_layer));
     if (!b.impostor_elevations.empty()) o.impostor_elevations = u32(b.impostor_elevations);
     if (!b.texture_mips.empty()) o.blend_texture_mips = b.texture_mips == "blend";
+    if (!b.impostor_views.empty()) o.blend_impostor_views = b.impostor_views == "blend";
     if (!b.texture_max.empty()) o.max_texture_side = u32(b.texture_max);
     if (!b.height.empty()) o.height = u32(b.height);
     if (!b.threads.empty()) o.threads = u32(b.threads);

@@ -161,6 +161,10 @@ struct RendererOptions {
                                                        ///< (systems/render/far_layer.hpp); 0 (the default): none. On
                                                        ///< lavapipe 70 saves ~3.5 ms a frame on crowd_10k's close pass, but
                                                        ///< walkers of 30-70 px turn to blobs (docs/PERFORMANCE.md)
+    bool blend_impostor_views = true;                  ///< impostors at full resolution blend their two nearest views and
+                                                       ///< walk phases (up to four fetches a fragment), fading in from the
+                                                       ///< far layer's limit to twice it (impostor_blend_from); false:
+                                                       ///< each shows its nearest view and phase (the far layers always do)
     uint32_t max_texture_side = 2048;                  ///< material textures wider or taller are halved (2 x 2 means)
                                                        ///< until both sides fit, at registration: a crowd's character
                                                        ///< seldom covers more than 2048 pixels, and an 8192^2 texture

@@ -48,15 +48,18 @@ Status CrowdRenderer::warm_up() {
                 }
             }
         }
-        // Each impostor atlas.
-        if (!atlases_.empty()) vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.impostor());
-        for (size_t a = 0; a < atlases_.size(); ++a) {
-            const ImpostorAtlasLayout& layout = atlas_layouts_[a];
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[a].set, 0, nullptr);
-            push.offsets = glm::uvec4(layout.directions, layout.rows, 0u, layout.elevations);
-            push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, height);
-            vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
-            vkCmdDraw(cmd, 6, 1, 0, 0);
+        // Each impostor atlas, with both impostor pipelines (the nearest view; blended views).
+        for (const VkPipeline pipeline : {pipes_.impostor(), pipes_.impostor_blend()}) {
+            if (atlases_.empty()) break;
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+            for (size_t a = 0; a < atlases_.size(); ++a) {
+                const ImpostorAtlasLayout& layout = atlas_layouts_[a];
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[a].set, 0, nullptr);
+                push.offsets = glm::uvec4(layout.directions, layout.rows, 0u, impostor_mode_bits(layout.elevations, 0));
+                push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, height);
+                vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
+                vkCmdDraw(cmd, 6, 1, 0, 0);
+            }
         }
         vkCmdEndRenderPass(cmd);
     });

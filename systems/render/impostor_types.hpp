@@ -49,6 +49,26 @@ struct ImpostorAtlasLayout {
 /// The most bands of views an atlas may have.
 inline constexpr uint32_t kMaxImpostorElevations = 8;
 
+/// shaders/impostor.vert's blend limit for "never blend": every quad shows its nearest view and phase.
+inline constexpr uint32_t kImpostorNeverBlend = 0xffffffu;
+
+/// An impostor draw's push offsets.w: the atlas's bands of views (1 to kMaxImpostorElevations) and the quad height in
+/// pixels from which neighbouring views and walk phases are blended (shaders/impostor.vert: the nearest one at or below
+/// it, a linear blend from twice it, a ramp between; 0: blended at any size; kImpostorNeverBlend: never).
+[[nodiscard]] inline uint32_t impostor_mode_bits(uint32_t elevations, uint32_t blend_from_px) {
+    return elevations | std::min(blend_from_px, kImpostorNeverBlend) << 8;
+}
+
+/// The blend limit of the impostors drawn at full resolution: never when `blend` is off; else from the far layer's limit
+/// `far_below_px` (pixels on the target), so that an impostor shows its nearest view as it reaches the far layer
+/// (which draws the nearest: blending there would cost up to four fetches a fragment over the whole far crowd) and
+/// blends fully from twice that size; at any size when there is no far layer (`far_below_px` <= 0).
+[[nodiscard]] inline uint32_t impostor_blend_from(bool blend, float far_below_px) {
+    if (!blend) return kImpostorNeverBlend;
+    if (!(far_below_px > 0.0f)) return 0;
+    return static_cast<uint32_t>(std::clamp(std::round(far_below_px), 1.0f, static_cast<float>(kImpostorNeverBlend - 1)));
+}
+
 /// The elevation (radians above the horizon) band `e` of `elevations` views the character from: evenly from level to
 /// straight down, e x 90 / (elevations - 1) degrees (three bands: 0, 45 and 90; one band: level). The shader shows
 /// the band nearest the camera's elevation (band 0 for a camera below the pivot), within 90 / (2 (elevations - 1))

@@ -25,10 +25,12 @@ TEST(Cli, ParsesProfileOptions) {
     EXPECT_TRUE(o.fidelity);
     EXPECT_FALSE(o.max_texture_side) << "unset: the renderer's default";
     EXPECT_FALSE(o.impostor_elevations) << "unset: the world's default";
-    auto t = parse({"render", "scene.json", "--texture-max", "512", "--impostor-elevations", "1"});
+    EXPECT_FALSE(o.blend_impostor_views) << "unset: blended";
+    auto t = parse({"render", "scene.json", "--texture-max", "512", "--impostor-elevations", "1", "--impostor-views", "nearest"});
     ASSERT_TRUE(t.ok()) << t.error().to_string();
     EXPECT_EQ(t.value().max_texture_side, 512u);
     EXPECT_EQ(t.value().impostor_elevations, 1u);
+    EXPECT_EQ(t.value().blend_impostor_views, false);
 }
 
 TEST(Cli, ParsesBudgetTierAndOcclusionOptions) {
@@ -105,6 +107,7 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"render", "s.json", "--texture-max", "20000"}, "[0, 16384]"},
         {{"profile", "s.json", "--impostor-elevations", "9"}, "'--impostor-elevations' expects a whole number in [1, 8], got '9'"},
         {{"profile", "s.json", "--impostor-elevations", "0"}, "[1, 8]"},
+        {{"view", "s.json", "--impostor-views", "mixed"}, "'--impostor-views'"},
     };
     for (const Case& c : cases) {
         auto r = parse(c.args);

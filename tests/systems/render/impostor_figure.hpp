@@ -108,9 +108,10 @@ struct Bench {
     uint32_t topology = 0, atlas = 0;
     glm::vec4 tint{0.85f, 0.65f, 0.5f, 1.0f};
 
-    // Registers `fig` and `baked` with a new renderer on `ctx`; false (with the test failed) when that fails.
-    bool make(gpu::Context& ctx, const Figure& fig, const ImpostorAtlas& baked) {
-        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(ctx);
+    // Registers `fig` and `baked` with a new renderer on `ctx` made with `options`; false (with the test failed) when
+    // that fails.
+    bool make(gpu::Context& ctx, const Figure& fig, const ImpostorAtlas& baked, const RendererOptions& options = {}) {
+        Result<std::unique_ptr<CrowdRenderer>> made = CrowdRenderer::create(ctx, options);
         EXPECT_TRUE(made.ok()) << (made.ok() ? "" : made.error().to_string());
         if (!made.ok()) return false;
         renderer = std::move(made).value();
