@@ -73,7 +73,7 @@ void main() {
 #ifndef BLEND
     uvec2 packed = fetch(v_uv);
     vec4 c = unpackUnorm4x8(packed.x);
-    if (c.a < 0.5) discard;
+    if (c.a < float(pc.offsets.w >> 8u) / 255.0) discard;  // the alpha test's threshold (one half; less in the far layers)
     out_colour = vec4(shade(c, unpackUnorm4x8(packed.y), v_light_fade.xyz), v_colour.a);
 #else
     // Up to four cells (two views x two phases; a weight 0 leaves its cells out), each alpha-tested at one half as the

@@ -24,7 +24,7 @@ struct Bindings {
     CliOptions o;
     std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", cache_max_mb, counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes,
-        distant_layer, texture_mips, texture_max, impostor_elevations, impostor_views;
+        distant_layer, texture_mips, texture_max, impostor_elevations, impostor_views, far_layer_alpha;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
 
@@ -72,6 +72,11 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "characters' meshes under PX pixels tall at 720 lines (not cross-fading) go to the same half-resolution layer (default " +
                      std::to_string(int(kDefaultFarLayerMeshesBelowPx)) + " on a software rasteriser, 0 on a GPU; 0: all at full resolution)")
         ->check(whole_number(0, 8192));
+    c.add_option("--far-layer-alpha", b.far_layer_alpha,
+                 "the far and distant layers' alpha test in percent of coverage (default " +
+                     std::to_string(int(kDefaultFarLayerAlphaTest * 100.0f + 0.5f)) +
+                     ": at half resolution a test at 50 loses limbs under a layer texel wide; full resolution tests at 50)")
+        ->check(whole_number(1, 100));
     c.add_option("--distant-layer", b.distant_layer,
                  "far impostors under PX pixels tall at 720 lines are drawn at a quarter of the resolution instead of half "
                  "(default 0: none; faster on a software rasteriser, coarser far crowd)")
@@ -232,6 +237,7 @@ void convert(Bindings& b) {
     if (!b.impostor_elevations.empty()) o.impostor_elevations = u32(b.impostor_elevations);
     if (!b.texture_mips.empty()) o.blend_texture_mips = b.texture_mips == "blend";
     if (!b.impostor_views.empty()) o.blend_impostor_views = b.impostor_views == "blend";
+    if (!b.far_layer_alpha.empty()) o.far_layer_alpha_test = float(u32(b.far_layer_alpha)) / 100.0f;
     if (!b.texture_max.empty()) o.max_texture_side = u32(b.texture_max);
     if (!b.height.empty()) o.height = u32(b.height);
     if (!b.threads.empty()) o.threads = u32(b.threads);

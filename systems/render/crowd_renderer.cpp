@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstring>
+#include <string>
 
 namespace aloha {
 namespace {
@@ -34,6 +35,9 @@ Result<std::unique_ptr<CrowdRenderer>> CrowdRenderer::create(gpu::Context& ctx, 
 }
 
 Status CrowdRenderer::init(const RendererOptions& options) {
+    if (!(options.far_layer_alpha_test > 0.0f && options.far_layer_alpha_test <= 1.0f))
+        return gpu::gpu_error("CrowdRenderer: far_layer_alpha_test " + std::to_string(options.far_layer_alpha_test) +
+                              " is outside (0, 1] (a coverage)");
     options_ = options;
     far_layer_below_px_ = options.far_layer_below_px.value_or(far_layer_default(ctx_.is_cpu_device()));
     blend_texture_mips_ = options.blend_texture_mips.value_or(blend_texture_mips_default(ctx_.is_cpu_device()));

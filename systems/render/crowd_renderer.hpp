@@ -161,6 +161,8 @@ struct RendererOptions {
                                                        ///< (systems/render/far_layer.hpp); 0 (the default): none. On
                                                        ///< lavapipe 70 saves ~3.5 ms a frame on crowd_10k's close pass, but
                                                        ///< walkers of 30-70 px turn to blobs (docs/PERFORMANCE.md)
+    float far_layer_alpha_test = kDefaultFarLayerAlphaTest;  ///< coverage from which an impostor's texel shows in the far
+                                                       ///< and distant layers, (0, 1] (full resolution: 0.5)
     bool blend_impostor_views = true;                  ///< impostors at full resolution blend their two nearest views and
                                                        ///< walk phases (up to four fetches a fragment), fading in from the
                                                        ///< far layer's limit to twice it (impostor_blend_from); false:

@@ -91,11 +91,15 @@ uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::L
     if (count == 0) return 0;
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
     // Neighbouring views and phases blended at full resolution only, from the far layer's limit on this target (the
-    // layers' thousands of small quads show the nearest, with the pipeline that reads one texel a fragment).
+    // layers' thousands of small quads show the nearest, with the pipeline that reads one texel a fragment, alpha-tested
+    // at the layers' threshold).
     const uint32_t blend_from = part == ImpostorPart::Near
                                     ? impostor_blend_from(options_.blend_impostor_views, far_layer_limit(far_layer_below_px_, viewport_height))
                                     : kImpostorNeverBlend;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, blend_from == kImpostorNeverBlend ? pipes_.impostor() : pipes_.impostor_blend());
+    const bool blend = blend_from != kImpostorNeverBlend;
+    const uint32_t upper = blend ? blend_from
+                                 : impostor_alpha_test_bits(part == ImpostorPart::Near ? 0.5f : options_.far_layer_alpha_test);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, blend ? pipes_.impostor_blend() : pipes_.impostor());
     const uint32_t base = impostor_base_;
     uint32_t draws = 0;
     for (const ImpostorRun& run : far_plan_.runs) {  // one draw per run of one atlas (its part in this layer)
@@ -103,7 +107,7 @@ uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::L
         if (end == first) continue;
         const ImpostorAtlasLayout& layout = atlas_layouts_[run.atlas];
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[run.atlas].set, 0, nullptr);
-        push.offsets = glm::uvec4(layout.directions, layout.rows, base + first, impostor_mode_bits(layout.elevations, blend_from));
+        push.offsets = glm::uvec4(layout.directions, layout.rows, base + first, impostor_mode_bits(layout.elevations, upper));
         push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, viewport_height);
         vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
         vkCmdDraw(cmd, 6, end - first, 0, 0);

@@ -52,10 +52,11 @@ Status CrowdRenderer::warm_up() {
         for (const VkPipeline pipeline : {pipes_.impostor(), pipes_.impostor_blend()}) {
             if (atlases_.empty()) break;
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+            const uint32_t upper = pipeline == pipes_.impostor() ? impostor_alpha_test_bits(0.5f) : 0u;
             for (size_t a = 0; a < atlases_.size(); ++a) {
                 const ImpostorAtlasLayout& layout = atlas_layouts_[a];
                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipes_.layout(), 1, 1, &atlases_[a].set, 0, nullptr);
-                push.offsets = glm::uvec4(layout.directions, layout.rows, 0u, impostor_mode_bits(layout.elevations, 0));
+                push.offsets = glm::uvec4(layout.directions, layout.rows, 0u, impostor_mode_bits(layout.elevations, upper));
                 push.base_colour = glm::vec4(layout.width, layout.bottom, layout.height, height);
                 vkCmdPushConstants(cmd, pipes_.layout(), stages, 0, sizeof(push), &push);
                 vkCmdDraw(cmd, 6, 1, 0, 0);

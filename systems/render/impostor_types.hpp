@@ -52,11 +52,19 @@ inline constexpr uint32_t kMaxImpostorElevations = 8;
 /// shaders/impostor.vert's blend limit for "never blend": every quad shows its nearest view and phase.
 inline constexpr uint32_t kImpostorNeverBlend = 0xffffffu;
 
-/// An impostor draw's push offsets.w: the atlas's bands of views (1 to kMaxImpostorElevations) and the quad height in
-/// pixels from which neighbouring views and walk phases are blended (shaders/impostor.vert: the nearest one at or below
-/// it, a linear blend from twice it, a ramp between; 0: blended at any size; kImpostorNeverBlend: never).
-[[nodiscard]] inline uint32_t impostor_mode_bits(uint32_t elevations, uint32_t blend_from_px) {
-    return elevations | std::min(blend_from_px, kImpostorNeverBlend) << 8;
+/// An impostor draw's push offsets.w: the atlas's bands of views (1 to kMaxImpostorElevations) in the low 8 bits, and
+/// above them `upper`: for the blending pipeline (LitPipelines::impostor_blend) the quad height in pixels from which
+/// neighbouring views and walk phases are blended (shaders/impostor.vert: the nearest one at or below it, a linear
+/// blend from twice it, a ramp between; 0: blended at any size); for the nearest-view pipeline the alpha test's
+/// threshold in 255ths (impostor_alpha_test_bits: a texel shows where its coverage reaches it).
+[[nodiscard]] inline uint32_t impostor_mode_bits(uint32_t elevations, uint32_t upper) {
+    return elevations | std::min(upper, kImpostorNeverBlend) << 8;
+}
+
+/// The nearest-view pipeline's alpha test for coverage `threshold` (0, 1]: in 255ths, rounded, 1 to 255 (one half:
+/// 128, which shows exactly the texels a test against 0.5 shows: 8-bit coverage k / 255 >= 0.5 for k >= 128).
+[[nodiscard]] inline uint32_t impostor_alpha_test_bits(float threshold) {
+    return static_cast<uint32_t>(std::clamp(std::round(threshold * 255.0f), 1.0f, 255.0f));
 }
 
 /// The blend limit of the impostors drawn at full resolution: never when `blend` is off; else from the far layer's limit

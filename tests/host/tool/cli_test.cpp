@@ -26,11 +26,14 @@ TEST(Cli, ParsesProfileOptions) {
     EXPECT_FALSE(o.max_texture_side) << "unset: the renderer's default";
     EXPECT_FALSE(o.impostor_elevations) << "unset: the world's default";
     EXPECT_FALSE(o.blend_impostor_views) << "unset: blended";
-    auto t = parse({"render", "scene.json", "--texture-max", "512", "--impostor-elevations", "1", "--impostor-views", "nearest"});
+    EXPECT_FALSE(o.far_layer_alpha_test) << "unset: the renderer's default";
+    auto t = parse({"render", "scene.json", "--texture-max", "512", "--impostor-elevations", "1", "--impostor-views", "nearest",
+                    "--far-layer-alpha", "50"});
     ASSERT_TRUE(t.ok()) << t.error().to_string();
     EXPECT_EQ(t.value().max_texture_side, 512u);
     EXPECT_EQ(t.value().impostor_elevations, 1u);
     EXPECT_EQ(t.value().blend_impostor_views, false);
+    EXPECT_FLOAT_EQ(*t.value().far_layer_alpha_test, 0.5f);
 }
 
 TEST(Cli, ParsesBudgetTierAndOcclusionOptions) {
@@ -108,6 +111,7 @@ TEST(Cli, RejectsBadArgumentsNamingThem) {
         {{"profile", "s.json", "--impostor-elevations", "9"}, "'--impostor-elevations' expects a whole number in [1, 8], got '9'"},
         {{"profile", "s.json", "--impostor-elevations", "0"}, "[1, 8]"},
         {{"view", "s.json", "--impostor-views", "mixed"}, "'--impostor-views'"},
+        {{"profile", "s.json", "--far-layer-alpha", "0"}, "'--far-layer-alpha' expects a whole number in [1, 100]"},
     };
     for (const Case& c : cases) {
         auto r = parse(c.args);

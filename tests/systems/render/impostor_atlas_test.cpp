@@ -198,8 +198,10 @@ glm::mat4 towards_eye(const FrameInput& frame, float ahead, float scale = 1.0f) 
 // The far layer (systems/render/far_layer.hpp): a figure 45 px tall, under the 70 px limit, drawn as an
 // impostor into the half-resolution layer (divisor 2) or the quarter-resolution distant layer (divisor 4) and
 // composited, against the same impostor drawn at full resolution. Bounds: the layer's alpha test samples every
-// divisor-th pixel, so its silhouette moves by up to one layer texel (divisor px), and the composite's test of the
-// filtered coverage at one half moves it by at most half a texel more: every silhouette pixel of either render lies
+// divisor-th pixel, so its silhouette moves by up to one layer texel (divisor px; its threshold, 0.42 by default against
+// the full render's 0.5, shows a texel whose coverage at the coarser level reaches it, which lies on the silhouette's
+// edge texels, not beyond them), and the composite's test of the filtered coverage at one half moves it by at most
+// half a texel more: every silhouette pixel of either render lies
 // within 1.5 divisor px of the other's (3 px at half resolution, 6 at a quarter). Inside both, a layer texel shows
 // the atlas one or two mip levels coarser and the composite interpolates neighbouring texels, so each pixel's colour
 // lies in the range of the full-resolution render within that reach, widened by rounding (the layer's 8 bits
@@ -270,6 +272,50 @@ void check_impostor_layer(int divisor) {
 TEST(ImpostorAtlas, FarLayerMatchesTheFullResolutionImpostorInDepthOrder) { check_impostor_layer(2); }
 
 TEST(ImpostorAtlas, DistantLayerMatchesTheFullResolutionImpostorInDepthOrder) { check_impostor_layer(4); }
+
+// The far layers' alpha test (RendererOptions::far_layer_alpha_test): the lower the threshold, the more of the figure's
+// edge texels show in the layer (each texel shown at one threshold is shown at every lower one: the pixel counts are
+// ordered), and the default (0.42) shows more than one half does. Whether 0.42 is the right amount is measured on the
+// crowds (docs/PERFORMANCE.md, "Twenty-sixth session"); this checks that the option reaches the layer and no further:
+// the same figure at full resolution is drawn alike whatever the layers' threshold.
+TEST(ImpostorAtlas, FarLayerAlphaTestSetsHowMuchOfTheEdgeShows) {
+    std::unique_ptr<gpu::Context> ctx = test::lavapipe_context();
+    ASSERT_TRUE(ctx);
+    const Figure fig;
+    Result<ImpostorAtlas> atlas = bake_impostor_atlas(*ctx, bake_input(fig, 2));
+    ASSERT_TRUE(atlas.ok()) << atlas.error().to_string();
+    FrameInput layered = camera_frame(0.4f), full = camera_frame(0.4f);
+    layered.camera.proj = glm::perspective(2.0f * std::atan(2.56f / kDistance), 1.0f, 1.0f, 100.0f);  // 1.8 m over 45 px
+    ImpostorInstance inst;
+    inst.atlas = 0;
+    layered.impostors = full.impostors = std::span(&inst, 1);
+    auto pixels = [&](float threshold, const FrameInput& frame) {
+        RendererOptions o;
+        o.far_layer_below_px = 70.0f * kFarLayerReferenceHeight / float(kSize);
+        o.far_layer_alpha_test = threshold;
+        Result<std::unique_ptr<CrowdRenderer>> r = CrowdRenderer::create(*ctx, o);
+        EXPECT_TRUE(r.ok());
+        if (!r.ok()) return size_t{0};
+        EXPECT_TRUE(r.value()->register_impostor_atlas(atlas.value().image, atlas.value().layout).ok());
+        Result<gpu::Rgba8Image> img = draw(*r.value(), *ctx, frame);
+        EXPECT_TRUE(img.ok());
+        if (!img.ok()) return size_t{0};
+        const Mask m = mask_of(img.value());
+        return static_cast<size_t>(std::count(m.on.begin(), m.on.end(), uint8_t{1}));
+    };
+    const size_t at_half = pixels(0.5f, layered), at_default = pixels(kDefaultFarLayerAlphaTest, layered), at_fifth = pixels(0.2f, layered);
+    EXPECT_GT(at_half, 250u) << "the figure fills about 45 x 12 pixels";
+    EXPECT_LE(at_half, at_default);
+    EXPECT_LE(at_default, at_fifth);
+    EXPECT_GT(at_fifth, at_half) << "the threshold acts";
+    EXPECT_EQ(pixels(0.2f, full), pixels(0.5f, full)) << "full resolution (the figure 110 px tall, over the limit) tests at one half";
+    RendererOptions bad;
+    bad.far_layer_alpha_test = 0.0f;
+    Result<std::unique_ptr<CrowdRenderer>> refused = CrowdRenderer::create(*ctx, bad);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().to_string().find("far_layer_alpha_test"), std::string::npos) << refused.error().to_string();
+    EXPECT_TRUE(ctx->validation_messages().empty());
+}
 
 // A mesh under the far layer's mesh limit (RendererOptions::far_layer_meshes_below_px, on by default on lavapipe) is
 // drawn at half resolution and composited with its depth. Against the same mesh at full resolution, with the
