@@ -1,5 +1,6 @@
 #version 450
-// Impostor fragment shader: alpha-tested atlas albedo (premultiplied by coverage, so mip levels
+// Impostor fragment shader: alpha-tested atlas albedo (tested against push offsets.w >> 8 255ths of coverage: one half
+// at full resolution, less in the far layers, impostor_alpha_test_bits; premultiplied by coverage, so mip levels
 // averaged with the empty background are divided back) times the tint, read unfiltered (texelFetch) from
 // the one mip level the vertex shader chose for the whole quad (on lavapipe a filtered texture() with its
 // per-pixel level costs about twice as much: docs/PERFORMANCE.md), lit as shaders/lit_mesh.frag lights a

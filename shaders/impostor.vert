@@ -31,7 +31,8 @@ layout(push_constant) uniform Push {
     mat4 view_proj;
     vec4 light;
     vec4 camera;
-    uvec4 offsets;      // x: directions, y: rows (phases + 1 standing), z: first instance, w: bands | blend_from << 8
+    uvec4 offsets;      // x: directions, y: rows (phases + 1 standing), z: first instance, w: bands | upper << 8, upper
+                        // with BLEND the blend's fade-in size (px), else the fragment shader's alpha test (255ths)
                         // (impostor_mode_bits, systems/render/impostor_types.hpp)
     vec4 base_colour;   // x: quad width, y: quad bottom, z: quad height (model units), w: viewport height (px)
 } pc;
