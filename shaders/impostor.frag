@@ -8,7 +8,7 @@
 // normal is in its view's bake camera's frame (x right, y up, z towards that camera), and is lit there with the
 // light the vertex shader turned into that frame (and the hemisphere by world +Y in it: a band seen from above
 // looks down at the figure). Compiled with BLEND (the impostor_blend pipeline), where the vertex shader blends two
-// views and/or two walk phases (v_blend's weights not 0), up to four cells are read, each alpha-tested and lit in its view's frame, and blended where they cover the
+// views and/or two walk phases (v_blend's weights not 0), up to three cells are read, each alpha-tested and lit in its view's frame, and blended where they cover the
 // pixel, the silhouettes cross-fading by a screen door (below). Unlit materials (KHR_materials_unlit) bake no
 // normal (zero, alpha 0: shaders/lit_mesh.frag), so the normal's alpha over the colour's is the share of lit
 // surface in the texel, exact through the bake's averaging and the mip chain: the albedo is shown as it is in
@@ -77,8 +77,8 @@ void main() {
     if (c.a < float(pc.offsets.w >> 8u) / 255.0) discard;  // the alpha test's threshold (one half; less in the far layers)
     out_colour = vec4(shade(c, unpackUnorm4x8(packed.y), v_light_fade.xyz), v_colour.a);
 #else
-    // Up to four cells (two views x two phases; a weight 0 leaves its cells out), each alpha-tested at one half as the
-    // one cell is (a sharp silhouette of its own) and lit in its own view's frame. The pixel shows the weighted mean of
+    // Up to three of the four cells (two views x two phases; a weight 0 leaves its cell out), each alpha-tested at one
+    // half as the one cell is (a sharp silhouette of its own) and lit in its own view's frame. The pixel shows the weighted mean of
     // the pictures that cover it, where their share of the weights passes a screen door (the transposed Bayer
     // threshold, apart from the fade's): covered by all, always; by a picture of weight w alone, at a share w of the
     // pixels. Blending coverage and testing it at one half instead would keep each silhouette whole until half-way and
@@ -86,14 +86,21 @@ void main() {
     // differently, and does not know v_blend is the same for all).
     ivec2 q = ivec2(gl_FragCoord.xy) & 3;
     float door = (kBayer[q.x * 4 + q.y] + 0.5) / 16.0;
+    // The three cells of the (view, phase) weights' triangle: the square's corners (0, 0), (1, 0) or (0, 1), (1, 1) with
+    // barycentric weights (1 - max, |wv - wk|, min), linear in the weights and the same either side of the diagonal.
+    float wv = v_blend.z, wk = v_blend.w;
+    bool views_first = wv >= wk;  // the triangle under the diagonal: the second view before the second phase
+    vec2 corner_uv[3] = vec2[](vec2(0.0), views_first ? vec2(v_blend.x, 0.0) : vec2(0.0, v_blend.y), v_blend.xy);
+    float corner_weight[3] = float[](1.0 - max(wv, wk), abs(wv - wk), min(wv, wk));
+    vec3 corner_light[3] = vec3[](v_light_fade.xyz, views_first ? v_light1 : v_light_fade.xyz, v_light1);
     vec4 sum = vec4(0.0);
-    for (int i = 0; i < 4; ++i) {
-        float w = ((i & 1) != 0 ? v_blend.z : 1.0 - v_blend.z) * ((i & 2) != 0 ? v_blend.w : 1.0 - v_blend.w);
+    for (int i = 0; i < 3; ++i) {
+        float w = corner_weight[i];
         if (w <= 0.0) continue;
-        uvec2 packed = fetch(v_uv + vec2((i & 1) != 0 ? v_blend.x : 0.0, (i & 2) != 0 ? v_blend.y : 0.0));
+        uvec2 packed = fetch(v_uv + corner_uv[i]);
         vec4 c = unpackUnorm4x8(packed.x);
         if (c.a < 0.5) continue;
-        sum += w * vec4(shade(c, unpackUnorm4x8(packed.y), (i & 1) != 0 ? v_light1 : v_light_fade.xyz), 1.0);
+        sum += w * vec4(shade(c, unpackUnorm4x8(packed.y), corner_light[i]), 1.0);
     }
     if (sum.a <= door) discard;
     out_colour = vec4(sum.rgb / sum.a, v_colour.a);

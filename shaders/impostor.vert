@@ -6,8 +6,8 @@
 // directions about the camera's azimuth in the character's frame (local +Z forward) and the walk phase rows about
 // the character's phase (offsets.x directions, offsets.y phase rows, a cycle; the last row is the standing pose,
 // used when the phase is negative): the nearest of each, or compiled with BLEND (the impostor_blend pipeline) the
-// two of each either side, blended by where the camera and the phase lie between them (up to four cells:
-// shaders/impostor.frag), fading in from quads offsets.w >> 8 px tall (the nearest) to twice that, in the band of views (offsets.w & 255 bands,
+// two of each either side, blended by where the camera and the phase lie between them (three of the four cells,
+// the weights' triangle: shaders/impostor.frag), fading in from quads offsets.w >> 8 px tall (the nearest) to twice that, in the band of views (offsets.w & 255 bands,
 // systems/render/impostor_types.hpp) whose elevation is nearest the camera's above the pivot (the quad's centre,
 // bottom + height / 2 above the origin; band 0 for a camera below it). Band 0's quad stands upright (foreshortened
 // as the standing figure is); a band from above is drawn on a quad facing the camera, its cells (cells[1].x tall)
@@ -162,9 +162,9 @@ void main() {
     uint first = 2u + uint(row0) * pc.offsets.x, second = 2u + uint(row1) * pc.offsets.x;
     vec4 b = vec4(0.0);
     include_cell(b, cells[first + uint(v0)]);
-    if (wv > 0.0) include_cell(b, cells[first + uint(v1)]);
-    if (wk > 0.0) include_cell(b, cells[second + uint(v0)]);
-    if (wv > 0.0 && wk > 0.0) include_cell(b, cells[second + uint(v1)]);
+    if (wv > wk) include_cell(b, cells[first + uint(v1)]);  // the cells the fragment shader's triangle of weights reads
+    if (wk > wv) include_cell(b, cells[second + uint(v0)]);
+    if (min(wv, wk) > 0.0) include_cell(b, cells[second + uint(v1)]);
 #else
     // The nearest baked direction and walk phase.
     float v0 = mod(floor(av + 0.5), dirs);

@@ -183,7 +183,7 @@ public:
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
     [[nodiscard]] VkPipeline impostor() const { return impostor_; }
     /// The same, each quad blending its two nearest views and walk phases (shaders/impostor.* compiled with BLEND: up
-    /// to four atlas reads a fragment, the blend fading in with the quad's size from push offsets.w >> 8 px).
+    /// to three atlas reads a fragment, the blend fading in with the quad's size from push offsets.w >> 8 px).
     [[nodiscard]] VkPipeline impostor_blend() const { return impostor_blend_; }
     /// Composite pipeline (shaders/composite.*, layout composite_layout()): 6 vertices, one quad over the NDC
     /// rectangle in LitPush::base_colour; where the layer in set 0 (composite_set; filtered at gl_FragCoord *

@@ -164,7 +164,7 @@ struct RendererOptions {
     float far_layer_alpha_test = kDefaultFarLayerAlphaTest;  ///< coverage from which an impostor's texel shows in the far
                                                        ///< and distant layers, (0, 1] (full resolution: 0.5)
     bool blend_impostor_views = true;                  ///< impostors at full resolution blend their two nearest views and
-                                                       ///< walk phases (up to four fetches a fragment), fading in from the
+                                                       ///< walk phases (up to three fetches a fragment), fading in from the
                                                        ///< far layer's limit to twice it (impostor_blend_from); false:
                                                        ///< each shows its nearest view and phase (the far layers always do)
     uint32_t max_texture_side = 2048;                  ///< material textures wider or taller are halved (2 x 2 means)

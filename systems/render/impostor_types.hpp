@@ -69,7 +69,7 @@ inline constexpr uint32_t kImpostorNeverBlend = 0xffffffu;
 
 /// The blend limit of the impostors drawn at full resolution: never when `blend` is off; else from the far layer's limit
 /// `far_below_px` (pixels on the target), so that an impostor shows its nearest view as it reaches the far layer
-/// (which draws the nearest: blending there would cost up to four fetches a fragment over the whole far crowd) and
+/// (which draws the nearest: blending there would cost up to three fetches a fragment over the whole far crowd) and
 /// blends fully from twice that size; at any size when there is no far layer (`far_below_px` <= 0).
 [[nodiscard]] inline uint32_t impostor_blend_from(bool blend, float far_below_px) {
     if (!blend) return kImpostorNeverBlend;

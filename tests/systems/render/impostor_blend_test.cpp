@@ -170,6 +170,15 @@ TEST(ImpostorBlend, WalkingChangesThePictureInSmallStepsNotAJump) {
     const Sweep sweep = bench.sweep(*ctx, "walk", [&](int k) { return std::pair{heading, (0.3f + float(k) / float(kSweepSteps)) / float(kPhases)}; });
     EXPECT_GT(sweep.jump(), 5000.0) << "the arm's neighbouring phases differ (summed levels)";
     EXPECT_LE(sweep.blended_largest(), sweep.bound()) << "the blend's largest step; the nearest phase's jump " << sweep.jump();
+    // Turning while walking, both weights between their pictures (three cells a fragment: the weights' triangle in the
+    // square of two views x two phases): the view weight from 0.2 to 1.2 at a phase weight of 0.7 crosses the triangle's
+    // diagonal (0.7, 0.7), where the blend's third cell changes, and the view boundary (1.0); the nearest picture jumps
+    // once, half-way between the views. The same bound (each corner's weight moves by at most 1/20 a step).
+    const Sweep both = bench.sweep(*ctx, "both", [&](int k) {
+        return std::pair{heading_for(4.2f + float(k) / float(kSweepSteps)), 0.7f / float(kPhases)};
+    });
+    EXPECT_GT(both.jump(), 10.0 * both.drift()) << "the neighbouring views differ";
+    EXPECT_LE(both.blended_largest(), both.bound()) << "turning while walking; the nearest view's jump " << both.jump();
     // The walk cycle wraps: the last phase blends into the first (phase 0.95 lies between rows 3 and 0), so a blend
     // there is between the two nearest pictures, not far from both.
     const gpu::Rgba8Image wrap = impostor_only(bench.blended, *ctx, heading, 0.99f),
