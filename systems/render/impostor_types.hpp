@@ -49,7 +49,8 @@ struct ImpostorAtlasLayout {
 /// The most bands of views an atlas may have.
 inline constexpr uint32_t kMaxImpostorElevations = 8;
 
-/// shaders/impostor.vert's blend limit for "never blend": every quad shows its nearest view and phase.
+/// impostor_blend_from's answer where impostors do not blend (they are drawn with the nearest-view pipeline, every quad
+/// showing its nearest view and phase); also the largest value the push word's upper bits hold (impostor_mode_bits).
 inline constexpr uint32_t kImpostorNeverBlend = 0xffffffu;
 
 /// An impostor draw's push offsets.w: the atlas's bands of views (1 to kMaxImpostorElevations) in the low 8 bits, and
