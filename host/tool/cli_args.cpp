@@ -86,8 +86,9 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "(default 3: 0, 45 and 90 degrees; each band costs one level atlas's memory and bake time)")
         ->check(whole_number(1, 8));
     c.add_option("--impostor-views", b.impostor_views,
-                 "impostors drawn at full resolution blend their two nearest views and walk phases (blend, the default; "
-                 "fading in from the far layer's limit to twice it) or show the nearest (nearest); the far layers show the nearest")
+                 "impostors drawn at full resolution blend their two nearest views and walk phases (blend: fading in from the "
+                 "far layer's limit to twice it) or show the nearest (nearest); default nearest on a software rasteriser, blend "
+                 "on a GPU; the far layers show the nearest")
         ->check(one_of({"blend", "nearest"}));
     c.add_option("--texture-mips", b.texture_mips,
                  "material textures read from the two nearest mip levels blended (blend, trilinear) or from the nearest one "

@@ -94,7 +94,7 @@ uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::L
     // layers' thousands of small quads show the nearest, with the pipeline that reads one texel a fragment, alpha-tested
     // at the layers' threshold).
     const uint32_t blend_from = part == ImpostorPart::Near
-                                    ? impostor_blend_from(options_.blend_impostor_views, far_layer_limit(far_layer_below_px_, viewport_height))
+                                    ? impostor_blend_from(blend_impostor_views_, far_layer_limit(far_layer_below_px_, viewport_height))
                                     : kImpostorNeverBlend;
     const bool blend = blend_from != kImpostorNeverBlend;
     const uint32_t upper = blend ? blend_from

@@ -25,7 +25,7 @@ TEST(Cli, ParsesProfileOptions) {
     EXPECT_TRUE(o.fidelity);
     EXPECT_FALSE(o.max_texture_side) << "unset: the renderer's default";
     EXPECT_FALSE(o.impostor_elevations) << "unset: the world's default";
-    EXPECT_FALSE(o.blend_impostor_views) << "unset: blended";
+    EXPECT_FALSE(o.blend_impostor_views) << "unset: by device";
     EXPECT_FALSE(o.far_layer_alpha_test) << "unset: the renderer's default";
     auto t = parse({"render", "scene.json", "--texture-max", "512", "--impostor-elevations", "1", "--impostor-views", "nearest",
                     "--far-layer-alpha", "50"});

@@ -85,6 +85,7 @@ struct BlendAndNearest {
     bool make(gpu::Context& ctx, const Figure& fig, const ImpostorAtlas& atlas) {
         RendererOptions blend, nearest_only;
         blend.far_layer_below_px = 0.0f;  // no far layer: blended at any size
+        blend.blend_impostor_views = true;  // not lavapipe's default
         nearest_only.blend_impostor_views = false;
         return blended.make(ctx, fig, atlas, blend) && nearest.make(ctx, fig, atlas, nearest_only);
     }
@@ -209,6 +210,7 @@ TEST_F(ImpostorBlendFigure, BlendingFadesInAboveTheFarLayersLimit) {
     RendererOptions ramp, blend, nearest;
     ramp.far_layer_below_px = 79.0f * kFarLayerReferenceHeight / float(kSize);  // 79 px on this 128-line target
     ramp.far_layer_meshes_below_px = 0.0f;
+    ramp.blend_impostor_views = blend.blend_impostor_views = true;
     blend.far_layer_below_px = 0.0f;
     nearest.blend_impostor_views = false;
     nearest.far_layer_below_px = 0.0f;
@@ -234,6 +236,8 @@ TEST(ImpostorBlend, ModeBitsCarryTheBandsAndTheLimit) {
     EXPECT_EQ(impostor_blend_from(true, 0.0f), 0u) << "no far layer: blended at any size";
     EXPECT_EQ(impostor_blend_from(true, 12.4f), 12u);
     EXPECT_EQ(impostor_blend_from(true, 0.2f), 1u) << "a far layer, however small, keeps blending from its limit";
+    EXPECT_FALSE(blend_impostor_views_default(true)) << "a software rasteriser reads every cell for every fragment";
+    EXPECT_TRUE(blend_impostor_views_default(false));
 }
 
 }  // namespace
