@@ -39,7 +39,7 @@ inline constexpr float kDefaultFarLayerMeshesBelowPx = 70.0f;
 /// The far and distant layers' alpha test (RendererOptions::far_layer_alpha_test): a layer texel shows an impostor's
 /// atlas where the coverage of the mip level one coarser than at full resolution reaches 0.42, not one half. At half
 /// resolution a limb under a layer texel wide averages below one half and vanished: crowd_10k's far crowd drew 0.75x the
-/// reference's character pixels against 0.90x with every impostor at full resolution; at 0.42 it draws 0.92x at the
+/// reference's character pixels against 0.90x with every impostor at full resolution; at 0.42 it draws 0.94x at the
 /// same PSNR (25.08 against 25.09 dB; 0.35 drew 1.15x, fatter, at 24.85 dB). Chosen by those measurements
 /// (docs/PERFORMANCE.md, "Twenty-sixth session"), not derived: no one threshold keeps every width's pixel count.
 inline constexpr float kDefaultFarLayerAlphaTest = 0.42f;

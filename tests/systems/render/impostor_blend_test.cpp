@@ -143,10 +143,11 @@ TEST_F(ImpostorBlendFigure, TurningChangesThePictureInSmallStepsNotAJump) {
     EXPECT_LE(sweep.blended_largest(), sweep.bound()) << "the blend's largest step; the nearest view's jump " << sweep.jump();
 }
 
-// The figure with an arm swinging through the walk cycle: its rows differ (phase r of `phases`).
+// The figure with an arm swinging through the walk cycle: its rows differ (phase r of `phases`); standing (row
+// `phases`), the arm is raised forward, unlike every phase (so a blend that wrapped into the standing row shows).
 Figure walking_figure(uint32_t row, uint32_t phases) {
     Figure fig;
-    const float swing = row < phases ? 0.5f * std::sin(kTwoPi * float(row) / float(phases)) : 0.0f;  // radians; standing: 0
+    const float swing = row < phases ? 0.5f * std::sin(kTwoPi * float(row) / float(phases)) : 1.2f;  // radians
     const glm::vec3 shoulder(0.3f, 1.35f, 0.0f);
     fig.ellipsoid(shoulder + 0.3f * glm::vec3(0.0f, -std::cos(swing), std::sin(swing)), {0.07f, 0.3f, 0.07f}, 8, 12);
     return fig;
@@ -180,10 +181,12 @@ TEST(ImpostorBlend, WalkingChangesThePictureInSmallStepsNotAJump) {
     });
     EXPECT_GT(both.jump(), 10.0 * both.drift()) << "the neighbouring views differ";
     EXPECT_LE(both.blended_largest(), both.bound()) << "turning while walking; the nearest view's jump " << both.jump();
-    // The walk cycle wraps: the last phase blends into the first (phase 0.95 lies between rows 3 and 0), so a blend
-    // there is between the two nearest pictures, not far from both.
+    // The walk cycle wraps: the last phase blends into the first (phase 0.99 lies between rows 3 and 0, 4% of a step
+    // from row 0), not into the standing row that follows row 3 in the atlas.
     const gpu::Rgba8Image wrap = impostor_only(bench.blended, *ctx, heading, 0.99f),
-                          row0 = impostor_only(bench.nearest, *ctx, heading, 0.0f), row3 = impostor_only(bench.nearest, *ctx, heading, 0.75f);
+                          row0 = impostor_only(bench.nearest, *ctx, heading, 0.0f), row3 = impostor_only(bench.nearest, *ctx, heading, 0.75f),
+                          standing = impostor_only(bench.nearest, *ctx, heading, -1.0f);
+    ASSERT_GT(summed_difference(standing, row0), summed_difference(row3, row0)) << "the standing row is told apart from row 0";
     EXPECT_LT(summed_difference(wrap, row0), 0.2 * summed_difference(row3, row0)) << "phase 0.99 is 4% of a step from row 0";
     EXPECT_TRUE(ctx->validation_messages().empty());
 }
