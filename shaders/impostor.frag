@@ -8,7 +8,8 @@
 // normal is in its view's bake camera's frame (x right, y up, z towards that camera), and is lit there with the
 // light the vertex shader turned into that frame (and the hemisphere by world +Y in it: a band seen from above
 // looks down at the figure). Compiled with BLEND (the impostor_blend pipeline), where the vertex shader blends two
-// views and/or two walk phases (v_blend's weights not 0), up to three cells are read, each alpha-tested and lit in its view's frame, and blended where they cover the
+// views, two walk phases and/or two bands of views (the weights not 0), up to four cells are read (a second band's where
+// the eye's ray meets its quad), each alpha-tested and lit in its view's frame, and blended where they cover the
 // pixel, the silhouettes cross-fading by a screen door (below). Unlit materials (KHR_materials_unlit) bake no
 // normal (zero, alpha 0: shaders/lit_mesh.frag), so the normal's alpha over the colour's is the share of lit
 // surface in the texel, exact through the bake's averaging and the mip chain: the albedo is shown as it is in
@@ -36,9 +37,16 @@ layout(location = 1) flat in vec4 v_colour;
 layout(location = 2) flat in vec4 v_light_fade;  // xyz: light direction in the band's frame, w: fade
 layout(location = 3) flat in vec3 v_level;   // xy: the atlas's size in texels at mip z (chosen per quad)
 layout(location = 4) flat in vec2 v_up;      // world +Y in the band's frame (y, z components)
-#ifdef BLEND
-layout(location = 5) flat in vec4 v_blend;   // x, y: the second view's and phase's offset from v_uv; z, w: their weights
-layout(location = 6) flat in vec3 v_light1;  // the light in the second view's frame
+#ifdef BLEND  // shaders/impostor.vert: v_uv is the point in the first band's cell (0 to 1 across it)
+layout(location = 5) in vec3 v_cell1;        // the point in the second band's cell, times z
+layout(location = 6) flat in vec4 v_base;    // x: the first view's left edge; y, z: the first phase's top edge in each band
+layout(location = 7) flat in vec4 v_step;    // x, y: the second view's and phase's offset; z, w: a cell's size
+layout(location = 8) flat in vec4 v_weights; // the tetrahedron's four corners' weights
+layout(location = 9) flat in uvec2 v_corners; // its second and third corners (axis bits: 1 view, 2 phase, 4 band)
+layout(location = 10) flat in vec2 v_up1;    // world +Y in the second band's frame
+layout(location = 11) flat in vec3 v_light1; // the light in the frame of the second view, first band
+layout(location = 12) flat in vec3 v_light2; // first view, second band
+layout(location = 13) flat in vec3 v_light3; // second view, second band
 #endif
 layout(location = 0) out vec4 out_colour;
 
@@ -52,17 +60,39 @@ uvec2 fetch(vec2 uv) {
 
 // The colour shown for atlas colour `c` (coverage in alpha, > 0) and normal `e` lit with `light` (in the normal's
 // frame): the albedo times the tint, lit in the share of the texel that is lit surface.
-vec3 shade(vec4 c, vec4 e, vec3 light) {
+vec3 shade(vec4 c, vec4 e, vec3 light, vec2 up) {
     vec3 nb = e.a > 0.0 ? e.rgb / e.a * 2.0 - 1.0 : vec3(0.0, 0.0, 1.0);
     vec3 n = normalize(nb);
     vec3 albedo = c.rgb / c.a * v_colour.rgb;
     float ambient = pc.light.w;
-    vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * (n.y * v_up.x + n.z * v_up.y));  // world N.y
+    vec3 hemi = mix(lighting.ground.rgb, lighting.sky.rgb, 0.5 + 0.5 * (n.y * up.x + n.z * up.y));  // world N.y
     float diffuse = max(dot(n, light), 0.0);
     vec3 lit = albedo * (ambient * hemi + (1.0 - ambient) * lighting.key.rgb * diffuse);
     const float lit_share = e.a >= c.a - 1.5 / 255.0 ? 1.0 : e.a / c.a;
     return clamp(mix(albedo, lit, lit_share), 0.0, 1.0);
 }
+
+#ifdef BLEND
+// The packed texel this pixel reads at the (view, phase, band) corner `a` (axis bits: 1 the second view, 2 the second
+// phase, 4 the second band, whose cell is read where the eye's ray meets its quad); false where the pixel lies past
+// that corner's cell (not covered there).
+bool corner_texel(uint a, out uvec2 packed) {
+    packed = uvec2(0u);
+    bool second_band = (a & 4u) != 0u;
+    vec2 c = second_band ? v_cell1.xy / v_cell1.z : v_uv;
+    if (any(lessThan(c, vec2(0.0))) || any(greaterThan(c, vec2(1.0)))) return false;
+    vec2 uv = vec2(v_base.x + c.x * v_step.z + ((a & 1u) != 0u ? v_step.x : 0.0),
+                   (second_band ? v_base.z : v_base.y) - c.y * v_step.w + ((a & 2u) != 0u ? v_step.y : 0.0));
+    packed = fetch(uv);
+    return true;
+}
+
+// The light in the frame of corner `a`'s view and band.
+vec3 corner_light(uint a) {
+    uint k = (a & 1u) | ((a & 4u) >> 1u);
+    return k == 0u ? v_light_fade.xyz : k == 1u ? v_light1 : k == 2u ? v_light2 : v_light3;
+}
+#endif
 
 void main() {
     float fade = v_light_fade.w;
@@ -75,34 +105,46 @@ void main() {
     uvec2 packed = fetch(v_uv);
     vec4 c = unpackUnorm4x8(packed.x);
     if (c.a < float(pc.offsets.w >> 8u) / 255.0) discard;  // the alpha test's threshold (one half; less in the far layers)
-    out_colour = vec4(shade(c, unpackUnorm4x8(packed.y), v_light_fade.xyz), v_colour.a);
+    out_colour = vec4(shade(c, unpackUnorm4x8(packed.y), v_light_fade.xyz, v_up), v_colour.a);
 #else
-    // Up to three of the four cells (two views x two phases; a weight 0 leaves its cell out), each alpha-tested at one
-    // half as the one cell is (a sharp silhouette of its own) and lit in its own view's frame. The pixel shows the weighted mean of
-    // the pictures that cover it, where their share of the weights passes a screen door (the transposed Bayer
-    // threshold, apart from the fade's): covered by all, always; by a picture of weight w alone, at a share w of the
-    // pixels. Blending coverage and testing it at one half instead would keep each silhouette whole until half-way and
-    // then swap it whole. A separate pipeline (lavapipe runs both sides of a branch a 4x4 block's pixels take
-    // differently, and does not know v_blend is the same for all).
+    // Up to four of the eight cells (two views x two phases x two bands; a weight 0 leaves its cell out), each
+    // alpha-tested at one half as the one cell is (a sharp silhouette of its own) and lit in its own view's frame. The
+    // pixel shows the weighted mean of the pictures that cover it, where their share of the weights passes a screen
+    // door (the transposed Bayer threshold, apart from the fade's): covered by all, always; by a picture of weight w
+    // alone, at a share w of the pixels. Blending coverage and testing it at one half instead would keep each
+    // silhouette whole until half-way and then swap it whole. A separate pipeline (lavapipe runs both sides of a
+    // branch a 4x4 block's pixels take differently, and does not know the weights are the same for all).
     ivec2 q = ivec2(gl_FragCoord.xy) & 3;
     float door = (kBayer[q.x * 4 + q.y] + 0.5) / 16.0;
-    // The three cells of the (view, phase) weights' triangle: the square's corners (0, 0), (1, 0) or (0, 1), (1, 1) with
-    // barycentric weights (1 - max, |wv - wk|, min), linear in the weights and the same either side of the diagonal.
-    float wv = v_blend.z, wk = v_blend.w;
-    bool views_first = wv >= wk;  // the triangle under the diagonal: the second view before the second phase
-    vec2 corner_uv[3] = vec2[](vec2(0.0), views_first ? vec2(v_blend.x, 0.0) : vec2(0.0, v_blend.y), v_blend.xy);
-    float corner_weight[3] = float[](1.0 - max(wv, wk), abs(wv - wk), min(wv, wk));
-    vec3 corner_light[3] = vec3[](v_light_fade.xyz, views_first ? v_light1 : v_light_fade.xyz, v_light1);
+    // The four corners of the weights' tetrahedron (shaders/impostor.vert): (0, 0, 0), then the axes in the order of
+    // their weights.
+    uint corner[4] = uint[](0u, v_corners.x, v_corners.y, 7u);
+#ifdef PICK
+    // One picture a pixel (the impostor_pick pipeline: one atlas read, as the nearest's): the corner whose share of
+    // the cumulative weights holds the pixel's door threshold. Where both pictures cover a pixel it shows one of them
+    // (a 4 x 4 dither of the two whose mean is the blend's); where one alone covers it, at a share of the pixels equal
+    // to its weight, as the blend does.
+    float below = v_weights.x, next = v_weights.x + v_weights.y, last = next + v_weights.z;
+    uint a = corner[door < below ? 0 : door < next ? 1 : door < last ? 2 : 3];
+    uvec2 packed;
+    if (!corner_texel(a, packed)) discard;
+    vec4 colour = unpackUnorm4x8(packed.x);
+    if (colour.a < 0.5) discard;
+    out_colour = vec4(shade(colour, unpackUnorm4x8(packed.y), corner_light(a), (a & 4u) != 0u ? v_up1 : v_up), v_colour.a);
+#else
     vec4 sum = vec4(0.0);
-    for (int i = 0; i < 3; ++i) {
-        float w = corner_weight[i];
+    for (int i = 0; i < 4; ++i) {
+        float w = v_weights[i];
         if (w <= 0.0) continue;
-        uvec2 packed = fetch(v_uv + corner_uv[i]);
-        vec4 c = unpackUnorm4x8(packed.x);
-        if (c.a < 0.5) continue;
-        sum += w * vec4(shade(c, unpackUnorm4x8(packed.y), corner_light[i]), 1.0);
+        uint a = corner[i];
+        uvec2 packed;
+        if (!corner_texel(a, packed)) continue;
+        vec4 colour = unpackUnorm4x8(packed.x);
+        if (colour.a < 0.5) continue;
+        sum += w * vec4(shade(colour, unpackUnorm4x8(packed.y), corner_light(a), (a & 4u) != 0u ? v_up1 : v_up), 1.0);
     }
     if (sum.a <= door) discard;
     out_colour = vec4(sum.rgb / sum.a, v_colour.a);
+#endif
 #endif
 }

@@ -5,11 +5,13 @@
 // units (push base_colour: x width, y bottom, z height), scaled by the instance's scale. It shows the atlas
 // directions about the camera's azimuth in the character's frame (local +Z forward) and the walk phase rows about
 // the character's phase (offsets.x directions, offsets.y phase rows, a cycle; the last row is the standing pose,
-// used when the phase is negative): the nearest of each, or compiled with BLEND (the impostor_blend pipeline) the
-// two of each either side, blended by where the camera and the phase lie between them (three of the four cells,
-// the weights' triangle: shaders/impostor.frag), fading in from quads offsets.w >> 8 px tall (the nearest) to twice that, in the band of views (offsets.w & 255 bands,
-// systems/render/impostor_types.hpp) whose elevation is nearest the camera's above the pivot (the quad's centre,
-// bottom + height / 2 above the origin; band 0 for a camera below it). Band 0's quad stands upright (foreshortened
+// used when the phase is negative), in the band of views (offsets.w & 255 bands, systems/render/impostor_types.hpp)
+// whose elevation is nearest the camera's above the pivot (the quad's centre, bottom + height / 2 above the origin;
+// band 0 for a camera below it): the nearest of each, or compiled with BLEND (the impostor_blend pipeline) the two of
+// each either side, blended by where the camera's azimuth and elevation and the phase lie between them (four of the
+// eight cells, the weights' tetrahedron: shaders/impostor.frag), fading in from quads offsets.w >> 8 px tall (the
+// nearest) to twice that. The blend draws the lower band's quad and reads the upper band's cells where the eye's
+// ray through each point meets the upper band's quad (across()). Band 0's quad stands upright (foreshortened
 // as the standing figure is); a band from above is drawn on a quad facing the camera, its cells (cells[1].x tall)
 // stretched by impostor_band_stretch for the camera's elevation against the band's (depth ratio cells[1].y), so its
 // silhouette is as tall as the figure's.
@@ -45,9 +47,19 @@ layout(location = 2) flat out vec4 v_light_fade; // xyz: direction to the key li
 layout(location = 3) flat out vec3 v_level;     // xy: the atlas's size in texels at mip z (the quad's level)
 layout(location = 4) flat out vec2 v_up;        // world +Y in the band's frame (y, z): (cos a, sin a) of its elevation
 #ifdef BLEND
-layout(location = 5) flat out vec4 v_blend;     // x, y: the second view's and the second phase's offset from v_uv's cell
-                                                 // (texture coordinates); z, w: their weights (0: the first one only)
-layout(location = 6) flat out vec3 v_light1;    // the light in the second view's frame (as v_light_fade.xyz in the first's)
+// With BLEND, v_uv is the point's coordinates in the first band's cell (0 to 1 across it), and:
+layout(location = 5) out vec3 v_cell1;          // the point's coordinates in the second band's cell (xy), times z
+                                                 // (across(): divided by z, exact over the quad)
+layout(location = 6) flat out vec4 v_base;      // x: the first view's left edge (texture u), y, z: the first phase's
+                                                 // top edge in the first and second band (texture v)
+layout(location = 7) flat out vec4 v_step;      // x, y: the second view's and phase's offset (texture u, v); z, w: a
+                                                 // cell's size (texture u, v)
+layout(location = 8) flat out vec4 v_weights;   // the weights of the tetrahedron's four corners
+layout(location = 9) flat out uvec2 v_corners; // its second and third corners (axis bits: 1 view, 2 phase, 4 band)
+layout(location = 10) flat out vec2 v_up1;      // as v_up, in the second band's frame
+layout(location = 11) flat out vec3 v_light1;   // the light in the frame of the second view, first band
+layout(location = 12) flat out vec3 v_light2;   // first view, second band
+layout(location = 13) flat out vec3 v_light3;   // second view, second band
 #endif
 
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
@@ -78,6 +90,64 @@ void include_cell(inout vec4 box, vec4 b) {
 }
 #endif
 
+// Band `b`'s quad seen from elevation `seen` (radians, >= 0 for a band from above): its vertical on the quad `up`
+// (band 0 upright; a band from above facing the camera, whose level direction towards the eye is `toward`) and
+// its height in model units (a band from above stretched to the figure's height from `seen`, impostor_band_stretch).
+void band_quad(float b, float steps, float seen, vec3 toward, out vec3 up, out float height) {
+    up = vec3(0.0, 1.0, 0.0);
+    height = pc.base_colour.z;
+    if (b > 0.0) {
+        vec4 banding = cells[1];
+        float baked = b * 1.57079633 / steps;
+        float s = max(seen, 0.0);
+        up = cos(s) * vec3(0.0, 1.0, 0.0) - sin(s) * toward;
+        height = banding.x * (cos(s) + banding.y * sin(s)) / (cos(baked) + banding.y * sin(baked));
+    }
+}
+
+#ifdef BLEND
+// Where the eye's ray through cell point `c` of one band's quad (its vertical `up_from`, height `h_from`) meets the
+// plane of another's (`up_to`, `h_to`): that point's cell coordinates on the other quad (xy), and z the reciprocal of
+// the ray's parameter there (the eye at 0, the first point at 1; 1 for an eye at infinity). Both quads are centred
+// on the pivot and share its horizontal line `right` (so the map from one to the other is a projective one:
+// (xy z, z) is linear over the first quad, which its perspective-correct interpolation keeps exact).
+vec3 across(vec2 c, vec3 pivot, vec3 right, float scale, vec3 up_from, float h_from, vec3 up_to, float h_to) {
+    float w = pc.base_colour.x;
+    vec3 p = pivot + scale * (right * ((c.x - 0.5) * w) + up_from * ((c.y - 0.5) * h_from));
+    vec3 n = cross(right, up_to);  // the other plane's normal
+    vec3 ray = pc.camera.w > 0.0 ? p - pc.camera.xyz : -pc.camera.xyz;  // from the eye through p
+    float along = dot(ray, n);
+    float mu = abs(along) > 1e-9 ? -dot(p - pivot, n) / along : 0.0;
+    vec3 q = p + mu * ray - pivot;
+    float inverse = pc.camera.w > 0.0 ? 1.0 / max(1.0 + mu, 1e-6) : 1.0;
+    return vec3(dot(q, right) / (scale * w) + 0.5, dot(q, up_to) / (scale * h_to) + 0.5, inverse);
+}
+
+// Grows `box` by the cell bounds `b` of another band's quad (as across() maps them onto the drawn quad).
+void include_band_cell(inout vec4 box, vec4 b, vec3 pivot, vec3 right, float scale, vec3 up_from, float h_from, vec3 up_to,
+                       float h_to) {
+    if (b.z <= b.x) return;
+    vec2 p0 = across(b.xy, pivot, right, scale, up_from, h_from, up_to, h_to).xy;
+    vec2 p1 = across(b.zy, pivot, right, scale, up_from, h_from, up_to, h_to).xy;
+    vec2 p2 = across(b.xw, pivot, right, scale, up_from, h_from, up_to, h_to).xy;
+    vec2 p3 = across(b.zw, pivot, right, scale, up_from, h_from, up_to, h_to).xy;
+    include_cell(box, vec4(min(min(p0, p1), min(p2, p3)), max(max(p0, p1), max(p2, p3))));
+}
+
+// Grows the bounds of the cells read, `first` (the first band's) or `second`, by the cell of corner `a` (axis bits: 1
+// the second view v1, 2 the second phase, 4 the second band; rows: the cells' atlas rows for (band, phase) 00, 01,
+// 10, 11) where its weight `w` is above 0.
+void include_corner(uint a, float w, vec4 rows, float v0, float v1, inout vec4 first, inout vec4 second) {
+    if (w <= 0.0) return;
+    float row = (a & 4u) != 0u ? ((a & 2u) != 0u ? rows.w : rows.z) : ((a & 2u) != 0u ? rows.y : rows.x);
+    vec4 bounds = cells[2u + uint(row) * pc.offsets.x + uint((a & 1u) != 0u ? v1 : v0)];
+    if ((a & 4u) != 0u)
+        include_cell(second, bounds);
+    else
+        include_cell(first, bounds);
+}
+#endif
+
 void main() {
     Impostor im = impostors[pc.offsets.z + uint(gl_InstanceIndex)];
     vec3 origin = im.position_scale.xyz;
@@ -96,18 +166,10 @@ void main() {
     float steps = max(bands - 1.0, 1.0);
     float seen = atan(d.y, level_distance);
     float band = clamp(floor(seen / 1.57079633 * steps + 0.5), 0.0, bands - 1.0);
-    float baked = band * 1.57079633 / steps;
-    vec2 cs = vec2(cos(baked), sin(baked));
     // The quad: band 0 upright; a band from above facing the camera, stretched to the figure's height from there.
-    vec3 up = vec3(0.0, 1.0, 0.0);
-    float cell_height = pc.base_colour.z;
-    if (band > 0.0) {
-        vec4 banding = cells[1];
-        seen = max(seen, 0.0);
-        up = cos(seen) * vec3(0.0, 1.0, 0.0) - sin(seen) * toward;
-        float k = banding.y;
-        cell_height = banding.x * (cos(seen) + k * sin(seen)) / (cs.x + k * cs.y);
-    }
+    vec3 up;
+    float cell_height;
+    band_quad(band, steps, seen, toward, up, cell_height);
     // Texels per pixel at the pivot's depth along the quad's vertical: atlas texels are (nearly) square in model
     // units and a quad faces the camera across, so only its height is foreshortened (band 0's upright quad by the
     // camera's elevation) and sets the lod. Its length on screen in pixels, whichever way it points there (a
@@ -130,11 +192,12 @@ void main() {
     float rows = float(pc.offsets.y);
     float phases = rows - 1.0;
     float phase = im.forward_phase.z;
+    float all_rows = rows * bands;
 #ifdef BLEND
-    // The two baked directions either side of the camera's azimuth and the two walk phases either side of the
-    // character's, each pair with the second's weight. Blending fades in with the quad's size from blend_from px
-    // (the nearest picture, as the far layer below it shows) to twice that (a linear blend); blend_from 0: blended at
-    // any size.
+    // The two baked directions either side of the camera's azimuth, the two walk phases either side of the
+    // character's and the two bands either side of the camera's elevation, each pair with the second's weight.
+    // Blending fades in with the quad's size from blend_from px (the nearest picture, as the far layer below it
+    // shows) to twice that (a linear blend); blend_from 0: blended at any size.
     float blend_from = float(pc.offsets.w >> 8u);
     float sharpness = blend_from > 0.0 ? clamp(py / blend_from - 1.0, 0.0, 1.0) : 1.0;
     float v0 = floor(av);
@@ -157,14 +220,47 @@ void main() {
         k0 = mod(k0, phases);
     }
     float k1 = phase >= 0.0 ? mod(k0 + 1.0, phases) : k0;
-    float row0 = band * rows + k0, row1 = band * rows + k1;  // among every band's rows
-    // The quad covers every shown cell's silhouette.
-    uint first = 2u + uint(row0) * pc.offsets.x, second = 2u + uint(row1) * pc.offsets.x;
-    vec4 b = vec4(0.0);
-    include_cell(b, cells[first + uint(v0)]);
-    if (wv > wk) include_cell(b, cells[first + uint(v1)]);  // the cells the fragment shader's triangle of weights reads
-    if (wk > wv) include_cell(b, cells[second + uint(v0)]);
-    if (min(wv, wk) > 0.0) include_cell(b, cells[second + uint(v1)]);
+    float b0 = 0.0, wb = 0.0;  // band 0 for a camera below the pivot
+    if (bands > 1.0) {
+        float ab = clamp(seen / 1.57079633 * steps, 0.0, bands - 1.0);
+        b0 = floor(ab);
+        wb = sharpen(ab - b0, sharpness);
+        if (wb >= 1.0) {
+            b0 += 1.0;
+            wb = 0.0;
+        }
+        if (b0 >= bands - 1.0) {
+            b0 = bands - 1.0;
+            wb = 0.0;
+        }
+    }
+    float b1 = wb > 0.0 ? b0 + 1.0 : b0;
+    // The quad drawn is the first band's; the second band's cells are read where the eye's ray through the pixel
+    // meets the second band's quad (across()).
+    vec3 up1;
+    float cell_height1;
+    band_quad(b0, steps, seen, toward, up, cell_height);
+    band_quad(b1, steps, seen, toward, up1, cell_height1);
+    // The corners of the (view, phase, band) weights' tetrahedron in the cube of two pictures each: from (0, 0, 0)
+    // along the axes in the order of their weights, largest first, with weights (1 - w1, w1 - w2, w2 - w3, w3) for
+    // the weights sorted w1 >= w2 >= w3 (linear in the weights, and the same on either side of each face where two
+    // are equal). Axis bits: 1 the second view, 2 the second phase, 4 the second band.
+    vec2 s1 = vec2(wv, 1.0), s2 = vec2(wk, 2.0), s3 = vec2(wb, 4.0);
+    if (s2.x > s1.x) { vec2 t = s1; s1 = s2; s2 = t; }
+    if (s3.x > s2.x) { vec2 t = s2; s2 = s3; s3 = t; }
+    if (s2.x > s1.x) { vec2 t = s1; s1 = s2; s2 = t; }
+    uint first_axis = uint(s1.y), two_axes = uint(s1.y) | uint(s2.y);
+    vec4 weights = vec4(1.0 - s1.x, s1.x - s2.x, s2.x - s3.x, s3.x);
+    // The quad covers every read cell's silhouette: the first band's cells' bounds, and the second band's mapped onto
+    // the quad (their union's corners through across()).
+    vec4 b = vec4(0.0), second = vec4(0.0);
+    vec4 cell_rows = vec4(b0 * rows + k0, b0 * rows + k1, b1 * rows + k0, b1 * rows + k1);
+    include_corner(0u, 1.0, cell_rows, v0, v1, b, second);
+    include_corner(first_axis, weights.y, cell_rows, v0, v1, b, second);
+    include_corner(two_axes, weights.z, cell_rows, v0, v1, b, second);
+    include_corner(7u, weights.w, cell_rows, v0, v1, b, second);
+    include_band_cell(b, second, pivot, right, scale, up1, cell_height1, up, cell_height);
+    float row0 = b0 * rows + k0, row1 = b0 * rows + k1;  // among every band's rows
 #else
     // The nearest baked direction and walk phase.
     float v0 = mod(floor(av + 0.5), dirs);
@@ -179,17 +275,38 @@ void main() {
     // A texel of that level that passes the alpha test holds a covered texel of level 0 within its 2^level
     // footprint; one more texel for footprints that do not divide the cell evenly.
     vec2 pad = (exp2(level) + 1.0) / grid.xy;
+#ifdef BLEND
+    // Not clamped to the cell: the second band's silhouette may reach past it (the fragment shader reads no texel
+    // outside a cell).
+    vec2 c = mix(b.xy - pad, b.zw + pad, kCorners[gl_VertexIndex]);
+#else
     vec2 c = mix(max(b.xy - pad, 0.0), min(b.zw + pad, 1.0), kCorners[gl_VertexIndex]);
+#endif
     vec3 world = pivot + scale * (right * ((c.x - 0.5) * pc.base_colour.x) + up * ((c.y - 0.5) * cell_height));
-    float all_rows = rows * bands;
-    v_uv = vec2((v0 + c.x) / dirs, (row0 + 1.0 - c.y) / all_rows);
     v_level = vec3(max(floor(vec2(grid.x * dirs, grid.y * all_rows) / exp2(level)), 1.0), level);
     v_colour = im.colour;
+#ifdef BLEND
+    float baked0 = b0 * 1.57079633 / steps, baked1 = b1 * 1.57079633 / steps;
+    vec2 cs = vec2(cos(baked0), sin(baked0)), cs1 = vec2(cos(baked1), sin(baked1));
+    v_uv = c;
+    vec3 on1 = wb > 0.0 ? across(c, pivot, right, scale, up, cell_height, up1, cell_height1) : vec3(c, 1.0);
+    v_cell1 = vec3(on1.xy * on1.z, on1.z);
+    v_base = vec4(v0 / dirs, (row0 + 1.0) / all_rows, (b1 * rows + k0 + 1.0) / all_rows, 0.0);
+    v_step = vec4((v1 - v0) / dirs, (row1 - row0) / all_rows, 1.0 / dirs, 1.0 / all_rows);
+    v_weights = weights;
+    v_corners = uvec2(first_axis, two_axes);
+    v_up = cs;
+    v_up1 = cs1;
+    v_light_fade = vec4(light_in_view(v0, dirs, local_x, f, cs), im.forward_phase.w);
+    v_light1 = wv > 0.0 ? light_in_view(v1, dirs, local_x, f, cs) : vec3(0.0);
+    v_light2 = wb > 0.0 ? light_in_view(v0, dirs, local_x, f, cs1) : vec3(0.0);
+    v_light3 = wb > 0.0 && wv > 0.0 ? light_in_view(v1, dirs, local_x, f, cs1) : vec3(0.0);
+#else
+    float baked = band * 1.57079633 / steps;
+    vec2 cs = vec2(cos(baked), sin(baked));
+    v_uv = vec2((v0 + c.x) / dirs, (row0 + 1.0 - c.y) / all_rows);
     v_up = cs;
     v_light_fade = vec4(light_in_view(v0, dirs, local_x, f, cs), im.forward_phase.w);
-#ifdef BLEND
-    v_blend = vec4((v1 - v0) / dirs, (row1 - row0) / all_rows, wv, wk);
-    v_light1 = wv > 0.0 ? light_in_view(v1, dirs, local_x, f, cs) : vec3(0.0);
 #endif
     gl_Position = pc.view_proj * vec4(world, 1.0);
 }

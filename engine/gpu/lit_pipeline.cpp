@@ -10,6 +10,7 @@
 #include "shaders/line_frag.h"
 #include "shaders/impostor_blend_frag.h"
 #include "shaders/impostor_blend_vert.h"
+#include "shaders/impostor_pick_frag.h"
 #include "shaders/impostor_frag.h"
 #include "shaders/impostor_vert.h"
 #include "shaders/line_vert.h"
@@ -207,6 +208,7 @@ Result<LitPipelines> LitPipelines::create(const Context& ctx, VkRenderPass rende
         {&lp.lines_, {k_line_vert_spv, k_line_frag_spv, VK_PRIMITIVE_TOPOLOGY_LINE_LIST, VK_COMPARE_OP_LESS_OR_EQUAL, VK_CULL_MODE_NONE}},
         {&lp.impostor_, {k_impostor_vert_spv, k_impostor_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
         {&lp.impostor_blend_, {k_impostor_blend_vert_spv, k_impostor_blend_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
+        {&lp.impostor_pick_, {k_impostor_blend_vert_spv, k_impostor_pick_frag_spv, kTriangles, VK_COMPARE_OP_LESS, VK_CULL_MODE_NONE}},
         {&lp.dithered_[0], lit[4]},
         {&lp.dithered_[1], lit[5]},
         {&lp.dithered_[2], lit[6]},
@@ -257,6 +259,7 @@ LitPipelines::LitPipelines(LitPipelines&& o) noexcept
       vertex_lit_culled_(std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE)),
       impostor_(std::exchange(o.impostor_, VK_NULL_HANDLE)),
       impostor_blend_(std::exchange(o.impostor_blend_, VK_NULL_HANDLE)),
+      impostor_pick_(std::exchange(o.impostor_pick_, VK_NULL_HANDLE)),
       composite_(std::exchange(o.composite_, VK_NULL_HANDLE)),
       composite_set_layout_(std::exchange(o.composite_set_layout_, VK_NULL_HANDLE)),
       composite_layout_(std::exchange(o.composite_layout_, VK_NULL_HANDLE)),
@@ -283,6 +286,7 @@ LitPipelines& LitPipelines::operator=(LitPipelines&& o) noexcept {
         vertex_lit_culled_ = std::exchange(o.vertex_lit_culled_, VK_NULL_HANDLE);
         impostor_ = std::exchange(o.impostor_, VK_NULL_HANDLE);
         impostor_blend_ = std::exchange(o.impostor_blend_, VK_NULL_HANDLE);
+        impostor_pick_ = std::exchange(o.impostor_pick_, VK_NULL_HANDLE);
         composite_ = std::exchange(o.composite_, VK_NULL_HANDLE);
         composite_set_layout_ = std::exchange(o.composite_set_layout_, VK_NULL_HANDLE);
         composite_layout_ = std::exchange(o.composite_layout_, VK_NULL_HANDLE);
@@ -304,6 +308,7 @@ void LitPipelines::destroy() {
     if (vertex_lit_culled_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, vertex_lit_culled_, nullptr);
     if (impostor_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, impostor_, nullptr);
     if (impostor_blend_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, impostor_blend_, nullptr);
+    if (impostor_pick_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, impostor_pick_, nullptr);
     if (composite_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, composite_, nullptr);
     if (composite_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, composite_pool_, nullptr);
     if (composite_layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, composite_layout_, nullptr);
@@ -329,7 +334,7 @@ void LitPipelines::destroy() {
     if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
     if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
     device_ = VK_NULL_HANDLE;
-    mesh_ = culled_ = lines_ = vertex_lit_ = vertex_lit_culled_ = impostor_ = impostor_blend_ = composite_ = VK_NULL_HANDLE;
+    mesh_ = culled_ = lines_ = vertex_lit_ = vertex_lit_culled_ = impostor_ = impostor_blend_ = impostor_pick_ = composite_ = VK_NULL_HANDLE;
     pool_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;

@@ -182,9 +182,12 @@ public:
     /// Impostor pipeline (shaders/impostor.*): non-indexed, 6 vertices per instance (one camera-facing quad),
     /// set 0 binding 2 read as 64-byte impostor records, set 1 binding 1 the atlas; depth test and write.
     [[nodiscard]] VkPipeline impostor() const { return impostor_; }
-    /// The same, each quad blending its two nearest views and walk phases (shaders/impostor.* compiled with BLEND: up
-    /// to three atlas reads a fragment, the blend fading in with the quad's size from push offsets.w >> 8 px).
+    /// The same, each quad blending its two nearest views, walk phases and bands (shaders/impostor.* compiled with
+    /// BLEND: up to four atlas reads a fragment, the blend fading in with the quad's size from push offsets.w >> 8 px).
     [[nodiscard]] VkPipeline impostor_blend() const { return impostor_blend_; }
+    /// The same neighbours, one of them a pixel by a dither of their weights (shaders/impostor.frag compiled with BLEND
+    /// and PICK: one atlas read a fragment).
+    [[nodiscard]] VkPipeline impostor_pick() const { return impostor_pick_; }
     /// Composite pipeline (shaders/composite.*, layout composite_layout()): 6 vertices, one quad over the NDC
     /// rectangle in LitPush::base_colour; where the layer in set 0 (composite_set; filtered at gl_FragCoord *
     /// camera.xy) covers at least half a pixel it writes the layer's colour and depth (the nearest of the four
@@ -233,6 +236,7 @@ private:
     VkPipeline vertex_lit_culled_ = VK_NULL_HANDLE;
     VkPipeline impostor_ = VK_NULL_HANDLE;
     VkPipeline impostor_blend_ = VK_NULL_HANDLE;
+    VkPipeline impostor_pick_ = VK_NULL_HANDLE;
     VkPipeline composite_ = VK_NULL_HANDLE;
     VkDescriptorSetLayout composite_set_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout composite_layout_ = VK_NULL_HANDLE;

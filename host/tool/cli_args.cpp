@@ -86,10 +86,11 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "(default 3: 0, 45 and 90 degrees; each band costs one level atlas's memory and bake time)")
         ->check(whole_number(1, 8));
     c.add_option("--impostor-views", b.impostor_views,
-                 "impostors drawn at full resolution blend their two nearest views and walk phases (blend: fading in from the "
-                 "far layer's limit to twice it) or show the nearest (nearest); default nearest on a software rasteriser, blend "
-                 "on a GPU; the far layers show the nearest")
-        ->check(one_of({"blend", "nearest"}));
+                 "impostors drawn at full resolution show their two nearest views, walk phases and bands of elevation blended "
+                 "(blend: up to four atlas reads a fragment) or one of them a pixel by a dither of their weights (pick: one "
+                 "read), fading in from the far layer's limit to twice it, or the nearest (nearest); default nearest on a "
+                 "software rasteriser, blend on a GPU; the far layers show the nearest")
+        ->check(one_of({"blend", "pick", "nearest"}));
     c.add_option("--texture-mips", b.texture_mips,
                  "material textures read from the two nearest mip levels blended (blend, trilinear) or from the nearest one "
                  "(nearest; default nearest on a software rasteriser, blend on a GPU)")
@@ -237,7 +238,10 @@ void convert(Bindings& b) {
     if (!b.distant_layer.empty()) o.distant_layer_px = float(u32(b.distant_layer));
     if (!b.impostor_elevations.empty()) o.impostor_elevations = u32(b.impostor_elevations);
     if (!b.texture_mips.empty()) o.blend_texture_mips = b.texture_mips == "blend";
-    if (!b.impostor_views.empty()) o.blend_impostor_views = b.impostor_views == "blend";
+    if (!b.impostor_views.empty())
+        o.impostor_views = b.impostor_views == "blend" ? ImpostorViews::Blend
+                           : b.impostor_views == "pick" ? ImpostorViews::Pick
+                                                        : ImpostorViews::Nearest;
     if (!b.far_layer_alpha.empty()) o.far_layer_alpha_test = float(u32(b.far_layer_alpha)) / 100.0f;
     if (!b.texture_max.empty()) o.max_texture_side = u32(b.texture_max);
     if (!b.height.empty()) o.height = u32(b.height);

@@ -4,6 +4,7 @@
 
 #include "engine/core/result.hpp"
 #include "systems/frame/gpu_overlap_policy.hpp"
+#include "systems/render/impostor_types.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -55,7 +56,7 @@ struct CliOptions {
     std::optional<float> far_layer_meshes_px;  ///< --far-layer-meshes PX: RendererOptions::far_layer_meshes_below_px
                                                ///< (unset: far_layer_meshes_default)
     std::optional<bool> blend_texture_mips;  ///< --texture-mips blend|nearest: RendererOptions::blend_texture_mips (unset: by device)
-    std::optional<bool> blend_impostor_views;  ///< --impostor-views blend|nearest: RendererOptions::blend_impostor_views (unset: by device)
+    std::optional<ImpostorViews> impostor_views;  ///< --impostor-views blend|pick|nearest: RendererOptions::impostor_views (unset: by device)
     std::optional<float> far_layer_alpha_test;  ///< --far-layer-alpha PERCENT / 100: RendererOptions::far_layer_alpha_test (unset: its default)
     std::optional<uint32_t> max_texture_side;  ///< --texture-max PX: RendererOptions::max_texture_side (unset: its default)
     std::optional<uint32_t> impostor_elevations;  ///< --impostor-elevations N: WorldOptions::impostor_elevations

@@ -75,7 +75,7 @@ Status open_gpu(WindowGpu& g, GLFWwindow* window, const CliOptions& options) {
     ro.far_layer_meshes_below_px = options.far_layer_meshes_px;
     ro.distant_layer_below_px = options.distant_layer_px.value_or(0.0f);
     ro.blend_texture_mips = options.blend_texture_mips;
-    ro.blend_impostor_views = options.blend_impostor_views;
+    ro.impostor_views = options.impostor_views;
     if (options.far_layer_alpha_test) ro.far_layer_alpha_test = *options.far_layer_alpha_test;
     if (options.max_texture_side) ro.max_texture_side = *options.max_texture_side;
     ro.colour_format = g.target->colour_format();

@@ -43,7 +43,7 @@ Status CrowdRenderer::init(const RendererOptions& options) {
     blend_texture_mips_ = options.blend_texture_mips.value_or(blend_texture_mips_default(ctx_.is_cpu_device()));
     max_texture_side_ = options.max_texture_side;
     far_layer_meshes_below_px_ = options.far_layer_meshes_below_px.value_or(far_layer_meshes_default(ctx_.is_cpu_device()));
-    blend_impostor_views_ = options.blend_impostor_views.value_or(blend_impostor_views_default(ctx_.is_cpu_device()));
+    impostor_views_ = options.impostor_views.value_or(impostor_views_default(ctx_.is_cpu_device()));
     options_.frames_in_flight = std::clamp(options.frames_in_flight, 1u, 4u);
     const VkDevice dev = ctx_.device();
     Result<VkRenderPass> pass = gpu::create_render_pass(dev, options_.colour_format,

@@ -132,12 +132,15 @@ struct FrameSync {
 /// from the nearest mip level on tier low"); on a GPU, where blending costs nothing, yes.
 [[nodiscard]] inline bool blend_texture_mips_default(bool cpu_device) { return !cpu_device; }
 
-/// Whether impostors blend their neighbouring views and walk phases when RendererOptions::blend_impostor_views is unset:
-/// not on a software rasteriser, where the blending pipeline reads and shades every cell for every fragment (~1 ms of
-/// crowd_1k's frame on lavapipe, whose default far layer leaves most impostors at full resolution within the blend's
-/// fade-in: PSNR 26.94 dB either way; docs/PERFORMANCE.md, "Twenty-sixth session"); on a GPU, where it costs nothing and
-/// every impostor is at full resolution, yes (16% less change from frame to frame on crowd_1k).
-[[nodiscard]] inline bool blend_impostor_views_default(bool cpu_device) { return !cpu_device; }
+/// How impostors show their neighbouring views, walk phases and bands when RendererOptions::impostor_views is unset:
+/// on a software rasteriser the nearest (the blending pipeline reads and shades every cell for every fragment, ~1.8
+/// ms of crowd_1k's frame on lavapipe, while its default far layer leaves almost every impostor within the blend's
+/// fade-in; Pick costs what the nearest does but its dither is noisy at crowd sizes: docs/PERFORMANCE.md,
+/// "Twenty-seventh session"); on a GPU, where it costs nothing and every impostor is at full resolution, their
+/// weighted mean (Blend: 17% less change from frame to frame on crowd_1k than the nearest).
+[[nodiscard]] inline ImpostorViews impostor_views_default(bool cpu_device) {
+    return cpu_device ? ImpostorViews::Nearest : ImpostorViews::Blend;
+}
 
 /// Construction options.
 struct RendererOptions {
@@ -170,11 +173,11 @@ struct RendererOptions {
                                                        ///< walkers of 30-70 px turn to blobs (docs/PERFORMANCE.md)
     float far_layer_alpha_test = kDefaultFarLayerAlphaTest;  ///< coverage from which an impostor's texel shows in the far
                                                        ///< and distant layers, (0, 1] (full resolution: 0.5)
-    std::optional<bool> blend_impostor_views;          ///< impostors at full resolution blend their two nearest views and
-                                                       ///< walk phases (up to three fetches a fragment), fading in from the
-                                                       ///< far layer's limit to twice it (impostor_blend_from); false:
-                                                       ///< each shows its nearest view and phase (the far layers always do);
-                                                       ///< unset: blend_impostor_views_default(the context's device)
+    std::optional<ImpostorViews> impostor_views;       ///< how impostors at full resolution show their two nearest
+                                                       ///< views, walk phases and bands: blended or picked per pixel,
+                                                       ///< fading in from the far layer's limit to twice it
+                                                       ///< (impostor_blend_from), or the nearest (the far layers always
+                                                       ///< do); unset: impostor_views_default(the context's device)
     uint32_t max_texture_side = 2048;                  ///< material textures wider or taller are halved (2 x 2 means)
                                                        ///< until both sides fit, at registration: a crowd's character
                                                        ///< seldom covers more than 2048 pixels, and an 8192^2 texture
@@ -402,7 +405,7 @@ private:
     float far_layer_below_px_ = 0.0f;                 // options_.far_layer_below_px resolved for the device
     bool blend_texture_mips_ = true;                  // options_.blend_texture_mips resolved for the device
     float far_layer_meshes_below_px_ = 0.0f;          // options_.far_layer_meshes_below_px resolved for the device
-    bool blend_impostor_views_ = false;               // options_.blend_impostor_views resolved for the device
+    ImpostorViews impostor_views_ = ImpostorViews::Nearest;  // options_.impostor_views resolved for the device
     std::vector<FarMeshGroup> far_mesh_groups_;       // per topology t: its whole group 2t's records in order_
     std::vector<FarMeshBound> far_mesh_bounds_;       // per mesh: measured where it may be under the mesh limit
     FarLayerPlan far_plan_;                           // this frame's impostor runs and far layer

@@ -90,16 +90,20 @@ uint32_t CrowdRenderer::record_impostors(VkCommandBuffer cmd, Slot& slot, gpu::L
     }
     if (count == 0) return 0;
     const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    // Neighbouring views and phases blended at full resolution only, from the far layer's limit on this target (the
-    // layers' thousands of small quads show the nearest, with the pipeline that reads one texel a fragment, alpha-tested
-    // at the layers' threshold).
+    // Neighbouring views, phases and bands blended (or picked per pixel) at full resolution only, from the far layer's
+    // limit on this target (the layers' thousands of small quads show the nearest, with the pipeline that reads one
+    // texel a fragment, alpha-tested at the layers' threshold).
     const uint32_t blend_from = part == ImpostorPart::Near
-                                    ? impostor_blend_from(blend_impostor_views_, far_layer_limit(far_layer_below_px_, viewport_height))
+                                    ? impostor_blend_from(impostor_views_ != ImpostorViews::Nearest,
+                                                          far_layer_limit(far_layer_below_px_, viewport_height))
                                     : kImpostorNeverBlend;
     const bool blend = blend_from != kImpostorNeverBlend;
     const uint32_t upper = blend ? blend_from
                                  : impostor_alpha_test_bits(part == ImpostorPart::Near ? 0.5f : options_.far_layer_alpha_test);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, blend ? pipes_.impostor_blend() : pipes_.impostor());
+    const VkPipeline pipeline = !blend ? pipes_.impostor()
+                                : impostor_views_ == ImpostorViews::Pick ? pipes_.impostor_pick()
+                                                                         : pipes_.impostor_blend();
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
     const uint32_t base = impostor_base_;
     uint32_t draws = 0;
     for (const ImpostorRun& run : far_plan_.runs) {  // one draw per run of one atlas (its part in this layer)

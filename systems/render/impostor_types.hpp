@@ -10,6 +10,14 @@
 
 namespace aloha {
 
+/// How impostors drawn at full resolution show the baked pictures about the camera's direction and elevation and the
+/// character's walk phase (the far layers always show the nearest; shaders/impostor.*).
+enum class ImpostorViews : uint8_t {
+    Nearest,  ///< the nearest direction, phase and band: one atlas read a fragment
+    Blend,    ///< the weighted mean of the neighbouring pictures: up to four atlas reads a fragment
+    Pick,     ///< one of the neighbouring pictures a pixel, by a 4 x 4 dither of their weights: one atlas read
+};
+
 /// One impostor (the `impostor` geometric level): a camera-facing quad showing the cell of its type's atlas
 /// (register_impostor_atlas) nearest the camera's direction and the walk phase. 64 bytes, copied as is.
 struct ImpostorInstance {
@@ -81,7 +89,7 @@ inline constexpr uint32_t kImpostorNeverBlend = 0xffffffu;
 /// The elevation (radians above the horizon) band `e` of `elevations` views the character from: evenly from level to
 /// straight down, e x 90 / (elevations - 1) degrees (three bands: 0, 45 and 90; one band: level). The shader shows
 /// the band nearest the camera's elevation (band 0 for a camera below the pivot), within 90 / (2 (elevations - 1))
-/// degrees of it. Requires e < elevations.
+/// degrees of it, or blending (the impostor_blend pipeline) the two bands either side of it. Requires e < elevations.
 [[nodiscard]] inline float impostor_elevation(uint32_t e, uint32_t elevations) {
     return elevations > 1 ? 1.57079633f * static_cast<float>(e) / static_cast<float>(elevations - 1) : 0.0f;
 }

@@ -83,13 +83,19 @@ GeomLod level_of(int which) {
             g.phi_steps = 12;
             g.layers = kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin;
             break;
+        case 6:  // the rule files' layered_low: (8, 6) with the fat layer
+            g.method = GeomMethod::Layered;
+            g.theta_steps = 8;
+            g.phi_steps = 6;
+            g.layers = kLayerSkeleton | kLayerMuscle | kLayerFat | kLayerSkin;
+            break;
         default: g.method = GeomMethod::Subdivided; g.theta_steps = 8; g.phi_steps = 6; g.subdiv_level = 1; break;
     }
     return g;
 }
 
 // Arg 0: 0 RigidProxy, 1 SkinnedMesh(8,6), 2 Layered(8,6), 3 Layered(16,12), 4 Subdivided(8,6,1),
-// 5 Layered(16,12) with all four layers (fat springs stepped; 0-4 have the skeleton layer only);
+// 5 Layered(16,12) and 6 Layered(8,6) with all four layers (fat springs stepped; 0-4 have the skeleton layer only);
 // arg 1: characters per update call.
 void BM_ControllerUpdate(benchmark::State& state) {
     const Setup& st = setup();
@@ -116,7 +122,7 @@ void BM_ControllerUpdate(benchmark::State& state) {
     state.counters["verts"] = ctl.vertices_per_character(0);
     state.counters["bytes_per_char"] = static_cast<double>(ctl.bytes_per_character(0));
 }
-BENCHMARK(BM_ControllerUpdate)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 64}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ControllerUpdate)->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {1, 64}})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -25,14 +25,19 @@ TEST(Cli, ParsesProfileOptions) {
     EXPECT_TRUE(o.fidelity);
     EXPECT_FALSE(o.max_texture_side) << "unset: the renderer's default";
     EXPECT_FALSE(o.impostor_elevations) << "unset: the world's default";
-    EXPECT_FALSE(o.blend_impostor_views) << "unset: by device";
+    EXPECT_FALSE(o.impostor_views) << "unset: by device";
     EXPECT_FALSE(o.far_layer_alpha_test) << "unset: the renderer's default";
     auto t = parse({"render", "scene.json", "--texture-max", "512", "--impostor-elevations", "1", "--impostor-views", "nearest",
                     "--far-layer-alpha", "50"});
     ASSERT_TRUE(t.ok()) << t.error().to_string();
     EXPECT_EQ(t.value().max_texture_side, 512u);
     EXPECT_EQ(t.value().impostor_elevations, 1u);
-    EXPECT_EQ(t.value().blend_impostor_views, false);
+    EXPECT_EQ(t.value().impostor_views, ImpostorViews::Nearest);
+    for (const auto& [word, views] : {std::pair{"blend", ImpostorViews::Blend}, std::pair{"pick", ImpostorViews::Pick}}) {
+        auto v = parse({"profile", "scene.json", "--impostor-views", word});
+        ASSERT_TRUE(v.ok()) << v.error().to_string();
+        EXPECT_EQ(v.value().impostor_views, views) << word;
+    }
     EXPECT_FLOAT_EQ(*t.value().far_layer_alpha_test, 0.5f);
 }
 

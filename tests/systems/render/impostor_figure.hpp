@@ -84,10 +84,11 @@ inline Mask mask_of(const gpu::Rgba8Image& img) {  // clear colour is black: the
     return m;
 }
 
-// The camera kDistance from mid-height at `azimuth` about it and `elevation` above the level, aimed at it.
-inline FrameInput camera_frame(float azimuth, float elevation = 0.0f) {
+// The camera kDistance from the point `target_y` up the vertical axis (the figure's mid-height by default) at
+// `azimuth` about it and `elevation` above the level, aimed at it.
+inline FrameInput camera_frame(float azimuth, float elevation = 0.0f, float target_y = 0.9f) {
     FrameInput f;
-    const glm::vec3 target(0.0f, 0.9f, 0.0f);
+    const glm::vec3 target(0.0f, target_y, 0.0f);
     const glm::vec3 eye = target + kDistance * glm::vec3(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
                                                          std::cos(azimuth) * std::cos(elevation));
     f.camera.view = glm::lookAt(eye, target, glm::vec3(0, 1, 0));
