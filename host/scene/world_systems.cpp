@@ -116,6 +116,10 @@ void World::register_systems() {
             job.camera = camera_;
             job.grid = &occlusion_grid_;
             job.attributes = a.write<LodAttributes>();
+            if (job.NoneCanBeHidden()) {  // a close-up's one character: no grid to fill
+                job.ClearAll();
+                return;
+            }
             // Pass 1 in one part per thread (a grid each, merged: the same grid bit for bit), but no more parts
             // than kOcclusionPartGrain characters each fill: a small crowd (a close-up's one character) is rasterised on
             // this thread, not handed to a worker that a busy machine may leave unscheduled for milliseconds

@@ -120,8 +120,23 @@ bool level_camera_of(const LodCamera& camera) { return std::fabs(camera.view[1][
 }  // namespace
 
 size_t OcclusionJob::Run() const {
+    if (NoneCanBeHidden()) {
+        ClearAll();
+        return 0;
+    }
     Rasterise();
     return Test(0, transforms.size());
+}
+
+bool OcclusionJob::NoneCanBeHidden() const {
+    size_t visible = 0;
+    for (const LodAttributes& a : attributes)
+        if (a.visible && ++visible > 1) return false;
+    return true;
+}
+
+void OcclusionJob::ClearAll() const {
+    for (LodAttributes& a : attributes) a.occluded = 0.0f;
 }
 
 void OcclusionJob::Rasterise() const {

@@ -73,6 +73,23 @@ TEST(Occlusion, NotVisibleAndRolledCamerasGetNothing) {
 }
 
 
+TEST(Occlusion, OneVisibleCharacterHidesNobodyAndNeedsNoGrid) {
+    Scene s;
+    s.add({0, -1, 5}, 4.0f, 0.4f);  // would hide character 1 were it visible
+    s.add({0, 0, -10});
+    s.a[0].visible = 0;
+    s.a[1].occluded = 0.7f;  // last frame's
+    EXPECT_EQ(s.run(level_camera(), solid_cores()), 0u);
+    EXPECT_EQ(s.a[0].occluded, 0.0f);
+    EXPECT_EQ(s.a[1].occluded, 0.0f);
+    EXPECT_EQ(s.grid.width, 0) << "the grid was never filled";
+    // With both visible the passes run as before: the same answer as filling the grid.
+    s.a[0].visible = 1;
+    EXPECT_EQ(s.run(level_camera(), solid_cores()), 1u);
+    EXPECT_GT(s.grid.width, 0);
+    EXPECT_EQ(s.a[1].occluded, 1.0f);
+}
+
 TEST(Occlusion, EveryFullyOccludedCharacterIsReallyHiddenByCores) {
     // A dense crowd, 30 wide and 60 deep, 0.7 m apart with +-0.15 m jitter, heights 1.55-1.95 m, seen
     // from eye height at its front edge (a spectator's view).
