@@ -253,6 +253,8 @@ int run_profile(const CliOptions& options) {
     // All threads' CPU time per step; with --gpu-overlap on a frame's GPU work spills into the next step's.
     report["process_cpu_ms"] = to_json(summarize(series([](const FrameRecord& r) { return r.process_cpu_ms; })));
     if (render) report["render_passes"] = gpu_report(series_of(records, [](const FrameRecord& r) { return r.gpu; }));
+    report["renderer"] = s.renderer ? renderer_report(s.renderer->resolved_options(), world.options().impostor_elevations)
+                                    : nlohmann::json(nullptr);
     nlohmann::json levels;
     std::vector<std::string> gnames, anames;
     for (const auto& l : table.geom_levels) gnames.push_back(l.name);
@@ -379,7 +381,9 @@ int run_profile(const CliOptions& options) {
     for (const World::ImpostorReport& a : world.impostor_atlases())
         std::cout << "impostor atlas '" << a.type << "': " << a.width << " x " << a.height << " px, " << fmt(a.build_ms) << (a.cached ? " ms from the bake cache, " : " ms to bake, ")
                   << fmt(double(a.texture_bytes) / 1048576.0) << " MiB with mips\n";
-    std::cout << bake_cache_line(world) << lod_summary(report);
+    std::cout << bake_cache_line(world);
+    if (report["renderer"].is_object()) std::cout << renderer_line(report["renderer"]);
+    std::cout << lod_summary(report);
     if (motion) std::cout << motion->table(table);
     if (fidelity) std::cout << fidelity_summary(report["fidelity"]);
     std::cout << "state hash " << state_hash(world) << "; reports in " << out << "/\n";

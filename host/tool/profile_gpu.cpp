@@ -3,6 +3,7 @@
 #include "host/tool/stats.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -93,6 +94,34 @@ std::string gpu_table(const nlohmann::json& render_passes) {
             ex << " (" << p["frames"].get<size_t>() << " frames)";
         row("  gpu: " + p["name"].get<std::string>(), p, ex.str());
     }
+    return o.str();
+}
+
+nlohmann::json renderer_report(const RendererOptions& resolved, uint32_t impostor_elevations) {
+    return {{"far_layer_px", resolved.far_layer_below_px.value_or(0.0f)},
+            {"far_layer_meshes_px", resolved.far_layer_meshes_below_px.value_or(0.0f)},
+            {"distant_layer_px", resolved.distant_layer_below_px},
+            {"far_layer_alpha_test", resolved.far_layer_alpha_test},
+            {"texture_mips", resolved.blend_texture_mips.value_or(true) ? "blend" : "nearest"},
+            {"impostor_views", impostor_views_name(resolved.impostor_views.value_or(ImpostorViews::Nearest))},
+            {"max_texture_side", resolved.max_texture_side},
+            {"constant_fragments", resolved.constant_fragments},
+            {"impostor_elevations", impostor_elevations}};
+}
+
+std::string renderer_line(const nlohmann::json& r) {
+    std::ostringstream o;
+    const auto px = [&](const char* key) {
+        const double v = r[key].get<double>();
+        return v > 0.0 ? "under " + std::to_string(static_cast<int>(std::lround(v))) + " px" : std::string("off");
+    };
+    o << "renderer: far layer " << px("far_layer_px") << " (meshes " << px("far_layer_meshes_px") << ", alpha test "
+      << std::lround(100.0 * r["far_layer_alpha_test"].get<double>()) << "%), distant layer " << px("distant_layer_px")
+      << ", texture mips " << r["texture_mips"].get<std::string>() << ", impostor views "
+      << r["impostor_views"].get<std::string>() << ", " << r["impostor_elevations"].get<uint32_t>()
+      << " bands of impostor views";
+    if (r["constant_fragments"].get<bool>()) o << ", constant fragments";
+    o << "\n";
     return o.str();
 }
 

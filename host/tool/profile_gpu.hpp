@@ -32,6 +32,15 @@ struct GpuSample {
 /// Lines for the printed table (same columns as the systems: mean p50 p95 p99 max), upload first.
 [[nodiscard]] std::string gpu_table(const nlohmann::json& render_passes);
 
+/// report.json's "renderer": the settings `resolved` (CrowdRenderer::resolved_options) draws with and the atlases'
+/// bands of views, each default resolved for the device, so that reports from different machines say what was drawn:
+/// far_layer_px, far_layer_meshes_px, distant_layer_px (0: off), far_layer_alpha_test, texture_mips and
+/// impostor_views (their words on the command line), max_texture_side, constant_fragments, impostor_elevations.
+[[nodiscard]] nlohmann::json renderer_report(const RendererOptions& resolved, uint32_t impostor_elevations);
+
+/// The printed line for a "renderer" report ("renderer: far layer under 70 px, ...").
+[[nodiscard]] std::string renderer_line(const nlohmann::json& renderer);
+
 /// Appends TraceKind::Gpu events for each sampled frame's passes to `trace`, naming them after `names`
 /// (pass names are appended to it). GPU timestamps have no common clock with the CPU here, so each frame's
 /// passes are placed to end when frame `frame`'s run of system `render_system` ended (the renderer waits for

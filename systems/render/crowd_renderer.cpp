@@ -34,6 +34,15 @@ Result<std::unique_ptr<CrowdRenderer>> CrowdRenderer::create(gpu::Context& ctx, 
     return r;
 }
 
+RendererOptions CrowdRenderer::resolved_options() const {
+    RendererOptions o = options_;
+    o.far_layer_below_px = far_layer_below_px_;
+    o.far_layer_meshes_below_px = far_layer_meshes_below_px_;
+    o.blend_texture_mips = blend_texture_mips_;
+    o.impostor_views = impostor_views_;
+    return o;
+}
+
 Status CrowdRenderer::init(const RendererOptions& options) {
     if (!(options.far_layer_alpha_test > 0.0f && options.far_layer_alpha_test <= 1.0f))
         return gpu::gpu_error("CrowdRenderer: far_layer_alpha_test " + std::to_string(options.far_layer_alpha_test) +

@@ -269,6 +269,10 @@ public:
 
     /// GPU time of the most recently completed frame in ms (timestamp queries); -1 when unavailable.
     [[nodiscard]] double last_gpu_ms() const { return last_gpu_ms_; }
+    /// The options this renderer runs with: those it was created with, every unset one resolved for the device
+    /// (far_layer_default, far_layer_meshes_default, blend_texture_mips_default, impostor_views_default), and
+    /// frames_in_flight as clamped. What a profile report records, so that runs on different devices compare.
+    [[nodiscard]] RendererOptions resolved_options() const;
     /// Per-pass GPU times of the most recently completed frame; empty without pass_timestamps.
     [[nodiscard]] std::span<const GpuPassTime> last_gpu_passes() const { return last_passes_; }
     /// CPU time of the last frame's upload (copies into mapped buffers) in ms.

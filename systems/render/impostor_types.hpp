@@ -18,6 +18,11 @@ enum class ImpostorViews : uint8_t {
     Pick,     ///< one of the neighbouring pictures a pixel, by a 4 x 4 dither of their weights: one atlas read
 };
 
+/// The word for `views` on the command line and in reports: "nearest", "blend" or "pick".
+[[nodiscard]] inline const char* impostor_views_name(ImpostorViews views) {
+    return views == ImpostorViews::Blend ? "blend" : views == ImpostorViews::Pick ? "pick" : "nearest";
+}
+
 /// One impostor (the `impostor` geometric level): a camera-facing quad showing the cell of its type's atlas
 /// (register_impostor_atlas) nearest the camera's direction and the walk phase. 64 bytes, copied as is.
 struct ImpostorInstance {

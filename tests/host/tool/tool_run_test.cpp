@@ -2,6 +2,7 @@
 #include "engine/anim/humanoid_map.hpp"
 #include "systems/geometry/controller/bake_code_digest.hpp"
 #include "systems/geometry/controller/skin_bake.hpp"
+#include "systems/render/far_layer.hpp"
 #include "tests/common/rig_fixtures.hpp"
 #include "tests/host/tool/tool_run.hpp"
 
@@ -93,6 +94,24 @@ TEST(Tool, ProfileWritesEveryReport) {
     for (const char* track : {"system: lod_attributes", "system: motion", "system: muscle", "system: spring_skin", "system: render", "worker 0"})
         EXPECT_TRUE(tracks.count(track)) << track;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    // What the renderer drew with, each default resolved for the device (lavapipe here: the far layer, nearest mips and
+    // impostor views), printed and in the report; a second run's options show there.
+    const nlohmann::json& drawn = report["renderer"];
+    EXPECT_EQ(drawn["far_layer_px"].get<double>(), double(aloha::kDefaultFarLayerBelowPx));
+    EXPECT_EQ(drawn["texture_mips"], "nearest");
+    EXPECT_EQ(drawn["impostor_views"], "nearest");
+    EXPECT_EQ(drawn["impostor_elevations"], 3);
+    EXPECT_NE(r.output.find("renderer: far layer under " + std::to_string(int(aloha::kDefaultFarLayerBelowPx)) + " px"), std::string::npos)
+        << r.output;
+    const RunResult chosen = run("profile " + kScenes + "crowd_1k.json --frames 1 --warmup 0 --characters 20 --quiet --far-layer 0 "
+                                 "--impostor-views pick --texture-mips blend --out " + (out / "chosen").string());
+    ASSERT_EQ(chosen.code, 0) << chosen.output;
+    std::ifstream chosen_in(out / "chosen" / "report.json");
+    const nlohmann::json chosen_report = nlohmann::json::parse(chosen_in);
+    EXPECT_EQ(chosen_report["renderer"]["far_layer_px"].get<double>(), 0.0);
+    EXPECT_EQ(chosen_report["renderer"]["impostor_views"], "pick");
+    EXPECT_EQ(chosen_report["renderer"]["texture_mips"], "blend");
+    EXPECT_NE(chosen.output.find("renderer: far layer off"), std::string::npos) << chosen.output;
     // A second run refuses to overwrite the reports without --force.
     const RunResult again = run("profile " + kScenes + "crowd_1k.json --frames 2 --characters 50 --quiet --out " + (out / "p").string());
     EXPECT_NE(again.code, 0);
