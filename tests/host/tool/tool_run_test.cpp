@@ -119,6 +119,19 @@ TEST(Tool, ProfileWritesEveryReport) {
     fs::remove_all(out);
 }
 
+// --constant-fragments (the fragment cost alone) under validation: the constant shader's interface matches the vertex
+// shader's outputs, so the validation layers have nothing to say; the report records it.
+TEST(Tool, ProfileConstantFragmentsPassesValidation) {
+    const fs::path out = temp_dir("profile_constant");
+    const RunResult r = run("profile " + kScenes + "closeup.json --frames 2 --warmup 0 --constant-fragments --quiet --validation "
+                            "--out " + (out / "p").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("alidation"), std::string::npos) << r.output;
+    std::ifstream in(out / "p" / "report.json");
+    EXPECT_EQ(nlohmann::json::parse(in)["renderer"]["constant_fragments"], true);
+    fs::remove_all(out);
+}
+
 // --fidelity waits for every frame (its probe reads each one back and draws its reference with the same
 // renderer), so the default --gpu-overlap auto runs serially and the report says so.
 TEST(Tool, ProfileFidelityRunsEveryFrameSerially) {
