@@ -238,10 +238,8 @@ void convert(Bindings& b) {
     if (!b.distant_layer.empty()) o.distant_layer_px = float(u32(b.distant_layer));
     if (!b.impostor_elevations.empty()) o.impostor_elevations = u32(b.impostor_elevations);
     if (!b.texture_mips.empty()) o.blend_texture_mips = b.texture_mips == "blend";
-    if (!b.impostor_views.empty())
-        o.impostor_views = b.impostor_views == "blend" ? ImpostorViews::Blend
-                           : b.impostor_views == "pick" ? ImpostorViews::Pick
-                                                        : ImpostorViews::Nearest;
+    for (const ImpostorViews views : {ImpostorViews::Nearest, ImpostorViews::Blend, ImpostorViews::Pick})
+        if (b.impostor_views == impostor_views_name(views)) o.impostor_views = views;  // one_of() checked the word
     if (!b.far_layer_alpha.empty()) o.far_layer_alpha_test = float(u32(b.far_layer_alpha)) / 100.0f;
     if (!b.texture_max.empty()) o.max_texture_side = u32(b.texture_max);
     if (!b.height.empty()) o.height = u32(b.height);
