@@ -87,10 +87,19 @@ bool corner_texel(uint a, out uvec2 packed) {
     return true;
 }
 
-// The light in the frame of corner `a`'s view and band.
-vec3 corner_light(uint a) {
-    uint k = (a & 1u) | ((a & 4u) >> 1u);
-    return k == 0u ? v_light_fade.xyz : k == 1u ? v_light1 : k == 2u ? v_light2 : v_light3;
+// The colour corner `a`'s picture shows at this pixel, lit with the light and the world up in its view's and band's
+// frame, where that picture covers the pixel (alpha-tested at one half, a sharp silhouette of its own); false
+// elsewhere.
+bool corner_colour(uint a, out vec3 shown) {
+    shown = vec3(0.0);
+    uvec2 packed;
+    if (!corner_texel(a, packed)) return false;
+    vec4 colour = unpackUnorm4x8(packed.x);
+    if (colour.a < 0.5) return false;
+    uint k = (a & 1u) | ((a & 4u) >> 1u);  // (view, band): 00, 10, 01, 11
+    vec3 light = k == 0u ? v_light_fade.xyz : k == 1u ? v_light1 : k == 2u ? v_light2 : v_light3;
+    shown = shade(colour, unpackUnorm4x8(packed.y), light, (a & 4u) != 0u ? v_up1 : v_up);
+    return true;
 }
 #endif
 
@@ -125,23 +134,16 @@ void main() {
     // (a 4 x 4 dither of the two whose mean is the blend's); where one alone covers it, at a share of the pixels equal
     // to its weight, as the blend does.
     float below = v_weights.x, next = v_weights.x + v_weights.y, last = next + v_weights.z;
-    uint a = corner[door < below ? 0 : door < next ? 1 : door < last ? 2 : 3];
-    uvec2 packed;
-    if (!corner_texel(a, packed)) discard;
-    vec4 colour = unpackUnorm4x8(packed.x);
-    if (colour.a < 0.5) discard;
-    out_colour = vec4(shade(colour, unpackUnorm4x8(packed.y), corner_light(a), (a & 4u) != 0u ? v_up1 : v_up), v_colour.a);
+    vec3 shown;
+    if (!corner_colour(corner[door < below ? 0 : door < next ? 1 : door < last ? 2 : 3], shown)) discard;
+    out_colour = vec4(shown, v_colour.a);
 #else
     vec4 sum = vec4(0.0);
     for (int i = 0; i < 4; ++i) {
         float w = v_weights[i];
-        if (w <= 0.0) continue;
-        uint a = corner[i];
-        uvec2 packed;
-        if (!corner_texel(a, packed)) continue;
-        vec4 colour = unpackUnorm4x8(packed.x);
-        if (colour.a < 0.5) continue;
-        sum += w * vec4(shade(colour, unpackUnorm4x8(packed.y), corner_light(a), (a & 4u) != 0u ? v_up1 : v_up), 1.0);
+        vec3 shown;
+        if (w <= 0.0 || !corner_colour(corner[i], shown)) continue;
+        sum += w * vec4(shown, 1.0);
     }
     if (sum.a <= door) discard;
     out_colour = vec4(sum.rgb / sum.a, v_colour.a);

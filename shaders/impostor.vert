@@ -260,7 +260,7 @@ void main() {
     include_corner(two_axes, weights.z, cell_rows, v0, v1, b, second);
     include_corner(7u, weights.w, cell_rows, v0, v1, b, second);
     include_band_cell(b, second, pivot, right, scale, up1, cell_height1, up, cell_height);
-    float row0 = b0 * rows + k0, row1 = b0 * rows + k1;  // among every band's rows
+    float row0 = cell_rows.x, row1 = cell_rows.y;  // among every band's rows
 #else
     // The nearest baked direction and walk phase.
     float v0 = mod(floor(av + 0.5), dirs);
@@ -291,7 +291,7 @@ void main() {
     v_uv = c;
     vec3 on1 = wb > 0.0 ? across(c, pivot, right, scale, up, cell_height, up1, cell_height1) : vec3(c, 1.0);
     v_cell1 = vec3(on1.xy * on1.z, on1.z);
-    v_base = vec4(v0 / dirs, (row0 + 1.0) / all_rows, (b1 * rows + k0 + 1.0) / all_rows, 0.0);
+    v_base = vec4(v0 / dirs, (row0 + 1.0) / all_rows, (cell_rows.z + 1.0) / all_rows, 0.0);
     v_step = vec4((v1 - v0) / dirs, (row1 - row0) / all_rows, 1.0 / dirs, 1.0 / all_rows);
     v_weights = weights;
     v_corners = uvec2(first_axis, two_axes);

@@ -90,7 +90,8 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "(blend: up to four atlas reads a fragment) or one of them a pixel by a dither of their weights (pick: one "
                  "read), fading in from the far layer's limit to twice it, or the nearest (nearest); default nearest on a "
                  "software rasteriser, blend on a GPU; the far layers show the nearest")
-        ->check(one_of({"blend", "pick", "nearest"}));
+        ->check(one_of({impostor_views_name(ImpostorViews::Blend), impostor_views_name(ImpostorViews::Pick),
+                        impostor_views_name(ImpostorViews::Nearest)}));
     c.add_option("--texture-mips", b.texture_mips,
                  "material textures read from the two nearest mip levels blended (blend, trilinear) or from the nearest one "
                  "(nearest; default nearest on a software rasteriser, blend on a GPU)")
