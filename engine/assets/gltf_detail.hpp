@@ -185,8 +185,14 @@ struct ImageDecodeLog {
 
 /// tinygltf image loader: decodes PNG/JPEG with stb_image into RGBA8, refusing images larger than
 /// 8192 x 8192; a failure is logged in the ImageDecodeLog passed as `user` and the load goes on.
+/// An image stored in a bufferView is left for decode_buffer_view_images: tinygltf hands the callback
+/// the view's bytes without checking that they lie inside the buffer.
 bool decode_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int req_width,
                   int req_height, const unsigned char* bytes, int size, void* user);
+
+/// Decodes every image stored in a bufferView (after tinygltf's load, which left them): a view whose
+/// bytes do not lie inside its buffer is logged in `log` as a failure, like an image that does not decode.
+void decode_buffer_view_images(tinygltf::Model* model, ImageDecodeLog* log);
 
 /// Converts animation `index` into a clip with tracks in RAW joint order; notes skipped channels
 /// (`weights` channels are only counted in `morph_channels`, for one note per file).

@@ -146,6 +146,7 @@ Result<GltfCharacter> load_from_memory(const unsigned char* bytes, size_t size, 
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
         return make_error(file, "not a valid glTF file: " + (err.empty() ? std::string("unknown error") : err));
     }
+    decode_buffer_view_images(&model, &images);
     std::vector<std::string> decoded;
     if (Status prepared = prepare_buffers(&model, file, &decoded); !prepared.ok()) return prepared.error();
     if (model.skins.empty()) {

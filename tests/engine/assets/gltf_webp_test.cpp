@@ -2,6 +2,7 @@
 // the PNG fallback its `source` names; a file that requires the extension loads; broken WebP data is
 // noted (the material drawn untextured) and a malformed extension is an error naming it. Images are
 // encoded in the test with libwebp's lossless encoder, so decoded texels must equal the input exactly.
+// An image whose bufferView runs outside its buffer (PNG or WebP) is noted and never read.
 #include "engine/assets/gltf_loader.hpp"
 #include "tests/common/gltf_builder.hpp"
 #include "tests/common/png_bytes.hpp"
@@ -115,6 +116,30 @@ TEST(GltfWebp, MalformedExtensionIsAnErrorNamingIt) {
     Result<GltfCharacter> r = load_with(b, {{"extensions", {{"EXT_texture_webp", {{"source", 5}}}}}});
     ASSERT_TRUE(r.ok()) << r.error().to_string();
     EXPECT_TRUE(has_note(r.value(), "textures[0]: no usable image source (5)"));
+}
+
+// Regression (found by fuzz_gltf, fixed): tinygltf hands the image callback a bufferView's bytes without checking them
+// against the buffer, so a view past the buffer's end was read out of bounds (a heap overflow or a read of freed memory
+// under ASan). Views starting past the end and views running over it are both noted; the material drawn untextured.
+TEST(GltfWebp, ImageViewOutsideItsBufferIsNotedAndNotRead) {
+    for (const char* mime : {"image/webp", "image/png"}) {
+        for (const bool starts_outside : {true, false}) {
+            GltfBuilder b;
+            const std::vector<unsigned char> bytes = std::string(mime) == "image/png" ? test::png_bytes(kTexels, 2, 2) : webp(kTexels, 2, 2);
+            const int image = b.image(bytes, mime);
+            json& view = b.doc["bufferViews"][static_cast<size_t>(b.doc["images"][static_cast<size_t>(image)]["bufferView"].get<int>())];
+            if (starts_outside)
+                view["byteOffset"] = 1u << 20;
+            else
+                view["byteLength"] = (1u << 20) + bytes.size();
+            const json texture = std::string(mime) == "image/png" ? json{{"source", image}} : json{{"extensions", {{"EXT_texture_webp", {{"source", image}}}}}};
+            Result<GltfCharacter> r = load_with(b, texture);
+            ASSERT_TRUE(r.ok()) << mime << ": " << r.error().to_string();
+            EXPECT_EQ(r.value().materials[0].texture, -1) << mime;
+            EXPECT_TRUE(has_note(r.value(), "images[0]: bufferView 0 (bytes ")) << mime << (starts_outside ? " starting" : " running") << " outside";
+            EXPECT_TRUE(has_note(r.value(), ") lies outside buffer 0 of ")) << mime;
+        }
+    }
 }
 
 }  // namespace
