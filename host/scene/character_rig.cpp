@@ -22,9 +22,14 @@ Result<NormalisedRig> normalise_file_rig(const Skeleton& original, const Charact
     if (!frame.ok()) return frame.error();
     rig.frame = std::move(frame.value());
     if (desc.standing_height > 0.0f) {
-        if (!(rig.frame.height > 0.0f))
-            return make_error(desc.scene_file, "type '" + desc.name + "' from " + file + " is no mapped humanoid: it has no standing height to vary",
-                              0, 0, desc.pointer);
+        if (!(rig.frame.height > 0.0f)) {
+            // A crowd's height range asked for it: the error is at the range, naming the type as the scene does.
+            const std::string type = desc.clip_prefix.empty() ? desc.name : desc.clip_prefix;
+            return make_error(desc.scene_file,
+                              "type '" + type + "' from " + file + " is no mapped humanoid: it has no standing height to vary (give it a " +
+                                  "'humanoid_map', or drop the crowd's height range)",
+                              0, 0, desc.variant_of.empty() ? desc.pointer : desc.variant_of);
+        }
         const float factor = desc.standing_height / rig.frame.height;  // the whole body, clips and mesh alike
         rig.frame.metres_per_unit *= factor;
         rig.frame.height = desc.standing_height;

@@ -25,10 +25,18 @@ struct ResolvedRequest {
 /// Why request `rd` cannot be queued for a character of `type` (resolve_request's problem), or "" when it can.
 [[nodiscard]] std::string request_problem(const CharacterType& type, const RequestDesc& rd);
 
+/// Where scene `scene` asks for request `k` (or the overlay, when `overlay`) of character `index` of
+/// expand_characters(scene): the JSON pointer of a placed character's request or overlay ("/characters/3/requests/1"),
+/// or of the crowd key that made a crowd member's ("/crowds/0/clip" for its idlers, "/crowds/0/mix/reach" for its
+/// reachers, who reach with a wrist; "/crowds/0" for its walkers).
+[[nodiscard]] std::string request_place(const SceneDesc& scene, size_t index, const RequestDesc& rd, size_t k, bool overlay);
+
 /// Every distinct problem of the requests and overlays of the scene's characters, crowd members
 /// included, against `types` (types[i] for scene.types[i]; nullptr where the type failed to load
-/// and is reported elsewhere). Each error names the scene file, the first character with the problem
-/// and how many others share it.
+/// and is reported elsewhere). Each error names the scene file and the JSON pointer of the first placed character's
+/// request or overlay with the problem ("/characters/3/requests/1") and how many others share it; a crowd member's
+/// problem is named at the crowd key that asked for it ("/crowds/0/clip" for its idlers, "/crowds/0/mix/reach" for
+/// its reachers, who reach with a wrist), one line per crowd.
 [[nodiscard]] std::vector<Error> scene_request_problems(const SceneDesc& scene, const std::vector<const CharacterType*>& types);
 
 }  // namespace aloha

@@ -66,6 +66,8 @@ struct CharacterTypeDesc {
                                    ///< choice (a file animation named like an idle, else the generated idle)
     float standing_height = 0.0f;  ///< bvh/gltf: a mapped humanoid scaled uniformly to stand this tall (m; a crowd's
                                    ///< height variants), 0 = as its file and `scale` make it
+    std::string variant_of;        ///< a crowd's body variant: the JSON pointer of the range that made it ("/crowds/2/height");
+                                   ///< "" for a type of the file's own
 };
 
 /// A named walk path: waypoints on the ground (y ignored), optionally looping.

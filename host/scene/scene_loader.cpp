@@ -245,6 +245,7 @@ void add_body_variants(SceneDesc& scene, std::vector<Error>& errors) {
             }
             if (crowd.build_max >= 0.0f) t.build = crowd.build_min + (crowd.build_max - crowd.build_min) * g;
             t.name = base.name + "~" + std::to_string(ci) + "." + std::to_string(v);
+            t.variant_of = "/crowds/" + std::to_string(ci) + (crowd.height_max > 0.0f ? "/height" : "/build");
             t.clip_prefix = base.clip_prefix.empty() ? base.name : base.clip_prefix;
             crowd.variant_types.push_back(static_cast<int>(scene.types.size()));
             scene.types.push_back(std::move(t));

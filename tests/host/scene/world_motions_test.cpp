@@ -114,6 +114,21 @@ TEST(WorldMotions, FileCharacterCrowdVariesInHeight) {
     ASSERT_FALSE(built.ok());
     EXPECT_NE(built.error().to_string().find("/crowds/0/build: build variety needs a 'humanoid' character type"), std::string::npos)
         << built.error().to_string();
+
+    // A height range on a file's character that is no humanoid: the error is at the range and names the type as the
+    // scene does (not the variant's internal name, found by scripts/scene_soak.py).
+    std::ofstream(dir / "dog.bvh") << test::bvh_text(test::quadruped(), 30, glm::vec3(0, 0, 1), 1.0f);
+    const SceneDesc dogs = scene_from_json(R"({"name": "d", "frames": 1, "camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
+      "character_types": [{"name": "dog", "bvh": "dog.bvh"}],
+      "crowds": [{"type": "dog", "count": 2, "mix": {"walk": 0, "idle": 1, "reach": 0}, "height": [0.5, 0.7], "variants": 2}]})",
+                                           (dir / "scene.json").string());
+    ASSERT_EQ(dogs.types.size(), 3u) << "the type and its two variants";
+    const Result<CharacterType> variant = load_character_type(dogs.types[1]);
+    ASSERT_FALSE(variant.ok());
+    EXPECT_NE(variant.error().to_string().find("/crowds/0/height: type 'dog' from "), std::string::npos) << variant.error().to_string();
+    EXPECT_NE(variant.error().to_string().find("is no mapped humanoid: it has no standing height to vary (give it a 'humanoid_map', or drop"),
+              std::string::npos)
+        << variant.error().to_string();
     fs::remove_all(dir);
 }
 

@@ -248,27 +248,31 @@ TEST(Tool, ValidateReportsBadScenesAndPassesGoodOnes) {
 }
 
 // Requests World would refuse when it queues them (a clip or an effector joint the character's type does
-// not have) fail `aloha validate` too: one line per distinct problem, with how many requests share it,
-// crowd members included.
+// not have) fail `aloha validate` too: one line per distinct problem, at the JSON pointer of the first request
+// with it and with how many requests share it; crowd members' at the crowd's key; an unknown clip's line lists
+// the type's clips.
 TEST(Tool, ValidateChecksRequestsAgainstTheirCharacterType) {
     const fs::path out = temp_dir("validate_requests");
     aloha::test::write_text((out / "scene.json").string(), R"({"camera": {"position": [0, 1.5, 4], "target": [0, 1, 0]},
         "characters": [
           {"type": "humanoid", "position": [0, 0, 0], "requests": [{"type": "play", "clip": "no_such_clip"}]},
           {"type": "humanoid", "position": [2, 0, 0], "requests": [{"type": "reach", "effector": "Tail", "target": [2, 1, 1]}]},
-          {"type": "humanoid", "position": [4, 0, 0], "requests": [{"type": "reach", "effector": "Tail", "target": [4, 1, 1]}]}],
+          {"type": "humanoid", "position": [4, 0, 0], "requests": [{"type": "reach", "effector": "Tail", "target": [4, 1, 1]}]},
+          {"type": "humanoid", "position": [6, 0, 0], "requests": [{"type": "play", "clip": "wave"}]}],
         "crowds": [{"type": "humanoid", "count": 20, "clip": "nope", "mix": {"walk": 0, "idle": 1, "reach": 0}}]})");
     const RunResult r = run("validate " + (out / "scene.json").string());
     EXPECT_EQ(r.code, 1) << r.output;
-    for (const char* line : {"scene.json: character 0 request 0: unknown clip 'no_such_clip' for type 'humanoid'\n",
-                             "scene.json: character 1 request 0: unknown effector joint 'Tail' for type 'humanoid' (and 1 more request like it)\n",
-                             "scene.json: character 3 request 0: unknown clip 'nope' for type 'humanoid' (and 19 more requests like it)\n",
-                             "scene.json: 3 problem(s)"})
+    for (const char* line : {"scene.json: /characters/0/requests/0: unknown clip 'no_such_clip' for type 'humanoid' (its clips: 'humanoid.walk_0.50', ",
+                             "scene.json: /characters/1/requests/0: unknown effector joint 'Tail' for type 'humanoid' (and 1 more request like it)\n",
+                             "scene.json: /characters/3/requests/0: unknown clip 'wave' for type 'humanoid' (clips are named after their type: did you "
+                             "mean 'humanoid.wave'?)\n",
+                             "scene.json: /crowds/0/clip: unknown clip 'nope' for type 'humanoid' (its clips: 'humanoid.walk_0.50', ",
+                             "'humanoid.idle', ", "'humanoid.wave') (and 19 more requests like it)\n", "scene.json: 4 problem(s)"})
         EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
     // The same scene fails to render with the first of them.
     const RunResult render = run("render " + (out / "scene.json").string() + " --frame 0 --out " + (out / "f.png").string());
     EXPECT_EQ(render.code, 1) << render.output;
-    EXPECT_NE(render.output.find("character 0 request 0: unknown clip 'no_such_clip' for type 'humanoid'"), std::string::npos) << render.output;
+    EXPECT_NE(render.output.find("/characters/0/requests/0: unknown clip 'no_such_clip' for type 'humanoid'"), std::string::npos) << render.output;
     fs::remove_all(out);
 }
 
