@@ -112,16 +112,17 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
     for (size_t k = 0; k < c.requests.size(); ++k) {
         const RequestDesc& rd = c.requests[k];
         MotionRequest req = rd.request;
-        const std::string where = request_place(scene, index, rd, k, false);
+        // The place is only spelled out for an error: most loads queue every request.
+        const auto where = [&] { return request_place(scene, index, rd, k, false); };
         const ResolvedRequest resolved = resolve_request(type, rd);  // names looked up once
-        if (!resolved.problem.empty()) return make_error(scene.file, resolved.problem, 0, 0, where);
+        if (!resolved.problem.empty()) return make_error(scene.file, resolved.problem, 0, 0, where());
         if (req.kind == RequestKind::PlayClip) {
             req.clip = static_cast<uint16_t>(resolved.clip);
         } else if (req.kind == RequestKind::Walk && !rd.route.empty()) {
             // Its own looping route (a crowd's walk_route); ids stop below 0xFFFF, "no path".
             if (motion->path_count() >= 0xFFFF)
                 return make_error(scene.file, "more than 65535 walk paths and routes for type '" + type.name + "' (fewer circle walkers, or split them over types)",
-                                  0, 0, where);
+                                  0, 0, where());
             req.path = motion->add_path(rd.route, true);
         } else if (req.kind == RequestKind::Walk && !rd.path.empty()) {
             const auto it = std::find(path_names.begin(), path_names.end(), rd.path);
@@ -130,7 +131,7 @@ Status CharacterRuntime::queue_requests(const SceneDesc& scene, size_t index, co
             req.effector = static_cast<int16_t>(resolved.effector);
         }
         if (!motion->push_request(id, req))
-            return make_error(scene.file, "more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued", 0, 0, where);
+            return make_error(scene.file, "more than " + std::to_string(MotionController::kQueueCapacity) + " requests queued", 0, 0, where());
     }
     if (c.overlay) {
         MotionRequest req = c.overlay->request;
