@@ -26,6 +26,8 @@ struct TextureImage {
     TextureWrap wrap_u = TextureWrap::Repeat;  ///< along u (glTF wrapS)
     TextureWrap wrap_v = TextureWrap::Repeat;  ///< along v (glTF wrapT)
     bool nearest = false;                    ///< magnification/minification without filtering
+    /// Equal in every field, the name and pixels included.
+    friend bool operator==(const TextureImage&, const TextureImage&) = default;
 };
 
 /// A material: base colour = base_colour * texture(uv) (the texture term is 1 when texture < 0). The other
@@ -54,6 +56,8 @@ struct SurfaceMaterial {
     /// glTF metallicRoughnessTexture with the two factors baked in: roughness in green, metalness in blue.
     /// -1 = none (the factors alone).
     int metallic_roughness_texture = -1;
+    /// Equal in every field, the name included.
+    friend bool operator==(const SurfaceMaterial&, const SurfaceMaterial&) = default;
 };
 
 }  // namespace aloha

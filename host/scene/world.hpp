@@ -18,6 +18,7 @@
 #include "systems/frame/draw_lists.hpp"
 #include "systems/frame/geometry_frame.hpp"
 #include "systems/frame/gpu_overlap_policy.hpp"
+#include "systems/frame/impostor_share.hpp"
 #include "systems/frame/level_groups.hpp"
 #include "systems/geometry/controller/geometry_controller.hpp"
 #include "systems/lod/attributes.hpp"
@@ -86,6 +87,10 @@ struct WorldOptions {
     uint32_t impostor_elevations = 3;      ///< bands of views in each type's impostor atlas, 1 to 8: level views
                                            ///< only (1), or n evenly from level to straight down (the default 3:
                                            ///< 0, 45 and 90 degrees; each band one level atlas's memory and bake)
+    /// A type whose impostor bake input lies within this many atlas pixels of one already baked, scaled
+    /// (impostor_share_between: a file character's height variants), draws that atlas scaled instead of baking
+    /// its own; 0: every type bakes its own.
+    float impostor_share_px = kImpostorShareTolerancePx;
     bool pose_every_character = false;     ///< true: every character's pose is current every frame, seen or
                                            ///< not (tools that read every pose: motion metrics, export);
                                            ///< false: poses nobody reads are left out (PoseUse)
@@ -198,6 +203,11 @@ public:
         double build_ms = 0.0;        ///< bake wall time (posing, reference surfaces, GPU frames, read-back, upload)
         uint64_t texture_bytes = 0;   ///< mipmapped texture memory
         bool cached = false;          ///< read back from the bake cache (build_ms: posing, the read and the upload)
+        /// The type whose atlas this one draws, scaled (impostor_share_between found the two within the
+        /// tolerance); empty when it has its own. texture_bytes is 0 then: no memory of its own.
+        std::string shared_from;
+        float scale = 1.0f;           ///< with shared_from: its atlas drawn this many times as large
+        float distance_px = 0.0f;     ///< with shared_from: the largest distance found, in that atlas's pixels
     };
     /// The atlases baked for the attached renderer.
     [[nodiscard]] std::span<const ImpostorReport> impostor_atlases() const { return impostor_reports_; }

@@ -4,6 +4,7 @@
 #include "host/scene/world.hpp"
 #include "engine/core/blob_store.hpp"
 #include "engine/gpu/context.hpp"
+#include "systems/frame/impostor_share.hpp"
 #include "systems/frame/impostor_source.hpp"
 #include "systems/motion/kinematic_walk.hpp"
 #include "systems/motion/local_to_model.hpp"
@@ -12,6 +13,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 namespace aloha {
 namespace {
@@ -45,6 +48,14 @@ std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, fl
     return rows;
 }
 
+// The height of `in`'s rows together: lowest to highest vertex.
+float vertical_extent(const ImpostorBakeInput& in) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const ImpostorPose& row : in.rows)
+        for (const glm::vec3& v : row.positions) lo = std::min(lo, v.y), hi = std::max(hi, v.y);
+    return hi > lo ? hi - lo : 1.0f;
+}
+
 }  // namespace
 
 Status World::build_impostors() {
@@ -53,6 +64,15 @@ Status World::build_impostors() {
     if (std::none_of(levels.begin(), levels.end(), [](const GeomLevelDef& l) { return l.method == GeomMethod::Impostor; })) return {};
     refresh_type_views();
     impostor_built_.resize(types_.size(), 0);
+    // The atlases baked so far and what each was baked from: a later type whose input is one of them scaled
+    // (a file character's height variants) draws that atlas scaled instead of baking its own.
+    struct Owner {
+        size_t report;                // its entry in impostor_reports_
+        uint32_t atlas;               // renderer id
+        float extent;                 // its rows' height (vertical_extent)
+        ImpostorBakeInput input;
+    };
+    std::vector<Owner> owners;
     for (size_t t = 0; t < types_.size(); ++t) {
         if (impostor_built_[t]) continue;
         const auto t0 = std::chrono::steady_clock::now();
@@ -66,6 +86,22 @@ Status World::build_impostors() {
         ImpostorBakeInput in = impostor_bake_input(draw_types_[t], level, poses, rt.type.name);
         in.directions = kDirections;
         in.elevations = options_.impostor_elevations;
+        // The atlases nearest this type's size first: a file character's neighbouring heights differ least.
+        const float extent = vertical_extent(in);
+        std::sort(owners.begin(), owners.end(), [&](const Owner& a, const Owner& b) {
+            return std::abs(std::log(a.extent / extent)) < std::abs(std::log(b.extent / extent));
+        });
+        const auto shared = std::find_if(owners.begin(), owners.end(), [&](const Owner& o) {
+            if (!(options_.impostor_share_px > 0.0f)) return false;
+            const ImpostorShare share = impostor_share_between(o.input, in, options_.impostor_share_px);
+            if (!share.shareable(options_.impostor_share_px, kImpostorShareToleranceSteps)) return false;
+            const ImpostorReport& from = impostor_reports_[o.report];
+            const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            impostor_reports_.push_back({rt.type.name, from.width, from.height, ms, 0, false, from.type, share.scale, share.distance_px});
+            draws_.set_impostor(static_cast<uint16_t>(t), o.atlas, cycle_s, share.scale);
+            return true;
+        });
+        if (shared != owners.end()) continue;
         // The bake cache holds atlases by a digest of everything the bake reads and of the device.
         const std::vector<uint8_t> key = bake_cache_ ? impostor_atlas_key(renderer_->context().properties(), in) : std::vector<uint8_t>{};
         std::optional<ImpostorAtlas> read;
@@ -80,7 +116,8 @@ Status World::build_impostors() {
         if (!id) return id.error();
         draws_.set_impostor(static_cast<uint16_t>(t), id.value(), cycle_s);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        impostor_reports_.push_back({rt.type.name, atlas.value().image.width, atlas.value().image.height, ms, atlas.value().texture_bytes, cached});
+        impostor_reports_.push_back({rt.type.name, atlas.value().image.width, atlas.value().image.height, ms, atlas.value().texture_bytes, cached, {}, 1.0f, 0.0f});
+        owners.push_back({impostor_reports_.size() - 1, id.value(), extent, std::move(in)});
     }
     return {};
 }

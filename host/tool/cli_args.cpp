@@ -24,7 +24,7 @@ struct Bindings {
     CliOptions o;
     std::string lod = "on", cache = "on", budget, occlusion = "on", gpu_overlap = "auto", cache_max_mb, counts, characters, frames, frame_range, selection;
     std::string warmup, frame, width, height, threads, seed, compare_frames, character, level, far_layer, far_layer_meshes,
-        distant_layer, texture_mips, texture_max, impostor_elevations, impostor_views, far_layer_alpha;
+        distant_layer, texture_mips, texture_max, impostor_elevations, impostor_views, far_layer_alpha, impostor_share;
     std::string budget_ms, budget_single_ms, budget_animation_ms, budget_geometry_ms;
 };
 
@@ -85,6 +85,10 @@ void add_common(CLI::App& c, Bindings& b, bool is_export) {
                  "bands of views in each impostor atlas: 1 level views only, N evenly from level to straight down "
                  "(default 3: 0, 45 and 90 degrees; each band costs one level atlas's memory and bake time)")
         ->check(whole_number(1, 8));
+    c.add_option("--impostor-share", b.impostor_share,
+                 "body variants whose surfaces lie within PX pixels of an atlas already baked, scaled, draw that atlas "
+                 "instead of baking their own (default 1; 0: every variant bakes its own)")
+        ->check(atlas_pixels());
     c.add_option("--impostor-views", b.impostor_views,
                  "impostors drawn at full resolution show their two nearest views, walk phases and bands of elevation blended "
                  "(blend: up to four atlas reads a fragment) or one of them a pixel by a dither of their weights (pick: one "
@@ -238,6 +242,7 @@ void convert(Bindings& b) {
     if (!b.far_layer_meshes.empty()) o.far_layer_meshes_px = float(u32(b.far_layer_meshes));
     if (!b.distant_layer.empty()) o.distant_layer_px = float(u32(b.distant_layer));
     if (!b.impostor_elevations.empty()) o.impostor_elevations = u32(b.impostor_elevations);
+    if (!b.impostor_share.empty()) o.impostor_share_px = std::stof(b.impostor_share);
     if (!b.texture_mips.empty()) o.blend_texture_mips = b.texture_mips == "blend";
     for (const ImpostorViews views : {ImpostorViews::Nearest, ImpostorViews::Blend, ImpostorViews::Pick})
         if (b.impostor_views == impostor_views_name(views)) o.impostor_views = views;  // one_of() checked the word

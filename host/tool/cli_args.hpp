@@ -59,6 +59,7 @@ struct CliOptions {
     std::optional<ImpostorViews> impostor_views;  ///< --impostor-views blend|pick|nearest: RendererOptions::impostor_views (unset: by device)
     std::optional<float> far_layer_alpha_test;  ///< --far-layer-alpha PERCENT / 100: RendererOptions::far_layer_alpha_test (unset: its default)
     std::optional<uint32_t> max_texture_side;  ///< --texture-max PX: RendererOptions::max_texture_side (unset: its default)
+    std::optional<float> impostor_share_px;  ///< --impostor-share PX: WorldOptions::impostor_share_px
     std::optional<uint32_t> impostor_elevations;  ///< --impostor-elevations N: WorldOptions::impostor_elevations
     std::optional<float> distant_layer_px;  ///< --distant-layer PX: RendererOptions::distant_layer_below_px (unset: 0)
     GpuOverlap gpu_overlap = GpuOverlap::Auto;  ///< --gpu-overlap on|off|auto: GPU frame overlapped with the next CPU systems (profile)

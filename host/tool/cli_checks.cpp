@@ -75,6 +75,13 @@ CLI::Validator milliseconds() {
     }, "MS");
 }
 
+CLI::Validator atlas_pixels() {
+    return check([](const std::string& v) {
+        double d = 0;
+        return parse_number(v, d) && d >= 0.0 && d <= 96.0 ? "" : "expects a number of atlas pixels in [0, 96], got '" + v + "'";
+    }, "PX");
+}
+
 CLI::Validator on_off() { return one_of({"on", "off"}); }
 
 CLI::Validator non_empty() {

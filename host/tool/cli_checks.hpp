@@ -22,6 +22,8 @@ CLI::Validator whole_number(uint32_t lo, uint32_t hi);
 CLI::Validator whole_number_u64();
 /// A number of milliseconds in (0, 10000).
 CLI::Validator milliseconds();
+/// A number of atlas pixels in [0, 96] (--impostor-share).
+[[nodiscard]] CLI::Validator atlas_pixels();
 /// "on" or "off".
 CLI::Validator on_off();
 /// A non-empty value.

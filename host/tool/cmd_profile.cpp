@@ -267,7 +267,8 @@ int run_profile(const CliOptions& options) {
     nlohmann::json atlases = nlohmann::json::array();  // impostor atlases baked at load (one per type)
     for (const World::ImpostorReport& a : world.impostor_atlases())
         atlases.push_back({{"type", a.type}, {"width", a.width}, {"height", a.height}, {"build_ms", a.build_ms},
-                           {"texture_bytes", a.texture_bytes}, {"cached", a.cached}});
+                           {"texture_bytes", a.texture_bytes}, {"cached", a.cached}, {"shared_from", a.shared_from},
+                           {"scale", a.scale}, {"distance_px", a.distance_px}});
     report["impostor_atlases"] = atlases;
     report["bake_cache"] = bake_cache_report(world);
     nlohmann::json per_frame = nlohmann::json::array();
@@ -378,9 +379,15 @@ int run_profile(const CliOptions& options) {
         else std::cout << "LOD off: CPU systems mean " << fmt(compare["cpu_systems_ms"]["mean"].get<double>()) << " ms, "
                        << fmt(compare["ratio_mean"].get<double>()) << "x slower than LOD on (target 20x)\n";
     }
-    for (const World::ImpostorReport& a : world.impostor_atlases())
+    for (const World::ImpostorReport& a : world.impostor_atlases()) {
+        if (!a.shared_from.empty()) {
+            std::cout << "impostor atlas '" << a.type << "': '" << a.shared_from << "''s drawn " << fmt(a.scale) << "x (surfaces within "
+                      << fmt(a.distance_px) << " of its pixels), " << fmt(a.build_ms) << " ms to compare\n";
+            continue;
+        }
         std::cout << "impostor atlas '" << a.type << "': " << a.width << " x " << a.height << " px, " << fmt(a.build_ms) << (a.cached ? " ms from the bake cache, " : " ms to bake, ")
                   << fmt(double(a.texture_bytes) / 1048576.0) << " MiB with mips\n";
+    }
     std::cout << bake_cache_line(world);
     if (report["renderer"].is_object()) std::cout << renderer_line(report["renderer"]);
     std::cout << lod_summary(report);

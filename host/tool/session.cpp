@@ -83,6 +83,7 @@ Result<std::unique_ptr<Session>> open_session(const CliOptions& options, bool re
     wo.budget_single_ms = options.budget_single_ms;
     wo.occlusion = options.occlusion;
     if (options.impostor_elevations) wo.impostor_elevations = *options.impostor_elevations;
+    if (options.impostor_share_px) wo.impostor_share_px = *options.impostor_share_px;
     // Tools that read every character's pose every frame (metrics, export, the fidelity reference) need
     // poses no stage of the frame reads.
     wo.pose_every_character = options.motion_metrics || options.fidelity || options.command == "export";

@@ -2,13 +2,15 @@
 #include "systems/frame/draw_lists.hpp"
 #include "systems/frame/placement.hpp"
 
+#include <cassert>
 #include <cmath>
 
 namespace aloha {
 
-void DrawListBuilder::set_impostor(uint16_t type, uint32_t atlas, float cycle_s) {
+void DrawListBuilder::set_impostor(uint16_t type, uint32_t atlas, float cycle_s, float scale) {
+    assert(scale > 0.0f);
     if (impostors_.size() <= type) impostors_.resize(size_t{type} + 1);
-    impostors_[type] = {atlas, cycle_s > 0.0f ? cycle_s : 1.0f};
+    impostors_[type] = {atlas, cycle_s > 0.0f ? cycle_s : 1.0f, scale};
 }
 
 ImpostorInstance DrawListBuilder::impostor_instance(const DrawType& draw, uint16_t type, uint32_t e, const Frame& f,
@@ -29,7 +31,7 @@ ImpostorInstance DrawListBuilder::impostor_instance(const DrawType& draw, uint16
         phase = f.motion[e].phase;  // a clip whose root motion carries it: walking at its stride (MotionState::travelling)
     }
     ImpostorInstance inst;
-    inst.position_scale = glm::vec4(t.position, t.scale);
+    inst.position_scale = glm::vec4(t.position, t.scale * im.scale);
     // Fade: shaders/impostor.frag keeps, for w < 0, the pixels a mesh dithered at -w does not keep.
     inst.forward_phase = glm::vec4(forward, phase, drawn_share < 1.0f ? impostor_fade(drawn_share) : 1.0f);
     inst.colour = character_colour(f.settings.colour, f.states[e], f.anims[e], false, !draw.materials.empty());  // the atlas holds the materials' colours

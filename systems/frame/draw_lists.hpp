@@ -62,8 +62,10 @@ public:
     /// Forgets the impostor atlases (a new renderer): impostor levels draw nothing until set_impostor().
     void clear_impostors() { impostors_.clear(); }
     /// Draws type `type`'s impostor levels with atlas `atlas` (a renderer id), whose walk rows follow a
-    /// cycle of `cycle_s` seconds of clip time (the phase of a clip-playback walk is time / cycle_s).
-    void set_impostor(uint16_t type, uint32_t atlas, float cycle_s);
+    /// cycle of `cycle_s` seconds of clip time (the phase of a clip-playback walk is time / cycle_s), its
+    /// pictures drawn `scale` times as large as baked (an atlas baked for a type this one is a scaled copy of,
+    /// impostor_share_between; > 0).
+    void set_impostor(uint16_t type, uint32_t atlas, float cycle_s, float scale = 1.0f);
     /// Names the GPU pass each geometric level's meshes are drawn in (index: level; e.g. the rule file's
     /// level names); levels without a name are drawn in the pass "meshes". Takes effect for topologies
     /// registered after the call (call reset() first to relabel registered ones).
@@ -123,6 +125,7 @@ private:
     struct Impostor {
         int64_t atlas = -1;    ///< renderer id, -1 = none
         float cycle_s = 1.0f;  ///< walk cycle (clip seconds)
+        float scale = 1.0f;    ///< the atlas's pictures drawn this many times as large
     };
 
     std::vector<std::pair<uint32_t, uint32_t>> topologies_;  ///< SurfaceView::topology_key -> renderer id

@@ -89,6 +89,11 @@ glm::mat4 impostor_view_rotation(uint32_t d, uint32_t directions) {
     return glm::rotate(glm::mat4(1.0f), -azimuth, glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
+float impostor_texel_size(const ImpostorBakeInput& in) {
+    const Cells c = cell_size(in, 1);
+    return c.height_m / static_cast<float>(c.height_px);
+}
+
 glm::mat4 impostor_view_transform(uint32_t d, uint32_t directions, float elevation, float pivot_y) {
     // Leaning +Y towards +Z by the elevation is a rotation about +X by that angle.
     return glm::rotate(glm::mat4(1.0f), elevation, glm::vec3(1.0f, 0.0f, 0.0f)) *

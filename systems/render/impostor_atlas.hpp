@@ -52,6 +52,10 @@ struct ImpostorAtlas {
     uint64_t texture_bytes = 0;    ///< GPU memory of the mipmapped texture (packed R32G32_UINT, full chain)
 };
 
+/// Model units per atlas pixel of `in`'s bake: its cells' height (the rows' vertical extent with a margin) over
+/// in.cell_height_px. Requires at least one row with a position.
+[[nodiscard]] float impostor_texel_size(const ImpostorBakeInput& in);
+
 /// The name a bake gives its atlas image (messages): "impostor atlas '<type>'".
 [[nodiscard]] std::string impostor_atlas_image_name(const std::string& type);
 

@@ -32,6 +32,15 @@ TEST(Cli, ParsesProfileOptions) {
     ASSERT_TRUE(t.ok()) << t.error().to_string();
     EXPECT_EQ(t.value().max_texture_side, 512u);
     EXPECT_EQ(t.value().impostor_elevations, 1u);
+    EXPECT_FALSE(t.value().impostor_share_px) << "unset: the world's default";
+    auto share = parse({"profile", "scene.json", "--impostor-share", "0.5"});
+    ASSERT_TRUE(share.ok()) << share.error().to_string();
+    EXPECT_FLOAT_EQ(*share.value().impostor_share_px, 0.5f);
+    for (const char* bad : {"-1", "97", "x"}) {
+        auto refused = parse({"profile", "scene.json", "--impostor-share", bad});
+        ASSERT_FALSE(refused.ok()) << bad;
+        EXPECT_NE(refused.error().to_string().find("--impostor-share"), std::string::npos) << refused.error().to_string();
+    }
     EXPECT_EQ(t.value().impostor_views, ImpostorViews::Nearest);
     for (const auto& [word, views] : {std::pair{"blend", ImpostorViews::Blend}, std::pair{"pick", ImpostorViews::Pick}}) {
         auto v = parse({"profile", "scene.json", "--impostor-views", word});

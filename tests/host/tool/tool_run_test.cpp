@@ -188,9 +188,17 @@ TEST(Tool, ProfileReadsImpostorAtlasesBackFromTheBakeCache) {
         std::ifstream in(out / std::to_string(i) / "report.json");
         reports[i] = nlohmann::json::parse(in);
         ASSERT_FALSE(reports[i]["impostor_atlases"].empty());
-        for (const auto& atlas : reports[i]["impostor_atlases"]) EXPECT_EQ(atlas["cached"].get<bool>(), i == 1) << atlas.dump();
+        for (const auto& atlas : reports[i]["impostor_atlases"]) {
+            // A variant drawing another's atlas scaled (--impostor-share) bakes nothing and reads nothing.
+            const bool own = atlas["shared_from"].get<std::string>().empty();
+            EXPECT_EQ(atlas["cached"].get<bool>(), own && i == 1) << atlas.dump();
+            EXPECT_EQ(atlas["texture_bytes"].get<uint64_t>() > 0, own) << atlas.dump();
+        }
     }
-    EXPECT_EQ(reports[0]["impostor_atlases"].size(), reports[1]["impostor_atlases"].size());
+    ASSERT_EQ(reports[0]["impostor_atlases"].size(), reports[1]["impostor_atlases"].size());
+    for (size_t a = 0; a < reports[0]["impostor_atlases"].size(); ++a)
+        for (const char* key : {"type", "shared_from", "scale", "distance_px"})
+            EXPECT_EQ(reports[0]["impostor_atlases"][a][key], reports[1]["impostor_atlases"][a][key]) << key << ": the same shares";
     EXPECT_EQ(reports[0]["state_hash"], reports[1]["state_hash"]);
     // The bake cache's report: the first run wrote what the second read.
     for (int i = 0; i < 2; ++i) ASSERT_TRUE(reports[i]["bake_cache"].is_object()) << reports[i]["bake_cache"].dump();
