@@ -3,6 +3,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace aloha {
@@ -53,6 +54,32 @@ std::vector<glm::vec3> circle_route(const glm::vec3& center, const glm::vec3& st
     return points;
 }
 
+size_t drop_unused_variants(SceneDesc& scene, std::vector<CharacterDesc>& chars) {
+    std::vector<uint32_t> used(scene.types.size(), 0);
+    for (const CharacterDesc& c : chars) used[static_cast<size_t>(c.type)]++;
+    std::vector<int> renumbered(scene.types.size(), -1);
+    std::vector<CharacterTypeDesc> kept;
+    for (size_t t = 0; t < scene.types.size(); ++t) {
+        if (used[t] == 0 && !scene.types[t].variant_of.empty()) continue;
+        renumbered[t] = static_cast<int>(kept.size());
+        kept.push_back(std::move(scene.types[t]));
+    }
+    const size_t dropped = scene.types.size() - kept.size();
+    scene.types = std::move(kept);
+    if (dropped == 0) return 0;
+    const auto renumber = [&](int& type) {
+        assert(type >= 0 && renumbered[static_cast<size_t>(type)] >= 0);  // only unused variants are dropped
+        type = renumbered[static_cast<size_t>(type)];
+    };
+    for (CharacterDesc& c : chars) renumber(c.type);
+    for (CharacterDesc& c : scene.characters) renumber(c.type);
+    for (CrowdDesc& crowd : scene.crowds) {
+        renumber(crowd.type);  // a base type is no variant: never dropped
+        for (int& v : crowd.variant_types) v = v >= 0 ? renumbered[static_cast<size_t>(v)] : -1;
+    }
+    return dropped;
+}
+
 uint64_t character_count(const SceneDesc& scene) {
     uint64_t n = scene.characters.size();
     for (const auto& c : scene.crowds) n += c.count;
@@ -69,8 +96,10 @@ std::vector<CharacterDesc> expand_characters(const SceneDesc& scene, uint64_t se
         for (uint32_t i = 0; i < crowd.count; ++i) {
             CharacterDesc c;
             c.type = crowd.type;
-            if (!crowd.variant_types.empty())
+            if (!crowd.variant_types.empty()) {
                 c.type = crowd.variant_types[static_cast<size_t>(rng.next() % crowd.variant_types.size())];
+                assert(c.type >= 0 && "a variant drop_unused_variants dropped, picked with another seed");
+            }
             if (crowd.layout == CrowdDesc::Layout::Grid) {
                 const float x = (static_cast<float>(i % side) - 0.5f * static_cast<float>(side - 1)) * crowd.spacing;
                 const float z = (static_cast<float>(i / side) - 0.5f * static_cast<float>(side - 1)) * crowd.spacing;

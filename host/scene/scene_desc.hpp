@@ -129,7 +129,8 @@ struct CrowdDesc {
     float height_min = 0.0f, height_max = 0.0f;  ///< standing height range (m); 0 = the type's own
     float build_min = -1.0f, build_max = -1.0f;  ///< build range in [0, 1]; -1 = the type's own
     uint32_t variants = 0;         ///< body variants drawn from the ranges (0 = none: one body)
-    std::vector<int> variant_types;  ///< types of the body variants (filled at load); each character picks one
+    std::vector<int> variant_types;  ///< types of the body variants (filled at load); each character picks one;
+                                     ///< -1: one no character picked, dropped (drop_unused_variants)
 };
 
 /// A whole scene.
@@ -160,6 +161,13 @@ std::vector<glm::vec3> circle_route(const glm::vec3& center, const glm::vec3& st
 /// Expands every crowd generator of `scene` into placed characters (deterministic for a seed) and
 /// appends the explicitly placed ones first. `seed_override` != 0 replaces each crowd's seed.
 std::vector<CharacterDesc> expand_characters(const SceneDesc& scene, uint64_t seed_override = 0);
+
+/// Removes from `scene` the crowds' body variant types (CharacterTypeDesc::variant_of set) that no character of
+/// `chars` (expand_characters(scene)) has, so nothing builds a body no one draws: the types after each removed one
+/// move down, `chars`' types, the placed characters' and the crowds' follow, and a removed variant's entry in its
+/// crowd's variant_types becomes -1 (expand_characters with the same seeds never picks it). Returns how many were
+/// removed.
+size_t drop_unused_variants(SceneDesc& scene, std::vector<CharacterDesc>& chars);
 
 /// Total number of characters the scene will spawn.
 uint64_t character_count(const SceneDesc& scene);

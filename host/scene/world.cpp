@@ -237,7 +237,8 @@ Status World::apply_rule_settings() {
 }
 
 Status World::spawn_characters() {
-    const std::vector<CharacterDesc> chars = expand_characters(scene_, options_.seed_override);
+    std::vector<CharacterDesc> chars = expand_characters(scene_, options_.seed_override);
+    drop_unused_variants(scene_, chars);  // a crowd's members pick their bodies at random: build only those picked
     TypeLoadOptions load;
     load.threads = options_.threads;
     bake_cache_ = open_bake_cache(options_.bake_cache, options_.bake_cache_dir, options_.bake_cache_max_bytes);

@@ -2,7 +2,10 @@
 
 #include "systems/geometry/body_skin/triangle_grid.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -38,9 +41,17 @@ bool comparable(const ImpostorBakeInput& a, const ImpostorBakeInput& b) {
     return true;
 }
 
-float srgb_to_linear(uint8_t c) {
-    const float x = static_cast<float>(c) / 255.0f;
-    return x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
+// sRGB-encoded byte -> LINEAR, all 256 at once.
+const std::array<float, 256>& srgb_to_linear() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (size_t c = 0; c < t.size(); ++c) {
+            const float x = static_cast<float>(c) / 255.0f;
+            t[c] = x <= 0.04045f ? x / 12.92f : std::pow((x + 0.055f) / 1.055f, 2.4f);
+        }
+        return t;
+    }();
+    return table;
 }
 
 // Texel coordinate i of `size` for texture coordinate `t` (nearest texel) under `wrap`.
@@ -62,7 +73,8 @@ glm::vec4 albedo(const ImpostorBakeInput& in, uint16_t material, glm::vec2 uv, g
         const TextureImage& t = in.textures[static_cast<size_t>(m.texture)];
         if (t.width > 0 && t.height > 0 && t.rgba.size() == size_t{t.width} * t.height * 4) {
             const size_t i = (size_t{wrapped_texel(uv.y, t.height, t.wrap_v)} * t.width + wrapped_texel(uv.x, t.width, t.wrap_u)) * 4;
-            c *= glm::vec4(srgb_to_linear(t.rgba[i]), srgb_to_linear(t.rgba[i + 1]), srgb_to_linear(t.rgba[i + 2]), t.rgba[i + 3] / 255.0f);
+            const std::array<float, 256>& linear = srgb_to_linear();
+            c *= glm::vec4(linear[t.rgba[i]], linear[t.rgba[i + 1]], linear[t.rgba[i + 2]], t.rgba[i + 3] / 255.0f);
         }
     }
     return c;
@@ -114,24 +126,28 @@ ImpostorShare impostor_share_between(const ImpostorBakeInput& owner, const Impos
     out.scale = (b.y - b.x) / (a.y - a.x);
     // Distances are measured at `other`'s size, in the owner's pixels drawn that size.
     const float texel = impostor_texel_size(owner) * out.scale;
+    // Rows in parallel (each its own grids and sums; the result does not depend on which thread ran which row).
+    std::vector<OneWay> rows(2 * owner.rows.size());
+    tbb::parallel_for(size_t{0}, owner.rows.size(), [&](size_t r) {
+        const std::span<const glm::vec3> mine = other.rows[r].positions;
+        std::vector<glm::vec3> scaled(owner.rows[r].positions.size());
+        std::transform(owner.rows[r].positions.begin(), owner.rows[r].positions.end(), scaled.begin(),
+                       [&](const glm::vec3& p) { return p * out.scale; });
+        const TriangleGrid owner_grid(scaled, owner.indices);
+        rows[2 * r] = one_way(other, mine, 1.0f, owner, owner_grid, texel, tolerance_px);
+        if (!(rows[2 * r].distance_px <= tolerance_px)) return;
+        const TriangleGrid other_grid(mine, other.indices);
+        rows[2 * r + 1] = one_way(owner, owner.rows[r].positions, out.scale, other, other_grid, texel, tolerance_px);
+    });
     out.distance_px = 0.0f;
     double colour_steps = 0.0;
     size_t vertices = 0;
-    std::vector<glm::vec3> scaled;
-    for (size_t r = 0; r < owner.rows.size(); ++r) {
-        const std::span<const glm::vec3> mine = other.rows[r].positions;
-        scaled.resize(owner.rows[r].positions.size());
-        std::transform(owner.rows[r].positions.begin(), owner.rows[r].positions.end(), scaled.begin(),
-                       [&](const glm::vec3& p) { return p * out.scale; });
-        const TriangleGrid owner_grid(scaled, owner.indices), other_grid(mine, other.indices);
-        for (const OneWay& w : {one_way(other, mine, 1.0f, owner, owner_grid, texel, tolerance_px),
-                                one_way(owner, owner.rows[r].positions, out.scale, other, other_grid, texel, tolerance_px)}) {
-            out.distance_px = std::max(out.distance_px, w.distance_px);
-            colour_steps += w.colour_steps;
-            vertices += w.vertices;
-        }
-        if (!(out.distance_px <= tolerance_px)) return out;
+    for (const OneWay& w : rows) {
+        out.distance_px = std::max(out.distance_px, w.distance_px);
+        colour_steps += w.colour_steps;
+        vertices += w.vertices;
     }
+    if (!(out.distance_px <= tolerance_px)) return out;
     out.colour_steps = vertices > 0 ? static_cast<float>(colour_steps / static_cast<double>(vertices)) : 0.0f;
     return out;
 }

@@ -17,8 +17,8 @@ struct ImpostorShare {
     bool comparable = false;  ///< same rows, views, materials, textures and culling; else nothing else is set
     float scale = 1.0f;       ///< `other` is about `owner` scaled by this about the origin (their heights' ratio)
     /// The largest distance, in `owner`'s bake pixels (impostor_texel_size) drawn at `other`'s size, from a vertex
-    /// of either's row to the other's surface in the same row; the first found over the tolerance when the
-    /// comparison stopped there (then a lower bound); infinity when not comparable.
+    /// of either's row to the other's surface in the same row (rows are compared in parallel, each stopping at its
+    /// first distance over the tolerance: then a lower bound); infinity when not comparable.
     float distance_px = std::numeric_limits<float>::infinity();
     /// The mean over the vertices compared of the albedo's difference (its largest channel, LINEAR, in 8-bit steps)
     /// between each vertex and the other's closest point: material base colour x base colour texture x vertex
@@ -50,8 +50,9 @@ inline constexpr float kImpostorShareToleranceSteps = 8.0f;
 /// elevations, cell height in pixels, back-face culling, equal materials and textures, and per-vertex colours,
 /// texture coordinates and materials either both or neither (and sizes that fit their vertices). Then, row by
 /// row, each vertex of either is taken to the closest point of the other's surface in the same row (a
-/// TriangleGrid each way): the largest distance, and the mean albedo difference there. Stops at the first
-/// distance over `tolerance_px`. Load-time work: allocates.
+/// TriangleGrid each way): the largest distance, and the mean albedo difference there. A row stops at its first
+/// distance over `tolerance_px`. Rows run in parallel (oneTBB); the result does not depend on the threads.
+/// Load-time work: allocates.
 [[nodiscard]] ImpostorShare impostor_share_between(const ImpostorBakeInput& owner, const ImpostorBakeInput& other,
                                                    float tolerance_px = kImpostorShareTolerancePx);
 

@@ -113,5 +113,52 @@ TEST(Crowd, CircleWalkersGetALoopRoundTheCentre) {
     EXPECT_EQ(cw, 200);
 }
 
+// A crowd of 3 with 16 body variants picks at most 3 of them: the others are dropped before anything builds them, the
+// types after each dropped one move down and every character's type follows, naming the same variant as before; the
+// base type (no character, no variant) and a placed character's type stay; a crowd that picked every variant drops
+// nothing.
+TEST(Crowd, BodyVariantsNoCharacterPickedAreDropped) {
+    const auto variants_scene = [](uint32_t count) {
+        Result<SceneDesc> s = parse_scene(R"({"camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
+          "character_types": [{"name": "a", "humanoid": "builtin:humanoid"},
+            {"name": "b", "humanoid": "builtin:humanoid"}],
+          "characters": [{"type": "b", "position": [0, 0, 0]}],
+          "crowds": [{"type": "a", "count": )" + std::to_string(count) + R"(, "height": [1.5, 1.9], "variants": 16}]})",
+                                          std::string(ALOHA_SOURCE_DIR) + "/data/scenes/variants_inline.json");
+        EXPECT_TRUE(s.ok()) << (s.ok() ? std::string() : s.error().to_string());
+        return s.ok() ? s.value() : SceneDesc{};
+    };
+    SceneDesc s = variants_scene(3);
+    ASSERT_EQ(s.types.size(), 18u) << "two types and 16 variants";
+    std::vector<CharacterDesc> chars = expand_characters(s);
+    ASSERT_EQ(chars.size(), 4u);
+    std::vector<std::string> before;
+    for (const CharacterDesc& c : chars) before.push_back(s.types[static_cast<size_t>(c.type)].name);
+    const size_t dropped = drop_unused_variants(s, chars);
+    EXPECT_GE(dropped, 13u);
+    EXPECT_EQ(s.types.size(), 18u - dropped);
+    EXPECT_EQ(s.types[0].name, "a") << "the base type stays";
+    EXPECT_EQ(s.types[1].name, "b");
+    for (size_t i = 0; i < chars.size(); ++i) {
+        ASSERT_LT(static_cast<size_t>(chars[i].type), s.types.size());
+        EXPECT_EQ(s.types[static_cast<size_t>(chars[i].type)].name, before[i]) << "character " << i << " keeps its body";
+    }
+    for (size_t t = 2; t < s.types.size(); ++t)
+        EXPECT_TRUE(std::any_of(chars.begin(), chars.end(), [&](const CharacterDesc& c) { return c.type == static_cast<int>(t); }))
+            << s.types[t].name << " is drawn";
+    EXPECT_EQ(s.characters[0].type, 1);
+    EXPECT_EQ(s.crowds[0].type, 0);
+    ASSERT_EQ(s.crowds[0].variant_types.size(), 16u) << "the picks keep their odds";
+    EXPECT_EQ(std::count(s.crowds[0].variant_types.begin(), s.crowds[0].variant_types.end(), -1), static_cast<long>(dropped));
+    // Expanding the pruned scene again picks the same bodies.
+    const std::vector<CharacterDesc> again = expand_characters(s);
+    for (size_t i = 0; i < chars.size(); ++i) EXPECT_EQ(again[i].type, chars[i].type) << i;
+
+    SceneDesc all = variants_scene(400);
+    std::vector<CharacterDesc> many = expand_characters(all);
+    EXPECT_EQ(drop_unused_variants(all, many), 0u) << "400 characters pick all 16";
+    EXPECT_EQ(all.types.size(), 18u);
+}
+
 }  // namespace
 }  // namespace aloha

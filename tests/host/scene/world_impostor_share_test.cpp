@@ -95,5 +95,27 @@ TEST(WorldImpostorShare, HeightVariantsOfAFileCharacterDrawOneAtlasScaled) {
     fs::remove_all(dir);
 }
 
+// A crowd of 2 with 8 height variants builds the base type and the variants its members picked, not all 8
+// (drop_unused_variants: before, every variant was built, its body, gaits and retargeted takes, for no one).
+TEST(WorldImpostorShare, VariantsNoMemberPickedAreNotBuilt) {
+    const fs::path dir = fs::temp_directory_path() / ("aloha_world_unpicked_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "rig.gltf") << test::gltf_text(test::renamed_humanoid(test::rigify_names("DEF-")), 1, 0.3f, true);
+    const SceneDesc scene = scene_test::scene_from_json(R"({"name": "v", "frames": 2, "camera": {"position": [0, 2, 12], "target": [0, 1, 0]},
+      "character_types": [{"name": "rig", "gltf": "rig.gltf"}],
+      "crowds": [{"type": "rig", "count": 2, "mix": {"walk": 1, "idle": 0, "reach": 0}, "height": [1.5, 1.8], "variants": 8}]})",
+                                                        (dir / "scene.json").string());
+    ASSERT_EQ(scene.types.size(), 9u);
+    auto made = World::create(scene, {});
+    ASSERT_TRUE(made.ok()) << made.error().to_string();
+    const World& w = *made.value();
+    EXPECT_GE(w.type_count(), 2u);
+    EXPECT_LE(w.type_count(), 3u) << "the base type and at most two picked variants";
+    EXPECT_EQ(w.scene().types.size(), w.type_count());
+    EXPECT_EQ(w.type(0).name, "rig");
+    for (size_t t = 1; t < w.type_count(); ++t) EXPECT_EQ(w.runtime(t).count, w.type_count() == 2 ? 2u : 1u) << w.type(t).name;
+    fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace aloha
