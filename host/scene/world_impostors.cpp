@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 namespace aloha {
 namespace {
@@ -48,14 +47,6 @@ std::vector<std::vector<glm::mat4>> impostor_poses(const CharacterType& type, fl
     return rows;
 }
 
-// The height of `in`'s rows together: lowest to highest vertex.
-float vertical_extent(const ImpostorBakeInput& in) {
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (const ImpostorPose& row : in.rows)
-        for (const glm::vec3& v : row.positions) lo = std::min(lo, v.y), hi = std::max(hi, v.y);
-    return hi > lo ? hi - lo : 1.0f;
-}
-
 }  // namespace
 
 Status World::build_impostors() {
@@ -69,7 +60,7 @@ Status World::build_impostors() {
     struct Owner {
         size_t report;                // its entry in impostor_reports_
         uint32_t atlas;               // renderer id
-        float extent;                 // its rows' height (vertical_extent)
+        float extent;                 // its rows' height (impostor_vertical_range)
         ImpostorBakeInput input;
     };
     std::vector<Owner> owners;
@@ -87,7 +78,8 @@ Status World::build_impostors() {
         in.directions = kDirections;
         in.elevations = options_.impostor_elevations;
         // The atlases nearest this type's size first: a file character's neighbouring heights differ least.
-        const float extent = vertical_extent(in);
+        const glm::vec2 range = impostor_vertical_range(in);
+        const float extent = range.y > range.x ? range.y - range.x : 1.0f;
         std::sort(owners.begin(), owners.end(), [&](const Owner& a, const Owner& b) {
             return std::abs(std::log(a.extent / extent)) < std::abs(std::log(b.extent / extent));
         });

@@ -12,14 +12,6 @@
 namespace aloha {
 namespace {
 
-// The rows' vertical extent (lowest and highest y over every row).
-glm::vec2 vertical_extent(const ImpostorBakeInput& in) {
-    glm::vec2 e(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
-    for (const ImpostorPose& row : in.rows)
-        for (const glm::vec3& v : row.positions) e = glm::vec2(std::min(e.x, v.y), std::max(e.y, v.y));
-    return e;
-}
-
 bool comparable(const ImpostorBakeInput& a, const ImpostorBakeInput& b) {
     if (a.rows.size() != b.rows.size() || a.rows.empty() || a.directions != b.directions || a.elevations != b.elevations ||
         a.cell_height_px != b.cell_height_px || a.cull_back_faces != b.cull_back_faces)
@@ -117,10 +109,17 @@ OneWay one_way(const ImpostorBakeInput& from, std::span<const glm::vec3> from_po
 
 }  // namespace
 
+glm::vec2 impostor_vertical_range(const ImpostorBakeInput& in) {
+    glm::vec2 e(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity());
+    for (const ImpostorPose& row : in.rows)
+        for (const glm::vec3& v : row.positions) e = glm::vec2(std::min(e.x, v.y), std::max(e.y, v.y));
+    return e;
+}
+
 ImpostorShare impostor_share_between(const ImpostorBakeInput& owner, const ImpostorBakeInput& other, float tolerance_px) {
     ImpostorShare out;
     if (!comparable(owner, other)) return out;
-    const glm::vec2 a = vertical_extent(owner), b = vertical_extent(other);
+    const glm::vec2 a = impostor_vertical_range(owner), b = impostor_vertical_range(other);
     if (!(a.y > a.x) || !(b.y > b.x)) return out;
     out.comparable = true;
     out.scale = (b.y - b.x) / (a.y - a.x);

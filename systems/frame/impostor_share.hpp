@@ -45,6 +45,10 @@ inline constexpr float kImpostorShareTolerancePx = 1.0f;
 /// texture (a region's colour on another's surface) 114.6 (tests/systems/frame/impostor_share_test.cpp).
 inline constexpr float kImpostorShareToleranceSteps = 8.0f;
 
+/// The lowest and highest y of `in`'s vertices over every row (infinity and -infinity for none): the quantity whose
+/// ratio is impostor_share_between's scale.
+[[nodiscard]] glm::vec2 impostor_vertical_range(const ImpostorBakeInput& in);
+
 /// Compares `other` with `owner` scaled by the ratio of their rows' vertical extents (about the origin, as an
 /// ImpostorInstance's scale draws a quad). Comparable when both have the same number of rows, directions,
 /// elevations, cell height in pixels, back-face culling, equal materials and textures, and per-vertex colours,
