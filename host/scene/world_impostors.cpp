@@ -80,11 +80,12 @@ Status World::build_impostors() {
         // The atlases nearest this type's size first: a file character's neighbouring heights differ least.
         const glm::vec2 range = impostor_vertical_range(in);
         const float extent = range.y > range.x ? range.y - range.x : 1.0f;
-        std::sort(owners.begin(), owners.end(), [&](const Owner& a, const Owner& b) {
-            return std::abs(std::log(a.extent / extent)) < std::abs(std::log(b.extent / extent));
-        });
-        const auto shared = std::find_if(owners.begin(), owners.end(), [&](const Owner& o) {
-            if (!(options_.impostor_share_px > 0.0f)) return false;
+        const bool sharing = options_.impostor_share_px > 0.0f;
+        if (sharing)
+            std::sort(owners.begin(), owners.end(), [&](const Owner& a, const Owner& b) {
+                return std::abs(std::log(a.extent / extent)) < std::abs(std::log(b.extent / extent));
+            });
+        const auto shared = !sharing ? owners.end() : std::find_if(owners.begin(), owners.end(), [&](const Owner& o) {
             const ImpostorShare share = impostor_share_between(o.input, in, options_.impostor_share_px);
             if (!share.shareable(options_.impostor_share_px, kImpostorShareToleranceSteps)) return false;
             const ImpostorReport& from = impostor_reports_[o.report];

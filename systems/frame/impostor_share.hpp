@@ -1,5 +1,5 @@
 // Whether one character type's impostor pictures can stand for another's: body variants that differ in height
-// only (a file's character scaled to each height, systems/frame and host/scene/scene_loader.cpp) bake the same
+// only (a file's character scaled to each height: add_body_variants, host/scene/scene_loader.cpp) bake the same
 // pictures at another size, so one atlas drawn larger or smaller serves them all (World::build_impostors). The
 // test is on what the bake would draw, not a promise of the scene: the two bake inputs' surfaces, one scaled onto
 // the other, must lie within a tolerance in the atlas's own pixels in every row and show about the same albedo,
