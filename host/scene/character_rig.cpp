@@ -4,10 +4,12 @@
 #include "engine/assets/bvh_loader.hpp"
 #include "engine/assets/humanoid_definition.hpp"
 #include "engine/assets/joint_limits.hpp"
+#include "systems/geometry/controller/skin_layer.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
 #include "systems/geometry/muscle/muscle_retarget.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace aloha {
@@ -72,7 +74,9 @@ void normalise_mesh(CharacterMesh& mesh, const RigNormalisation& change) {
 Status add_canonical_layers(CharacterType& type, const CharacterTypeDesc& desc, const std::string& file) {
     auto def = load_humanoid_definition(desc.canonical);
     if (!def.ok()) return def.error();
-    const float height = std::clamp(type.frame.height, 0.5f, 2.5f);
+    // The reference humanoid at the rig's own height (any: a 12 m giant's muscles are a 12 m humanoid's, not a
+    // 2.5 m one's stretched along its bones), 1.75 m where the height is unknown.
+    const float height = type.frame.height > 0.0f && std::isfinite(type.frame.height) ? type.frame.height : 1.75f;
     auto reference = build_skeleton(humanoid_skeleton(def.value(), HumanoidBody{height, 0.5f}), desc.canonical);
     if (!reference.ok()) return reference.error();
     auto reference_map = map_humanoid(reference.value());
@@ -95,7 +99,8 @@ Status add_canonical_layers(CharacterType& type, const CharacterTypeDesc& desc, 
     const std::string muscles = desc.muscles.empty() ? def.value().muscles : desc.muscles;
     auto defs = load_muscle_defs(muscles);
     if (!defs.ok()) return defs.error();
-    if (desc.muscles.empty()) scale_muscle_defs(defs.value(), height / def.value().reference_height, 1.0f, 1.0f);
+    // Lengths and girths with the height; fat as a person's from 0.5 to 2.5 m, with the body beyond (body_length_scale).
+    if (desc.muscles.empty()) scale_muscle_defs(defs.value(), height / def.value().reference_height, 1.0f, body_length_scale(height));
     const std::vector<MuscleDef> placed = retarget_muscle_defs(defs.value(), type.skeleton, type.map, fit);
     auto set = resolve_muscles(placed, type.skeleton, muscles);
     if (!set.ok()) return set.error();

@@ -9,6 +9,7 @@
 #include "host/scene/character_rig.hpp"
 #include "systems/geometry/controller/body_texture.hpp"
 #include "systems/geometry/controller/gltf_character_mesh.hpp"
+#include "systems/geometry/controller/skin_layer.hpp"
 #include "systems/geometry/muscle/muscle_fit.hpp"
 #include "systems/geometry/muscle/muscle_loader.hpp"
 #include "systems/motion/library/loop_cut.hpp"
@@ -292,6 +293,7 @@ Result<CharacterType> load_character_type(const CharacterTypeDesc& desc) {
         for (const auto& ibm : type.mesh->inverse_bind) bind_model.push_back(glm::inverse(ibm));
         const std::vector<glm::ivec4> joints = widen_joints(type.mesh->joints);
         MuscleFitOptions options;
+        options.fat_thickness *= body_length_scale(type.frame.height);  // a person's fat from 0.5 to 2.5 m, scaled beyond
         options.source_name = desc.gltf;
         auto muscles = fit_muscles_per_bone(type.skeleton, bind_model, type.mesh->positions, joints, type.mesh->weights, options);
         if (!muscles.ok()) return muscles.error();

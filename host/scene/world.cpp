@@ -3,6 +3,7 @@
 #include "host/scene/character_runtime.hpp"
 #include "host/scene/scene_checks.hpp"
 #include "host/scene/world_diagnostics.hpp"
+#include "systems/geometry/controller/skin_layer.hpp"
 #include "systems/lod/resolver.hpp"
 #include "systems/lod/rule_table.hpp"
 #include "systems/motion/motion_metrics.hpp"
@@ -67,6 +68,7 @@ Status CharacterRuntime::init_geometry(uint16_t type_index, std::span<const Geom
     desc.skeleton = type.skeleton;
     desc.muscles = type.muscles;
     desc.mesh = type.mesh;
+    desc.length_scale = body_length_scale(type.frame.height);
     desc.bake_cache = std::move(bake_cache);
     if (type.mesh)  // muscles were fitted in bind space: let them rest there
         for (const glm::mat4& ibm : type.mesh->inverse_bind) desc.rest_model.push_back(glm::inverse(ibm));

@@ -73,7 +73,9 @@ void check_mesh(const CharacterMesh& mesh, uint32_t joints, std::vector<std::str
 
 // Box radius of the proxy of joint j: the thickest rest muscle (plus its fat) anchored on the bone
 // the box covers (origin on j's parent, or on j for a root), clamped to [2 cm, 15 cm]; 4 cm without.
-std::vector<float> proxy_radii_of(const Skeleton& skeleton, const MuscleSet& set) {
+// Each joint's proxy radius: the thickest muscle on its bone with its fat, within 2-15 cm (4 cm without a muscle) on
+// a person, those bounds times `length_scale` on a body of another size.
+std::vector<float> proxy_radii_of(const Skeleton& skeleton, const MuscleSet& set, float length_scale) {
     std::vector<float> radii(static_cast<size_t>(skeleton.joint_count()), 0.0f);
     for (size_t j = 0; j < radii.size(); ++j) {
         const int bone = skeleton.parents()[j] < 0 ? static_cast<int>(j) : skeleton.parents()[j];
@@ -83,7 +85,7 @@ std::vector<float> proxy_radii_of(const Skeleton& skeleton, const MuscleSet& set
             const glm::vec3 rr = volume_preserving_radii(set.rest_length[m], set.volume[m], set.ratio[m], set.volume_factor[m]);
             r = std::max(r, std::max(rr.y, rr.z) + set.fat_thickness[m]);
         }
-        radii[j] = r > 0.0f ? std::clamp(r, 0.02f, 0.15f) : 0.04f;
+        radii[j] = r > 0.0f ? std::clamp(r, 0.02f * length_scale, 0.15f * length_scale) : 0.04f * length_scale;
     }
     return radii;
 }
@@ -123,6 +125,7 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
         }
     }
     if (desc.mesh) check_mesh(*desc.mesh, J, problems);
+    if (!(desc.length_scale > 0.0f) || !std::isfinite(desc.length_scale)) problems.push_back("length_scale must be positive and finite");
     if (!problems.empty()) {
         std::string message = "character type '" + desc.name + "': " + problems.front();
         for (size_t i = 1; i < problems.size(); ++i) message += "; " + problems[i];
@@ -137,13 +140,14 @@ Result<std::unique_ptr<CharacterGeometry>> CharacterGeometry::create(CharacterGe
     g->rest_model_ = std::move(desc.rest_model);
     g->inverse_rest_.resize(J);
     for (size_t j = 0; j < J; ++j) g->inverse_rest_[j] = glm::inverse(g->rest_model_[j]);
-    g->proxy_radii_ = proxy_radii_of(g->skeleton_, g->muscles_);
+    g->length_scale_ = desc.length_scale;
+    g->proxy_radii_ = proxy_radii_of(g->skeleton_, g->muscles_, g->length_scale_);
     g->table_cache_ = std::make_unique<SuperEllipsoidTableCache>(g->muscles_);
     g->mesh_ = std::move(desc.mesh);
     if (g->mesh_) g->mesh_rest_positions_ = skin_mesh_positions(*g->mesh_, g->rest_model_);
     g->bake_cache_ = std::move(desc.bake_cache);
     if (g->bake_cache_ && !g->mesh_ && g->muscles_.size() > 0)
-        g->bake_inputs_ = skin_bake_inputs(g->muscles_, g->skeleton_.parents(), g->rest_model_, g->proxy_radii_);
+        g->bake_inputs_ = skin_bake_inputs(g->muscles_, g->skeleton_.parents(), g->rest_model_, g->proxy_radii_, g->length_scale_);
     return g;
 }
 
@@ -194,11 +198,12 @@ const SkinLayer& CharacterGeometry::skin_layer(uint32_t theta_steps, uint32_t ph
     auto& slot = skin_layers_[{theta_steps, phi_steps}];
     if (slot) return *slot;
     if (mesh_) {
-        slot = std::make_unique<SkinLayer>(build_mesh_skin(mesh_rest_positions_, mesh_->indices, muscles_, skeleton_.parents(), rest_model_, tab));
+        slot = std::make_unique<SkinLayer>(
+            build_mesh_skin(mesh_rest_positions_, mesh_->indices, muscles_, skeleton_.parents(), rest_model_, tab, length_scale_));
     } else {
         if (!body_surface_)
-            body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_));
-        slot = std::make_unique<SkinLayer>(build_generated_skin(*body_surface_, muscles_, skeleton_.parents(), rest_model_, tab, *grid));
+            body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_, length_scale_));
+        slot = std::make_unique<SkinLayer>(build_generated_skin(*body_surface_, muscles_, skeleton_.parents(), rest_model_, tab, *grid, length_scale_));
         save_skin_layer(*slot);
     }
     return *slot;
@@ -230,13 +235,13 @@ void CharacterGeometry::prepare_skin_layers(std::span<const std::pair<uint32_t, 
     }
     if (missing.empty()) return;
     std::lock_guard lock(mutex_);
-    if (!body_surface_) body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_));
+    if (!body_surface_) body_surface_ = std::make_unique<BodySurface>(build_body_surface(muscles_, skeleton_, rest_model_, proxy_radii_, length_scale_));
     std::vector<TriangleSurface> skins = simplify_and_relax_all(body_surface_->dense, body_surface_->field, targets);
     for (size_t i = 0; i < missing.size(); ++i) {
         auto& slot = skin_layers_[missing[i]];
         if (!slot) {
             slot = std::make_unique<SkinLayer>(
-                bind_generated_skin(std::move(skins[i]), muscles_, skeleton_.parents(), rest_model_, *tabs[i], *grids[i]));
+                bind_generated_skin(std::move(skins[i]), muscles_, skeleton_.parents(), rest_model_, *tabs[i], *grids[i], length_scale_));
             save_skin_layer(*slot);
         }
     }

@@ -69,6 +69,9 @@ struct CharacterGeometryDesc {
                                              ///< and (with a mesh) skinned-mesh levels may be used
     std::vector<glm::mat4> rest_model;       ///< rest-pose model matrix per joint (muscles rest here)
     std::optional<CharacterMesh> mesh;       ///< real skinned mesh, or none (generated body skin)
+    float length_scale = 1.0f;               ///< body_length_scale of the type's standing height (skin_layer.hpp):
+                                             ///< the body-skin build's lengths (grid cell, blend, binding spreads,
+                                             ///< proxy radii's bounds) are this many times a person's; > 0
     /// Where the generated skin's load-time bakes (skin layers, maps between unrefined skins) are
     /// reused from and saved to (skin_bake.hpp); none: always built. Unused with a mesh.
     std::shared_ptr<const BlobStore> bake_cache;
@@ -175,6 +178,7 @@ private:
     MuscleSet muscles_;
     std::vector<glm::mat4> rest_model_, inverse_rest_;
     std::vector<float> proxy_radii_;
+    float length_scale_ = 1.0f;                    // CharacterGeometryDesc::length_scale
     std::optional<CharacterMesh> mesh_;
     std::vector<glm::vec3> mesh_rest_positions_;
     std::shared_ptr<const BlobStore> bake_cache_;  // null: no cache; content-keyed entries suit any type

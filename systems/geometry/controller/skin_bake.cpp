@@ -70,7 +70,8 @@ Result<std::vector<uint8_t>> skin_bake_code_version() {
 }
 
 std::vector<uint8_t> skin_bake_inputs(const MuscleSet& muscles, std::span<const int16_t> parents,
-                                      std::span<const glm::mat4> rest_model, std::span<const float> proxy_radii) {
+                                      std::span<const glm::mat4> rest_model, std::span<const float> proxy_radii,
+                                      float length_scale) {
     ByteWriter w;
     w.put<int32_t>(muscles.joint_count);
     w.put<uint64_t>(muscles.names.size());
@@ -90,6 +91,7 @@ std::vector<uint8_t> skin_bake_inputs(const MuscleSet& muscles, std::span<const 
     w.put_vector(parents);
     w.put_vector(rest_model);
     w.put_vector(proxy_radii);
+    w.put<float>(length_scale);
     return w.take();
 }
 

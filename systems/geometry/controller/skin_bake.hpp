@@ -34,9 +34,10 @@ namespace aloha {
 /// never read again. Computed once per process. Errors: a shared library without a build-id (the cache is then off).
 [[nodiscard]] Result<std::vector<uint8_t>> skin_bake_code_version();
 
-/// The key bytes of everything a generated body's bakes read of its type.
+/// The key bytes of everything a generated body's bakes read of its type (its length scale: CharacterGeometryDesc).
 [[nodiscard]] std::vector<uint8_t> skin_bake_inputs(const MuscleSet& muscles, std::span<const int16_t> parents,
-                                                    std::span<const glm::mat4> rest_model, std::span<const float> proxy_radii);
+                                                    std::span<const glm::mat4> rest_model, std::span<const float> proxy_radii,
+                                                    float length_scale);
 
 /// The key of the skin layer at (T, P) of the type whose bake_inputs are `inputs`.
 [[nodiscard]] std::vector<uint8_t> skin_layer_key(std::span<const uint8_t> inputs, uint32_t theta_steps, uint32_t phi_steps);

@@ -74,15 +74,15 @@ std::vector<uint8_t> muscle_groups(const MuscleSet& muscles, std::span<const uin
 
 // Binds `layer.rest_positions` to the rest muscles at the tables' (T, P).
 void bind_layer(SkinLayer& layer, const MuscleSet& muscles, std::span<const int16_t> parents, std::span<const glm::mat4> rest_model,
-                const SuperEllipsoidTables& tables) {
+                const SuperEllipsoidTables& tables, float length_scale) {
     const RestMuscles r = rest_muscles(muscles, rest_model, &tables);
     const std::vector<uint8_t> groups = muscle_groups(muscles, limb_groups(parents, rest_model));
     layer.theta_steps = tables.theta_steps();
     layer.phi_steps = tables.phi_steps();
     layer.bindings.resize(layer.rest_positions.size());
-    const BlendBindJob bind{layer.theta_steps, layer.phi_steps, kBindSpread, r.centres, r.rotations, r.radii, muscles.exponents,
+    const BlendBindJob bind{layer.theta_steps, layer.phi_steps, kBindSpread * length_scale, r.centres, r.rotations, r.radii, muscles.exponents,
                             r.positions, r.normals, layer.rest_positions, layer.bindings, groups, layer.indices,
-                            kBindSmoothing};
+                            kBindSmoothing * length_scale};
     assert(bind.Validate());
     bind.Run();
     layer.dominant_muscle.resize(layer.bindings.size());
@@ -107,8 +107,13 @@ uint32_t nearest_grid_vertex(uint32_t T, uint32_t P, GridParam param) {
 
 }  // namespace
 
+float body_length_scale(float height) {
+    if (!(height > 0.0f) || !std::isfinite(height)) return 1.0f;
+    return height / std::clamp(height, 0.5f, 2.5f);
+}
+
 BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleton, std::span<const glm::mat4> rest_model,
-                               std::span<const float> proxy_radii) {
+                               std::span<const float> proxy_radii, float length_scale) {
     const RestMuscles r = rest_muscles(muscles, rest_model, nullptr);
     const std::span<const int16_t> parents = skeleton.parents();
     std::vector<uint8_t> group = limb_groups(parents, rest_model);
@@ -116,8 +121,8 @@ BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleto
     for (size_t m = 0; m < muscles.trunk_skin.size(); ++m)
         if (muscles.trunk_skin[m]) group[static_cast<size_t>(muscles.origin_joint[m])] = 0;
     BodyField field;
-    field.blend = kBodySkinBlend;
-    field.trunk_fill = kBodySkinTrunkFill;
+    field.blend = kBodySkinBlend * length_scale;
+    field.trunk_fill = kBodySkinTrunkFill * length_scale;
     for (size_t m = 0; m < r.centres.size(); ++m)
         field.ellipsoids.push_back({r.centres[m], r.rotations[m], r.radii[m] + glm::vec3(muscles.fat_thickness[m]), muscles.exponents[m]});
     field.ellipsoid_group = muscle_groups(muscles, group);
@@ -129,17 +134,17 @@ BodySurface build_body_surface(const MuscleSet& muscles, const Skeleton& skeleto
         field.capsule_group.push_back(group[static_cast<size_t>(parents[j])] == group[j] ? group[j] : 0);
     }
     BodySurface out;
-    out.field = sample_body_field(field, kBodySkinCell);
+    out.field = sample_body_field(field, kBodySkinCell * length_scale);
     out.dense = polygonise(out.field);
     return out;
 }
 
 SkinLayer build_generated_skin(const BodySurface& body, const MuscleSet& muscles, std::span<const int16_t> parents,
                                std::span<const glm::mat4> rest_model,
-                               const SuperEllipsoidTables& tables, const GeneratedBindMesh& generated) {
+                               const SuperEllipsoidTables& tables, const GeneratedBindMesh& generated, float length_scale) {
     // The collapse keeps the dense surface's topology: one closed manifold (the tests check it).
     return bind_generated_skin(simplify_and_relax(body.dense, body.field, generated_skin_triangles(muscles, tables)), muscles,
-                               parents, rest_model, tables, generated);
+                               parents, rest_model, tables, generated, length_scale);
 }
 
 uint32_t generated_skin_triangles(const MuscleSet& muscles, const SuperEllipsoidTables& tables) {
@@ -148,12 +153,12 @@ uint32_t generated_skin_triangles(const MuscleSet& muscles, const SuperEllipsoid
 
 SkinLayer bind_generated_skin(TriangleSurface skin, const MuscleSet& muscles, std::span<const int16_t> parents,
                               std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables,
-                              const GeneratedBindMesh& generated) {
+                              const GeneratedBindMesh& generated, float length_scale) {
     const uint32_t T = tables.theta_steps(), P = tables.phi_steps(), V = grid_vertex_count(T, P);
     SkinLayer layer;
     layer.rest_positions = std::move(skin.positions);
     layer.indices = std::move(skin.indices);
-    bind_layer(layer, muscles, parents, rest_model, tables);
+    bind_layer(layer, muscles, parents, rest_model, tables, length_scale);
     // LBS weights: the grid mesh's weights at each influence's nearest grid vertex, blended by the
     // binding weights, the four largest kept and renormalised.
     const size_t n = layer.rest_positions.size();
@@ -187,11 +192,12 @@ SkinLayer bind_generated_skin(TriangleSurface skin, const MuscleSet& muscles, st
 }
 
 SkinLayer build_mesh_skin(std::span<const glm::vec3> rest_positions, std::span<const uint32_t> indices, const MuscleSet& muscles,
-                          std::span<const int16_t> parents, std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables) {
+                          std::span<const int16_t> parents, std::span<const glm::mat4> rest_model, const SuperEllipsoidTables& tables,
+                          float length_scale) {
     SkinLayer layer;
     layer.rest_positions.assign(rest_positions.begin(), rest_positions.end());
     layer.indices.assign(indices.begin(), indices.end());
-    bind_layer(layer, muscles, parents, rest_model, tables);
+    bind_layer(layer, muscles, parents, rest_model, tables, length_scale);
     return layer;
 }
 

@@ -12,6 +12,7 @@
 #include "host/scene/world.hpp"
 #include "tests/common/rig_fixtures.hpp"
 #include "tests/host/scene/character_checks.hpp"
+#include "systems/geometry/controller/skin_layer.hpp"
 #include "systems/render/crowd_renderer.hpp"
 
 #include <gtest/gtest.h>
@@ -363,6 +364,37 @@ TEST(CharacterRig, UnrealRigWithARootJointOnTheGroundWalksAndReaches) {
     // bound; 0.174 m when "root" was the root body, a 1 m pole from the ground to the pelvis).
     expect_dynamic_walks(t);
     for (const std::string& n : t.notes) EXPECT_EQ(n.find("dynamic walk approximate"), std::string::npos) << n;
+    fs::remove_all(dir);
+}
+
+// A giant (a Poser BVH in metres given 8 m per unit: 8x a person) gets a giant's muscles: each as long and as thick
+// as the person's times 8, its fat a 2.5 m person's times height / 2.5 (body_length_scale). The reference humanoid
+// was built at most 2.5 m tall, so a 14 m rig's muscles were a 2.5 m humanoid's strung along its bones: thin limbs.
+TEST(CharacterRig, GiantGetsTheMusclesOfAHumanoidItsHeight) {
+    const fs::path dir = temp_dir("giant");
+    const RawSkeleton raw = test::renamed_humanoid(test::poser_names());
+    test::write_text((dir / "poser.bvh").string(), test::bvh_text(raw, 20, glm::vec3(0, 0, 1), 0.04f));
+    CharacterTypeDesc person_desc = desc_for("person", (dir / "poser.bvh").string());
+    person_desc.scale = 1.0f;
+    CharacterTypeDesc giant_desc = person_desc;
+    giant_desc.name = "giant";
+    giant_desc.scale = 8.0f;
+    const CharacterType person = load_or_fail(person_desc);
+    const CharacterType giant = load_or_fail(giant_desc);
+    ASSERT_GT(person.muscles.size(), 0);
+    ASSERT_EQ(giant.muscles.size(), person.muscles.size());
+    ASSERT_NEAR(giant.frame.height, 8.0f * person.frame.height, 1e-3f * giant.frame.height);
+    ASSERT_GE(person.frame.height, 0.5f);
+    ASSERT_LE(person.frame.height, 2.5f) << "the person is a person: its fat is the layout's";
+    const float fat = body_length_scale(giant.frame.height);  // the person's body_length_scale is 1
+    EXPECT_NEAR(fat, giant.frame.height / 2.5f, 1e-5f);
+    for (size_t m = 0; m < static_cast<size_t>(person.muscles.size()); ++m) {
+        SCOPED_TRACE(person.muscles.names[m]);
+        // Float rounding of positions 8x larger and of the fit: relative 1e-4 is far below the 2.5 / 14 of the bug.
+        EXPECT_NEAR(giant.muscles.rest_length[m], 8.0f * person.muscles.rest_length[m], 1e-4f * 8.0f * person.muscles.rest_length[m] + 1e-6f);
+        EXPECT_NEAR(giant.muscles.volume[m], 512.0f * person.muscles.volume[m], 1e-3f * 512.0f * person.muscles.volume[m] + 1e-9f);
+        EXPECT_NEAR(giant.muscles.fat_thickness[m], fat * person.muscles.fat_thickness[m], 1e-5f * fat + 1e-7f);
+    }
     fs::remove_all(dir);
 }
 

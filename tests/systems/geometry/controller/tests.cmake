@@ -11,6 +11,7 @@ aloha_test(geomctl_tests
     ${CMAKE_CURRENT_LIST_DIR}/controller_gltf_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/body_texture_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/continuous_skin_test.cpp
+    ${CMAKE_CURRENT_LIST_DIR}/body_scale_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/controller_layers_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/muscle_volume_test.cpp
     ${CMAKE_CURRENT_LIST_DIR}/simplified_indices_test.cpp
